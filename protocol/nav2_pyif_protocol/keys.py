@@ -1,0 +1,57 @@
+"""Zenoh key expressions, built in one place (as rmw_zenoh does)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from nav2_pyif_protocol.constants import Op
+
+
+def validate_prefix(prefix: str) -> str:
+    """Check a plugin's key prefix (e.g. ``nav2_pyif/robot1/FollowPath``) and return it."""
+    if not prefix or prefix.startswith("/") or prefix.endswith("/"):
+        raise ValueError(f"key prefix {prefix!r} must be non-empty without leading/trailing '/'")
+    for chunk in prefix.split("/"):
+        if not chunk or any(c in chunk for c in "*$?#"):
+            raise ValueError(f"key prefix {prefix!r} has an empty or wildcard chunk {chunk!r}")
+    return prefix
+
+
+@dataclass(frozen=True)
+class KeySpace:
+    """The keys under one plugin instance's prefix.
+
+    - ``{prefix}/rpc/{op}``   a call, answered in order by the planner's call thread;
+    - ``{prefix}/cancel``      out-of-band ``cancel_plan``, answered at once while a call runs;
+    - ``{prefix}/host/{id}``   liveliness token of each host serving the prefix.
+    """
+
+    prefix: str
+
+    def __post_init__(self) -> None:
+        validate_prefix(self.prefix)
+
+    def call(self, op: Op | str) -> str:
+        op_name = op.value if isinstance(op, Op) else op
+        if op_name == Op.CANCEL_PLAN.value:
+            return self.cancel
+        return f"{self.prefix}/rpc/{op_name}"
+
+    @property
+    def calls(self) -> str:
+        return f"{self.prefix}/rpc/*"
+
+    @property
+    def cancel(self) -> str:
+        return f"{self.prefix}/cancel"
+
+    def host_token(self, host_id: str) -> str:
+        return f"{self.prefix}/host/{host_id}"
+
+    @property
+    def hosts(self) -> str:
+        return f"{self.prefix}/host/*"
+
+    @staticmethod
+    def host_id_of(token_key: str) -> str:
+        return token_key.rsplit("/", 1)[-1]

@@ -1,0 +1,153 @@
+"""The machine-readable form of PROTOCOL.md: every field of every message, in wire order.
+
+Encoders write map keys in exactly this order (so both codecs produce identical bytes);
+decoders check types and required fields and ignore keys they do not know.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Final
+
+from nav2_pyif_protocol.constants import Op
+
+# Field kinds. A struct kind is the name of an entry of STRUCTS.
+INT: Final = "int"  # msgpack int, fits int64 (uint64 for seq)
+FLOAT: Final = "float"  # msgpack float64, always (even for whole numbers)
+BOOL: Final = "bool"
+STR: Final = "str"  # UTF-8 msgpack str
+BIN: Final = "bin"  # msgpack bin
+FLOAT6: Final = "float[6]"  # msgpack array of 6 float64
+FLOAT7: Final = "float[7]"  # msgpack array of 7 float64
+PARAMS: Final = "params"  # map str -> bool | int | float | str | array of one of those
+STR_MAP: Final = "map<str,str>"
+
+
+@dataclass(frozen=True)
+class Field:
+    name: str
+    kind: str
+    required: bool = True
+    doc: str = ""
+
+
+def _f(name: str, kind: str, doc: str = "", required: bool = True) -> Field:
+    return Field(name, kind, required, doc)
+
+
+STRUCTS: dict[str, tuple[Field, ...]] = {
+    "PoseStamped": (
+        _f("frame_id", STR, "frame of the pose"),
+        _f("stamp_ns", INT, "header stamp, ns since the epoch of the ROS clock"),
+        _f("pose", FLOAT7, "x, y, z [m], qx, qy, qz, qw"),
+    ),
+    "TwistStamped": (
+        _f("frame_id", STR, "frame of the twist (the robot base frame)"),
+        _f("stamp_ns", INT, "header stamp [ns]"),
+        _f("twist", FLOAT6, "vx, vy, vz [m/s], wx, wy, wz [rad/s]"),
+    ),
+    "Path": (
+        _f("frame_id", STR, "frame of every pose"),
+        _f("stamp_ns", INT, "header stamp [ns]"),
+        _f("poses", BIN, "N x 7 float64 little-endian, row-major: x, y, z, qx, qy, qz, qw"),
+    ),
+    "Costmap": (
+        _f("version", INT, "client's counter; changes whenever data or metadata change"),
+        _f("frame_id", STR, "the costmap's global frame"),
+        _f("size_x", INT, "cells along x (width)"),
+        _f("size_y", INT, "cells along y (height)"),
+        _f("resolution", FLOAT, "m per cell"),
+        _f("origin_x", FLOAT, "world x of cell (0, 0)'s outer corner [m]"),
+        _f("origin_y", FLOAT, "world y of cell (0, 0)'s outer corner [m]"),
+        _f("data", BIN, "size_x * size_y uint8 costs, index = my * size_x + mx"),
+        _f("footprint", BIN, "K x 2 float64 little-endian x, y [m] in the robot frame; K may be 0"),
+        _f("robot_radius", FLOAT, "[m]; used when the footprint is empty"),
+    ),
+    "GoalChecker": (
+        _f("xy_goal_tolerance", FLOAT, "[m]"),
+        _f("yaw_goal_tolerance", FLOAT, "[rad]"),
+        _f("trans_stopped_velocity", FLOAT, "[m/s]"),
+        _f("rot_stopped_velocity", FLOAT, "[rad/s]"),
+    ),
+    "Error": (
+        _f("type", STR, "nav2_core exception name or protocol error name"),
+        _f("message", STR, "human-readable, names the cause"),
+        _f("traceback", STR, "Python traceback, empty when none"),
+        _f("python_type", STR, "qualified name of the Python exception, empty when none"),
+    ),
+}
+
+REQUEST_ENVELOPE: tuple[Field, ...] = (
+    _f("v", INT, "protocol version"),
+    _f("op", STR, "operation (also the last key chunk)"),
+    _f("sid", STR, "session id chosen by the client at configure"),
+    _f("epoch", INT, "session epoch: 1 at the first configure, +1 at each re-establishment"),
+    _f("seq", INT, "per-session sequence number, strictly increasing"),
+    _f("body", "body", "operation-specific map"),
+)
+
+REPLY_ENVELOPE: tuple[Field, ...] = (
+    _f("v", INT, "protocol version"),
+    _f("seq", INT, "the request's seq"),
+    _f("ok", BOOL, "true: body follows; false: error follows"),
+    _f("body", "body", "operation-specific map (ok replies)", required=False),
+    _f("error", "Error", "failure (error replies)", required=False),
+    _f("host", STR, "id of the host that answered"),
+    _f("compute_ns", INT, "time spent in the planner's method [ns]; 0 when not called"),
+)
+
+_CONFIGURE_REQUEST = (
+    _f("plugin_type", STR, "'controller' or 'global_planner'"),
+    _f("name", STR, "plugin name in Nav2 (e.g. FollowPath)"),
+    _f("node", STR, "name of the Nav2 server node"),
+    _f("params", PARAMS, "every parameter under the plugin's namespace, prefix stripped"),
+    _f("global_frame", STR, "the costmap's global frame"),
+    _f("robot_base_frame", STR, "the robot base frame"),
+    _f("costmap", "Costmap", "the costmap at configure time"),
+)
+
+#: op -> (request body fields, reply body fields)
+BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
+    Op.CONFIGURE: (
+        _CONFIGURE_REQUEST,
+        (_f("declared", PARAMS, "parameters the planner declared, with current values"),),
+    ),
+    Op.ACTIVATE: ((), ()),
+    Op.DEACTIVATE: ((), ()),
+    Op.CLEANUP: ((), ()),
+    Op.SET_PARAMETERS: (
+        (_f("params", PARAMS, "changed parameters"),),
+        (_f("rejected", STR_MAP, "name -> reason, for each change not applied"),),
+    ),
+    Op.SET_PLAN: ((_f("path", "Path", "the global plan, in the costmap's global frame"),), ()),
+    Op.COMPUTE_VELOCITY_COMMANDS: (
+        (
+            _f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),
+            _f("velocity", FLOAT6, "current velocity in the robot base frame"),
+            _f("goal_checker", "GoalChecker", "tolerances, when Nav2 gave a goal checker", False),
+            _f("costmap", "Costmap", "present only when changed since last sent", False),
+        ),
+        (_f("cmd_vel", "TwistStamped", "the command; every component finite"),),
+    ),
+    Op.SET_SPEED_LIMIT: (
+        (
+            _f("speed_limit", FLOAT, "m/s, or percent of the maximum when percentage"),
+            _f("percentage", BOOL, "speed_limit is a percentage"),
+        ),
+        (),
+    ),
+    Op.CANCEL: ((), (_f("cancelled", BOOL, "true when the controller finished cancelling"),)),
+    Op.RESET: ((), ()),
+    Op.CREATE_PLAN: (
+        (
+            _f("start", "PoseStamped", "start pose, in the costmap's global frame"),
+            _f("goal", "PoseStamped", "goal pose, in the costmap's global frame"),
+            _f("costmap", "Costmap", "present only when changed since last sent", False),
+        ),
+        (_f("path", "Path", "the plan; every value finite"),),
+    ),
+    Op.CANCEL_PLAN: (
+        (_f("target_seq", INT, "seq of the create_plan call to cancel"),),
+        (_f("accepted", BOOL, "true when that call was running and is now flagged"),),
+    ),
+}

@@ -1,0 +1,288 @@
+"""Shared test vectors: the contract both codecs are tested against.
+
+Each vector is ``<name>.msgpack`` (the exact bytes) and ``<name>.json`` (the decoded msgpack
+object tree). ``index.json`` lists them with their kind (request / reply) and op. In the JSON
+form, byte strings are ``{"$bin": "<hex>"}`` (or ``{"$bin_len": n, "$bin_crc32": c}`` above
+4 KiB), non-finite floats are ``{"$float": "nan" | "inf" | "-inf"}``, and floats are always
+written with a decimal point or exponent, ints never.
+
+    nav2-pyif-vectors --check protocol/vectors    # exit 1 if the files differ from the code
+    nav2-pyif-vectors --write protocol/vectors    # regenerate after a deliberate change
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import zlib
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import msgpack
+import numpy as np
+
+from nav2_pyif_protocol.arrays import pack_poses, pack_xy
+from nav2_pyif_protocol.codec import ErrorInfo, Reply, Request, encode_reply, encode_request
+from nav2_pyif_protocol.constants import ErrorType, Op
+
+INLINE_BIN_LIMIT = 4096
+SID = "3f2a9c7e5b1d4e8f9a0b1c2d3e4f5a6b"
+HOST = "host-a-4242-01"
+
+
+@dataclass(frozen=True)
+class Vector:
+    name: str
+    kind: str  # "request" | "reply"
+    op: Op
+    data: bytes
+    description: str
+
+
+def costmap(size_x: int, size_y: int, version: int, frame: str = "map") -> dict[str, Any]:
+    """A deterministic costmap: free, a lethal border, an inflated ramp and unknown cells."""
+    mx, my = np.meshgrid(np.arange(size_x), np.arange(size_y))
+    grid = ((mx * 7 + my * 13) % 256).astype(np.uint8)
+    grid[0, :] = 254
+    grid[:, 0] = 253
+    grid[-1, -1] = 255
+    return {
+        "version": version,
+        "frame_id": frame,
+        "size_x": size_x,
+        "size_y": size_y,
+        "resolution": 0.05,
+        "origin_x": -10.0,
+        "origin_y": -7.5,
+        "data": grid.tobytes(),
+        "footprint": pack_xy([[0.3, 0.2], [0.3, -0.2], [-0.3, -0.2], [-0.3, 0.2]]),
+        "robot_radius": 0.0,
+    }
+
+
+# Vector values come from Python's math (correctly rounded libm), never NumPy's SIMD
+# kernels, so regenerating the vectors gives the same bytes on every CPU.
+def _pose7(x: float, y: float, yaw: float) -> list[float]:
+    return [x, y, 0.0, 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)]
+
+
+def pose(x: float, y: float, yaw: float, frame: str = "map") -> dict[str, Any]:
+    return {"frame_id": frame, "stamp_ns": 1_700_000_000_123_456_789, "pose": _pose7(x, y, yaw)}
+
+
+def path(n: int, frame: str = "map") -> dict[str, Any]:
+    ts = [i / (n - 1) if n > 1 else 0.0 for i in range(n)]
+    rows = [_pose7(t * 10.0, math.sin(t * 3.0), 0.25) for t in ts]
+    return {"frame_id": frame, "stamp_ns": 5, "poses": pack_poses(np.array(rows).reshape(-1, 7))}
+
+
+def _requests() -> Iterator[tuple[str, Request, str]]:
+    def req(op: Op, body: dict[str, Any], seq: int = 7, epoch: int = 1) -> Request:
+        return Request(op=op, sid=SID, epoch=epoch, seq=seq, body=body)
+
+    configure = {
+        "plugin_type": "controller",
+        "name": "FollowPath",
+        "node": "controller_server",
+        "params": {
+            "max_vel_x": 0.5,
+            "lookahead_dist": 0.6,
+            "use_rotate": True,
+            "horizon_steps": 30,
+            "mode": "fast",
+            "weights": [1.0, 2.5],
+            "tags": ["a", "b"],
+        },
+        "global_frame": "odom",
+        "robot_base_frame": "base_link",
+        "costmap": costmap(4, 3, 1, "odom"),
+    }
+    yield "configure_controller", req(Op.CONFIGURE, configure, seq=0), "controller configure"
+    planner_configure = dict(configure, plugin_type="global_planner", name="GridBased",
+                             node="planner_server", params={}, global_frame="map",
+                             costmap=costmap(1, 1, 9))
+    yield "configure_planner_1x1", req(Op.CONFIGURE, planner_configure, seq=0), "1x1 costmap"
+    for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.CANCEL, Op.RESET):
+        yield f"{op.value}_request", req(op, {}), f"{op.value}: empty body"
+    yield "set_parameters_request", req(Op.SET_PARAMETERS, {"params": {"max_vel_x": 0.25}}), ""
+    yield "set_plan_request", req(Op.SET_PLAN, {"path": path(5)}), "5-pose path"
+    yield "set_plan_empty", req(Op.SET_PLAN, {"path": path(0)}), "empty path: zero-length bin"
+    yield "set_plan_1000", req(Op.SET_PLAN, {"path": path(1000)}), "1000-pose path"
+    cvc = {
+        "pose": pose(1.0, 2.0, 0.5, "odom"),
+        "velocity": [0.3, 0.0, 0.0, 0.0, 0.0, 0.1],
+        "goal_checker": {
+            "xy_goal_tolerance": 0.25,
+            "yaw_goal_tolerance": 0.25,
+            "trans_stopped_velocity": 0.25,
+            "rot_stopped_velocity": 0.25,
+        },
+    }
+    yield "compute_velocity_commands_request", req(Op.COMPUTE_VELOCITY_COMMANDS, cvc, seq=1234), (
+        "costmap unchanged: no costmap field"
+    )
+    minimal = {"pose": cvc["pose"], "velocity": cvc["velocity"]}
+    yield "compute_velocity_commands_no_goal_checker", req(
+        Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=2**32
+    ), "no goal checker; 5-byte seq"
+    with_map = dict(cvc, costmap=costmap(400, 400, 17, "odom"))
+    yield "compute_velocity_commands_costmap_400", req(
+        Op.COMPUTE_VELOCITY_COMMANDS, with_map, seq=1235
+    ), "costmap changed: 400x400 attached"
+    nan_velocity = dict(minimal, velocity=[math.nan, 0.0, math.inf, -math.inf, -0.0, 0.0])
+    yield "compute_velocity_commands_nan_velocity", req(
+        Op.COMPUTE_VELOCITY_COMMANDS, nan_velocity, epoch=3
+    ), "non-finite and negative-zero floats survive the codec"
+    unicode_pose = pose(0.0, 0.0, 0.0, "карта/地図/ø")
+    yield "compute_velocity_commands_unicode_frame", req(
+        Op.COMPUTE_VELOCITY_COMMANDS, dict(minimal, pose=unicode_pose)
+    ), "non-ASCII frame id"
+    yield "set_speed_limit_absolute", req(
+        Op.SET_SPEED_LIMIT, {"speed_limit": 0.35, "percentage": False}
+    ), ""
+    yield "set_speed_limit_percentage", req(
+        Op.SET_SPEED_LIMIT, {"speed_limit": 50.0, "percentage": True}
+    ), ""
+    plan_body = {"start": pose(0.0, 0.0, 0.0), "goal": pose(5.0, -2.0, 3.14159)}
+    yield "create_plan_request", req(Op.CREATE_PLAN, plan_body, seq=3), ""
+    big = dict(plan_body, costmap=costmap(1000, 1000, 2))
+    yield "create_plan_costmap_1000", req(Op.CREATE_PLAN, big, seq=4), "1000x1000 costmap"
+    yield "cancel_plan_request", req(Op.CANCEL_PLAN, {"target_seq": 3}, seq=5), ""
+
+
+def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
+    def ok(op: Op, body: dict[str, Any], seq: int = 7, compute_ns: int = 12_345) -> Reply:
+        return Reply(seq=seq, ok=True, host=HOST, body=body, compute_ns=compute_ns)
+
+    yield "configure_reply", Op.CONFIGURE, ok(
+        Op.CONFIGURE, {"declared": {"max_vel_x": 0.5, "k_rep": 2}}, seq=0
+    ), "declared parameters"
+    for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PLAN, Op.RESET, Op.SET_SPEED_LIMIT):
+        yield f"{op.value}_reply", op, ok(op, {}, compute_ns=0), "empty body"
+    yield "set_parameters_reply", Op.SET_PARAMETERS, ok(
+        Op.SET_PARAMETERS, {"rejected": {"max_vel_x": "expected float, got str"}}
+    ), ""
+    cmd = {"frame_id": "base_link", "stamp_ns": 42, "twist": [0.4, 0.0, 0.0, 0.0, 0.0, -0.2]}
+    yield "compute_velocity_commands_reply", Op.COMPUTE_VELOCITY_COMMANDS, ok(
+        Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd}, seq=1234
+    ), ""
+    yield "cancel_reply", Op.CANCEL, ok(Op.CANCEL, {"cancelled": True}), ""
+    yield "create_plan_reply", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(50)}, seq=3), ""
+    yield "create_plan_reply_empty", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(0)}), ""
+    yield "cancel_plan_reply", Op.CANCEL_PLAN, ok(Op.CANCEL_PLAN, {"accepted": True}, seq=5), ""
+    errors = [
+        ("error_no_valid_control", Op.COMPUTE_VELOCITY_COMMANDS, ErrorType.NO_VALID_CONTROL,
+         "compute_velocity_commands returned a non-finite twist: linear.x=nan",
+         "Traceback (most recent call last):\n  File \"apf.py\", line 3\nValueError: x\n",
+         ""),
+        ("error_python_exception", Op.COMPUTE_VELOCITY_COMMANDS, ErrorType.CONTROLLER_EXCEPTION,
+         "ZeroDivisionError: division by zero",
+         "Traceback (most recent call last):\n  File \"c.py\", line 9, in f\n"
+         "ZeroDivisionError: division by zero\n",
+         "builtins.ZeroDivisionError"),
+        ("error_session_unknown", Op.SET_PLAN, ErrorType.SESSION_UNKNOWN,
+         "session 3f2a... epoch 2 is not known to this host", "", ""),
+        ("error_version_mismatch", Op.ACTIVATE, ErrorType.VERSION_MISMATCH,
+         "request speaks protocol version 2; this host speaks 1", "", ""),
+        ("error_no_path_unicode", Op.CREATE_PLAN, ErrorType.NO_VALID_PATH_COULD_BE_FOUND,
+         "kein Pfad gefunden → 目標に到達できません", "", "nav2_pyif.exceptions.X"),
+        ("error_unavailable", Op.CREATE_PLAN, ErrorType.UNAVAILABLE,
+         "planner worker is restarting", "", ""),
+    ]
+    for name, op, etype, message, tb, pytype in errors:
+        yield name, op, Reply(
+            seq=9, ok=False, host=HOST, error=ErrorInfo(etype.value, message, tb, pytype)
+        ), etype.value
+
+
+def build_vectors() -> list[Vector]:
+    vectors = [Vector(n, "request", r.op, encode_request(r), d) for n, r, d in _requests()]
+    # A request from a newer protocol version; hosts must answer VersionMismatch.
+    future = Request(op=Op.ACTIVATE, sid=SID, epoch=1, seq=1, v=2)
+    vectors.append(Vector("activate_version_2", "request", Op.ACTIVATE,
+                          encode_request(future), "protocol version 2: VersionMismatch"))
+    vectors += [Vector(n, "reply", op, encode_reply(r, op), d) for n, op, r, d in _replies()]
+    return vectors
+
+
+# --- JSON form of a decoded msgpack tree --------------------------------------------------
+
+
+def to_json_tree(value: Any) -> Any:
+    if isinstance(value, bytes):
+        if len(value) <= INLINE_BIN_LIMIT:
+            return {"$bin": value.hex()}
+        return {"$bin_len": len(value), "$bin_crc32": zlib.crc32(value)}
+    if isinstance(value, float) and not math.isfinite(value):
+        return {"$float": "nan" if math.isnan(value) else ("inf" if value > 0 else "-inf")}
+    if isinstance(value, dict):
+        return {k: to_json_tree(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [to_json_tree(v) for v in value]
+    return value
+
+
+def expected_json(data: bytes) -> str:
+    tree = msgpack.unpackb(data, raw=False)
+    return json.dumps(to_json_tree(tree), indent=1, ensure_ascii=False) + "\n"
+
+
+def index_json(vectors: list[Vector]) -> str:
+    entries = [
+        {"name": v.name, "kind": v.kind, "op": v.op.value, "description": v.description}
+        for v in vectors
+    ]
+    return json.dumps({"protocol_version": 1, "vectors": entries}, indent=1) + "\n"
+
+
+def rendered_files(vectors: list[Vector]) -> dict[str, bytes]:
+    files: dict[str, bytes] = {"index.json": index_json(vectors).encode()}
+    for v in vectors:
+        files[f"{v.name}.msgpack"] = v.data
+        files[f"{v.name}.json"] = expected_json(v.data).encode()
+    return files
+
+
+def _check(directory: Path, files: dict[str, bytes], report: Callable[[str], None]) -> int:
+    problems = 0
+    for name, content in files.items():
+        on_disk = directory / name
+        if not on_disk.exists() or on_disk.read_bytes() != content:
+            report(f"differs: {on_disk}")
+            problems += 1
+    known = set(files)
+    for stray in sorted(p.name for p in directory.iterdir() if p.name not in known):
+        report(f"not produced by the code: {directory / stray}")
+        problems += 1
+    return problems
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="nav2-pyif-vectors", description="Write or check the shared protocol test vectors."
+    )
+    group = parser.add_mutually_exclusive_group(required=True)
+    group.add_argument("--write", type=Path, metavar="DIR", help="regenerate the vectors in DIR")
+    group.add_argument("--check", type=Path, metavar="DIR", help="fail if DIR is out of date")
+    args = parser.parse_args(argv)
+    files = rendered_files(build_vectors())
+    if args.write:
+        args.write.mkdir(parents=True, exist_ok=True)
+        for stale in args.write.glob("*"):
+            if stale.name not in files:
+                stale.unlink()
+        for name, content in files.items():
+            (args.write / name).write_bytes(content)
+        print(f"wrote {len(files)} files to {args.write}")
+        return 0
+    problems = _check(args.check, files, lambda line: print(line, file=sys.stderr))
+    print(f"{len(files) - problems} of {len(files)} vector files match")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

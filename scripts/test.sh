@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# The whole test suite, from a fresh clone: bootstrap, lint, type-check, then pytest.
+# Extra arguments go to pytest (e.g. scripts/test.sh -k codec).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+"$ROOT/scripts/bootstrap.sh"
+# shellcheck disable=SC1091
+source "${NAV2_PYIF_VENV:-$ROOT/.venv}/nav2_pyif_env.sh"
+cd "$ROOT"
+echo "== ruff"; ruff check .
+echo "== mypy"; mypy
+echo "== pytest"; python -m pytest "$@"
