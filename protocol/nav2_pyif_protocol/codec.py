@@ -206,7 +206,7 @@ def decode_request(data: bytes) -> Request:
             ErrorType.VERSION_MISMATCH,
             f"request speaks protocol version {version!r}; this host speaks {PROTOCOL_VERSION}",
         )
-    env = _canon_map("request", REQUEST_ENVELOPE[:-1], raw)
+    env = _canon_map("request", tuple(f for f in REQUEST_ENVELOPE if f.name != "body"), raw)
     op = _parse_op(env["op"])
     body = _canon_map(f"{op.value} request body", request_body_fields(op), raw.get("body", {}))
     if env["epoch"] < 1 or env["seq"] < 0:
@@ -246,7 +246,9 @@ def decode_reply(data: bytes, op: Op) -> Reply:
             f"reply speaks protocol version {raw.get('v')!r}; this client speaks "
             f"{PROTOCOL_VERSION}",
         )
-    env = _canon_map("reply", REPLY_ENVELOPE, raw)
+    env = _canon_map("reply", tuple(f for f in REPLY_ENVELOPE if f.name != "body"), raw)
+    if "body" in raw:
+        env["body"] = raw["body"]
     if env["ok"]:
         body = _canon_map(f"{op.value} reply body", reply_body_fields(op), env.get("body", {}))
         return Reply(env["seq"], True, env["host"], body=body, compute_ns=env["compute_ns"])

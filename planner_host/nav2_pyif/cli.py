@@ -1,0 +1,187 @@
+"""``planner-host``: serve Python planners to Nav2 over Zenoh."""
+
+from __future__ import annotations
+
+import argparse
+import logging
+import os
+import signal
+import sys
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+from types import FrameType
+from typing import Any
+
+import yaml
+
+from nav2_pyif.delegates import delegate_class, parse_delegates
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.host import PlannerHost, new_host_id
+from nav2_pyif.loader import load_class
+from nav2_pyif.plugin import PlannerPlugin
+from nav2_pyif.runtime import PlannerRuntime
+from nav2_pyif.zenoh_config import add_zenoh_arguments, open_session, options_from_args
+from nav2_pyif_protocol.keys import validate_prefix
+
+EPILOG = """\
+examples:
+  # a controller class, on the key the Nav2 params YAML names
+  planner-host --key nav2_pyif/robot1/FollowPath --planner my_pkg.ctrl:MyController
+
+  # the seed paper's function-delegate style
+  planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
+      --delegate compute_velocity_commands=compute,set_plan=set_plan
+
+  # several planners on one host, no Zenoh router: plugins connect to this host
+  planner-host --listen tcp/127.0.0.1:7447 \\
+      --serve nav2_pyif/robot1/FollowPath=my_pkg.ctrl:MyController \\
+      --serve nav2_pyif/robot1/GridBased=my_pkg.astar:AStar
+
+  # from a YAML file: planners: [{key: ..., planner: ...}, {key: ..., module: ..., delegates: {...}}]
+  planner-host --config planners.yaml
+"""
+
+
+@dataclass
+class PlannerSpec:
+    key: str
+    planner: str | None = None
+    module: str | None = None
+    delegates: dict[str, str] | None = None
+
+    def load(self) -> type[PlannerPlugin]:
+        if self.planner:
+            return load_class(self.planner)
+        assert self.module is not None
+        return delegate_class(self.module, self.delegates or {})
+
+    def describe(self) -> str:
+        return self.planner or f"{self.module} (delegates)"
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="planner-host",
+        description="Serve Python motion planners to Nav2 (nav2_pyif plugins) over Zenoh.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    what = parser.add_argument_group("what to serve")
+    what.add_argument("--key", metavar="PREFIX",
+                      help="key prefix of the plugin, as in the Nav2 params YAML")
+    what.add_argument("--planner", metavar="MODULE:CLASS",
+                      help="a Controller or GlobalPlanner subclass, e.g. my_pkg.ctrl:MyController")
+    what.add_argument("--module", metavar="MODULE",
+                      help="module of plain functions (the seed's python_module)")
+    what.add_argument("--delegate", action="append", default=[], metavar="ROLE=FUNCTION",
+                      help="role -> function of --module (the seed's python_delegates), repeatable "
+                           "or comma-separated")
+    what.add_argument("--serve", action="append", default=[], metavar="PREFIX=MODULE:CLASS",
+                      help="serve another planner on another key, repeatable")
+    what.add_argument("--config", type=Path, metavar="YAML",
+                      help="YAML file with a 'planners' list of {key, planner | module+delegates}")
+    what.add_argument("--path", action="append", default=[], metavar="DIR",
+                      help="directory to import planners from, repeatable (the current "
+                           "directory is always searched, as with python -m)")
+    add_zenoh_arguments(parser)
+    parser.add_argument("--log-level", default="INFO",
+                        choices=["DEBUG", "INFO", "WARNING", "ERROR"])
+    return parser
+
+
+def collect_specs(args: argparse.Namespace, parser: argparse.ArgumentParser) -> list[PlannerSpec]:
+    specs: list[PlannerSpec] = []
+    if args.planner or args.module:
+        if not args.key:
+            parser.error("--planner/--module need --key PREFIX")
+        if args.planner and args.module:
+            parser.error("give either --planner or --module, not both")
+        delegates = parse_delegates(args.delegate) if args.module else None
+        if args.module and not delegates:
+            parser.error("--module needs --delegate ROLE=FUNCTION (e.g. compute_velocity_commands=f)")
+        specs.append(PlannerSpec(args.key, args.planner, args.module, delegates))
+    elif args.key:
+        parser.error("--key needs --planner MODULE:CLASS or --module MODULE")
+    for item in args.serve:
+        key, sep, planner = item.partition("=")
+        if not sep:
+            parser.error(f"--serve {item!r} is not PREFIX=MODULE:CLASS")
+        specs.append(PlannerSpec(key, planner))
+    if args.config:
+        specs += specs_from_yaml(args.config)
+    if not specs:
+        parser.error("nothing to serve: give --key with --planner/--module, --serve or --config")
+    for spec in specs:
+        try:
+            validate_prefix(spec.key)
+        except ValueError as exc:
+            parser.error(str(exc))
+    return specs
+
+
+def specs_from_yaml(path: Path) -> list[PlannerSpec]:
+    try:
+        data: Any = yaml.safe_load(path.read_text())
+    except (OSError, yaml.YAMLError) as exc:
+        raise PlannerLoadError(f"cannot read {path}: {exc}") from exc
+    entries = data.get("planners") if isinstance(data, dict) else None
+    if not isinstance(entries, list):
+        raise PlannerLoadError(f"{path}: expected a top-level 'planners:' list")
+    specs = []
+    for i, entry in enumerate(entries):
+        if not isinstance(entry, dict) or "key" not in entry:
+            raise PlannerLoadError(f"{path}: planners[{i}] needs a 'key'")
+        if ("planner" in entry) == ("module" in entry):
+            raise PlannerLoadError(f"{path}: planners[{i}] needs exactly one of planner / module")
+        specs.append(PlannerSpec(str(entry["key"]), entry.get("planner"), entry.get("module"),
+                                 {str(k): str(v) for k, v in (entry.get("delegates") or {}).items()}))
+    return specs
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    logging.basicConfig(level=args.log_level,
+                        format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s")
+    log = logging.getLogger("nav2_pyif.host")
+    for directory in [os.getcwd(), *args.path][::-1]:
+        if directory not in sys.path:
+            sys.path.insert(0, directory)
+    try:
+        specs = collect_specs(args, parser)
+        classes = [(spec, spec.load()) for spec in specs]
+    except PlannerLoadError as exc:
+        print(f"planner-host: error: {exc}", file=sys.stderr)
+        return 2
+
+    stop = threading.Event()
+
+    def on_signal(signum: int, _frame: FrameType | None) -> None:
+        log.info("received %s, shutting down", signal.Signals(signum).name)
+        stop.set()
+
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+
+    try:
+        session = open_session(options_from_args(args))
+    except (ConnectionError, FileNotFoundError) as exc:
+        print(f"planner-host: error: {exc}", file=sys.stderr)
+        return 3
+    host_id = new_host_id()
+    host = PlannerHost(session, host_id)
+    try:
+        for spec, cls in classes:
+            host.serve(spec.key, PlannerRuntime(cls, host_id, label=spec.describe()))
+        log.info("host %s ready (%d planner%s)", host_id, len(classes), "s"[: len(classes) > 1])
+        stop.wait()
+    finally:
+        # Close explicitly on every path: an open session keeps the process alive.
+        host.close()
+        session.close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,21 @@
+"""The reference client: the plugin side of the protocol, in Python.
+
+It is what the offline runner and the tests use, and the executable specification the C++
+Nav2 plugin follows: session id and epoch, state re-sent after a host restart, timeouts,
+liveliness fail-fast, costmap sent only when changed.
+"""
+
+from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.client.controller import ControllerClient
+from nav2_pyif.client.global_planner import GlobalPlannerClient
+from nav2_pyif.client.hosts import HostWatcher
+from nav2_pyif.client.plugin_client import PluginClient, Timeouts
+
+__all__ = [
+    "CallRecord",
+    "ControllerClient",
+    "GlobalPlannerClient",
+    "HostWatcher",
+    "PluginClient",
+    "Timeouts",
+]

@@ -1,0 +1,61 @@
+"""Client of a Python global planner, with cancellation while a plan is being computed."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import Any
+
+from nav2_pyif.client.plugin_client import PluginClient
+from nav2_pyif.messages import pose_to_wire
+from nav2_pyif.plan import Plan
+from nav2_pyif_protocol.codec import Request, encode_request
+from nav2_pyif_protocol.constants import Op, PluginType
+
+CANCEL_POLL_S = 0.005
+
+
+class GlobalPlannerClient(PluginClient):
+    plugin_type = PluginType.GLOBAL_PLANNER
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("name", "GridBased")
+        kwargs.setdefault("node", "planner_server")
+        super().__init__(*args, **kwargs)
+
+    def create_plan(self, start: Any, goal: Any,
+                    cancel_checker: Callable[[], bool] | None = None) -> Plan:
+        """PoseStamped start, goal -> Plan. While waiting, polls ``cancel_checker`` (as Nav2's
+        planner_server passes one) and forwards a cancellation to the host once."""
+        body = {"start": pose_to_wire(start), "goal": pose_to_wire(goal)}
+        wait = None
+        if cancel_checker is not None:
+            def wait(replies: Any, request: Request, timeout: float) -> Any:
+                return self._wait_cancellable(replies, request, timeout, cancel_checker)
+        reply = self._call(Op.CREATE_PLAN, body, with_costmap=True, wait=wait)
+        return Plan.from_wire(reply["path"])
+
+    def _wait_cancellable(self, replies: Any, request: Request, timeout: float,
+                          cancel_checker: Callable[[], bool]) -> Any:
+        deadline = time.monotonic() + timeout
+        cancel_sent = False
+        while time.monotonic() < deadline:
+            try:
+                reply = replies.try_recv()
+            except Exception:  # the query ended (its own timeout) without a reply
+                return None
+            if reply is not None:
+                if reply.ok is not None:
+                    return reply.ok
+                continue  # an error (e.g. a timeout marker): keep waiting for the deadline
+            if not cancel_sent and cancel_checker():
+                self._send_cancel(request.seq)
+                cancel_sent = True
+            time.sleep(CANCEL_POLL_S)
+        return None
+
+    def _send_cancel(self, target_seq: int) -> None:
+        cancel = self._next_request(Op.CANCEL_PLAN, {"target_seq": target_seq})
+        # Fire and forget: the planner's own reply (PlannerCancelled) is what counts.
+        self.session.get(self.keys.cancel, payload=encode_request(cancel),
+                         timeout=self.timeouts.lifecycle)

@@ -1,0 +1,257 @@
+"""Session, epoch, sequence, timeouts, fail-fast and state re-send: shared by both plugin types.
+
+Rules (PROTOCOL.md, "Client behaviour"):
+1. No host alive on the prefix (liveliness): fail at once, no query is sent.
+2. No reply within the op's timeout: ControllerTimedOut / PlannerTimedOut.
+3. SessionUnknown: the host restarted (or another replica answered). Bump the epoch, re-send
+   configure (with the costmap), activate if active, then the subclass's state (plan, speed
+   limit), then retry the call once.
+4. The costmap travels only when its version differs from what this session last delivered.
+5. Other error replies raise the nav2_core-named exception they name.
+"""
+
+from __future__ import annotations
+
+import logging
+import time
+import uuid
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import zenoh
+
+from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.client.hosts import HostWatcher
+from nav2_pyif.costmap import Costmap
+from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, timed_out_error
+from nav2_pyif.params import ParamValue
+from nav2_pyif_protocol.codec import (
+    ErrorInfo,
+    ProtocolError,
+    Reply,
+    Request,
+    decode_reply,
+    encode_request,
+)
+from nav2_pyif_protocol.constants import (
+    CONTROLLER_ERRORS,
+    PLANNER_ERRORS,
+    ErrorType,
+    Op,
+    PluginType,
+)
+from nav2_pyif_protocol.keys import KeySpace
+
+log = logging.getLogger("nav2_pyif.client")
+Body = dict[str, Any]
+
+
+@dataclass(frozen=True)
+class Timeouts:
+    """Seconds to wait for a reply. ``call`` should stay below the controller period."""
+
+    call: float = 0.04
+    lifecycle: float = 5.0
+    configure: float = 10.0
+    plan: float = 5.0
+
+
+def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
+    """The exception a plugin raises for an error reply: the named nav2_core class when it
+    belongs to this plugin type, the generic one otherwise (protocol errors included)."""
+    own = CONTROLLER_ERRORS if plugin_type is PluginType.CONTROLLER else PLANNER_ERRORS
+    named = {e.value for e in own}
+    cls = NAV2_EXCEPTIONS[error.type] if error.type in named else generic_error(plugin_type)
+    message = error.message if error.type in named else f"[{error.type}] {error.message}"
+    return cls(message, remote_traceback=error.traceback, python_type=error.python_type)
+
+
+class PluginClient:
+    plugin_type: PluginType
+
+    def __init__(
+        self,
+        session: zenoh.Session,
+        key_prefix: str,
+        costmap: Costmap,
+        *,
+        name: str,
+        node: str,
+        params: dict[str, ParamValue] | None = None,
+        global_frame: str | None = None,
+        robot_base_frame: str = "base_link",
+        timeouts: Timeouts | None = None,
+        record_calls: bool = False,
+    ) -> None:
+        self.session = session
+        self.keys = KeySpace(key_prefix)
+        self.name = name
+        self.node = node
+        self.params: dict[str, ParamValue] = dict(params or {})
+        self.global_frame = global_frame or costmap.frame_id
+        self.robot_base_frame = robot_base_frame
+        self.timeouts = timeouts or Timeouts()
+        self.sid = uuid.uuid4().hex
+        self.epoch = 0
+        self._seq = 0
+        self.costmap = costmap
+        self._delivered_costmap: int | None = None
+        self.configured = False
+        self.active = False
+        self.last_host: str | None = None
+        self.resyncs = 0
+        self.records: list[CallRecord] | None = [] if record_calls else None
+        self.hosts = HostWatcher(session, self.keys)
+
+    # --- public lifecycle ---------------------------------------------------------------
+    def wait_for_host(self, timeout: float = 5.0) -> bool:
+        """Block until a planner host announces itself on this prefix."""
+        return self.hosts.wait(timeout)
+
+    def configure(self) -> dict[str, ParamValue]:
+        """Start a session; returns the parameters the planner declared (with values)."""
+        self.epoch += 1
+        self._delivered_costmap = None
+        body = self._call(Op.CONFIGURE, self._configure_body(), allow_resync=False)
+        self.configured = True
+        declared: dict[str, ParamValue] = body["declared"]
+        for name, value in declared.items():
+            self.params.setdefault(name, value)
+        return declared
+
+    def activate(self) -> None:
+        self._call(Op.ACTIVATE, {})
+        self.active = True
+
+    def deactivate(self) -> None:
+        self._call(Op.DEACTIVATE, {})
+        self.active = False
+
+    def cleanup(self) -> None:
+        try:
+            self._call(Op.CLEANUP, {}, allow_resync=False)
+        finally:
+            self.configured = False
+            self.active = False
+
+    def set_parameters(self, changes: dict[str, ParamValue]) -> dict[str, str]:
+        """Send changed parameters; returns the rejected ones (name -> reason)."""
+        rejected: dict[str, str] = self._call(Op.SET_PARAMETERS, {"params": changes})["rejected"]
+        self.params.update({k: v for k, v in changes.items() if k not in rejected})
+        return rejected
+
+    def update_costmap(self, costmap: Costmap) -> None:
+        """The costmap changed (give it a new version); sent with the next call that uses it."""
+        self.costmap = costmap
+
+    def close(self) -> None:
+        self.hosts.close()
+
+    # --- for subclasses -----------------------------------------------------------------
+    def _restore_state(self) -> None:
+        """Re-send what the planner was told since configure (plan, speed limit)."""
+
+    def _configure_body(self) -> Body:
+        return {
+            "plugin_type": self.plugin_type.value,
+            "name": self.name,
+            "node": self.node,
+            "params": self.params,
+            "global_frame": self.global_frame,
+            "robot_base_frame": self.robot_base_frame,
+            "costmap": self.costmap.to_wire(),
+        }
+
+    def _timeout(self, op: Op) -> float:
+        if op is Op.CONFIGURE:
+            return self.timeouts.configure
+        if op in (Op.COMPUTE_VELOCITY_COMMANDS, Op.SET_PLAN, Op.SET_SPEED_LIMIT, Op.CANCEL):
+            return self.timeouts.call
+        if op is Op.CREATE_PLAN:
+            return self.timeouts.plan
+        return self.timeouts.lifecycle
+
+    def _next_request(self, op: Op, body: Body) -> Request:
+        self._seq += 1
+        return Request(op=op, sid=self.sid, epoch=self.epoch, seq=self._seq, body=body)
+
+    def _call(
+        self,
+        op: Op,
+        body: Body,
+        *,
+        with_costmap: bool = False,
+        allow_resync: bool = True,
+        wait: Callable[[Any, Request, float], Any] | None = None,
+    ) -> Body:
+        if op is not Op.CONFIGURE and not self.configured:
+            raise generic_error(self.plugin_type)(f"{op.value} before configure on {self.keys.prefix}")
+        if not self.hosts.any_alive():
+            raise generic_error(self.plugin_type)(
+                f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
+                f"--key {self.keys.prefix} ...); {op.value} not sent"
+            )
+        version = self.costmap.version
+        send_costmap = with_costmap and version != self._delivered_costmap
+        request = self._next_request(op, dict(body, costmap=self.costmap.to_wire())
+                                     if send_costmap else body)
+        reply = self._exchange(request, wait)
+        if reply.ok:
+            if send_costmap or op is Op.CONFIGURE:
+                self._delivered_costmap = version
+            assert reply.body is not None
+            return reply.body
+        assert reply.error is not None
+        if reply.error.type == ErrorType.SESSION_UNKNOWN.value and allow_resync:
+            self._reestablish(reply.host)
+            return self._call(op, body, with_costmap=with_costmap, allow_resync=False, wait=wait)
+        raise error_from_reply(reply.error, self.plugin_type)
+
+    def _exchange(self, request: Request,
+                  wait: Callable[[Any, Request, float], Any] | None) -> Reply:
+        payload = encode_request(request)
+        timeout = self._timeout(request.op)
+        start = time.perf_counter_ns()
+        replies = self.session.get(self.keys.call(request.op), payload=payload, timeout=timeout)
+        sample = wait(replies, request, timeout) if wait else _first_ok(replies)
+        elapsed = time.perf_counter_ns() - start
+        if sample is None:
+            self._record(request.op, elapsed, 0, len(payload), False)
+            raise timed_out_error(self.plugin_type)(
+                f"{request.op.value} got no reply from {self.keys.prefix} within "
+                f"{timeout * 1000:.0f} ms"
+            )
+        try:
+            reply = decode_reply(sample.payload.to_bytes(), request.op)
+        except ProtocolError as exc:
+            raise generic_error(self.plugin_type)(f"bad reply to {request.op.value}: {exc}") from exc
+        self._record(request.op, elapsed, reply.compute_ns, len(payload), reply.ok)
+        if reply.seq != request.seq:
+            raise generic_error(self.plugin_type)(
+                f"reply to {request.op.value} has seq {reply.seq}, expected {request.seq}"
+            )
+        self.last_host = reply.host
+        return reply
+
+    def _record(self, op: Op, total: int, compute: int, size: int, ok: bool) -> None:
+        if self.records is not None:
+            self.records.append(CallRecord(op.value, total, compute, size, ok))
+
+    def _reestablish(self, host: str) -> None:
+        log.warning("%s: host %s does not know session %s; re-sending state",
+                    self.keys.prefix, host, self.sid[:8])
+        self.resyncs += 1
+        self.configured = False
+        self.configure()
+        if self.active:
+            self._call(Op.ACTIVATE, {}, allow_resync=False)
+        self._restore_state()
+
+
+def _first_ok(replies: Any) -> Any:
+    """The first successful Zenoh reply, or None when the query ended without one."""
+    for reply in replies:
+        if reply.ok is not None:
+            return reply.ok
+    return None

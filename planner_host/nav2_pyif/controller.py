@@ -1,0 +1,68 @@
+"""Base class of Python controllers: mirrors nav2_core::Controller."""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import Any, ClassVar
+
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.plan import Plan
+from nav2_pyif.plugin import PlannerPlugin
+from nav2_pyif_protocol.constants import PluginType
+
+
+class Controller(PlannerPlugin):
+    """Subclass and implement ``compute_velocity_commands``::
+
+        from geometry_msgs.msg import TwistStamped
+        from nav2_pyif import Controller
+
+        class GoStraight(Controller):
+            def configure(self) -> None:
+                self.speed = self.params.declare("speed", 0.3, "forward speed [m/s]")
+
+            def compute_velocity_commands(self, pose, velocity, goal_checker):
+                cmd = TwistStamped(header=pose.header)
+                cmd.twist.linear.x = self.speed
+                return cmd
+
+    Poses, the plan and the costmap share one frame (the costmap's global frame).
+    """
+
+    plugin_type: ClassVar[PluginType] = PluginType.CONTROLLER
+
+    #: The latest plan (set by the default ``set_plan``), None before the first.
+    plan: Plan | None = None
+    #: The latest speed limit: (value, is_percentage), None when unlimited.
+    speed_limit: tuple[float, bool] | None = None
+
+    def set_plan(self, plan: Plan) -> None:
+        """A new global plan: ``plan.xy_yaw`` is (N, 3) x, y [m], yaw [rad]; ``plan`` also
+        reads like a nav_msgs/Path. The default stores it in ``self.plan``."""
+        self.plan = plan
+
+    @abstractmethod
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
+        """One control cycle.
+
+        pose: geometry_msgs/PoseStamped, the robot in the global frame.
+        velocity: geometry_msgs/Twist, current velocity in the robot base frame.
+        goal_checker: the goal checker's tolerances, or None.
+        Returns a geometry_msgs/TwistStamped (every component finite) or raises a
+        nav2_core-named exception (NoValidControl, FailedToMakeProgress, ...).
+        """
+
+    def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:
+        """Limit speed to ``speed_limit`` m/s, or to that percentage of the maximum.
+        The default stores it in ``self.speed_limit`` (0 / 100 % means no limit)."""
+        unlimited = speed_limit <= 0.0 or (percentage and speed_limit >= 100.0)
+        self.speed_limit = None if unlimited else (speed_limit, percentage)
+
+    def cancel(self) -> bool:
+        """Nav2 asks to stop (Jazzy+). Return True once the robot may be considered stopped."""
+        return True
+
+    def reset(self) -> None:
+        """Forget per-goal state (Jazzy+)."""

@@ -1,0 +1,201 @@
+"""The costmap as Python sees it: a read-only NumPy view of Nav2's uint8 costs plus geometry.
+
+Indices follow Nav2's Costmap2D: cell (mx, my) is ``data[my, mx]``; world coordinates are in
+``frame_id``; (origin_x, origin_y) is the outer corner of cell (0, 0).
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar
+
+import numpy as np
+import numpy.typing as npt
+
+from nav2_pyif_protocol.arrays import ByteArray, FloatArray, costmap_grid, pack_xy, unpack_xy
+
+
+class Costmap:
+    FREE_SPACE: ClassVar[int] = 0
+    INSCRIBED_INFLATED_OBSTACLE: ClassVar[int] = 253
+    LETHAL_OBSTACLE: ClassVar[int] = 254
+    NO_INFORMATION: ClassVar[int] = 255
+    # Short aliases.
+    FREE: ClassVar[int] = 0
+    INSCRIBED: ClassVar[int] = 253
+    LETHAL: ClassVar[int] = 254
+
+    def __init__(
+        self,
+        data: npt.ArrayLike,
+        resolution: float,
+        origin_x: float = 0.0,
+        origin_y: float = 0.0,
+        frame_id: str = "map",
+        footprint: npt.ArrayLike | None = None,
+        robot_radius: float = 0.0,
+        version: int = 0,
+    ) -> None:
+        """``data``: (size_y, size_x) uint8 costs; ``footprint``: (K, 2) x, y [m], robot frame."""
+        grid = np.asarray(data)
+        if grid.ndim != 2 or grid.dtype != np.uint8:
+            raise ValueError(f"costmap data must be a 2-D uint8 array, got {grid.dtype} {grid.shape}")
+        if not resolution > 0:
+            raise ValueError(f"costmap resolution must be > 0, got {resolution}")
+        self.data: ByteArray = grid
+        self.resolution = float(resolution)
+        self.origin_x = float(origin_x)
+        self.origin_y = float(origin_y)
+        self.frame_id = frame_id
+        self.footprint: FloatArray = (
+            np.zeros((0, 2)) if footprint is None else np.asarray(footprint, np.float64).reshape(-1, 2)
+        )
+        self.robot_radius = float(robot_radius)
+        self.version = version
+
+    # --- wire ---------------------------------------------------------------------------
+    @classmethod
+    def from_wire(cls, wire: dict[str, Any]) -> Costmap:
+        """Zero-copy: ``data`` is a read-only view of the received bytes."""
+        return cls(
+            costmap_grid(wire["data"], wire["size_x"], wire["size_y"]),
+            wire["resolution"],
+            wire["origin_x"],
+            wire["origin_y"],
+            wire["frame_id"],
+            unpack_xy(wire["footprint"]),
+            wire["robot_radius"],
+            wire["version"],
+        )
+
+    def to_wire(self) -> dict[str, Any]:
+        return {
+            "version": self.version,
+            "frame_id": self.frame_id,
+            "size_x": self.size_x,
+            "size_y": self.size_y,
+            "resolution": self.resolution,
+            "origin_x": self.origin_x,
+            "origin_y": self.origin_y,
+            "data": np.ascontiguousarray(self.data).tobytes(),
+            "footprint": pack_xy(self.footprint),
+            "robot_radius": self.robot_radius,
+        }
+
+    # --- geometry -----------------------------------------------------------------------
+    @property
+    def size_x(self) -> int:
+        return int(self.data.shape[1])
+
+    @property
+    def size_y(self) -> int:
+        return int(self.data.shape[0])
+
+    @property
+    def size_in_meters(self) -> tuple[float, float]:
+        return self.size_x * self.resolution, self.size_y * self.resolution
+
+    def world_to_map(self, wx: float, wy: float) -> tuple[int, int] | None:
+        """World [m] -> cell (mx, my), or None outside the map (Nav2's worldToMap)."""
+        if wx < self.origin_x or wy < self.origin_y:
+            return None
+        mx = int((wx - self.origin_x) / self.resolution)
+        my = int((wy - self.origin_y) / self.resolution)
+        if mx < self.size_x and my < self.size_y:
+            return mx, my
+        return None
+
+    def map_to_world(self, mx: float, my: float) -> tuple[float, float]:
+        """Cell -> world coordinates of its centre [m] (Nav2's mapToWorld)."""
+        return (
+            self.origin_x + (mx + 0.5) * self.resolution,
+            self.origin_y + (my + 0.5) * self.resolution,
+        )
+
+    def world_to_map_array(self, xy: npt.ArrayLike) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+        """(N, 2) world x, y [m] -> ((N, 2) int64 mx, my; (N,) bool inside). Outside cells are
+        clipped into the map so they can index ``data``; use the mask."""
+        pts = np.asarray(xy, dtype=np.float64)
+        cells = np.floor(
+            (pts - np.array([self.origin_x, self.origin_y])) / self.resolution
+        ).astype(np.int64)
+        inside = (
+            (cells[..., 0] >= 0)
+            & (cells[..., 1] >= 0)
+            & (cells[..., 0] < self.size_x)
+            & (cells[..., 1] < self.size_y)
+        )
+        np.clip(cells[..., 0], 0, self.size_x - 1, out=cells[..., 0])
+        np.clip(cells[..., 1], 0, self.size_y - 1, out=cells[..., 1])
+        return cells, inside
+
+    def map_to_world_array(self, mxy: npt.ArrayLike) -> FloatArray:
+        """(N, 2) cells -> (N, 2) world coordinates of the cell centres [m]."""
+        cells = np.asarray(mxy, dtype=np.float64)
+        return (cells + 0.5) * self.resolution + np.array([self.origin_x, self.origin_y])
+
+    # --- costs --------------------------------------------------------------------------
+    def cost(self, mx: int, my: int) -> int:
+        return int(self.data[my, mx])
+
+    def cost_at_world(self, wx: float, wy: float) -> int:
+        """Cost under a world point; NO_INFORMATION outside the map."""
+        cell = self.world_to_map(wx, wy)
+        return self.NO_INFORMATION if cell is None else self.cost(*cell)
+
+    def costs_at_world(self, xy: npt.ArrayLike) -> ByteArray:
+        """(..., 2) world points -> (...,) uint8 costs; NO_INFORMATION outside the map."""
+        cells, inside = self.world_to_map_array(xy)
+        costs = self.data[cells[..., 1], cells[..., 0]]
+        return np.where(inside, costs, np.uint8(self.NO_INFORMATION)).astype(np.uint8)
+
+    def footprint_outline(self, spacing: float | None = None) -> FloatArray:
+        """(M, 2) points on the footprint's edges (or the robot_radius circle) in the robot
+        frame, about ``spacing`` apart (default: the map resolution), plus the centre."""
+        step = spacing or self.resolution
+        if len(self.footprint) >= 3:
+            corners = self.footprint
+            pts = [np.zeros((1, 2))]
+            for a, b in zip(corners, np.roll(corners, -1, axis=0)):
+                n = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
+                t = np.arange(n)[:, None] / n
+                pts.append(a + t * (b - a))
+            return np.concatenate(pts)
+        radius = self.robot_radius
+        n = max(8, int(np.ceil(2 * np.pi * radius / step))) if radius > 0 else 0
+        angles = np.arange(n) * (2 * np.pi / max(n, 1))
+        ring = np.stack([radius * np.cos(angles), radius * np.sin(angles)], axis=1)
+        return np.concatenate([np.zeros((1, 2)), ring])
+
+    def footprint_costs(self, poses: npt.ArrayLike, outline: FloatArray | None = None) -> ByteArray:
+        """Max cost under the footprint at each pose: (..., 3) x, y, yaw -> (...,) uint8.
+
+        Vectorised over any leading shape (e.g. MPPI's (rollouts, steps, 3))."""
+        p = np.asarray(poses, dtype=np.float64)
+        pts = self.footprint_outline() if outline is None else outline
+        c, s = np.cos(p[..., 2:3]), np.sin(p[..., 2:3])
+        wx = p[..., 0:1] + c * pts[:, 0] - s * pts[:, 1]
+        wy = p[..., 1:2] + s * pts[:, 0] + c * pts[:, 1]
+        costs = self.costs_at_world(np.stack([wx, wy], axis=-1))
+        return costs.max(axis=-1)
+
+    # --- ROS ----------------------------------------------------------------------------
+    def to_occupancy_grid(self) -> Any:
+        """A nav_msgs/OccupancyGrid with the raw costs (cast to int8, as Nav2's costmap
+        publisher does not: values > 127 read negative; read ``data`` here instead)."""
+        from nav_msgs.msg import OccupancyGrid  # imported lazily: costly and rarely needed
+
+        grid = OccupancyGrid()
+        grid.header.frame_id = self.frame_id
+        grid.info.resolution = self.resolution
+        grid.info.width = self.size_x
+        grid.info.height = self.size_y
+        grid.info.origin.position.x = self.origin_x
+        grid.info.origin.position.y = self.origin_y
+        grid.data = self.data.astype(np.int8, copy=False).ravel().tolist()
+        return grid
+
+    def __repr__(self) -> str:
+        return (
+            f"Costmap({self.size_x}x{self.size_y} @ {self.resolution} m, origin "
+            f"({self.origin_x}, {self.origin_y}), frame {self.frame_id!r}, v{self.version})"
+        )

@@ -1,0 +1,141 @@
+"""The seed paper's function-delegate style: a module of plain functions plus a role map.
+
+    planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
+        --delegate compute_velocity_commands=compute --delegate set_plan=set_plan
+
+Signatures (the seed's, with the costmap first where the seed passed the occupancy grid):
+    compute_velocity_commands(costmap: Costmap, pose: PoseStamped, twist: Twist) -> TwistStamped
+    set_plan(plan: Plan)                      # reads like nav_msgs/Path
+    set_speed_limit(speed_limit: float, is_percentage: bool)
+    create_plan(costmap: Costmap, start: PoseStamped, goal: PoseStamped) -> Path | Plan | array
+    configure(params: Parameters); activate(); deactivate(); cleanup(); reset(); cancel() -> bool
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from nav2_pyif.controller import Controller
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.global_planner import GlobalPlanner
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.loader import import_module
+from nav2_pyif.plan import Plan
+from nav2_pyif.plugin import PlannerPlugin
+
+CONTROLLER_ROLES = frozenset(
+    {"compute_velocity_commands", "set_plan", "set_speed_limit", "cancel", "reset"}
+)
+PLANNER_ROLES = frozenset({"create_plan"})
+LIFECYCLE_ROLES = frozenset({"configure", "activate", "deactivate", "cleanup"})
+ALL_ROLES = CONTROLLER_ROLES | PLANNER_ROLES | LIFECYCLE_ROLES
+
+
+def parse_delegates(items: list[str]) -> dict[str, str]:
+    """["role=function", "role2=function2,role3=f3"] -> {role: function}."""
+    out: dict[str, str] = {}
+    for item in items:
+        for pair in filter(None, (p.strip() for p in item.split(","))):
+            role, sep, func = pair.partition("=")
+            if not sep or not role or not func:
+                raise PlannerLoadError(f"delegate {pair!r} is not of the form role=function")
+            out[role.strip()] = func.strip()
+    return out
+
+
+def delegate_class(
+    module_name: str, delegates: Mapping[str, str], *, reload: bool = False
+) -> type[PlannerPlugin]:
+    """Build a Controller or GlobalPlanner class whose methods call the module's functions."""
+    unknown = set(delegates) - ALL_ROLES
+    if unknown:
+        raise PlannerLoadError(
+            f"unknown delegate role(s) {', '.join(sorted(unknown))}; roles: {', '.join(sorted(ALL_ROLES))}"
+        )
+    is_controller = "compute_velocity_commands" in delegates
+    if is_controller == ("create_plan" in delegates):
+        raise PlannerLoadError(
+            "delegates need exactly one of compute_velocity_commands (a controller) "
+            "or create_plan (a global planner)"
+        )
+    module = import_module(module_name, reload=reload)
+    funcs: dict[str, Callable[..., Any]] = {}
+    for role, func_name in delegates.items():
+        func = getattr(module, func_name, None)
+        if not callable(func):
+            raise PlannerLoadError(
+                f"module {module_name!r} has no function {func_name!r} (delegate for {role})"
+            )
+        funcs[role] = func
+    if is_controller:
+        return _controller_class(module_name, funcs)
+    return _planner_class(module_name, funcs)
+
+
+def _lifecycle(funcs: dict[str, Callable[..., Any]], plugin: PlannerPlugin, role: str) -> None:
+    if role == "configure" and role in funcs:
+        funcs[role](plugin.params)
+    elif role in funcs:
+        funcs[role]()
+
+
+def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[Controller]:
+    class DelegateController(Controller):
+        def configure(self) -> None:
+            _lifecycle(funcs, self, "configure")
+
+        def activate(self) -> None:
+            _lifecycle(funcs, self, "activate")
+
+        def deactivate(self) -> None:
+            _lifecycle(funcs, self, "deactivate")
+
+        def cleanup(self) -> None:
+            _lifecycle(funcs, self, "cleanup")
+
+        def set_plan(self, plan: Plan) -> None:
+            super().set_plan(plan)
+            if "set_plan" in funcs:
+                funcs["set_plan"](plan)
+
+        def compute_velocity_commands(
+            self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        ) -> Any:
+            return funcs["compute_velocity_commands"](self.costmap, pose, velocity)
+
+        def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:
+            super().set_speed_limit(speed_limit, percentage)
+            if "set_speed_limit" in funcs:
+                funcs["set_speed_limit"](speed_limit, percentage)
+
+        def cancel(self) -> bool:
+            return bool(funcs["cancel"]()) if "cancel" in funcs else True
+
+        def reset(self) -> None:
+            if "reset" in funcs:
+                funcs["reset"]()
+
+    DelegateController.__qualname__ = DelegateController.__name__ = f"Delegates[{module_name}]"
+    return DelegateController
+
+
+def _planner_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[GlobalPlanner]:
+    class DelegatePlanner(GlobalPlanner):
+        def configure(self) -> None:
+            _lifecycle(funcs, self, "configure")
+
+        def activate(self) -> None:
+            _lifecycle(funcs, self, "activate")
+
+        def deactivate(self) -> None:
+            _lifecycle(funcs, self, "deactivate")
+
+        def cleanup(self) -> None:
+            _lifecycle(funcs, self, "cleanup")
+
+        def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
+            return funcs["create_plan"](self.costmap, start, goal)
+
+    DelegatePlanner.__qualname__ = DelegatePlanner.__name__ = f"Delegates[{module_name}]"
+    return DelegatePlanner

@@ -1,0 +1,103 @@
+"""The planner host's Zenoh side: per served key, a queryable for calls (answered in order on
+one thread per planner, so planners need not be thread-safe), a queryable for out-of-band
+cancellation, and a liveliness token the plugin watches."""
+
+from __future__ import annotations
+
+import logging
+import os
+import secrets
+import socket
+import threading
+from typing import Any
+
+import zenoh
+
+from nav2_pyif.runtime import PlannerRuntime
+from nav2_pyif_protocol.keys import KeySpace
+
+log = logging.getLogger("nav2_pyif.host")
+
+
+def new_host_id() -> str:
+    """Unique per host process; a valid key chunk."""
+    name = "".join(c if c.isalnum() or c in "-_." else "_" for c in socket.gethostname())
+    return f"{name}-{os.getpid()}-{secrets.token_hex(3)}"
+
+
+def _payload(query: Any) -> bytes:
+    return query.payload.to_bytes() if query.payload is not None else b""
+
+
+class ServedPlanner:
+    """One planner runtime answering under one key prefix."""
+
+    def __init__(self, session: zenoh.Session, keys: KeySpace, runtime: PlannerRuntime) -> None:
+        self.keys = keys
+        self.runtime = runtime
+        self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
+        # Reading the channel (not the queryable) lets close() undeclare from another thread.
+        self._receiver = self._calls.handler
+        self._cancel = session.declare_queryable(keys.cancel, self._on_cancel)
+        self._thread = threading.Thread(
+            target=self._serve, name=f"planner:{keys.prefix}", daemon=True
+        )
+        self._thread.start()
+        # Announce last: a plugin that sees the token can call at once.
+        self._token = session.liveliness().declare_token(keys.host_token(runtime.host_id))
+
+    def _serve(self) -> None:
+        while True:
+            try:
+                query = self._receiver.recv()
+            except Exception:  # channel closed: undeclared or session closed
+                return
+            try:
+                op = str(query.key_expr).rsplit("/", 1)[-1]
+                reply = self.runtime.handle(_payload(query), key_op=op)
+                query.reply(query.key_expr, reply)
+            except Exception:
+                log.exception("%s: could not answer a query", self.keys.prefix)
+            finally:
+                query.drop()  # sends the final reply marker now, not at garbage collection
+
+    def _on_cancel(self, query: Any) -> None:
+        try:
+            query.reply(query.key_expr, self.runtime.handle_cancel(_payload(query)))
+        except Exception:
+            log.exception("%s: could not answer a cancel", self.keys.prefix)
+        finally:
+            query.drop()
+
+    def close(self) -> None:
+        for entity in (self._token, self._cancel, self._calls):
+            try:
+                entity.undeclare()
+            except Exception:  # already gone with the session
+                pass
+        self._thread.join(timeout=5.0)
+        self.runtime.close()
+
+
+class PlannerHost:
+    """Serves any number of planners (keys) over one Zenoh session."""
+
+    def __init__(self, session: zenoh.Session, host_id: str | None = None) -> None:
+        self.session = session
+        self.host_id = host_id or new_host_id()
+        self.served: dict[str, ServedPlanner] = {}
+
+    def serve(self, key_prefix: str, runtime: PlannerRuntime) -> ServedPlanner:
+        keys = KeySpace(key_prefix)
+        if key_prefix in self.served:
+            raise ValueError(f"key {key_prefix!r} is already served by this host")
+        served = ServedPlanner(self.session, keys, runtime)
+        self.served[key_prefix] = served
+        log.info("serving %s on %s/** (%s)", runtime.label, key_prefix,
+                 runtime.plugin_type.value)
+        return served
+
+    def close(self) -> None:
+        for served in self.served.values():
+            served.close()
+        self.served.clear()

@@ -1,0 +1,56 @@
+"""Find a planner: ``pkg.module:Class`` or a module of functions (the seed's delegate style)."""
+
+from __future__ import annotations
+
+import importlib
+import inspect
+import sys
+import traceback
+from types import ModuleType
+
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.plugin import PlannerPlugin
+
+
+def import_module(name: str, *, reload: bool = False) -> ModuleType:
+    """Import (or re-import, for hot swap) a module, with a clear error on failure."""
+    try:
+        if reload and name in sys.modules:
+            importlib.invalidate_caches()
+            return importlib.reload(sys.modules[name])
+        return importlib.import_module(name)
+    except BaseException as exc:  # a module may raise anything, even SystemExit, at import
+        detail = "".join(traceback.format_exception_only(type(exc), exc)).strip()
+        raise PlannerLoadError(
+            f"cannot import planner module {name!r}: {detail}\n"
+            f"(is it installed in this environment or on PYTHONPATH?)\n{traceback.format_exc()}"
+        ) from exc
+
+
+def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
+    """``pkg.module:Class`` -> the class, checked to be a Controller or GlobalPlanner."""
+    module_name, sep, class_name = spec.partition(":")
+    if not sep or not module_name or not class_name:
+        raise PlannerLoadError(
+            f"planner {spec!r} is not of the form 'package.module:ClassName'"
+        )
+    module = import_module(module_name, reload=reload)
+    cls = getattr(module, class_name, None)
+    if cls is None:
+        found = sorted(
+            n for n, v in vars(module).items()
+            if inspect.isclass(v) and issubclass(v, PlannerPlugin) and v.__module__ == module.__name__
+        )
+        raise PlannerLoadError(
+            f"module {module_name!r} has no class {class_name!r}"
+            + (f"; planners it defines: {', '.join(found)}" if found else "")
+        )
+    if not (inspect.isclass(cls) and issubclass(cls, PlannerPlugin)):
+        raise PlannerLoadError(
+            f"{spec} is not a nav2_pyif Controller or GlobalPlanner subclass "
+            f"(got {type(cls).__name__})"
+        )
+    if inspect.isabstract(cls):
+        missing = ", ".join(sorted(getattr(cls, "__abstractmethods__", ())))
+        raise PlannerLoadError(f"{spec} does not implement {missing}")
+    return cls

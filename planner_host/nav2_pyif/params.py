@@ -1,0 +1,107 @@
+"""Planner parameters: declared with defaults, given the Nav2 YAML's values, updated live.
+
+The Nav2 plugin sends every parameter under its namespace at configure (``ros2 param set``
+changes follow via set_parameters). A planner declares what it reads::
+
+    self.max_speed = self.params.declare("max_speed", 0.5, "top linear speed [m/s]")
+
+A given value must have the default's type (an int is accepted for a float); a bad update is
+rejected with a reason and the old value stays.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Union
+
+Scalar = Union[bool, int, float, str]
+ParamValue = Union[Scalar, list[bool], list[int], list[float], list[str]]
+
+
+@dataclass
+class Declared:
+    default: ParamValue
+    description: str
+
+
+def _coerce(name: str, value: ParamValue, like: ParamValue) -> ParamValue:
+    """``value`` converted to the type of ``like``, or TypeError saying why not."""
+    if isinstance(like, list):
+        if not isinstance(value, list):
+            raise TypeError(f"{name}: expected a list, got {type(value).__name__}")
+        if not like:
+            return list(value)
+        return [_coerce(f"{name}[{i}]", v, like[0]) for i, v in enumerate(value)]  # type: ignore[misc]
+    if isinstance(like, bool) or isinstance(value, bool):
+        if type(value) is not type(like):
+            raise TypeError(f"{name}: expected {type(like).__name__}, got {type(value).__name__}")
+        return value
+    if isinstance(like, float) and isinstance(value, (int, float)):
+        return float(value)
+    if type(value) is not type(like):
+        raise TypeError(f"{name}: expected {type(like).__name__}, got {type(value).__name__}")
+    return value
+
+
+class Parameters:
+    def __init__(self, given: dict[str, ParamValue] | None = None) -> None:
+        self._values: dict[str, ParamValue] = dict(given or {})
+        self._declared: dict[str, Declared] = {}
+        self._listeners: list[Callable[[dict[str, ParamValue]], None]] = []
+
+    def declare(self, name: str, default: ParamValue, description: str = "") -> ParamValue:
+        """Declare ``name`` and return its value: the given one if any, else ``default``.
+
+        Raises TypeError when the given value has the wrong type (configure then fails with
+        InvalidController / InvalidPlanner naming the parameter)."""
+        self._declared[name] = Declared(default, description)
+        if name in self._values:
+            self._values[name] = _coerce(name, self._values[name], default)
+        else:
+            self._values[name] = default
+        return self._values[name]
+
+    def __getitem__(self, name: str) -> ParamValue:
+        try:
+            return self._values[name]
+        except KeyError:
+            raise KeyError(f"parameter {name!r} was neither given nor declared") from None
+
+    def get(self, name: str, default: ParamValue | None = None) -> ParamValue | None:
+        return self._values.get(name, default)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._values
+
+    def as_dict(self) -> dict[str, ParamValue]:
+        return dict(self._values)
+
+    def declared(self) -> dict[str, ParamValue]:
+        """Declared parameters with their current values (reported back to the plugin)."""
+        return {name: self._values[name] for name in self._declared}
+
+    def description(self, name: str) -> str:
+        return self._declared[name].description if name in self._declared else ""
+
+    def on_change(self, listener: Callable[[dict[str, ParamValue]], None]) -> None:
+        """Call ``listener(changed)`` after each accepted update."""
+        self._listeners.append(listener)
+
+    def update(self, changes: dict[str, ParamValue]) -> tuple[dict[str, ParamValue], dict[str, str]]:
+        """Apply changes; returns (applied, rejected name -> reason). Used by the host."""
+        applied: dict[str, ParamValue] = {}
+        rejected: dict[str, str] = {}
+        for name, value in changes.items():
+            try:
+                if name in self._declared:
+                    value = _coerce(name, value, self._declared[name].default)
+            except TypeError as exc:
+                rejected[name] = str(exc)
+                continue
+            self._values[name] = value
+            applied[name] = value
+        if applied:
+            for listener in self._listeners:
+                listener(applied)
+        return applied, rejected

@@ -1,0 +1,308 @@
+"""One served planner: sessions, decoding, dispatch to the planner's methods, typed errors.
+
+``PlannerRuntime.handle`` turns request bytes into reply bytes and never raises: whatever the
+planner does (raise, return junk, call sys.exit) becomes a typed error reply, logged once
+with its traceback. It knows nothing of Zenoh, so it runs in the host process or a worker.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+import traceback
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import msgpack
+import numpy as np
+
+from nav2_pyif.costmap import Costmap
+from nav2_pyif.exceptions import (
+    InvalidController,
+    InvalidPath,
+    InvalidPlanner,
+    Nav2Error,
+    generic_error,
+)
+from nav2_pyif.global_planner import GlobalPlanner
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.messages import pose_from_wire, twist_from_list, twist_stamped_to_wire
+from nav2_pyif.params import Parameters
+from nav2_pyif.plan import Plan
+from nav2_pyif.plugin import PlannerPlugin, PluginContext
+from nav2_pyif.results import checked_bool, checked_plan, checked_twist_stamped
+from nav2_pyif_protocol.codec import (
+    ErrorInfo,
+    ProtocolError,
+    Reply,
+    Request,
+    decode_request,
+    encode_reply,
+)
+from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, ErrorType, Op, PluginType
+
+MAX_TRACEBACK_CHARS = 16_000
+Body = dict[str, Any]
+
+
+@dataclass
+class Session:
+    sid: str
+    epoch: int
+    planner: PlannerPlugin
+    context: PluginContext
+    active: bool = False
+    running_seq: int | None = None
+    cancel_requested: threading.Event = field(default_factory=threading.Event)
+
+
+def _qualname(exc: BaseException) -> str:
+    return f"{type(exc).__module__}.{type(exc).__qualname__}"
+
+
+def _short_traceback(exc: BaseException) -> str:
+    text = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))
+    if len(text) <= MAX_TRACEBACK_CHARS:
+        return text
+    half = MAX_TRACEBACK_CHARS // 2
+    return f"{text[:half]}\n... ({len(text) - 2 * half} characters cut) ...\n{text[-half:]}"
+
+
+class PlannerRuntime:
+    """Serves one planner class; one planner instance per client session."""
+
+    def __init__(
+        self,
+        planner_class: type[PlannerPlugin],
+        host_id: str,
+        label: str = "",
+        logger: logging.Logger | None = None,
+    ) -> None:
+        self.planner_class = planner_class
+        self.plugin_type: PluginType = planner_class.plugin_type
+        self.host_id = host_id
+        self.label = label or planner_class.__qualname__
+        self.log = logger or logging.getLogger("nav2_pyif.host")
+        self.sessions: dict[str, Session] = {}
+        self._handlers: dict[Op, Callable[[Session, Request], Body]] = {
+            Op.ACTIVATE: self._activate,
+            Op.DEACTIVATE: self._deactivate,
+            Op.CLEANUP: self._cleanup,
+            Op.SET_PARAMETERS: self._set_parameters,
+            Op.SET_PLAN: self._set_plan,
+            Op.COMPUTE_VELOCITY_COMMANDS: self._compute_velocity_commands,
+            Op.SET_SPEED_LIMIT: self._set_speed_limit,
+            Op.CANCEL: self._cancel,
+            Op.RESET: self._reset,
+            Op.CREATE_PLAN: self._create_plan,
+        }
+
+    # --- entry points -------------------------------------------------------------------
+    def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
+        """Request bytes -> reply bytes. Never raises."""
+        try:
+            request = decode_request(payload)
+        except ProtocolError as exc:
+            return self._error_reply(_peek_seq(payload), exc.error_type, str(exc))
+        if key_op is not None and key_op != request.op.value:
+            return self._error_reply(
+                request.seq, ErrorType.BAD_REQUEST,
+                f"request op {request.op.value!r} sent to key of op {key_op!r}",
+            )
+        if request.op not in OPS_BY_PLUGIN[self.plugin_type] or request.op is Op.CANCEL_PLAN:
+            return self._error_reply(
+                request.seq, ErrorType.BAD_REQUEST,
+                f"{request.op.value} is not an operation of a {self.plugin_type.value} "
+                f"(this key serves {self.label})",
+            )
+        start = time.perf_counter_ns()
+        try:
+            if request.op is Op.CONFIGURE:
+                body = self._configure(request)
+            else:
+                session = self.sessions.get(request.sid)
+                if session is None or session.epoch != request.epoch:
+                    return self._error_reply(
+                        request.seq, ErrorType.SESSION_UNKNOWN,
+                        f"session {request.sid} epoch {request.epoch} is not known to host "
+                        f"{self.host_id}; re-send configure",
+                    )
+                if "costmap" in request.body:
+                    session.context.costmap = Costmap.from_wire(request.body["costmap"])
+                body = self._handlers[request.op](session, request)
+        except BaseException as exc:  # a planner may raise anything; the host must survive
+            return self._exception_reply(request, exc, time.perf_counter_ns() - start)
+        elapsed = time.perf_counter_ns() - start
+        reply = Reply(seq=request.seq, ok=True, host=self.host_id, body=body, compute_ns=elapsed)
+        try:
+            return encode_reply(reply, request.op)
+        except ProtocolError as exc:
+            return self._error_reply(request.seq, generic_error(self.plugin_type).error_type,
+                                     f"{request.op.value} produced an unencodable reply: {exc}")
+
+    def handle_cancel(self, payload: bytes) -> bytes:
+        """``cancel_plan``: flag a running create_plan. Thread-safe; answered at once."""
+        try:
+            request = decode_request(payload)
+        except ProtocolError as exc:
+            return self._error_reply(_peek_seq(payload), exc.error_type, str(exc))
+        if request.op is not Op.CANCEL_PLAN:
+            return self._error_reply(request.seq, ErrorType.BAD_REQUEST,
+                                     f"{request.op.value} sent to the cancel key")
+        session = self.sessions.get(request.sid)
+        accepted = bool(
+            session is not None
+            and session.epoch == request.epoch
+            and session.running_seq == request.body["target_seq"]
+        )
+        if accepted and session is not None:
+            session.cancel_requested.set()
+        reply = Reply(request.seq, True, self.host_id, body={"accepted": accepted})
+        return encode_reply(reply, Op.CANCEL_PLAN)
+
+    def close(self) -> None:
+        """Clean up every session's planner (host shutdown)."""
+        for session in list(self.sessions.values()):
+            try:
+                session.planner.cleanup()
+            except BaseException:
+                self.log.exception("%s: cleanup of session %s failed", self.label, session.sid)
+        self.sessions.clear()
+
+    # --- replies ------------------------------------------------------------------------
+    def _error_reply(self, seq: int, error_type: ErrorType, message: str, tb: str = "",
+                     python_type: str = "", compute_ns: int = 0) -> bytes:
+        error = ErrorInfo(error_type.value, message, tb, python_type)
+        reply = Reply(seq=seq, ok=False, host=self.host_id, error=error, compute_ns=compute_ns)
+        return encode_reply(reply, Op.ACTIVATE)
+
+    def _exception_reply(self, request: Request, exc: BaseException, elapsed: int) -> bytes:
+        if isinstance(exc, Nav2Error):
+            error_type = exc.error_type
+            message = str(exc) or type(exc).__name__
+        else:
+            invalid = InvalidController if self.plugin_type is PluginType.CONTROLLER else InvalidPlanner
+            error_type = (invalid if request.op is Op.CONFIGURE
+                          else generic_error(self.plugin_type)).error_type
+            message = "".join(traceback.format_exception_only(type(exc), exc)).strip()
+        message = f"{self.label}.{request.op.value}: {message}"
+        tb = _short_traceback(exc)
+        self.log.error("%s failed [%s]: %s\n%s", request.op.value, error_type.value, message, tb)
+        return self._error_reply(request.seq, error_type, message, tb, _qualname(exc), elapsed)
+
+    # --- operations ---------------------------------------------------------------------
+    def _configure(self, request: Request) -> Body:
+        body = request.body
+        if body["plugin_type"] != self.plugin_type.value:
+            invalid = InvalidController if body["plugin_type"] == "controller" else InvalidPlanner
+            raise invalid(
+                f"the Nav2 plugin is a {body['plugin_type']} but this key serves "
+                f"{self.label}, a {self.plugin_type.value}"
+            )
+        previous = self.sessions.pop(request.sid, None)
+        if previous is not None:
+            self._safe_cleanup(previous)
+        planner = self.planner_class()
+        context = PluginContext(
+            name=body["name"],
+            node_name=body["node"],
+            global_frame=body["global_frame"],
+            robot_base_frame=body["robot_base_frame"],
+            costmap=Costmap.from_wire(body["costmap"]),
+            params=Parameters(body["params"]),
+            logger=logging.getLogger(f"nav2_pyif.planner.{body['name']}"),
+        )
+        planner._attach(context)
+        planner.configure()
+        context.params.on_change(planner.on_parameters_changed)
+        self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)
+        self.log.info("%s: session %s configured (epoch %d) for %s/%s", self.label,
+                      request.sid[:8], request.epoch, body["node"], body["name"])
+        return {"declared": context.params.declared()}
+
+    def _safe_cleanup(self, session: Session) -> None:
+        try:
+            session.planner.cleanup()
+        except BaseException:
+            self.log.exception("%s: cleanup of replaced session %s failed", self.label, session.sid)
+
+    def _activate(self, session: Session, request: Request) -> Body:
+        session.planner.activate()
+        session.active = True
+        return {}
+
+    def _deactivate(self, session: Session, request: Request) -> Body:
+        session.active = False
+        session.planner.deactivate()
+        return {}
+
+    def _cleanup(self, session: Session, request: Request) -> Body:
+        try:
+            session.planner.cleanup()
+        finally:
+            self.sessions.pop(session.sid, None)
+        return {}
+
+    def _set_parameters(self, session: Session, request: Request) -> Body:
+        _, rejected = session.context.params.update(request.body["params"])
+        return {"rejected": rejected}
+
+    def _set_plan(self, session: Session, request: Request) -> Body:
+        plan = Plan.from_wire(request.body["path"])
+        if not np.isfinite(plan.array).all():
+            raise InvalidPath("the plan sent to set_plan has non-finite values")
+        session.planner.set_plan(plan)  # type: ignore[attr-defined]
+        return {}
+
+    def _compute_velocity_commands(self, session: Session, request: Request) -> Body:
+        body = request.body
+        checker = body.get("goal_checker")
+        result = session.planner.compute_velocity_commands(  # type: ignore[attr-defined]
+            pose_from_wire(body["pose"]),
+            twist_from_list(body["velocity"]),
+            GoalChecker.from_wire(checker) if checker is not None else None,
+        )
+        cmd = checked_twist_stamped(result, "compute_velocity_commands")
+        if not cmd.header.frame_id:
+            cmd.header.frame_id = session.context.robot_base_frame
+        return {"cmd_vel": twist_stamped_to_wire(cmd)}
+
+    def _set_speed_limit(self, session: Session, request: Request) -> Body:
+        body = request.body
+        session.planner.set_speed_limit(body["speed_limit"], body["percentage"])  # type: ignore[attr-defined]
+        return {}
+
+    def _cancel(self, session: Session, request: Request) -> Body:
+        done = session.planner.cancel()  # type: ignore[attr-defined]
+        return {"cancelled": checked_bool(done, "cancel", generic_error(self.plugin_type))}
+
+    def _reset(self, session: Session, request: Request) -> Body:
+        session.planner.reset()  # type: ignore[attr-defined]
+        return {}
+
+    def _create_plan(self, session: Session, request: Request) -> Body:
+        planner = session.planner
+        assert isinstance(planner, GlobalPlanner)
+        start = pose_from_wire(request.body["start"])
+        goal = pose_from_wire(request.body["goal"])
+        session.cancel_requested.clear()
+        session.running_seq = request.seq
+        try:
+            result = planner.create_plan(start, goal, session.cancel_requested.is_set)
+        finally:
+            session.running_seq = None
+        plan = checked_plan(result, session.context.global_frame, request.body["start"]["stamp_ns"],
+                            "create_plan")
+        return {"path": plan.to_wire()}
+
+
+def _peek_seq(payload: bytes) -> int:
+    """Best-effort seq of an undecodable request, so the client can match the error."""
+    try:
+        raw = msgpack.unpackb(payload, raw=False, strict_map_key=False)
+        seq = raw.get("seq", 0) if isinstance(raw, dict) else 0
+        return seq if isinstance(seq, int) and not isinstance(seq, bool) and seq >= 0 else 0
+    except Exception:
+        return 0

@@ -1,0 +1,79 @@
+"""Zenoh session configuration from a JSON5 file or command-line flags (rmw_zenoh-style).
+
+Precedence: ``--zenoh-config FILE`` > ``$NAV2_PYIF_ZENOH_CONFIG`` > defaults; then
+``--connect`` / ``--listen`` / ``--mode`` override. Default: a peer that connects to a Zenoh
+router on tcp/localhost:7447 (as rmw_zenoh's nodes do), multicast scouting off. With
+``--listen`` and no ``--connect``, the host connects nowhere and waits for plugins to dial it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+from dataclasses import dataclass, field
+
+import zenoh
+
+DEFAULT_ROUTER = "tcp/localhost:7447"
+CONFIG_ENV = "NAV2_PYIF_ZENOH_CONFIG"
+
+
+@dataclass
+class ZenohOptions:
+    config_file: str | None = None
+    connect: list[str] = field(default_factory=list)
+    listen: list[str] = field(default_factory=list)
+    mode: str | None = None
+    multicast_scouting: bool = False
+
+
+def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
+    group = parser.add_argument_group("zenoh")
+    group.add_argument("--zenoh-config", metavar="FILE",
+                       help=f"Zenoh JSON5 config file (default: ${CONFIG_ENV}, else built-in)")
+    group.add_argument("--connect", action="append", default=[], metavar="ENDPOINT",
+                       help=f"endpoint to connect to, repeatable (default: {DEFAULT_ROUTER})")
+    group.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
+                       help="endpoint to listen on, repeatable, e.g. tcp/127.0.0.1:7447 "
+                            "(use when no Zenoh router runs)")
+    group.add_argument("--mode", choices=["peer", "client", "router"],
+                       help="Zenoh session mode (default: peer)")
+    group.add_argument("--multicast-scouting", action="store_true",
+                       help="enable multicast scouting (off by default, as in rmw_zenoh)")
+
+
+def options_from_args(args: argparse.Namespace) -> ZenohOptions:
+    return ZenohOptions(args.zenoh_config, list(args.connect), list(args.listen), args.mode,
+                        args.multicast_scouting)
+
+
+def build_config(options: ZenohOptions) -> zenoh.Config:
+    path = options.config_file or os.environ.get(CONFIG_ENV)
+    if path:
+        if not os.path.isfile(path):
+            raise FileNotFoundError(f"Zenoh config file {path!r} does not exist")
+        config = zenoh.Config.from_file(path)
+    else:
+        config = zenoh.Config()
+        config.insert_json5("mode", json.dumps(options.mode or "peer"))
+        config.insert_json5("scouting/multicast/enabled", json.dumps(options.multicast_scouting))
+        if not options.connect and not options.listen:
+            config.insert_json5("connect/endpoints", json.dumps([DEFAULT_ROUTER]))
+    if path and options.mode:
+        config.insert_json5("mode", json.dumps(options.mode))
+    if options.connect:
+        config.insert_json5("connect/endpoints", json.dumps(options.connect))
+    if options.listen:
+        config.insert_json5("listen/endpoints", json.dumps(options.listen))
+    return config
+
+
+def open_session(options: ZenohOptions) -> zenoh.Session:
+    """Open a session; errors name the endpoints involved."""
+    config = build_config(options)
+    try:
+        return zenoh.open(config)
+    except Exception as exc:
+        where = ", ".join(options.listen + options.connect) or options.config_file or DEFAULT_ROUTER
+        raise ConnectionError(f"cannot open a Zenoh session ({where}): {exc}") from exc
