@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import logging
+from abc import ABC
 from typing import ClassVar
 
 from nav2_pyif.costmap import Costmap
@@ -24,7 +25,7 @@ class PluginContext:
         self.logger = logger
 
 
-class PlannerPlugin:
+class PlannerPlugin(ABC):
     """Base of Controller and GlobalPlanner. Subclasses need a constructor without arguments;
     set-up that needs parameters or the costmap belongs in ``configure``."""
 

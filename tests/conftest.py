@@ -1,0 +1,125 @@
+"""Shared fixtures: real planner-host processes and real Zenoh sessions on loopback."""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import numpy as np
+import pytest
+import zenoh
+
+from nav2_pyif import Costmap
+
+FIXTURES = Path(__file__).parent / "fixtures"
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+class HostProcess:
+    """A ``planner-host`` subprocess listening on a loopback port."""
+
+    def __init__(self, port: int, args: list[str], log_path: Path) -> None:
+        self.port = port
+        self.args = args
+        self.log_path = log_path
+        self.proc: subprocess.Popen[bytes] | None = None
+
+    @property
+    def endpoint(self) -> str:
+        return f"tcp/127.0.0.1:{self.port}"
+
+    def start(self) -> HostProcess:
+        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+            [str(FIXTURES), os.environ.get("PYTHONPATH", "")]))
+        log = open(self.log_path, "ab")  # noqa: SIM115 - closed with the process
+        self.proc = subprocess.Popen(
+            [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint, *self.args],
+            stdout=log, stderr=subprocess.STDOUT, env=env,
+        )
+        log.close()
+        return self
+
+    def kill(self) -> None:
+        assert self.proc is not None
+        self.proc.kill()
+        self.proc.wait(10)
+
+    def stop(self) -> int:
+        assert self.proc is not None
+        if self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGTERM)
+            try:
+                return self.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait(10)
+                raise
+        return self.proc.returncode
+
+    def log(self) -> str:
+        return self.log_path.read_text(errors="replace")
+
+
+@pytest.fixture
+def start_host(tmp_path: Path) -> Iterator[object]:
+    hosts: list[HostProcess] = []
+
+    def start(*args: str, port: int | None = None) -> HostProcess:
+        host = HostProcess(port or free_port(), list(args), tmp_path / f"host{len(hosts)}.log")
+        hosts.append(host.start())
+        return host
+
+    yield start
+    for host in hosts:
+        if host.proc is not None and host.proc.poll() is None:
+            host.proc.kill()
+            host.proc.wait(10)
+
+
+def open_client_session(endpoint: str) -> zenoh.Session:
+    config = zenoh.Config()
+    config.insert_json5("mode", json.dumps("peer"))
+    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
+    config.insert_json5("scouting/multicast/enabled", "false")
+    return zenoh.open(config)
+
+
+@pytest.fixture
+def zsession_factory() -> Iterator[object]:
+    sessions: list[zenoh.Session] = []
+
+    def make(endpoint: str) -> zenoh.Session:
+        sessions.append(open_client_session(endpoint))
+        return sessions[-1]
+
+    yield make
+    for session in sessions:
+        session.close()
+
+
+def make_costmap(size: int = 40, version: int = 1, frame: str = "odom") -> Costmap:
+    grid = np.zeros((size, size), np.uint8)
+    grid[size // 2:, size // 2:] = Costmap.LETHAL
+    return Costmap(grid, 0.1, origin_x=0.0, origin_y=0.0, frame_id=frame, version=version,
+                   footprint=[[0.2, 0.1], [0.2, -0.1], [-0.2, -0.1], [-0.2, 0.1]])
+
+
+def wait_until(predicate: object, timeout: float = 10.0) -> bool:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if predicate():  # type: ignore[operator]
+            return True
+        time.sleep(0.01)
+    return False

@@ -1,0 +1,54 @@
+"""The planner-host command: help, clear errors with non-zero exits, clean shutdown."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from tests.conftest import FIXTURES
+
+PYTHONPATH = {"PYTHONPATH": str(FIXTURES)}
+
+
+def run(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
+    import os
+
+    return subprocess.run([sys.executable, "-m", "nav2_pyif.cli", *args], capture_output=True,
+                          text=True, timeout=timeout, env=dict(os.environ, **PYTHONPATH))
+
+
+def test_help_lists_the_ways_to_serve() -> None:
+    result = run("--help")
+    assert result.returncode == 0
+    for words in ("--planner MODULE:CLASS", "--delegate ROLE=FUNCTION", "--listen", "examples:"):
+        assert words in result.stdout
+
+
+@pytest.mark.parametrize(
+    ("args", "code", "words"),
+    [
+        (["--key", "k/a", "--planner", "no_such_mod:X"], 2, "No module named 'no_such_mod'"),
+        (["--key", "k/a", "--planner", "echo_planners:Missing"], 2, "has no class 'Missing'"),
+        (["--key", "k/a", "--planner", "broken_at_import:X"], 2, "fails at import on purpose"),
+        (["--key", "k/*", "--planner", "echo_planners:LinePlanner"], 2, "wildcard"),
+        (["--planner", "echo_planners:LinePlanner"], 2, "need --key"),
+        ([], 2, "nothing to serve"),
+        (["--key", "k/a", "--module", "seed_delegates"], 2, "--module needs --delegate"),
+        (["--key", "k/a", "--planner", "echo_planners:LinePlanner", "--zenoh-config",
+          "/nonexistent.json5"], 3, "does not exist"),
+    ],
+)
+def test_bad_input_gets_a_clear_error(args: list[str], code: int, words: str) -> None:
+    result = run(*args)
+    assert result.returncode == code, result.stderr
+    assert words in result.stderr
+
+
+def test_yaml_config(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("planners:\n  - key: a/b\n")
+    result = run("--config", str(bad))
+    assert result.returncode == 2 and "exactly one of planner / module" in result.stderr

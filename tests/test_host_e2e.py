@@ -1,0 +1,228 @@
+"""End to end through real planner-host processes and real Zenoh sessions on loopback."""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from typing import Any
+
+import numpy as np
+import pytest
+from geometry_msgs.msg import PoseStamped, Twist
+
+import nav2_pyif as api
+from nav2_pyif import GoalChecker, Plan
+from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
+from tests.conftest import make_costmap
+
+KEY = "nav2_pyif/test_robot/FollowPath"
+PLANNER_KEY = "nav2_pyif/test_robot/GridBased"
+GENEROUS = Timeouts(call=2.0, lifecycle=5.0, configure=10.0, plan=5.0)
+
+
+def pose(x: float = 1.0, y: float = 1.0, frame: str = "odom") -> Any:
+    msg = PoseStamped()
+    msg.header.frame_id = frame
+    msg.pose.position.x, msg.pose.position.y = x, y
+    msg.pose.orientation.w = 1.0
+    return msg
+
+
+def controller(zsession_factory: Any, host: Any, **kwargs: Any) -> ControllerClient:
+    kwargs.setdefault("timeouts", GENEROUS)
+    client = ControllerClient(zsession_factory(host.endpoint), kwargs.pop("key", KEY),
+                              make_costmap(), **kwargs)
+    assert client.wait_for_host(15), host.log()
+    return client
+
+
+def test_full_controller_session(start_host: Any, zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host, params={"gain": 2}, record_calls=True)
+    assert client.configure() == {"gain": 2.0, "label": "echo"}
+    client.activate()
+    client.set_plan(Plan(np.column_stack([np.linspace(0, 3, 40), np.zeros(40)]), "odom"))
+    checker = GoalChecker(0.25, 0.3, 0.05, 0.1)
+    cmd = client.compute_velocity_commands(pose(), Twist(), checker)
+    assert cmd.header.frame_id == "base_link"
+    lin, ang = cmd.twist.linear, cmd.twist.angular
+    assert (lin.x, lin.y, lin.z, ang.x, ang.y, ang.z) == (40.0, 2.0, -1.0, 1.0, 0.0, 1.0)
+    client.set_speed_limit(0.4, False)
+    assert client.set_parameters({"gain": 5.0, "label": 3}) == {
+        "label": "label: expected str, got int"}
+    cmd = client.compute_velocity_commands(pose(2.5, 2.5), Twist())
+    assert (cmd.twist.linear.y, cmd.twist.linear.z) == (5.0, 0.4)
+    assert cmd.twist.angular.y == api.Costmap.LETHAL  # the pose is in the lethal quadrant
+    assert client.cancel() is True
+    client.reset()
+    client.deactivate()
+    client.cleanup()
+    with pytest.raises(api.ControllerException, match="before configure"):
+        client.compute_velocity_commands(pose(), Twist())
+    assert client.resyncs == 0
+    assert host.stop() == 0  # SIGTERM: clean exit
+
+
+def test_costmap_travels_only_when_changed(start_host: Any, zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host, record_calls=True)
+    client.configure()
+    client.activate()
+    sizes = []
+    for version in (1, 1, 2, 2, 3):
+        if version != client.costmap.version:
+            client.update_costmap(make_costmap(version=version))
+        cmd = client.compute_velocity_commands(pose(), Twist())
+        assert cmd.twist.angular.x == version  # the planner sees the current version
+        assert client.records is not None
+        sizes.append(client.records[-1].request_bytes)
+    small, big = min(sizes), 40 * 40
+    assert sizes[0] == sizes[1] == sizes[3] == small < big  # unchanged: no costmap
+    assert sizes[2] > big and sizes[4] > big  # changed: the 40x40 grid travels
+
+
+def test_planner_session_and_cancellation(start_host: Any, zsession_factory: Any) -> None:
+    host = start_host("--key", PLANNER_KEY, "--planner", "echo_planners:LinePlanner")
+    client = GlobalPlannerClient(zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(),
+                                 params={"points": 25}, timeouts=GENEROUS)
+    assert client.wait_for_host(15)
+    client.configure()
+    client.activate()
+    plan = client.create_plan(pose(0.0, 0.0), pose(2.0, 1.0))
+    assert len(plan) == 25 and plan.frame_id == "odom"
+    assert np.allclose(plan.xy[-1], [2.0, 1.0])
+    with pytest.raises(api.GoalOccupied, match="goal is in a wall"):
+        client.set_parameters({"mode": "occupied"})
+        client.create_plan(pose(), pose())
+    client.set_parameters({"mode": "slow"})
+    cancel_at = time.monotonic() + 0.2
+    started = time.monotonic()
+    with pytest.raises(api.PlannerCancelled):
+        client.create_plan(pose(), pose(), cancel_checker=lambda: time.monotonic() > cancel_at)
+    assert time.monotonic() - started < 2.0  # cancelled, not the planner's 10 s
+    client.set_parameters({"mode": "ok"})
+    assert len(client.create_plan(pose(), pose(3.0, 3.0))) == 25
+
+
+def test_errors_cross_the_wire_typed_with_traceback(start_host: Any, zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:FaultyController")
+    client = controller(zsession_factory, host)
+    client.configure()
+    client.activate()
+    client.set_parameters({"fault": "FailedToMakeProgress"})
+    with pytest.raises(api.FailedToMakeProgress) as info:
+        client.compute_velocity_commands(pose(), Twist())
+    assert "compute_velocity_commands" in info.value.remote_traceback
+    client.set_parameters({"fault": "nan"})
+    with pytest.raises(api.NoValidControl, match="non-finite"):
+        client.compute_velocity_commands(pose(), Twist())
+    client.set_parameters({"fault": "zero_division"})
+    with pytest.raises(api.ControllerException, match="ZeroDivisionError") as generic:
+        client.compute_velocity_commands(pose(), Twist())
+    assert generic.value.python_type == "builtins.ZeroDivisionError"
+    client.set_parameters({"fault": "none"})
+    assert client.compute_velocity_commands(pose(), Twist()).twist.angular.z > 0
+    log = host.log()
+    assert log.count("compute_velocity_commands failed [ControllerException]") == 1  # once
+    assert "return 1 / 0" in log  # with the traceback
+    assert "Traceback (most recent call last)" in log
+
+
+def test_host_restart_mid_session_restores_the_plan(start_host: Any, zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host, params={"gain": 4.0})
+    client.configure()
+    client.activate()
+    client.set_plan(Plan(np.zeros((17, 3)), "odom"))
+    client.set_speed_limit(30.0, True)
+    client.set_parameters({"gain": 6.0})
+    assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 17.0
+    host.kill()  # SIGKILL: nothing is saved by the host
+    assert client.hosts.wait_for(lambda alive: not alive, 10)
+    with pytest.raises(api.ControllerException, match="no planner host is alive"):
+        client.compute_velocity_commands(pose(), Twist())
+    restarted = start_host("--key", KEY, "--planner", "echo_planners:EchoController",
+                           port=host.port)
+    assert client.wait_for_host(15), restarted.log()
+    cmd = client.compute_velocity_commands(pose(), Twist())
+    assert cmd.twist.linear.x == 17.0  # plan restored
+    assert cmd.twist.linear.y == 6.0  # parameter change restored
+    assert cmd.twist.linear.z == 30.0  # speed limit restored
+    assert client.resyncs == 1 and client.epoch == 2
+
+
+def test_no_host_fails_fast(zsession_factory: Any) -> None:
+    from tests.conftest import free_port
+
+    session = zsession_factory(f"tcp/127.0.0.1:{free_port()}")
+    client = ControllerClient(session, KEY, make_costmap(), timeouts=Timeouts(configure=5.0))
+    started = time.monotonic()
+    with pytest.raises(api.ControllerException, match="no planner host is alive"):
+        client.configure()
+    assert time.monotonic() - started < 0.5  # no 5 s timeout wait
+
+
+def test_a_hung_call_times_out_and_the_next_call_works(start_host: Any,
+                                                        zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:FaultyController")
+    client = controller(zsession_factory, host, timeouts=Timeouts(call=0.3, lifecycle=5.0))
+    client.configure()
+    client.set_parameters({"fault": "sleep", "sleep_s": 1.0})
+    started = time.monotonic()
+    with pytest.raises(api.ControllerTimedOut, match="no reply"):
+        client.compute_velocity_commands(pose(), Twist())
+    assert time.monotonic() - started < 0.9
+    client.set_parameters({"fault": "none"})  # queued behind the slow call, then applied
+    assert math.isfinite(client.compute_velocity_commands(pose(), Twist()).twist.linear.x)
+
+
+def test_several_planners_on_one_host_and_delegates(start_host: Any,
+                                                     zsession_factory: Any) -> None:
+    delegate_key = "nav2_pyif/robot2/FollowPath"
+    host = start_host("--serve", f"{KEY}=echo_planners:EchoController",
+                      "--serve", f"{PLANNER_KEY}=echo_planners:LinePlanner",
+                      "--key", delegate_key, "--module", "seed_delegates",
+                      "--delegate", "compute_velocity_commands=compute,set_plan=on_plan",
+                      "--delegate", "set_speed_limit=on_limit")
+    session = zsession_factory(host.endpoint)
+    ctrl = ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS)
+    plnr = GlobalPlannerClient(session, PLANNER_KEY, make_costmap(), timeouts=GENEROUS)
+    seed = ControllerClient(session, delegate_key, make_costmap(size=12), timeouts=GENEROUS)
+    for client in (ctrl, plnr, seed):
+        assert client.wait_for_host(15), host.log()
+        client.configure()
+        client.activate()
+    plan = plnr.create_plan(pose(0, 0), pose(1, 1))
+    ctrl.set_plan(plan)
+    seed.set_plan(plan)
+    seed.set_speed_limit(0.7, False)
+    assert ctrl.compute_velocity_commands(pose(), Twist()).twist.linear.x == len(plan)
+    cmd = seed.compute_velocity_commands(pose(), Twist())
+    assert (cmd.twist.linear.x, cmd.twist.linear.y, cmd.twist.angular.z) == (11.0, 0.7, 12.0)
+
+
+def test_concurrent_sessions_on_one_key_are_isolated(start_host: Any,
+                                                      zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    session = zsession_factory(host.endpoint)
+    clients = [ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS)
+               for _ in range(4)]
+    errors: list[BaseException] = []
+
+    def run(index: int, client: ControllerClient) -> None:
+        try:
+            assert client.wait_for_host(15)
+            client.configure()
+            client.set_plan(Plan(np.zeros((index + 2, 3)), "odom"))
+            for _ in range(50):
+                assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == index + 2
+        except BaseException as exc:
+            errors.append(exc)
+
+    threads = [threading.Thread(target=run, args=(i, c)) for i, c in enumerate(clients)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join(60)
+    assert not errors, errors

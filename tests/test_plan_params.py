@@ -1,0 +1,63 @@
+"""Plan (NumPy first, reads like nav_msgs/Path) and Parameters (typed, declared, updated)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
+
+from nav2_pyif import Parameters, Plan
+
+
+def test_plan_yaw_and_message_round_trip() -> None:
+    xy_yaw = np.array([[0.0, 0.0, 0.0], [1.0, 0.5, math.pi / 2], [2.0, 1.0, -3.0]])
+    plan = Plan(xy_yaw, "map", stamp_ns=5_000_000_123)
+    assert np.allclose(plan.xy_yaw, xy_yaw)
+    msg = plan.to_msg()
+    assert isinstance(msg, Path) and all(isinstance(p, PoseStamped) for p in msg.poses)
+    assert msg.header.stamp.sec == 5 and msg.header.stamp.nanosec == 123
+    back = Plan.from_msg(msg)
+    assert np.allclose(back.array, plan.array) and back.frame_id == "map"
+    assert plan.length() == pytest.approx(2 * math.hypot(1.0, 0.5))
+
+
+def test_plan_from_xy_faces_along_the_path_and_empty_plans_work() -> None:
+    plan = Plan(np.array([[0.0, 0.0], [0.0, 1.0]]))
+    assert plan.xy_yaw[:, 2] == pytest.approx([math.pi / 2, math.pi / 2])
+    empty = Plan(np.zeros((0, 7)))
+    assert len(empty) == 0 and empty.xy_yaw.shape == (0, 3) and empty.poses == []
+    assert Plan.from_wire(empty.to_wire()).array.shape == (0, 7)
+
+
+def test_parameters_declare_given_values_and_defaults() -> None:
+    params = Parameters({"max_speed": 1, "name": "x"})
+    assert params.declare("max_speed", 0.5) == 1.0  # int accepted for a float
+    assert isinstance(params["max_speed"], float)
+    assert params.declare("horizon", 30) == 30
+    assert params.declared() == {"max_speed": 1.0, "horizon": 30}
+    assert params["name"] == "x"  # given but not declared: still readable
+    with pytest.raises(KeyError, match="neither given nor declared"):
+        params["nope"]
+
+
+def test_parameters_wrong_type_at_declare_raises() -> None:
+    with pytest.raises(TypeError, match="use_x: expected bool, got int"):
+        Parameters({"use_x": 1}).declare("use_x", True)
+    with pytest.raises(TypeError, match="expected int, got float"):
+        Parameters({"n": 1.5}).declare("n", 3)
+
+
+def test_parameter_updates_reject_bad_types_and_keep_old_values() -> None:
+    params = Parameters()
+    params.declare("gain", 1.0)
+    params.declare("weights", [1.0, 2.0])
+    seen: list[dict[str, object]] = []
+    params.on_change(seen.append)
+    applied, rejected = params.update({"gain": "fast", "weights": [3, 4], "free": True})
+    assert rejected == {"gain": "gain: expected float, got str"}
+    assert applied == {"weights": [3.0, 4.0], "free": True}
+    assert params["gain"] == 1.0 and params["weights"] == [3.0, 4.0]
+    assert seen == [applied]
