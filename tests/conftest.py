@@ -15,7 +15,6 @@ from pathlib import Path
 import numpy as np
 import pytest
 import zenoh
-
 from nav2_pyif import Costmap
 
 FIXTURES = Path(__file__).parent / "fixtures"
@@ -41,12 +40,16 @@ class HostProcess:
         return f"tcp/127.0.0.1:{self.port}"
 
     def start(self) -> HostProcess:
-        env = dict(os.environ, PYTHONPATH=os.pathsep.join(
-            [str(FIXTURES), os.environ.get("PYTHONPATH", "")]))
+        env = dict(
+            os.environ,
+            PYTHONPATH=os.pathsep.join([str(FIXTURES), os.environ.get("PYTHONPATH", "")]),
+        )
         log = open(self.log_path, "ab")  # noqa: SIM115 - closed with the process
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint, *self.args],
-            stdout=log, stderr=subprocess.STDOUT, env=env,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            env=env,
         )
         log.close()
         return self
@@ -111,9 +114,16 @@ def zsession_factory() -> Iterator[object]:
 
 def make_costmap(size: int = 40, version: int = 1, frame: str = "odom") -> Costmap:
     grid = np.zeros((size, size), np.uint8)
-    grid[size // 2:, size // 2:] = Costmap.LETHAL
-    return Costmap(grid, 0.1, origin_x=0.0, origin_y=0.0, frame_id=frame, version=version,
-                   footprint=[[0.2, 0.1], [0.2, -0.1], [-0.2, -0.1], [-0.2, 0.1]])
+    grid[size // 2 :, size // 2 :] = Costmap.LETHAL
+    return Costmap(
+        grid,
+        0.1,
+        origin_x=0.0,
+        origin_y=0.0,
+        frame_id=frame,
+        version=version,
+        footprint=[[0.2, 0.1], [0.2, -0.1], [-0.2, -0.1], [-0.2, 0.1]],
+    )
 
 
 def wait_until(predicate: object, timeout: float = 10.0) -> bool:

@@ -16,8 +16,13 @@ PYTHONPATH = {"PYTHONPATH": str(FIXTURES)}
 def run(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
     import os
 
-    return subprocess.run([sys.executable, "-m", "nav2_pyif.cli", *args], capture_output=True,
-                          text=True, timeout=timeout, env=dict(os.environ, **PYTHONPATH))
+    return subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.cli", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=dict(os.environ, **PYTHONPATH),
+    )
 
 
 def test_help_lists_the_ways_to_serve() -> None:
@@ -37,8 +42,18 @@ def test_help_lists_the_ways_to_serve() -> None:
         (["--planner", "echo_planners:LinePlanner"], 2, "need --key"),
         ([], 2, "nothing to serve"),
         (["--key", "k/a", "--module", "seed_delegates"], 2, "--module needs --delegate"),
-        (["--key", "k/a", "--planner", "echo_planners:LinePlanner", "--zenoh-config",
-          "/nonexistent.json5"], 3, "does not exist"),
+        (
+            [
+                "--key",
+                "k/a",
+                "--planner",
+                "echo_planners:LinePlanner",
+                "--zenoh-config",
+                "/nonexistent.json5",
+            ],
+            3,
+            "does not exist",
+        ),
     ],
 )
 def test_bad_input_gets_a_clear_error(args: list[str], code: int, words: str) -> None:

@@ -6,7 +6,6 @@ import math
 
 import msgpack
 import pytest
-
 from nav2_pyif_protocol.codec import (
     ErrorInfo,
     ProtocolError,
@@ -24,8 +23,14 @@ POSE = {"frame_id": "odom", "stamp_ns": 1, "pose": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
 def raw(**overrides: object) -> bytes:
-    message = {"v": PROTOCOL_VERSION, "op": "compute_velocity_commands", "sid": "s", "epoch": 1,
-               "seq": 3, "body": {"pose": POSE, "velocity": [0.0] * 6}}
+    message = {
+        "v": PROTOCOL_VERSION,
+        "op": "compute_velocity_commands",
+        "sid": "s",
+        "epoch": 1,
+        "seq": 3,
+        "body": {"pose": POSE, "velocity": [0.0] * 6},
+    }
     message.update(overrides)
     return msgpack.packb(message, use_bin_type=True)
 
@@ -58,10 +63,14 @@ def test_version_mismatch_names_both_versions() -> None:
         (raw(epoch=0), "epoch must be >= 1"),
         (raw(body={"velocity": [0.0] * 6}), "missing field 'pose'"),
         (raw(body={"pose": POSE, "velocity": [0.0] * 5}), "array of 6 floats"),
-        (raw(body={"pose": dict(POSE, pose=[0.0] * 7, frame_id=3), "velocity": [0.0] * 6}),
-         "pose.frame_id: expected str"),
-        (raw(op="set_speed_limit", body={"speed_limit": 1.0, "percentage": 1}),
-         "percentage: expected bool"),
+        (
+            raw(body={"pose": dict(POSE, pose=[0.0] * 7, frame_id=3), "velocity": [0.0] * 6}),
+            "pose.frame_id: expected str",
+        ),
+        (
+            raw(op="set_speed_limit", body={"speed_limit": 1.0, "percentage": 1}),
+            "percentage: expected bool",
+        ),
         (raw(op="set_parameters", body={"params": {"p": [1, "a"]}}), "array mixes"),
         (raw(op="set_parameters", body={"params": {"p": {"nested": 1}}}), "is not bool/int"),
     ],
@@ -84,14 +93,22 @@ def test_encoding_is_canonical_whatever_the_dict_order() -> None:
 
 
 def test_unknown_fields_are_ignored_for_forward_compatibility() -> None:
-    request = decode_request(raw(extra="future", body={"pose": POSE, "velocity": [0.0] * 6,
-                                                       "new_field": 1}))
+    request = decode_request(
+        raw(extra="future", body={"pose": POSE, "velocity": [0.0] * 6, "new_field": 1})
+    )
     assert "new_field" not in request.body
 
 
 def test_non_finite_floats_survive() -> None:
-    data = encode_request(Request(Op.COMPUTE_VELOCITY_COMMANDS, "s", 1, 1,
-                                  {"pose": POSE, "velocity": [math.nan, math.inf, -0.0, 0, 0, 0]}))
+    data = encode_request(
+        Request(
+            Op.COMPUTE_VELOCITY_COMMANDS,
+            "s",
+            1,
+            1,
+            {"pose": POSE, "velocity": [math.nan, math.inf, -0.0, 0, 0, 0]},
+        )
+    )
     velocity = decode_request(data).body["velocity"]
     assert math.isnan(velocity[0]) and velocity[1] == math.inf
     assert math.copysign(1.0, velocity[2]) == -1.0
@@ -99,8 +116,9 @@ def test_non_finite_floats_survive() -> None:
 
 def test_error_replies_round_trip() -> None:
     reply = Reply(4, False, "h", error=ErrorInfo("NoValidControl", "why", "tb", "x.Y"))
-    decoded = decode_reply(encode_reply(reply, Op.COMPUTE_VELOCITY_COMMANDS),
-                           Op.COMPUTE_VELOCITY_COMMANDS)
+    decoded = decode_reply(
+        encode_reply(reply, Op.COMPUTE_VELOCITY_COMMANDS), Op.COMPUTE_VELOCITY_COMMANDS
+    )
     assert decoded == reply
 
 

@@ -4,14 +4,18 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 from nav2_pyif import Costmap
+
 from tests.conftest import make_costmap
 
 
 def test_constants_match_nav2() -> None:
-    assert (Costmap.FREE_SPACE, Costmap.INSCRIBED_INFLATED_OBSTACLE, Costmap.LETHAL_OBSTACLE,
-            Costmap.NO_INFORMATION) == (0, 253, 254, 255)
+    assert (
+        Costmap.FREE_SPACE,
+        Costmap.INSCRIBED_INFLATED_OBSTACLE,
+        Costmap.LETHAL_OBSTACLE,
+        Costmap.NO_INFORMATION,
+    ) == (0, 253, 254, 255)
 
 
 def test_world_map_conversions_follow_costmap2d() -> None:
@@ -32,7 +36,7 @@ def test_vectorised_conversions_agree_with_scalar_ones() -> None:
     cm = Costmap(rng.integers(0, 256, (25, 35), dtype=np.uint8), 0.2, origin_x=-1, origin_y=-3)
     pts = rng.uniform(-3, 8, size=(500, 2))
     cells, inside = cm.world_to_map_array(pts)
-    for (x, y), cell, ok in zip(pts, cells, inside):
+    for (x, y), cell, ok in zip(pts, cells, inside, strict=False):
         scalar = cm.world_to_map(x, y)
         assert ok == (scalar is not None)
         if scalar is not None:
@@ -40,8 +44,9 @@ def test_vectorised_conversions_agree_with_scalar_ones() -> None:
     costs = cm.costs_at_world(pts)
     expected = [cm.cost_at_world(x, y) for x, y in pts]
     assert costs.tolist() == expected
-    assert np.allclose(cm.map_to_world_array(cells[inside]),
-                       [cm.map_to_world(*c) for c in cells[inside]])
+    assert np.allclose(
+        cm.map_to_world_array(cells[inside]), [cm.map_to_world(*c) for c in cells[inside]]
+    )
 
 
 def test_cells_index_data_as_my_mx() -> None:

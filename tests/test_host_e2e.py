@@ -7,13 +7,13 @@ import threading
 import time
 from typing import Any
 
+import nav2_pyif as api
 import numpy as np
 import pytest
 from geometry_msgs.msg import PoseStamped, Twist
-
-import nav2_pyif as api
 from nav2_pyif import GoalChecker, Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
+
 from tests.conftest import make_costmap
 
 KEY = "nav2_pyif/test_robot/FollowPath"
@@ -31,8 +31,9 @@ def pose(x: float = 1.0, y: float = 1.0, frame: str = "odom") -> Any:
 
 def controller(zsession_factory: Any, host: Any, **kwargs: Any) -> ControllerClient:
     kwargs.setdefault("timeouts", GENEROUS)
-    client = ControllerClient(zsession_factory(host.endpoint), kwargs.pop("key", KEY),
-                              make_costmap(), **kwargs)
+    client = ControllerClient(
+        zsession_factory(host.endpoint), kwargs.pop("key", KEY), make_costmap(), **kwargs
+    )
     assert client.wait_for_host(15), host.log()
     return client
 
@@ -50,7 +51,8 @@ def test_full_controller_session(start_host: Any, zsession_factory: Any) -> None
     assert (lin.x, lin.y, lin.z, ang.x, ang.y, ang.z) == (40.0, 2.0, -1.0, 1.0, 0.0, 1.0)
     client.set_speed_limit(0.4, False)
     assert client.set_parameters({"gain": 5.0, "label": 3}) == {
-        "label": "label: expected str, got int"}
+        "label": "label: expected str, got int"
+    }
     cmd = client.compute_velocity_commands(pose(2.5, 2.5), Twist())
     assert (cmd.twist.linear.y, cmd.twist.linear.z) == (5.0, 0.4)
     assert cmd.twist.angular.y == api.Costmap.LETHAL  # the pose is in the lethal quadrant
@@ -84,8 +86,13 @@ def test_costmap_travels_only_when_changed(start_host: Any, zsession_factory: An
 
 def test_planner_session_and_cancellation(start_host: Any, zsession_factory: Any) -> None:
     host = start_host("--key", PLANNER_KEY, "--planner", "echo_planners:LinePlanner")
-    client = GlobalPlannerClient(zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(),
-                                 params={"points": 25}, timeouts=GENEROUS)
+    client = GlobalPlannerClient(
+        zsession_factory(host.endpoint),
+        PLANNER_KEY,
+        make_costmap(),
+        params={"points": 25},
+        timeouts=GENEROUS,
+    )
     assert client.wait_for_host(15)
     client.configure()
     client.activate()
@@ -142,8 +149,9 @@ def test_host_restart_mid_session_restores_the_plan(start_host: Any, zsession_fa
     assert client.hosts.wait_for(lambda alive: not alive, 10)
     with pytest.raises(api.ControllerException, match="no planner host is alive"):
         client.compute_velocity_commands(pose(), Twist())
-    restarted = start_host("--key", KEY, "--planner", "echo_planners:EchoController",
-                           port=host.port)
+    restarted = start_host(
+        "--key", KEY, "--planner", "echo_planners:EchoController", port=host.port
+    )
     assert client.wait_for_host(15), restarted.log()
     cmd = client.compute_velocity_commands(pose(), Twist())
     assert cmd.twist.linear.x == 17.0  # plan restored
@@ -163,8 +171,9 @@ def test_no_host_fails_fast(zsession_factory: Any) -> None:
     assert time.monotonic() - started < 0.5  # no 5 s timeout wait
 
 
-def test_a_hung_call_times_out_and_the_next_call_works(start_host: Any,
-                                                        zsession_factory: Any) -> None:
+def test_a_hung_call_times_out_and_the_next_call_works(
+    start_host: Any, zsession_factory: Any
+) -> None:
     host = start_host("--key", KEY, "--planner", "echo_planners:FaultyController")
     client = controller(zsession_factory, host, timeouts=Timeouts(call=0.3, lifecycle=5.0))
     client.configure()
@@ -177,14 +186,22 @@ def test_a_hung_call_times_out_and_the_next_call_works(start_host: Any,
     assert math.isfinite(client.compute_velocity_commands(pose(), Twist()).twist.linear.x)
 
 
-def test_several_planners_on_one_host_and_delegates(start_host: Any,
-                                                     zsession_factory: Any) -> None:
+def test_several_planners_on_one_host_and_delegates(start_host: Any, zsession_factory: Any) -> None:
     delegate_key = "nav2_pyif/robot2/FollowPath"
-    host = start_host("--serve", f"{KEY}=echo_planners:EchoController",
-                      "--serve", f"{PLANNER_KEY}=echo_planners:LinePlanner",
-                      "--key", delegate_key, "--module", "seed_delegates",
-                      "--delegate", "compute_velocity_commands=compute,set_plan=on_plan",
-                      "--delegate", "set_speed_limit=on_limit")
+    host = start_host(
+        "--serve",
+        f"{KEY}=echo_planners:EchoController",
+        "--serve",
+        f"{PLANNER_KEY}=echo_planners:LinePlanner",
+        "--key",
+        delegate_key,
+        "--module",
+        "seed_delegates",
+        "--delegate",
+        "compute_velocity_commands=compute,set_plan=on_plan",
+        "--delegate",
+        "set_speed_limit=on_limit",
+    )
     session = zsession_factory(host.endpoint)
     ctrl = ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS)
     plnr = GlobalPlannerClient(session, PLANNER_KEY, make_costmap(), timeouts=GENEROUS)
@@ -202,12 +219,12 @@ def test_several_planners_on_one_host_and_delegates(start_host: Any,
     assert (cmd.twist.linear.x, cmd.twist.linear.y, cmd.twist.angular.z) == (11.0, 0.7, 12.0)
 
 
-def test_concurrent_sessions_on_one_key_are_isolated(start_host: Any,
-                                                      zsession_factory: Any) -> None:
+def test_concurrent_sessions_on_one_key_are_isolated(
+    start_host: Any, zsession_factory: Any
+) -> None:
     host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
     session = zsession_factory(host.endpoint)
-    clients = [ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS)
-               for _ in range(4)]
+    clients = [ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS) for _ in range(4)]
     errors: list[BaseException] = []
 
     def run(index: int, client: ControllerClient) -> None:

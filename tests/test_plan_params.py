@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pytest
 from geometry_msgs.msg import PoseStamped
-from nav_msgs.msg import Path
-
 from nav2_pyif import Parameters, Plan
+from nav_msgs.msg import Path
 
 
 def test_plan_yaw_and_message_round_trip() -> None:
@@ -54,7 +54,7 @@ def test_parameter_updates_reject_bad_types_and_keep_old_values() -> None:
     params = Parameters()
     params.declare("gain", 1.0)
     params.declare("weights", [1.0, 2.0])
-    seen: list[dict[str, object]] = []
+    seen: list[dict[str, Any]] = []
     params.on_change(seen.append)
     applied, rejected = params.update({"gain": "fast", "weights": [3, 4], "free": True})
     assert rejected == {"gain": "gain: expected float, got str"}

@@ -8,16 +8,16 @@ import math
 from typing import Any
 
 import msgpack
-import pytest
-
 import nav2_pyif as api
+import pytest
 from nav2_pyif.delegates import delegate_class, parse_delegates
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.loader import load_class
 from nav2_pyif.runtime import PlannerRuntime
 from nav2_pyif_protocol.arrays import pack_poses
 from nav2_pyif_protocol.codec import Reply, Request, decode_reply, encode_request
-from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
+from nav2_pyif_protocol.constants import PROTOCOL_VERSION, Op
+
 from tests.conftest import make_costmap
 from tests.fixtures.echo_planners import FaultyController, LinePlanner
 
@@ -39,10 +39,18 @@ class Driver:
         return decode_reply(self.runtime.handle(encode_request(request)), op)
 
     def configure(self, params: dict[str, Any] | None = None) -> Reply:
-        return self.call(Op.CONFIGURE, {
-            "plugin_type": self.plugin_type, "name": "FollowPath", "node": "controller_server",
-            "params": params or {}, "global_frame": "odom", "robot_base_frame": "base_link",
-            "costmap": make_costmap().to_wire()})
+        return self.call(
+            Op.CONFIGURE,
+            {
+                "plugin_type": self.plugin_type,
+                "name": "FollowPath",
+                "node": "controller_server",
+                "params": params or {},
+                "global_frame": "odom",
+                "robot_base_frame": "base_link",
+                "costmap": make_costmap().to_wire(),
+            },
+        )
 
     def cycle(self) -> Reply:
         return self.call(Op.COMPUTE_VELOCITY_COMMANDS, {"pose": POSE, "velocity": [0.0] * 6})
@@ -74,14 +82,23 @@ def test_a_cycle_returns_the_planners_twist(driver: Driver) -> None:
     assert reply.compute_ns > 0 and reply.host == "test-host"
 
 
-CONTROLLER_NAMED = ["ControllerException", "InvalidController", "ControllerTFError",
-                    "FailedToMakeProgress", "PatienceExceeded", "InvalidPath", "NoValidControl",
-                    "ControllerTimedOut", "PlannerException"]
+CONTROLLER_NAMED = [
+    "ControllerException",
+    "InvalidController",
+    "ControllerTFError",
+    "FailedToMakeProgress",
+    "PatienceExceeded",
+    "InvalidPath",
+    "NoValidControl",
+    "ControllerTimedOut",
+    "PlannerException",
+]
 
 
 @pytest.mark.parametrize("name", CONTROLLER_NAMED)
-def test_nav2_named_exceptions_keep_their_type(driver: Driver, name: str,
-                                               caplog: pytest.LogCaptureFixture) -> None:
+def test_nav2_named_exceptions_keep_their_type(
+    driver: Driver, name: str, caplog: pytest.LogCaptureFixture
+) -> None:
     set_fault(driver, name)
     with caplog.at_level(logging.ERROR, logger="nav2_pyif.host"):
         reply = driver.cycle()
@@ -99,7 +116,11 @@ def test_nav2_named_exceptions_keep_their_type(driver: Driver, name: str,
     ("fault", "error_type", "words"),
     [
         ("zero_division", "ControllerException", "ZeroDivisionError: division by zero"),
-        ("none_return", "ControllerException", "returned NoneType; expected geometry_msgs.msg.TwistStamped"),
+        (
+            "none_return",
+            "ControllerException",
+            "returned NoneType; expected geometry_msgs.msg.TwistStamped",
+        ),
         ("twist_return", "ControllerException", "wrap it: TwistStamped"),
         ("nan", "NoValidControl", "non-finite velocity: linear.x=nan, angular.z=inf"),
         ("sys_exit", "ControllerException", "SystemExit: 3"),
@@ -107,8 +128,9 @@ def test_nav2_named_exceptions_keep_their_type(driver: Driver, name: str,
         ("recursion", "ControllerException", "RecursionError"),
     ],
 )
-def test_misbehaviour_becomes_a_typed_error_naming_it(driver: Driver, fault: str,
-                                                       error_type: str, words: str) -> None:
+def test_misbehaviour_becomes_a_typed_error_naming_it(
+    driver: Driver, fault: str, error_type: str, words: str
+) -> None:
     set_fault(driver, fault)
     reply = driver.cycle()
     assert not reply.ok and reply.error is not None
@@ -140,8 +162,9 @@ def test_protocol_errors(driver: Driver) -> None:
     assert mismatch.error is not None and mismatch.error.type == "VersionMismatch"
     assert mismatch.seq == 41
     wrong_key = Request(Op.ACTIVATE, "s1", 1, 99, {})
-    reply = decode_reply(driver.runtime.handle(encode_request(wrong_key), key_op="reset"),
-                         Op.ACTIVATE)
+    reply = decode_reply(
+        driver.runtime.handle(encode_request(wrong_key), key_op="reset"), Op.ACTIVATE
+    )
     assert reply.error is not None and "sent to key of op 'reset'" in reply.error.message
     plan_op = driver.call(Op.CREATE_PLAN, {"start": POSE, "goal": POSE})
     assert plan_op.error is not None and "not an operation of a controller" in plan_op.error.message
@@ -153,7 +176,9 @@ def test_configure_failures_are_invalid_controller() -> None:
     assert reply.error is not None and reply.error.type == "InvalidController"
     assert "configure refused on purpose" in reply.error.message
     wrong_type = d.configure({"gain": "fast"})
-    assert wrong_type.error is not None and "gain: expected float, got str" in wrong_type.error.message
+    assert (
+        wrong_type.error is not None and "gain: expected float, got str" in wrong_type.error.message
+    )
     planner_for_controller = Driver(PlannerRuntime(FaultyController, "h"), "global_planner")
     reply = planner_for_controller.configure()
     assert reply.error is not None and reply.error.type == "InvalidPlanner"
@@ -162,15 +187,17 @@ def test_configure_failures_are_invalid_controller() -> None:
 
 def test_non_finite_plans_are_refused(driver: Driver) -> None:
     poses = pack_poses([[math.nan, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]])
-    reply = driver.call(Op.SET_PLAN, {"path": {"frame_id": "odom", "stamp_ns": 0,
-                                               "poses": poses}})
+    reply = driver.call(Op.SET_PLAN, {"path": {"frame_id": "odom", "stamp_ns": 0, "poses": poses}})
     assert reply.error is not None and reply.error.type == "InvalidPath"
 
 
 @pytest.mark.parametrize(
     ("mode", "error_type"),
-    [("occupied", "GoalOccupied"), ("nan", "NoValidPathCouldBeFound"),
-     ("wrong_type", "PlannerException")],
+    [
+        ("occupied", "GoalOccupied"),
+        ("nan", "NoValidPathCouldBeFound"),
+        ("wrong_type", "PlannerException"),
+    ],
 )
 def test_planner_errors(mode: str, error_type: str) -> None:
     d = Driver(PlannerRuntime(LinePlanner, "h"), "global_planner")
@@ -199,8 +226,9 @@ def test_loader_errors_are_clear() -> None:
 
 
 def test_delegates_build_a_controller() -> None:
-    roles = parse_delegates(["compute_velocity_commands=compute,set_plan=on_plan",
-                             "set_speed_limit=on_limit"])
+    roles = parse_delegates(
+        ["compute_velocity_commands=compute,set_plan=on_plan", "set_speed_limit=on_limit"]
+    )
     cls = delegate_class("tests.fixtures.seed_delegates", roles)
     assert issubclass(cls, api.Controller)
     with pytest.raises(PlannerLoadError, match="no function 'missing'"):

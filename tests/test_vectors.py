@@ -7,8 +7,13 @@ from pathlib import Path
 
 import msgpack
 import pytest
-
-from nav2_pyif_protocol.codec import ProtocolError, decode_reply, decode_request, encode_reply, encode_request
+from nav2_pyif_protocol.codec import (
+    ProtocolError,
+    decode_reply,
+    decode_request,
+    encode_reply,
+    encode_request,
+)
 from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.vectors import build_vectors, rendered_files, to_json_tree
 
@@ -50,8 +55,12 @@ def test_vectors_cover_every_operation_both_ways() -> None:
 
 def test_vectors_include_the_required_edge_cases() -> None:
     names = {e["name"] for e in INDEX}
-    assert {"set_plan_empty", "configure_planner_1x1", "create_plan_costmap_1000",
-            "compute_velocity_commands_unicode_frame",
-            "compute_velocity_commands_nan_velocity"} <= names
+    assert {
+        "set_plan_empty",
+        "configure_planner_1x1",
+        "create_plan_costmap_1000",
+        "compute_velocity_commands_unicode_frame",
+        "compute_velocity_commands_nan_velocity",
+    } <= names
     big = decode_request((VECTORS / "create_plan_costmap_1000.msgpack").read_bytes())
     assert len(big.body["costmap"]["data"]) == 1000 * 1000

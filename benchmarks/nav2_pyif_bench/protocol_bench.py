@@ -1,3 +1,5 @@
 """placeholder replaced below"""
+
+
 def main() -> int:
     return 0

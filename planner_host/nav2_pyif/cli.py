@@ -14,6 +14,7 @@ from types import FrameType
 from typing import Any
 
 import yaml
+from nav2_pyif_protocol.keys import validate_prefix
 
 from nav2_pyif.delegates import delegate_class, parse_delegates
 from nav2_pyif.exceptions import PlannerLoadError
@@ -22,7 +23,6 @@ from nav2_pyif.loader import load_class
 from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.runtime import PlannerRuntime
 from nav2_pyif.zenoh_config import add_zenoh_arguments, open_session, options_from_args
-from nav2_pyif_protocol.keys import validate_prefix
 
 EPILOG = """\
 examples:
@@ -38,7 +38,7 @@ examples:
       --serve nav2_pyif/robot1/FollowPath=my_pkg.ctrl:MyController \\
       --serve nav2_pyif/robot1/GridBased=my_pkg.astar:AStar
 
-  # from a YAML file: planners: [{key: ..., planner: ...}, {key: ..., module: ..., delegates: {...}}]
+  # from a YAML file: planners: [{key: K, planner: M:C}, {key: K, module: M, delegates: {..}}]
   planner-host --config planners.yaml
 """
 
@@ -68,25 +68,50 @@ def build_parser() -> argparse.ArgumentParser:
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
     what = parser.add_argument_group("what to serve")
-    what.add_argument("--key", metavar="PREFIX",
-                      help="key prefix of the plugin, as in the Nav2 params YAML")
-    what.add_argument("--planner", metavar="MODULE:CLASS",
-                      help="a Controller or GlobalPlanner subclass, e.g. my_pkg.ctrl:MyController")
-    what.add_argument("--module", metavar="MODULE",
-                      help="module of plain functions (the seed's python_module)")
-    what.add_argument("--delegate", action="append", default=[], metavar="ROLE=FUNCTION",
-                      help="role -> function of --module (the seed's python_delegates), repeatable "
-                           "or comma-separated")
-    what.add_argument("--serve", action="append", default=[], metavar="PREFIX=MODULE:CLASS",
-                      help="serve another planner on another key, repeatable")
-    what.add_argument("--config", type=Path, metavar="YAML",
-                      help="YAML file with a 'planners' list of {key, planner | module+delegates}")
-    what.add_argument("--path", action="append", default=[], metavar="DIR",
-                      help="directory to import planners from, repeatable (the current "
-                           "directory is always searched, as with python -m)")
+    what.add_argument(
+        "--key", metavar="PREFIX", help="key prefix of the plugin, as in the Nav2 params YAML"
+    )
+    what.add_argument(
+        "--planner",
+        metavar="MODULE:CLASS",
+        help="a Controller or GlobalPlanner subclass, e.g. my_pkg.ctrl:MyController",
+    )
+    what.add_argument(
+        "--module", metavar="MODULE", help="module of plain functions (the seed's python_module)"
+    )
+    what.add_argument(
+        "--delegate",
+        action="append",
+        default=[],
+        metavar="ROLE=FUNCTION",
+        help="role -> function of --module (the seed's python_delegates), repeatable "
+        "or comma-separated",
+    )
+    what.add_argument(
+        "--serve",
+        action="append",
+        default=[],
+        metavar="PREFIX=MODULE:CLASS",
+        help="serve another planner on another key, repeatable",
+    )
+    what.add_argument(
+        "--config",
+        type=Path,
+        metavar="YAML",
+        help="YAML file with a 'planners' list of {key, planner | module+delegates}",
+    )
+    what.add_argument(
+        "--path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="directory to import planners from, repeatable (the current "
+        "directory is always searched, as with python -m)",
+    )
     add_zenoh_arguments(parser)
-    parser.add_argument("--log-level", default="INFO",
-                        choices=["DEBUG", "INFO", "WARNING", "ERROR"])
+    parser.add_argument(
+        "--log-level", default="INFO", choices=["DEBUG", "INFO", "WARNING", "ERROR"]
+    )
     return parser
 
 
@@ -99,7 +124,9 @@ def collect_specs(args: argparse.Namespace, parser: argparse.ArgumentParser) -> 
             parser.error("give either --planner or --module, not both")
         delegates = parse_delegates(args.delegate) if args.module else None
         if args.module and not delegates:
-            parser.error("--module needs --delegate ROLE=FUNCTION (e.g. compute_velocity_commands=f)")
+            parser.error(
+                "--module needs --delegate ROLE=FUNCTION (e.g. compute_velocity_commands=f)"
+            )
         specs.append(PlannerSpec(args.key, args.planner, args.module, delegates))
     elif args.key:
         parser.error("--key needs --planner MODULE:CLASS or --module MODULE")
@@ -134,16 +161,23 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
             raise PlannerLoadError(f"{path}: planners[{i}] needs a 'key'")
         if ("planner" in entry) == ("module" in entry):
             raise PlannerLoadError(f"{path}: planners[{i}] needs exactly one of planner / module")
-        specs.append(PlannerSpec(str(entry["key"]), entry.get("planner"), entry.get("module"),
-                                 {str(k): str(v) for k, v in (entry.get("delegates") or {}).items()}))
+        specs.append(
+            PlannerSpec(
+                str(entry["key"]),
+                entry.get("planner"),
+                entry.get("module"),
+                {str(k): str(v) for k, v in (entry.get("delegates") or {}).items()},
+            )
+        )
     return specs
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    logging.basicConfig(level=args.log_level,
-                        format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s")
+    logging.basicConfig(
+        level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
+    )
     log = logging.getLogger("nav2_pyif.host")
     for directory in [os.getcwd(), *args.path][::-1]:
         if directory not in sys.path:

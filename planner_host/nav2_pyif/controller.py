@@ -5,10 +5,11 @@ from __future__ import annotations
 from abc import abstractmethod
 from typing import Any, ClassVar
 
+from nav2_pyif_protocol.constants import PluginType
+
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
-from nav2_pyif_protocol.constants import PluginType
 
 
 class Controller(PlannerPlugin):

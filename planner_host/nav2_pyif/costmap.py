@@ -10,7 +10,6 @@ from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
-
 from nav2_pyif_protocol.arrays import ByteArray, FloatArray, costmap_grid, pack_xy, unpack_xy
 
 
@@ -38,7 +37,9 @@ class Costmap:
         """``data``: (size_y, size_x) uint8 costs; ``footprint``: (K, 2) x, y [m], robot frame."""
         grid = np.asarray(data)
         if grid.ndim != 2 or grid.dtype != np.uint8:
-            raise ValueError(f"costmap data must be a 2-D uint8 array, got {grid.dtype} {grid.shape}")
+            raise ValueError(
+                f"costmap data must be a 2-D uint8 array, got {grid.dtype} {grid.shape}"
+            )
         if not resolution > 0:
             raise ValueError(f"costmap resolution must be > 0, got {resolution}")
         self.data: ByteArray = grid
@@ -47,7 +48,9 @@ class Costmap:
         self.origin_y = float(origin_y)
         self.frame_id = frame_id
         self.footprint: FloatArray = (
-            np.zeros((0, 2)) if footprint is None else np.asarray(footprint, np.float64).reshape(-1, 2)
+            np.zeros((0, 2))
+            if footprint is None
+            else np.asarray(footprint, np.float64).reshape(-1, 2)
         )
         self.robot_radius = float(robot_radius)
         self.version = version
@@ -111,13 +114,15 @@ class Costmap:
             self.origin_y + (my + 0.5) * self.resolution,
         )
 
-    def world_to_map_array(self, xy: npt.ArrayLike) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+    def world_to_map_array(
+        self, xy: npt.ArrayLike
+    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
         """(N, 2) world x, y [m] -> ((N, 2) int64 mx, my; (N,) bool inside). Outside cells are
         clipped into the map so they can index ``data``; use the mask."""
         pts = np.asarray(xy, dtype=np.float64)
-        cells = np.floor(
-            (pts - np.array([self.origin_x, self.origin_y])) / self.resolution
-        ).astype(np.int64)
+        cells = np.floor((pts - np.array([self.origin_x, self.origin_y])) / self.resolution).astype(
+            np.int64
+        )
         inside = (
             (cells[..., 0] >= 0)
             & (cells[..., 1] >= 0)
@@ -131,7 +136,10 @@ class Costmap:
     def map_to_world_array(self, mxy: npt.ArrayLike) -> FloatArray:
         """(N, 2) cells -> (N, 2) world coordinates of the cell centres [m]."""
         cells = np.asarray(mxy, dtype=np.float64)
-        return (cells + 0.5) * self.resolution + np.array([self.origin_x, self.origin_y])
+        world: FloatArray = (cells + 0.5) * self.resolution + np.array(
+            [self.origin_x, self.origin_y]
+        )
+        return world
 
     # --- costs --------------------------------------------------------------------------
     def cost(self, mx: int, my: int) -> int:
@@ -155,7 +163,7 @@ class Costmap:
         if len(self.footprint) >= 3:
             corners = self.footprint
             pts = [np.zeros((1, 2))]
-            for a, b in zip(corners, np.roll(corners, -1, axis=0)):
+            for a, b in zip(corners, np.roll(corners, -1, axis=0), strict=False):
                 n = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
                 t = np.arange(n)[:, None] / n
                 pts.append(a + t * (b - a))
@@ -176,7 +184,8 @@ class Costmap:
         wx = p[..., 0:1] + c * pts[:, 0] - s * pts[:, 1]
         wy = p[..., 1:2] + s * pts[:, 0] + c * pts[:, 1]
         costs = self.costs_at_world(np.stack([wx, wy], axis=-1))
-        return costs.max(axis=-1)
+        worst: ByteArray = costs.max(axis=-1)
+        return worst
 
     # --- ROS ----------------------------------------------------------------------------
     def to_occupancy_grid(self) -> Any:

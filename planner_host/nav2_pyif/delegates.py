@@ -51,7 +51,8 @@ def delegate_class(
     unknown = set(delegates) - ALL_ROLES
     if unknown:
         raise PlannerLoadError(
-            f"unknown delegate role(s) {', '.join(sorted(unknown))}; roles: {', '.join(sorted(ALL_ROLES))}"
+            f"unknown delegate role(s) {', '.join(sorted(unknown))}; "
+            f"roles: {', '.join(sorted(ALL_ROLES))}"
         )
     is_controller = "compute_velocity_commands" in delegates
     if is_controller == ("create_plan" in delegates):

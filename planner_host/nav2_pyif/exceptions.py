@@ -103,11 +103,25 @@ class PlannerCancelled(PlannerException):
 NAV2_EXCEPTIONS: dict[str, type[Nav2Error]] = {
     cls.error_type.value: cls
     for cls in (
-        ControllerException, InvalidController, ControllerTFError, FailedToMakeProgress,
-        PatienceExceeded, InvalidPath, NoValidControl, ControllerTimedOut,
-        PlannerException, InvalidPlanner, StartOccupied, GoalOccupied, StartOutsideMapBounds,
-        GoalOutsideMapBounds, NoValidPathCouldBeFound, PlannerTimedOut, PlannerTFError,
-        NoViapointsGiven, PlannerCancelled,
+        ControllerException,
+        InvalidController,
+        ControllerTFError,
+        FailedToMakeProgress,
+        PatienceExceeded,
+        InvalidPath,
+        NoValidControl,
+        ControllerTimedOut,
+        PlannerException,
+        InvalidPlanner,
+        StartOccupied,
+        GoalOccupied,
+        StartOutsideMapBounds,
+        GoalOutsideMapBounds,
+        NoValidPathCouldBeFound,
+        PlannerTimedOut,
+        PlannerTFError,
+        NoViapointsGiven,
+        PlannerCancelled,
     )
 }
 

@@ -6,8 +6,9 @@ from abc import abstractmethod
 from collections.abc import Callable
 from typing import Any, ClassVar
 
-from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif_protocol.constants import PluginType
+
+from nav2_pyif.plugin import PlannerPlugin
 
 
 class GlobalPlanner(PlannerPlugin):

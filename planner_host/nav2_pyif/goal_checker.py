@@ -26,8 +26,9 @@ class GoalChecker:
             "rot_stopped_velocity": self.rot_stopped_velocity,
         }
 
-    def is_goal_reached(self, x: float, y: float, yaw: float,
-                        goal_x: float, goal_y: float, goal_yaw: float) -> bool:
+    def is_goal_reached(
+        self, x: float, y: float, yaw: float, goal_x: float, goal_y: float, goal_yaw: float
+    ) -> bool:
         """Nav2's SimpleGoalChecker rule: within xy and yaw tolerance of the goal."""
         if math.hypot(goal_x - x, goal_y - y) > self.xy_goal_tolerance:
             return False

@@ -4,6 +4,7 @@ cancellation, and a liveliness token the plugin watches."""
 
 from __future__ import annotations
 
+import contextlib
 import logging
 import os
 import secrets
@@ -12,9 +13,9 @@ import threading
 from typing import Any
 
 import zenoh
+from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.runtime import PlannerRuntime
-from nav2_pyif_protocol.keys import KeySpace
 
 log = logging.getLogger("nav2_pyif.host")
 
@@ -71,10 +72,8 @@ class ServedPlanner:
 
     def close(self) -> None:
         for entity in (self._token, self._cancel, self._calls):
-            try:
+            with contextlib.suppress(Exception):  # already gone with the session
                 entity.undeclare()
-            except Exception:  # already gone with the session
-                pass
         self._thread.join(timeout=5.0)
         self.runtime.close()
 
@@ -93,8 +92,7 @@ class PlannerHost:
             raise ValueError(f"key {key_prefix!r} is already served by this host")
         served = ServedPlanner(self.session, keys, runtime)
         self.served[key_prefix] = served
-        log.info("serving %s on %s/** (%s)", runtime.label, key_prefix,
-                 runtime.plugin_type.value)
+        log.info("serving %s on %s/** (%s)", runtime.label, key_prefix, runtime.plugin_type.value)
         return served
 
     def close(self) -> None:

@@ -31,15 +31,16 @@ def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
     """``pkg.module:Class`` -> the class, checked to be a Controller or GlobalPlanner."""
     module_name, sep, class_name = spec.partition(":")
     if not sep or not module_name or not class_name:
-        raise PlannerLoadError(
-            f"planner {spec!r} is not of the form 'package.module:ClassName'"
-        )
+        raise PlannerLoadError(f"planner {spec!r} is not of the form 'package.module:ClassName'")
     module = import_module(module_name, reload=reload)
     cls = getattr(module, class_name, None)
     if cls is None:
         found = sorted(
-            n for n, v in vars(module).items()
-            if inspect.isclass(v) and issubclass(v, PlannerPlugin) and v.__module__ == module.__name__
+            n
+            for n, v in vars(module).items()
+            if inspect.isclass(v)
+            and issubclass(v, PlannerPlugin)
+            and v.__module__ == module.__name__
         )
         raise PlannerLoadError(
             f"module {module_name!r} has no class {class_name!r}"

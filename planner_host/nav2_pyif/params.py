@@ -13,10 +13,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Union
+from typing import Any, TypeVar
 
-Scalar = Union[bool, int, float, str]
-ParamValue = Union[Scalar, list[bool], list[int], list[float], list[str]]
+Scalar = bool | int | float | str
+ParamValue = Scalar | list[bool] | list[int] | list[float] | list[str]
+T = TypeVar("T", bool, int, float, str, list[bool], list[int], list[float], list[str])
 
 
 @dataclass
@@ -25,14 +26,14 @@ class Declared:
     description: str
 
 
-def _coerce(name: str, value: ParamValue, like: ParamValue) -> ParamValue:
+def _coerce(name: str, value: Any, like: Any) -> Any:
     """``value`` converted to the type of ``like``, or TypeError saying why not."""
     if isinstance(like, list):
         if not isinstance(value, list):
             raise TypeError(f"{name}: expected a list, got {type(value).__name__}")
         if not like:
             return list(value)
-        return [_coerce(f"{name}[{i}]", v, like[0]) for i, v in enumerate(value)]  # type: ignore[misc]
+        return [_coerce(f"{name}[{i}]", v, like[0]) for i, v in enumerate(value)]
     if isinstance(like, bool) or isinstance(value, bool):
         if type(value) is not type(like):
             raise TypeError(f"{name}: expected {type(like).__name__}, got {type(value).__name__}")
@@ -50,25 +51,23 @@ class Parameters:
         self._declared: dict[str, Declared] = {}
         self._listeners: list[Callable[[dict[str, ParamValue]], None]] = []
 
-    def declare(self, name: str, default: ParamValue, description: str = "") -> ParamValue:
+    def declare(self, name: str, default: T, description: str = "") -> T:
         """Declare ``name`` and return its value: the given one if any, else ``default``.
 
         Raises TypeError when the given value has the wrong type (configure then fails with
         InvalidController / InvalidPlanner naming the parameter)."""
         self._declared[name] = Declared(default, description)
-        if name in self._values:
-            self._values[name] = _coerce(name, self._values[name], default)
-        else:
-            self._values[name] = default
-        return self._values[name]
+        value: T = _coerce(name, self._values[name], default) if name in self._values else default
+        self._values[name] = value
+        return value
 
-    def __getitem__(self, name: str) -> ParamValue:
+    def __getitem__(self, name: str) -> Any:
         try:
             return self._values[name]
         except KeyError:
             raise KeyError(f"parameter {name!r} was neither given nor declared") from None
 
-    def get(self, name: str, default: ParamValue | None = None) -> ParamValue | None:
+    def get(self, name: str, default: Any = None) -> Any:
         return self._values.get(name, default)
 
     def __contains__(self, name: object) -> bool:
@@ -88,7 +87,9 @@ class Parameters:
         """Call ``listener(changed)`` after each accepted update."""
         self._listeners.append(listener)
 
-    def update(self, changes: dict[str, ParamValue]) -> tuple[dict[str, ParamValue], dict[str, str]]:
+    def update(
+        self, changes: dict[str, ParamValue]
+    ) -> tuple[dict[str, ParamValue], dict[str, str]]:
         """Apply changes; returns (applied, rejected name -> reason). Used by the host."""
         applied: dict[str, ParamValue] = {}
         rejected: dict[str, str] = {}

@@ -12,8 +12,6 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-
-from nav2_pyif.messages import ns_to_stamp, stamp_to_ns
 from nav2_pyif_protocol.arrays import (
     FloatArray,
     pack_poses,
@@ -21,6 +19,8 @@ from nav2_pyif_protocol.arrays import (
     quaternion_to_yaw,
     unpack_poses,
 )
+
+from nav2_pyif.messages import ns_to_stamp, stamp_to_ns
 
 
 class Plan:
@@ -40,18 +40,32 @@ class Plan:
         return plan
 
     def to_wire(self) -> dict[str, Any]:
-        return {"frame_id": self.frame_id, "stamp_ns": self.stamp_ns, "poses": pack_poses(self.array)}
+        return {
+            "frame_id": self.frame_id,
+            "stamp_ns": self.stamp_ns,
+            "poses": pack_poses(self.array),
+        }
 
     @classmethod
     def from_msg(cls, msg: Any) -> Plan:
         """nav_msgs/Path -> Plan."""
         rows = [
-            (p.pose.position.x, p.pose.position.y, p.pose.position.z, p.pose.orientation.x,
-             p.pose.orientation.y, p.pose.orientation.z, p.pose.orientation.w)
+            (
+                p.pose.position.x,
+                p.pose.position.y,
+                p.pose.position.z,
+                p.pose.orientation.x,
+                p.pose.orientation.y,
+                p.pose.orientation.z,
+                p.pose.orientation.w,
+            )
             for p in msg.poses
         ]
-        return cls(np.array(rows, dtype=np.float64).reshape(-1, 7), msg.header.frame_id,
-                   stamp_to_ns(msg.header.stamp))
+        return cls(
+            np.array(rows, dtype=np.float64).reshape(-1, 7),
+            msg.header.frame_id,
+            stamp_to_ns(msg.header.stamp),
+        )
 
     def __len__(self) -> int:
         return int(self.array.shape[0])
@@ -71,7 +85,11 @@ class Plan:
 
     def length(self) -> float:
         """Arc length [m]."""
-        return float(np.sum(np.linalg.norm(np.diff(self.xy, axis=0), axis=1))) if len(self) > 1 else 0.0
+        return (
+            float(np.sum(np.linalg.norm(np.diff(self.xy, axis=0), axis=1)))
+            if len(self) > 1
+            else 0.0
+        )
 
     # --- nav_msgs/Path look-alike ---------------------------------------------------------
     @cached_property

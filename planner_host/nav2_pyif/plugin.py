@@ -6,16 +6,25 @@ import logging
 from abc import ABC
 from typing import ClassVar
 
-from nav2_pyif.costmap import Costmap
-from nav2_pyif.params import ParamValue, Parameters
 from nav2_pyif_protocol.constants import PluginType
+
+from nav2_pyif.costmap import Costmap
+from nav2_pyif.params import Parameters, ParamValue
 
 
 class PluginContext:
     """Per-session state the host keeps up to date (the costmap changes between calls)."""
 
-    def __init__(self, name: str, node_name: str, global_frame: str, robot_base_frame: str,
-                 costmap: Costmap, params: Parameters, logger: logging.Logger) -> None:
+    def __init__(
+        self,
+        name: str,
+        node_name: str,
+        global_frame: str,
+        robot_base_frame: str,
+        costmap: Costmap,
+        params: Parameters,
+        logger: logging.Logger,
+    ) -> None:
         self.name = name
         self.node_name = node_name
         self.global_frame = global_frame

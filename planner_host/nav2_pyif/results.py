@@ -26,14 +26,15 @@ def checked_twist_stamped(result: Any, method: str) -> Any:
     if not isinstance(result, TwistStamped):
         hint = (
             " — wrap it: TwistStamped(header=pose.header, twist=your_twist)"
-            if isinstance(result, Twist) else ""
+            if isinstance(result, Twist)
+            else ""
         )
         raise ControllerException(
             f"{method} returned {type(result).__name__}; expected "
             f"geometry_msgs.msg.TwistStamped{hint}"
         )
     values = twist_to_list(result.twist)
-    bad = [f"{n}={v}" for n, v in zip(TWIST_FIELDS, values) if not math.isfinite(v)]
+    bad = [f"{n}={v}" for n, v in zip(TWIST_FIELDS, values, strict=False) if not math.isfinite(v)]
     if bad:
         raise NoValidControl(f"{method} returned a non-finite velocity: {', '.join(bad)}")
     return result

@@ -17,6 +17,15 @@ from typing import Any
 
 import msgpack
 import numpy as np
+from nav2_pyif_protocol.codec import (
+    ErrorInfo,
+    ProtocolError,
+    Reply,
+    Request,
+    decode_request,
+    encode_reply,
+)
+from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import (
@@ -33,15 +42,6 @@ from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
 from nav2_pyif.results import checked_bool, checked_plan, checked_twist_stamped
-from nav2_pyif_protocol.codec import (
-    ErrorInfo,
-    ProtocolError,
-    Reply,
-    Request,
-    decode_request,
-    encode_reply,
-)
-from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
 MAX_TRACEBACK_CHARS = 16_000
 Body = dict[str, Any]
@@ -108,12 +108,14 @@ class PlannerRuntime:
             return self._error_reply(_peek_seq(payload), exc.error_type, str(exc))
         if key_op is not None and key_op != request.op.value:
             return self._error_reply(
-                request.seq, ErrorType.BAD_REQUEST,
+                request.seq,
+                ErrorType.BAD_REQUEST,
                 f"request op {request.op.value!r} sent to key of op {key_op!r}",
             )
         if request.op not in OPS_BY_PLUGIN[self.plugin_type] or request.op is Op.CANCEL_PLAN:
             return self._error_reply(
-                request.seq, ErrorType.BAD_REQUEST,
+                request.seq,
+                ErrorType.BAD_REQUEST,
                 f"{request.op.value} is not an operation of a {self.plugin_type.value} "
                 f"(this key serves {self.label})",
             )
@@ -125,7 +127,8 @@ class PlannerRuntime:
                 session = self.sessions.get(request.sid)
                 if session is None or session.epoch != request.epoch:
                     return self._error_reply(
-                        request.seq, ErrorType.SESSION_UNKNOWN,
+                        request.seq,
+                        ErrorType.SESSION_UNKNOWN,
                         f"session {request.sid} epoch {request.epoch} is not known to host "
                         f"{self.host_id}; re-send configure",
                     )
@@ -139,8 +142,11 @@ class PlannerRuntime:
         try:
             return encode_reply(reply, request.op)
         except ProtocolError as exc:
-            return self._error_reply(request.seq, generic_error(self.plugin_type).error_type,
-                                     f"{request.op.value} produced an unencodable reply: {exc}")
+            return self._error_reply(
+                request.seq,
+                generic_error(self.plugin_type).error_type,
+                f"{request.op.value} produced an unencodable reply: {exc}",
+            )
 
     def handle_cancel(self, payload: bytes) -> bytes:
         """``cancel_plan``: flag a running create_plan. Thread-safe; answered at once."""
@@ -149,8 +155,9 @@ class PlannerRuntime:
         except ProtocolError as exc:
             return self._error_reply(_peek_seq(payload), exc.error_type, str(exc))
         if request.op is not Op.CANCEL_PLAN:
-            return self._error_reply(request.seq, ErrorType.BAD_REQUEST,
-                                     f"{request.op.value} sent to the cancel key")
+            return self._error_reply(
+                request.seq, ErrorType.BAD_REQUEST, f"{request.op.value} sent to the cancel key"
+            )
         session = self.sessions.get(request.sid)
         accepted = bool(
             session is not None
@@ -172,8 +179,15 @@ class PlannerRuntime:
         self.sessions.clear()
 
     # --- replies ------------------------------------------------------------------------
-    def _error_reply(self, seq: int, error_type: ErrorType, message: str, tb: str = "",
-                     python_type: str = "", compute_ns: int = 0) -> bytes:
+    def _error_reply(
+        self,
+        seq: int,
+        error_type: ErrorType,
+        message: str,
+        tb: str = "",
+        python_type: str = "",
+        compute_ns: int = 0,
+    ) -> bytes:
         error = ErrorInfo(error_type.value, message, tb, python_type)
         reply = Reply(seq=seq, ok=False, host=self.host_id, error=error, compute_ns=compute_ns)
         return encode_reply(reply, Op.ACTIVATE)
@@ -183,9 +197,12 @@ class PlannerRuntime:
             error_type = exc.error_type
             message = str(exc) or type(exc).__name__
         else:
-            invalid = InvalidController if self.plugin_type is PluginType.CONTROLLER else InvalidPlanner
-            error_type = (invalid if request.op is Op.CONFIGURE
-                          else generic_error(self.plugin_type)).error_type
+            invalid = (
+                InvalidController if self.plugin_type is PluginType.CONTROLLER else InvalidPlanner
+            )
+            error_type = (
+                invalid if request.op is Op.CONFIGURE else generic_error(self.plugin_type)
+            ).error_type
             message = "".join(traceback.format_exception_only(type(exc), exc)).strip()
         message = f"{self.label}.{request.op.value}: {message}"
         tb = _short_traceback(exc)
@@ -218,8 +235,14 @@ class PlannerRuntime:
         planner.configure()
         context.params.on_change(planner.on_parameters_changed)
         self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)
-        self.log.info("%s: session %s configured (epoch %d) for %s/%s", self.label,
-                      request.sid[:8], request.epoch, body["node"], body["name"])
+        self.log.info(
+            "%s: session %s configured (epoch %d) for %s/%s",
+            self.label,
+            request.sid[:8],
+            request.epoch,
+            body["node"],
+            body["name"],
+        )
         return {"declared": context.params.declared()}
 
     def _safe_cleanup(self, session: Session) -> None:
@@ -293,8 +316,9 @@ class PlannerRuntime:
             result = planner.create_plan(start, goal, session.cancel_requested.is_set)
         finally:
             session.running_seq = None
-        plan = checked_plan(result, session.context.global_frame, request.body["start"]["stamp_ns"],
-                            "create_plan")
+        plan = checked_plan(
+            result, session.context.global_frame, request.body["start"]["stamp_ns"], "create_plan"
+        )
         return {"path": plan.to_wire()}
 
 

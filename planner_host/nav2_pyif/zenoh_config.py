@@ -30,22 +30,40 @@ class ZenohOptions:
 
 def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("zenoh")
-    group.add_argument("--zenoh-config", metavar="FILE",
-                       help=f"Zenoh JSON5 config file (default: ${CONFIG_ENV}, else built-in)")
-    group.add_argument("--connect", action="append", default=[], metavar="ENDPOINT",
-                       help=f"endpoint to connect to, repeatable (default: {DEFAULT_ROUTER})")
-    group.add_argument("--listen", action="append", default=[], metavar="ENDPOINT",
-                       help="endpoint to listen on, repeatable, e.g. tcp/127.0.0.1:7447 "
-                            "(use when no Zenoh router runs)")
-    group.add_argument("--mode", choices=["peer", "client", "router"],
-                       help="Zenoh session mode (default: peer)")
-    group.add_argument("--multicast-scouting", action="store_true",
-                       help="enable multicast scouting (off by default, as in rmw_zenoh)")
+    group.add_argument(
+        "--zenoh-config",
+        metavar="FILE",
+        help=f"Zenoh JSON5 config file (default: ${CONFIG_ENV}, else built-in)",
+    )
+    group.add_argument(
+        "--connect",
+        action="append",
+        default=[],
+        metavar="ENDPOINT",
+        help=f"endpoint to connect to, repeatable (default: {DEFAULT_ROUTER})",
+    )
+    group.add_argument(
+        "--listen",
+        action="append",
+        default=[],
+        metavar="ENDPOINT",
+        help="endpoint to listen on, repeatable, e.g. tcp/127.0.0.1:7447 "
+        "(use when no Zenoh router runs)",
+    )
+    group.add_argument(
+        "--mode", choices=["peer", "client", "router"], help="Zenoh session mode (default: peer)"
+    )
+    group.add_argument(
+        "--multicast-scouting",
+        action="store_true",
+        help="enable multicast scouting (off by default, as in rmw_zenoh)",
+    )
 
 
 def options_from_args(args: argparse.Namespace) -> ZenohOptions:
-    return ZenohOptions(args.zenoh_config, list(args.connect), list(args.listen), args.mode,
-                        args.multicast_scouting)
+    return ZenohOptions(
+        args.zenoh_config, list(args.connect), list(args.listen), args.mode, args.multicast_scouting
+    )
 
 
 def build_config(options: ZenohOptions) -> zenoh.Config:
@@ -53,7 +71,7 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
     if path:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"Zenoh config file {path!r} does not exist")
-        config = zenoh.Config.from_file(path)
+        config: zenoh.Config = zenoh.Config.from_file(path)
     else:
         config = zenoh.Config()
         config.insert_json5("mode", json.dumps(options.mode or "peer"))

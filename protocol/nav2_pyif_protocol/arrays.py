@@ -52,7 +52,7 @@ def costmap_grid(data: bytes, size_x: int, size_y: int) -> ByteArray:
 def yaw_to_quaternion(yaw: npt.ArrayLike) -> FloatArray:
     """yaw [rad] (N,) -> (N, 4) qx, qy, qz, qw for rotations about z."""
     half = 0.5 * np.asarray(yaw, dtype=np.float64)
-    out = np.zeros(half.shape + (4,), dtype=np.float64)
+    out = np.zeros((*half.shape, 4), dtype=np.float64)
     out[..., 2] = np.sin(half)
     out[..., 3] = np.cos(half)
     return out

@@ -104,7 +104,7 @@ def _canon_params(where: str, value: Any) -> dict[str, Any]:
     return out
 
 
-def _canon_value(where: str, kind: str, value: Any) -> Any:  # noqa: PLR0911 - one arm per kind
+def _canon_value(where: str, kind: str, value: Any) -> Any:
     if kind == INT:
         if isinstance(value, bool) or not isinstance(value, int):
             raise _bad(f"{where}: expected int, got {type(value).__name__}")

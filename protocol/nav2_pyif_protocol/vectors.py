@@ -102,9 +102,15 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         "costmap": costmap(4, 3, 1, "odom"),
     }
     yield "configure_controller", req(Op.CONFIGURE, configure, seq=0), "controller configure"
-    planner_configure = dict(configure, plugin_type="global_planner", name="GridBased",
-                             node="planner_server", params={}, global_frame="map",
-                             costmap=costmap(1, 1, 9))
+    planner_configure = dict(
+        configure,
+        plugin_type="global_planner",
+        name="GridBased",
+        node="planner_server",
+        params={},
+        global_frame="map",
+        costmap=costmap(1, 1, 9),
+    )
     yield "configure_planner_1x1", req(Op.CONFIGURE, planner_configure, seq=0), "1x1 costmap"
     for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.CANCEL, Op.RESET):
         yield f"{op.value}_request", req(op, {}), f"{op.value}: empty body"
@@ -122,31 +128,45 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
             "rot_stopped_velocity": 0.25,
         },
     }
-    yield "compute_velocity_commands_request", req(Op.COMPUTE_VELOCITY_COMMANDS, cvc, seq=1234), (
-        "costmap unchanged: no costmap field"
+    yield (
+        "compute_velocity_commands_request",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, cvc, seq=1234),
+        ("costmap unchanged: no costmap field"),
     )
     minimal = {"pose": cvc["pose"], "velocity": cvc["velocity"]}
-    yield "compute_velocity_commands_no_goal_checker", req(
-        Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=2**32
-    ), "no goal checker; 5-byte seq"
+    yield (
+        "compute_velocity_commands_no_goal_checker",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=2**32),
+        "no goal checker; 5-byte seq",
+    )
     with_map = dict(cvc, costmap=costmap(400, 400, 17, "odom"))
-    yield "compute_velocity_commands_costmap_400", req(
-        Op.COMPUTE_VELOCITY_COMMANDS, with_map, seq=1235
-    ), "costmap changed: 400x400 attached"
+    yield (
+        "compute_velocity_commands_costmap_400",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, with_map, seq=1235),
+        "costmap changed: 400x400 attached",
+    )
     nan_velocity = dict(minimal, velocity=[math.nan, 0.0, math.inf, -math.inf, -0.0, 0.0])
-    yield "compute_velocity_commands_nan_velocity", req(
-        Op.COMPUTE_VELOCITY_COMMANDS, nan_velocity, epoch=3
-    ), "non-finite and negative-zero floats survive the codec"
+    yield (
+        "compute_velocity_commands_nan_velocity",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, nan_velocity, epoch=3),
+        "non-finite and negative-zero floats survive the codec",
+    )
     unicode_pose = pose(0.0, 0.0, 0.0, "карта/地図/ø")
-    yield "compute_velocity_commands_unicode_frame", req(
-        Op.COMPUTE_VELOCITY_COMMANDS, dict(minimal, pose=unicode_pose)
-    ), "non-ASCII frame id"
-    yield "set_speed_limit_absolute", req(
-        Op.SET_SPEED_LIMIT, {"speed_limit": 0.35, "percentage": False}
-    ), ""
-    yield "set_speed_limit_percentage", req(
-        Op.SET_SPEED_LIMIT, {"speed_limit": 50.0, "percentage": True}
-    ), ""
+    yield (
+        "compute_velocity_commands_unicode_frame",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, dict(minimal, pose=unicode_pose)),
+        "non-ASCII frame id",
+    )
+    yield (
+        "set_speed_limit_absolute",
+        req(Op.SET_SPEED_LIMIT, {"speed_limit": 0.35, "percentage": False}),
+        "",
+    )
+    yield (
+        "set_speed_limit_percentage",
+        req(Op.SET_SPEED_LIMIT, {"speed_limit": 50.0, "percentage": True}),
+        "",
+    )
     plan_body = {"start": pose(0.0, 0.0, 0.0), "goal": pose(5.0, -2.0, 3.14159)}
     yield "create_plan_request", req(Op.CREATE_PLAN, plan_body, seq=3), ""
     big = dict(plan_body, costmap=costmap(1000, 1000, 2))
@@ -158,53 +178,104 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
     def ok(op: Op, body: dict[str, Any], seq: int = 7, compute_ns: int = 12_345) -> Reply:
         return Reply(seq=seq, ok=True, host=HOST, body=body, compute_ns=compute_ns)
 
-    yield "configure_reply", Op.CONFIGURE, ok(
-        Op.CONFIGURE, {"declared": {"max_vel_x": 0.5, "k_rep": 2}}, seq=0
-    ), "declared parameters"
+    yield (
+        "configure_reply",
+        Op.CONFIGURE,
+        ok(Op.CONFIGURE, {"declared": {"max_vel_x": 0.5, "k_rep": 2}}, seq=0),
+        "declared parameters",
+    )
     for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PLAN, Op.RESET, Op.SET_SPEED_LIMIT):
         yield f"{op.value}_reply", op, ok(op, {}, compute_ns=0), "empty body"
-    yield "set_parameters_reply", Op.SET_PARAMETERS, ok(
-        Op.SET_PARAMETERS, {"rejected": {"max_vel_x": "expected float, got str"}}
-    ), ""
+    yield (
+        "set_parameters_reply",
+        Op.SET_PARAMETERS,
+        ok(Op.SET_PARAMETERS, {"rejected": {"max_vel_x": "expected float, got str"}}),
+        "",
+    )
     cmd = {"frame_id": "base_link", "stamp_ns": 42, "twist": [0.4, 0.0, 0.0, 0.0, 0.0, -0.2]}
-    yield "compute_velocity_commands_reply", Op.COMPUTE_VELOCITY_COMMANDS, ok(
-        Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd}, seq=1234
-    ), ""
+    yield (
+        "compute_velocity_commands_reply",
+        Op.COMPUTE_VELOCITY_COMMANDS,
+        ok(Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd}, seq=1234),
+        "",
+    )
     yield "cancel_reply", Op.CANCEL, ok(Op.CANCEL, {"cancelled": True}), ""
     yield "create_plan_reply", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(50)}, seq=3), ""
     yield "create_plan_reply_empty", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(0)}), ""
     yield "cancel_plan_reply", Op.CANCEL_PLAN, ok(Op.CANCEL_PLAN, {"accepted": True}, seq=5), ""
     errors = [
-        ("error_no_valid_control", Op.COMPUTE_VELOCITY_COMMANDS, ErrorType.NO_VALID_CONTROL,
-         "compute_velocity_commands returned a non-finite twist: linear.x=nan",
-         "Traceback (most recent call last):\n  File \"apf.py\", line 3\nValueError: x\n",
-         ""),
-        ("error_python_exception", Op.COMPUTE_VELOCITY_COMMANDS, ErrorType.CONTROLLER_EXCEPTION,
-         "ZeroDivisionError: division by zero",
-         "Traceback (most recent call last):\n  File \"c.py\", line 9, in f\n"
-         "ZeroDivisionError: division by zero\n",
-         "builtins.ZeroDivisionError"),
-        ("error_session_unknown", Op.SET_PLAN, ErrorType.SESSION_UNKNOWN,
-         "session 3f2a... epoch 2 is not known to this host", "", ""),
-        ("error_version_mismatch", Op.ACTIVATE, ErrorType.VERSION_MISMATCH,
-         "request speaks protocol version 2; this host speaks 1", "", ""),
-        ("error_no_path_unicode", Op.CREATE_PLAN, ErrorType.NO_VALID_PATH_COULD_BE_FOUND,
-         "kein Pfad gefunden → 目標に到達できません", "", "nav2_pyif.exceptions.X"),
-        ("error_unavailable", Op.CREATE_PLAN, ErrorType.UNAVAILABLE,
-         "planner worker is restarting", "", ""),
+        (
+            "error_no_valid_control",
+            Op.COMPUTE_VELOCITY_COMMANDS,
+            ErrorType.NO_VALID_CONTROL,
+            "compute_velocity_commands returned a non-finite twist: linear.x=nan",
+            'Traceback (most recent call last):\n  File "apf.py", line 3\nValueError: x\n',
+            "",
+        ),
+        (
+            "error_python_exception",
+            Op.COMPUTE_VELOCITY_COMMANDS,
+            ErrorType.CONTROLLER_EXCEPTION,
+            "ZeroDivisionError: division by zero",
+            'Traceback (most recent call last):\n  File "c.py", line 9, in f\n'
+            "ZeroDivisionError: division by zero\n",
+            "builtins.ZeroDivisionError",
+        ),
+        (
+            "error_session_unknown",
+            Op.SET_PLAN,
+            ErrorType.SESSION_UNKNOWN,
+            "session 3f2a... epoch 2 is not known to this host",
+            "",
+            "",
+        ),
+        (
+            "error_version_mismatch",
+            Op.ACTIVATE,
+            ErrorType.VERSION_MISMATCH,
+            "request speaks protocol version 2; this host speaks 1",
+            "",
+            "",
+        ),
+        (
+            "error_no_path_unicode",
+            Op.CREATE_PLAN,
+            ErrorType.NO_VALID_PATH_COULD_BE_FOUND,
+            "kein Pfad gefunden → 目標に到達できません",
+            "",
+            "nav2_pyif.exceptions.X",
+        ),
+        (
+            "error_unavailable",
+            Op.CREATE_PLAN,
+            ErrorType.UNAVAILABLE,
+            "planner worker is restarting",
+            "",
+            "",
+        ),
     ]
     for name, op, etype, message, tb, pytype in errors:
-        yield name, op, Reply(
-            seq=9, ok=False, host=HOST, error=ErrorInfo(etype.value, message, tb, pytype)
-        ), etype.value
+        yield (
+            name,
+            op,
+            Reply(seq=9, ok=False, host=HOST, error=ErrorInfo(etype.value, message, tb, pytype)),
+            etype.value,
+        )
 
 
 def build_vectors() -> list[Vector]:
     vectors = [Vector(n, "request", r.op, encode_request(r), d) for n, r, d in _requests()]
     # A request from a newer protocol version; hosts must answer VersionMismatch.
     future = Request(op=Op.ACTIVATE, sid=SID, epoch=1, seq=1, v=2)
-    vectors.append(Vector("activate_version_2", "request", Op.ACTIVATE,
-                          encode_request(future), "protocol version 2: VersionMismatch"))
+    vectors.append(
+        Vector(
+            "activate_version_2",
+            "request",
+            Op.ACTIVATE,
+            encode_request(future),
+            "protocol version 2: VersionMismatch",
+        )
+    )
     vectors += [Vector(n, "reply", op, encode_reply(r, op), d) for n, op, r, d in _replies()]
     return vectors
 

@@ -4,11 +4,12 @@ from __future__ import annotations
 
 from typing import Any
 
+from nav2_pyif_protocol.constants import Op, PluginType
+
 from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
 from nav2_pyif.plan import Plan
-from nav2_pyif_protocol.constants import Op, PluginType
 
 
 class ControllerClient(PluginClient):
@@ -54,5 +55,8 @@ class ControllerClient(PluginClient):
             self._call(Op.SET_PLAN, {"path": self._plan}, allow_resync=False)
         if self._speed_limit is not None:
             limit, percentage = self._speed_limit
-            self._call(Op.SET_SPEED_LIMIT, {"speed_limit": limit, "percentage": percentage},
-                       allow_resync=False)
+            self._call(
+                Op.SET_SPEED_LIMIT,
+                {"speed_limit": limit, "percentage": percentage},
+                allow_resync=False,
+            )

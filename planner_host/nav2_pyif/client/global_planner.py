@@ -6,11 +6,12 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from nav2_pyif_protocol.codec import Request, encode_request
+from nav2_pyif_protocol.constants import Op, PluginType
+
 from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.messages import pose_to_wire
 from nav2_pyif.plan import Plan
-from nav2_pyif_protocol.codec import Request, encode_request
-from nav2_pyif_protocol.constants import Op, PluginType
 
 CANCEL_POLL_S = 0.005
 
@@ -23,20 +24,24 @@ class GlobalPlannerClient(PluginClient):
         kwargs.setdefault("node", "planner_server")
         super().__init__(*args, **kwargs)
 
-    def create_plan(self, start: Any, goal: Any,
-                    cancel_checker: Callable[[], bool] | None = None) -> Plan:
+    def create_plan(
+        self, start: Any, goal: Any, cancel_checker: Callable[[], bool] | None = None
+    ) -> Plan:
         """PoseStamped start, goal -> Plan. While waiting, polls ``cancel_checker`` (as Nav2's
         planner_server passes one) and forwards a cancellation to the host once."""
         body = {"start": pose_to_wire(start), "goal": pose_to_wire(goal)}
         wait = None
         if cancel_checker is not None:
+
             def wait(replies: Any, request: Request, timeout: float) -> Any:
                 return self._wait_cancellable(replies, request, timeout, cancel_checker)
+
         reply = self._call(Op.CREATE_PLAN, body, with_costmap=True, wait=wait)
         return Plan.from_wire(reply["path"])
 
-    def _wait_cancellable(self, replies: Any, request: Request, timeout: float,
-                          cancel_checker: Callable[[], bool]) -> Any:
+    def _wait_cancellable(
+        self, replies: Any, request: Request, timeout: float, cancel_checker: Callable[[], bool]
+    ) -> Any:
         deadline = time.monotonic() + timeout
         cancel_sent = False
         while time.monotonic() < deadline:
@@ -57,5 +62,6 @@ class GlobalPlannerClient(PluginClient):
     def _send_cancel(self, target_seq: int) -> None:
         cancel = self._next_request(Op.CANCEL_PLAN, {"target_seq": target_seq})
         # Fire and forget: the planner's own reply (PlannerCancelled) is what counts.
-        self.session.get(self.keys.cancel, payload=encode_request(cancel),
-                         timeout=self.timeouts.lifecycle)
+        self.session.get(
+            self.keys.cancel, payload=encode_request(cancel), timeout=self.timeouts.lifecycle
+        )

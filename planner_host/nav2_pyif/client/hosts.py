@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from collections.abc import Callable
 from typing import Any
 
 import zenoh
-
 from nav2_pyif_protocol.keys import KeySpace
 
 
@@ -15,8 +15,12 @@ class HostWatcher:
     """A liveliness subscriber with history (not a liveliness get: zenoh-pico's plugin side
     cannot use one across several tokens, and the reference client behaves as it does)."""
 
-    def __init__(self, session: zenoh.Session, keys: KeySpace,
-                 on_change: Callable[[str, bool], None] | None = None) -> None:
+    def __init__(
+        self,
+        session: zenoh.Session,
+        keys: KeySpace,
+        on_change: Callable[[str, bool], None] | None = None,
+    ) -> None:
         self._alive: set[str] = set()
         self._lock = threading.Lock()
         self._changed = threading.Condition(self._lock)
@@ -56,7 +60,5 @@ class HostWatcher:
             return self._changed.wait_for(lambda: predicate(frozenset(self._alive)), timeout)
 
     def close(self) -> None:
-        try:
+        with contextlib.suppress(Exception):  # the session may be closed already
             self._subscriber.undeclare()
-        except Exception:  # the session may be closed already
-            pass

@@ -20,12 +20,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import zenoh
-
-from nav2_pyif.client.calls import CallRecord
-from nav2_pyif.client.hosts import HostWatcher
-from nav2_pyif.costmap import Costmap
-from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, timed_out_error
-from nav2_pyif.params import ParamValue
 from nav2_pyif_protocol.codec import (
     ErrorInfo,
     ProtocolError,
@@ -42,6 +36,12 @@ from nav2_pyif_protocol.constants import (
     PluginType,
 )
 from nav2_pyif_protocol.keys import KeySpace
+
+from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.client.hosts import HostWatcher
+from nav2_pyif.costmap import Costmap
+from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, timed_out_error
+from nav2_pyif.params import ParamValue
 
 log = logging.getLogger("nav2_pyif.client")
 Body = dict[str, Any]
@@ -186,7 +186,9 @@ class PluginClient:
         wait: Callable[[Any, Request, float], Any] | None = None,
     ) -> Body:
         if op is not Op.CONFIGURE and not self.configured:
-            raise generic_error(self.plugin_type)(f"{op.value} before configure on {self.keys.prefix}")
+            raise generic_error(self.plugin_type)(
+                f"{op.value} before configure on {self.keys.prefix}"
+            )
         if not self.hosts.any_alive():
             raise generic_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
@@ -194,8 +196,9 @@ class PluginClient:
             )
         version = self.costmap.version
         send_costmap = with_costmap and version != self._delivered_costmap
-        request = self._next_request(op, dict(body, costmap=self.costmap.to_wire())
-                                     if send_costmap else body)
+        request = self._next_request(
+            op, dict(body, costmap=self.costmap.to_wire()) if send_costmap else body
+        )
         reply = self._exchange(request, wait)
         if reply.ok:
             if send_costmap or op is Op.CONFIGURE:
@@ -208,8 +211,9 @@ class PluginClient:
             return self._call(op, body, with_costmap=with_costmap, allow_resync=False, wait=wait)
         raise error_from_reply(reply.error, self.plugin_type)
 
-    def _exchange(self, request: Request,
-                  wait: Callable[[Any, Request, float], Any] | None) -> Reply:
+    def _exchange(
+        self, request: Request, wait: Callable[[Any, Request, float], Any] | None
+    ) -> Reply:
         payload = encode_request(request)
         timeout = self._timeout(request.op)
         start = time.perf_counter_ns()
@@ -225,7 +229,9 @@ class PluginClient:
         try:
             reply = decode_reply(sample.payload.to_bytes(), request.op)
         except ProtocolError as exc:
-            raise generic_error(self.plugin_type)(f"bad reply to {request.op.value}: {exc}") from exc
+            raise generic_error(self.plugin_type)(
+                f"bad reply to {request.op.value}: {exc}"
+            ) from exc
         self._record(request.op, elapsed, reply.compute_ns, len(payload), reply.ok)
         if reply.seq != request.seq:
             raise generic_error(self.plugin_type)(
@@ -239,8 +245,12 @@ class PluginClient:
             self.records.append(CallRecord(op.value, total, compute, size, ok))
 
     def _reestablish(self, host: str) -> None:
-        log.warning("%s: host %s does not know session %s; re-sending state",
-                    self.keys.prefix, host, self.sid[:8])
+        log.warning(
+            "%s: host %s does not know session %s; re-sending state",
+            self.keys.prefix,
+            host,
+            self.sid[:8],
+        )
         self.resyncs += 1
         self.configured = False
         self.configure()
