@@ -96,7 +96,9 @@ def test_unknown_fields_are_ignored_for_forward_compatibility() -> None:
     request = decode_request(
         raw(extra="future", body={"pose": POSE, "velocity": [0.0] * 6, "new_field": 1})
     )
-    assert "new_field" not in request.body
+    assert request.body["velocity"] == [0.0] * 6  # unknown keys neither fail nor interfere
+    reencoded = decode_request(encode_request(request))
+    assert "new_field" not in reencoded.body  # and are not forwarded by a canonical encode
 
 
 def test_non_finite_floats_survive() -> None:
@@ -136,3 +138,25 @@ def test_keys() -> None:
     for bad in ["", "/a", "a/", "a//b", "a/*/b", "a/$b"]:
         with pytest.raises(ValueError):
             KeySpace(bad)
+
+
+def test_the_hot_path_fast_encoding_gives_the_canonical_bytes() -> None:
+    from geometry_msgs.msg import PoseStamped, Twist
+    from nav2_pyif.goal_checker import GoalChecker
+    from nav2_pyif.messages import pose_to_wire, twist_to_list
+
+    from tests.conftest import make_costmap
+
+    body = {
+        "pose": pose_to_wire(PoseStamped()),
+        "velocity": twist_to_list(Twist()),
+        "goal_checker": GoalChecker(0.1, 0.2, 0.3, 0.4).to_wire(),
+        "costmap": make_costmap().to_wire(),
+    }
+    request = Request(Op.COMPUTE_VELOCITY_COMMANDS, "s", 1, 1, body)
+    assert encode_request(request, validate=False) == encode_request(request)
+    reply = Reply(
+        1, True, "h", body={"cmd_vel": {"frame_id": "b", "stamp_ns": 0, "twist": [0.0] * 6}}
+    )
+    op = Op.COMPUTE_VELOCITY_COMMANDS
+    assert encode_reply(reply, op, validate=False) == encode_reply(reply, op)

@@ -1,5 +1,320 @@
-"""placeholder replaced below"""
+"""nav2-pyif-bench: the protocol's cost, beside the bare Zenoh floor and the rclpy-node
+workaround, all measured in one run with interleaved rounds (so drift hits all alike).
+
+    nav2-pyif-bench                 # about a minute; prints the tables of BENCHMARKS.md
+    nav2-pyif-bench --quick         # a smoke run
+    nav2-pyif-bench --json out.json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import asdict
+from typing import Any
+
+import numpy as np
+import zenoh
+from geometry_msgs.msg import PoseStamped, Twist
+from nav2_pyif import Costmap, Plan
+from nav2_pyif.client import ControllerClient, Timeouts
+from nav_msgs.msg import Odometry
+
+from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
+from nav2_pyif_bench.rclpy_client import RclpyWorkaroundClient, path_message
+from nav2_pyif_bench.stats import Summary, header_row, machine_description
+
+KEY = "nav2_pyif/bench/FollowPath"
+BARE_KEY = "nav2_pyif/bench/bare"
+TIMEOUTS = Timeouts(call=2.0, lifecycle=5.0, configure=10.0)
 
 
-def main() -> int:
+def progress(message: str) -> None:
+    print(f"  … {message}", file=sys.stderr, flush=True)
+
+
+def costmap(size: int, version: int = 1) -> Costmap:
+    grid = np.zeros((size, size), np.uint8)
+    grid[::7, ::5] = Costmap.LETHAL
+    return Costmap(grid, 0.05, -10.0, -10.0, "odom", version=version)
+
+
+def open_session(endpoints: list[str]) -> zenoh.Session:
+    config = zenoh.Config()
+    config.insert_json5("connect/endpoints", json.dumps(endpoints))
+    config.insert_json5("scouting/multicast/enabled", "false")
+    return zenoh.open(config)
+
+
+def bare_get(session: zenoh.Session) -> int:
+    start = time.perf_counter_ns()
+    for reply in session.get(BARE_KEY, payload=b"", timeout=2.0):
+        if reply.ok is None:
+            raise TimeoutError("bare queryable did not answer")
+        break
+    return time.perf_counter_ns() - start
+
+
+def timed(call: Callable[[], Any]) -> int:
+    start = time.perf_counter_ns()
+    call()
+    return time.perf_counter_ns() - start
+
+
+def interleaved(
+    methods: dict[str, Callable[[], int]], rounds: int, per_round: int, stage: str
+) -> dict[str, list[int]]:
+    samples: dict[str, list[int]] = {name: [] for name in methods}
+    for method in methods.values():  # warm-up
+        for _ in range(min(50, per_round)):
+            method()
+    for r in range(rounds):
+        progress(f"{stage}: round {r + 1}/{rounds}")
+        for name, method in methods.items():
+            samples[name] += [method() for _ in range(per_round)]
+    return samples
+
+
+def throughput(session: zenoh.Session, threads: int, seconds: float) -> float:
+    clients = [
+        ControllerClient(session, KEY, costmap(10), timeouts=TIMEOUTS) for _ in range(threads)
+    ]
+    for client in clients:
+        client.wait_for_host(10)
+        client.configure()
+    counts = [0] * threads
+    stop = threading.Event()
+    pose, velocity = PoseStamped(), Twist()
+
+    def run(i: int) -> None:
+        while not stop.is_set():
+            clients[i].compute_velocity_commands(pose, velocity)
+            counts[i] += 1
+
+    workers = [threading.Thread(target=run, args=(i,)) for i in range(threads)]
+    start = time.perf_counter()
+    for w in workers:
+        w.start()
+    time.sleep(seconds)
+    stop.set()
+    for w in workers:
+        w.join()
+    elapsed = time.perf_counter() - start
+    for client in clients:
+        client.cleanup()
+        client.close()
+    return sum(counts) / elapsed
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    host_port, bare_port = free_port(), free_port()
+    env = ros_localhost_env()
+    commands = {
+        "host": [
+            "-m",
+            "nav2_pyif.cli",
+            "--listen",
+            f"tcp/127.0.0.1:{host_port}",
+            "--key",
+            KEY,
+            "--planner",
+            "nav2_pyif_bench.planners:TrivialController",
+            "--log-level",
+            "WARNING",
+        ],
+        "bare": [
+            "-m",
+            "nav2_pyif_bench.bare_zenoh",
+            "--listen",
+            f"tcp/127.0.0.1:{bare_port}",
+            "--key",
+            BARE_KEY,
+        ],
+        "rclpy": ["-m", "nav2_pyif_bench.rclpy_node"],
+    }
+    import os
+
+    os.environ.update(env)
+    results: dict[str, Any] = {"machine": machine_description()}
+    with peer_processes(commands, env):
+        session = open_session([f"tcp/127.0.0.1:{host_port}", f"tcp/127.0.0.1:{bare_port}"])
+        ros = RclpyWorkaroundClient()
+        client = ControllerClient(session, KEY, costmap(10), timeouts=TIMEOUTS, record_calls=True)
+        try:
+            progress("waiting for the planner host, the bare queryable and the rclpy node")
+            if not client.wait_for_host(30):
+                raise RuntimeError("planner host did not come up")
+            client.configure()
+            client.activate()
+            deadline = time.monotonic() + 30
+            while True:
+                try:
+                    bare_get(session)
+                    break
+                except TimeoutError:
+                    if time.monotonic() > deadline:
+                        raise
+            if not ros.wait_ready():
+                raise RuntimeError("rclpy node did not come up (DDS discovery)")
+
+            pose, velocity, odom = PoseStamped(), Twist(), Odometry()
+            pose.header.frame_id = odom.header.frame_id = "odom"
+            cycle = interleaved(
+                {
+                    "bare": lambda: bare_get(session),
+                    "pyif": lambda: timed(lambda: client.compute_velocity_commands(pose, velocity)),
+                    "rclpy": lambda: ros.cycle(odom),
+                },
+                args.rounds,
+                args.calls,
+                "control cycle",
+            )
+            assert client.records is not None
+            handler = [r.compute_ns for r in client.records if r.op == "compute_velocity_commands"]
+            results["cycle"] = {k: asdict(Summary.of_ns(v)) for k, v in cycle.items()}
+            results["cycle"]["host_handler"] = asdict(Summary.of_ns(handler))
+
+            plan = Plan(
+                np.column_stack([np.arange(1000) * 0.05, np.zeros(1000), np.zeros(1000)]), "odom"
+            )
+            path_msg = path_message(1000)
+            plans = interleaved(
+                {
+                    "pyif": lambda: timed(lambda: client.set_plan(plan)),
+                    "rclpy": lambda: ros.send_plan(path_msg),
+                },
+                max(1, args.rounds // 2),
+                args.plan_calls,
+                "1000-pose plan",
+            )
+            results["plan_1000"] = {k: asdict(Summary.of_ns(v)) for k, v in plans.items()}
+
+            costmap_400 = costmap(400, version=100)
+            versions = iter(range(101, 10**9))
+
+            def changed() -> int:
+                client.update_costmap(
+                    Costmap(
+                        costmap_400.data,
+                        costmap_400.resolution,
+                        costmap_400.origin_x,
+                        costmap_400.origin_y,
+                        costmap_400.frame_id,
+                        version=next(versions),
+                    )
+                )
+                return timed(lambda: client.compute_velocity_commands(pose, velocity))
+
+            def unchanged() -> int:
+                return timed(lambda: client.compute_velocity_commands(pose, velocity))
+
+            client.update_costmap(costmap_400)
+            client.compute_velocity_commands(pose, velocity)
+            maps = interleaved(
+                {"changed": changed, "unchanged": unchanged},
+                max(1, args.rounds // 2),
+                args.costmap_calls,
+                "400x400 costmap",
+            )
+            # "unchanged" after "changed" in the same round: the first unchanged call of each
+            # round still carries the map, so take bytes from the records directly.
+            sent = [r.request_bytes for r in client.records[-2 * args.costmap_calls :]]
+            results["costmap_400"] = {k: asdict(Summary.of_ns(v)) for k, v in maps.items()}
+            results["costmap_400"]["request_bytes_changed"] = max(sent)
+            results["costmap_400"]["request_bytes_unchanged"] = min(sent)
+
+            client.update_costmap(costmap(10, version=10**9 + 1))
+            results["throughput"] = {}
+            for threads in args.threads:
+                progress(f"throughput with {threads} client thread(s), {args.seconds} s")
+                results["throughput"][str(threads)] = throughput(session, threads, args.seconds)
+        finally:
+            client.close()
+            ros.close()
+            session.close()
+    return results
+
+
+def report(results: dict[str, Any]) -> str:
+    def summary(d: dict[str, Any]) -> Summary:
+        return Summary(**d)
+
+    lines = [f"machine: {results['machine']}", ""]
+    c = {k: summary(v) for k, v in results["cycle"].items()}
+    lines += [
+        "control cycle: PoseStamped + Twist in, TwistStamped out (trivial planner)",
+        header_row(),
+        c["bare"].row("bare Zenoh get -> empty reply"),
+        c["pyif"].row("nav2_pyif client -> Zenoh -> host"),
+        c["host_handler"].row("  of which host handler (decode..encode)"),
+        c["rclpy"].row("rclpy node over topics (workaround)"),
+    ]
+    overhead = c["pyif"].median_us - c["bare"].median_us
+    ratio = c["rclpy"].median_us / c["pyif"].median_us
+    lines += [
+        f"  nav2_pyif over bare Zenoh: +{overhead:.1f} µs median (target <= 50 µs): "
+        f"{'MET' if overhead <= 50 else 'NOT MET'}",
+        f"  rclpy node / nav2_pyif: {ratio:.2f}x median (target >= 2x): "
+        f"{'MET' if ratio >= 2 else 'NOT MET'}",
+        "",
+    ]
+    p = {k: summary(v) for k, v in results["plan_1000"].items()}
+    lines += [
+        "1000-pose plan reaching the planner as NumPy (N, 3)",
+        header_row(),
+        p["pyif"].row("nav2_pyif set_plan"),
+        p["rclpy"].row("rclpy node, nav_msgs/Path topic"),
+        f"  target <= 1 ms: {'MET' if p['pyif'].median_us <= 1000 else 'NOT MET'}",
+        "",
+    ]
+    m = results["costmap_400"]
+    lines += [
+        "400 x 400 costmap with a control cycle",
+        header_row(),
+        summary(m["changed"]).row(f"changed: sent ({m['request_bytes_changed']} B request)"),
+        summary(m["unchanged"]).row(
+            f"unchanged: not sent ({m['request_bytes_unchanged']} B request)"
+        ),
+        f"  target <= 1 ms when changed: "
+        f"{'MET' if summary(m['changed']).median_us <= 1000 else 'NOT MET'}",
+        "",
+    ]
+    lines += ["host throughput, trivial planner, one key, N client sessions in one process"]
+    lines += [
+        f"  {n} client thread(s): {rate:,.0f} calls/s" for n, rate in results["throughput"].items()
+    ]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="nav2-pyif-bench",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
+    parser.add_argument("--calls", type=int, default=300, help="control cycles per round")
+    parser.add_argument("--plan-calls", type=int, default=40, help="plans per round")
+    parser.add_argument("--costmap-calls", type=int, default=100, help="cycles per round")
+    parser.add_argument("--threads", type=int, nargs="+", default=[1, 4])
+    parser.add_argument("--seconds", type=float, default=3.0, help="per throughput run")
+    parser.add_argument("--quick", action="store_true", help="a short smoke run")
+    parser.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
+    args = parser.parse_args(argv)
+    if args.quick:
+        args.rounds, args.calls, args.plan_calls, args.costmap_calls = 2, 50, 5, 10
+        args.seconds = 0.5
+    results = run(args)
+    print(report(results))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(results, f, indent=1)
     return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

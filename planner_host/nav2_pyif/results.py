@@ -33,6 +33,8 @@ def checked_twist_stamped(result: Any, method: str) -> Any:
             f"{method} returned {type(result).__name__}; expected "
             f"geometry_msgs.msg.TwistStamped{hint}"
         )
+    if not isinstance(result.header.frame_id, str):
+        raise ControllerException(f"{method} returned a TwistStamped whose frame_id is not a str")
     values = twist_to_list(result.twist)
     bad = [f"{n}={v}" for n, v in zip(TWIST_FIELDS, values, strict=False) if not math.isfinite(v)]
     if bad:

@@ -140,7 +140,10 @@ class PlannerRuntime:
         elapsed = time.perf_counter_ns() - start
         reply = Reply(seq=request.seq, ok=True, host=self.host_id, body=body, compute_ns=elapsed)
         try:
-            return encode_reply(reply, request.op)
+            # compute_velocity_commands' body comes from checked_twist_stamped: floats, in order.
+            return encode_reply(
+                reply, request.op, validate=request.op is not Op.COMPUTE_VELOCITY_COMMANDS
+            )
         except ProtocolError as exc:
             return self._error_reply(
                 request.seq,

@@ -76,91 +76,153 @@ def _bad(message: str) -> ProtocolError:
     return ProtocolError(ErrorType.BAD_REQUEST, message)
 
 
-# --- validation: returns the value in canonical form (maps in schema order) ---------------
+# --- validation ---------------------------------------------------------------------------
+# The happy path does type checks only: no copies, no strings. Error paths name the field.
 
 
-def _check_scalar_param(name: str, value: Any) -> None:
+class _Invalid(Exception):
+    def __init__(self, path: str, message: str) -> None:
+        super().__init__(message)
+        self.path = path
+        self.message = message
+
+
+def _float(value: Any) -> float:
+    kind = type(value)
+    if kind is float:
+        return value  # type: ignore[no-any-return]
+    if kind is int:  # a peer may send a whole number as an int: accept it as float64
+        return float(value)
+    raise _Invalid("", f"expected float, got {kind.__name__}")
+
+
+def _floats(size: int) -> Any:
+    def check(value: Any) -> list[float]:
+        if type(value) is not list or len(value) != size:
+            if type(value) is tuple and len(value) == size:
+                value = list(value)
+            else:
+                raise _Invalid("", f"expected an array of {size} floats")
+        for i, x in enumerate(value):
+            if type(x) is not float:
+                try:
+                    value[i] = _float(x)
+                except _Invalid as exc:
+                    raise _Invalid(f"[{i}]", exc.message) from None
+        return value  # type: ignore[no-any-return]
+
+    return check
+
+
+def _exact(expected: type) -> Any:
+    def check(value: Any) -> Any:
+        if type(value) is not expected:
+            if expected is bytes and isinstance(value, (bytearray, memoryview)):
+                return bytes(value)
+            raise _Invalid("", f"expected {_WIRE_NAMES[expected]}, got {type(value).__name__}")
+        return value
+
+    return check
+
+
+_WIRE_NAMES = {int: "int", bool: "bool", str: "str", bytes: "bin"}
+
+
+def _scalar_param(name: str, value: Any) -> None:
     if not isinstance(value, (bool, int, float, str)):
-        raise _bad(f"parameter {name!r}: {type(value).__name__} is not bool/int/float/str")
+        raise _Invalid(
+            f"[{name!r}]", f"parameter {name!r}: {type(value).__name__} is not bool/int/float/str"
+        )
 
 
-def _canon_params(where: str, value: Any) -> dict[str, Any]:
+def _params(value: Any) -> dict[str, Any]:
     if not isinstance(value, Mapping):
-        raise _bad(f"{where}: expected a map of parameters, got {type(value).__name__}")
+        raise _Invalid("", f"expected a map of parameters, got {type(value).__name__}")
     out: dict[str, Any] = {}
     for name, item in value.items():
         if not isinstance(name, str):
-            raise _bad(f"{where}: parameter name {name!r} is not a string")
+            raise _Invalid("", f"parameter name {name!r} is not a string")
         if isinstance(item, (list, tuple)):
             for element in item:
-                _check_scalar_param(name, element)
+                _scalar_param(name, element)
             kinds = {type(element) for element in item}
             if len(kinds) > 1:
-                raise _bad(f"parameter {name!r}: array mixes {sorted(k.__name__ for k in kinds)}")
+                names = sorted(k.__name__ for k in kinds)
+                raise _Invalid(f"[{name!r}]", f"parameter {name!r}: array mixes {names}")
             out[name] = list(item)
         else:
-            _check_scalar_param(name, item)
+            _scalar_param(name, item)
             out[name] = item
     return out
 
 
-def _canon_value(where: str, kind: str, value: Any) -> Any:
-    if kind == INT:
-        if isinstance(value, bool) or not isinstance(value, int):
-            raise _bad(f"{where}: expected int, got {type(value).__name__}")
-        return value
-    if kind == FLOAT:
-        if isinstance(value, bool) or not isinstance(value, (int, float)):
-            raise _bad(f"{where}: expected float, got {type(value).__name__}")
-        return float(value)
-    if kind == BOOL:
-        if not isinstance(value, bool):
-            raise _bad(f"{where}: expected bool, got {type(value).__name__}")
-        return value
-    if kind == STR:
-        if not isinstance(value, str):
-            raise _bad(f"{where}: expected str, got {type(value).__name__}")
-        return value
-    if kind == BIN:
-        if not isinstance(value, (bytes, bytearray, memoryview)):
-            raise _bad(f"{where}: expected bin, got {type(value).__name__}")
-        return bytes(value) if not isinstance(value, bytes) else value
-    if kind in (FLOAT6, FLOAT7):
-        size = 6 if kind == FLOAT6 else 7
-        if not isinstance(value, (list, tuple)) or len(value) != size:
-            raise _bad(f"{where}: expected an array of {size} floats")
-        return [_canon_value(f"{where}[{i}]", FLOAT, x) for i, x in enumerate(value)]
-    if kind == PARAMS:
-        return _canon_params(where, value)
-    if kind == STR_MAP:
-        if not isinstance(value, Mapping) or not all(
-            isinstance(k, str) and isinstance(v, str) for k, v in value.items()
-        ):
-            raise _bad(f"{where}: expected a map of str to str")
-        return dict(value)
-    if kind in STRUCTS:
-        return _canon_map(where, STRUCTS[kind], value)
-    raise AssertionError(f"schema kind {kind!r} unknown")
+def _str_map(value: Any) -> dict[str, str]:
+    if not isinstance(value, Mapping) or not all(
+        isinstance(k, str) and isinstance(v, str) for k, v in value.items()
+    ):
+        raise _Invalid("", "expected a map of str to str")
+    return dict(value)
 
 
-def _canon_map(where: str, fields: tuple[Field, ...], value: Any) -> dict[str, Any]:
-    if not isinstance(value, Mapping):
-        raise _bad(f"{where}: expected a map, got {type(value).__name__}")
-    out: dict[str, Any] = {}
+_CHECKERS: dict[str, Any] = {
+    INT: _exact(int),
+    FLOAT: _float,
+    BOOL: _exact(bool),
+    STR: _exact(str),
+    BIN: _exact(bytes),
+    FLOAT6: _floats(6),
+    FLOAT7: _floats(7),
+    PARAMS: _params,
+    STR_MAP: _str_map,
+}
+
+# A compiled field table: (name, checker, required, struct fields or None).
+_Compiled = tuple[tuple[str, Any, bool, Any], ...]
+
+
+def _compile(fields: tuple[Field, ...]) -> _Compiled:
+    out: list[tuple[str, Any, bool, Any]] = []
     for f in fields:
-        if f.name in value and value[f.name] is not None:
-            out[f.name] = _canon_value(f"{where}.{f.name}", f.kind, value[f.name])
-        elif f.required:
-            raise _bad(f"{where}: missing field {f.name!r}")
+        if f.kind in STRUCTS:
+            out.append((f.name, None, f.required, _compile(STRUCTS[f.kind])))
+        else:
+            out.append((f.name, _CHECKERS[f.kind], f.required, None))
+    return tuple(out)
+
+
+def _check_map(compiled: _Compiled, value: Any, canonical: bool) -> dict[str, Any]:
+    """Check ``value`` against a field table. canonical=False: in place (decoding);
+    canonical=True: a new dict in schema order without unknown keys (encoding)."""
+    if not isinstance(value, dict):
+        raise _Invalid("", f"expected a map, got {type(value).__name__}")
+    out = {} if canonical else value
+    for name, checker, required, struct in compiled:
+        item = value.get(name)
+        if item is None:
+            if required:
+                raise _Invalid("", f"missing field {name!r}")
+            continue
+        try:
+            checked = _check_map(struct, item, canonical) if struct else checker(item)
+        except _Invalid as exc:
+            raise _Invalid(f".{name}{exc.path}", exc.message) from None
+        if canonical or checked is not item:
+            out[name] = checked
     return out
 
 
-def request_body_fields(op: Op) -> tuple[Field, ...]:
-    return BODIES[op][0]
+def _checked(where: str, compiled: _Compiled, value: Any, canonical: bool) -> dict[str, Any]:
+    try:
+        return _check_map(compiled, value, canonical)
+    except _Invalid as exc:
+        raise _bad(f"{where}{exc.path}: {exc.message}") from None
 
 
-def reply_body_fields(op: Op) -> tuple[Field, ...]:
-    return BODIES[op][1]
+_REQUEST_BODIES = {op: _compile(fields[0]) for op, fields in BODIES.items()}
+_REPLY_BODIES = {op: _compile(fields[1]) for op, fields in BODIES.items()}
+_REQUEST_ENVELOPE = _compile(tuple(f for f in REQUEST_ENVELOPE if f.name != "body"))
+_REPLY_ENVELOPE = _compile(tuple(f for f in REPLY_ENVELOPE if f.name != "body"))
+_ERROR = _compile(STRUCTS["Error"])
 
 
 # --- requests -----------------------------------------------------------------------------
@@ -173,9 +235,13 @@ def _parse_op(value: Any) -> Op:
         raise _bad(f"unknown op {value!r}; known: {', '.join(o.value for o in Op)}") from None
 
 
-def encode_request(request: Request) -> bytes:
-    body = _canon_map(f"{request.op.value} request", request_body_fields(request.op), request.body)
-    return msgpack.packb(
+def encode_request(request: Request, *, validate: bool = True) -> bytes:
+    """Encode a request. ``validate=False`` is for bodies built in schema order by this
+    package's own helpers (the control loop's hot path); the bytes are the same."""
+    body = request.body
+    if validate:
+        body = _checked(f"{request.op.value} request", _REQUEST_BODIES[request.op], body, True)
+    return _pack(
         {
             "v": request.v,
             "op": request.op.value,
@@ -183,9 +249,12 @@ def encode_request(request: Request) -> bytes:
             "epoch": request.epoch,
             "seq": request.seq,
             "body": body,
-        },
-        use_bin_type=True,
+        }
     )
+
+
+def _pack(message: dict[str, Any]) -> bytes:
+    return msgpack.packb(message, use_bin_type=True)  # type: ignore[no-any-return]
 
 
 def _unpack(data: bytes, what: str) -> Any:
@@ -198,7 +267,7 @@ def _unpack(data: bytes, what: str) -> Any:
 def decode_request(data: bytes) -> Request:
     """Decode and validate a request. Raises ProtocolError (BadRequest / VersionMismatch)."""
     raw = _unpack(data, "request")
-    if not isinstance(raw, Mapping):
+    if not isinstance(raw, dict):
         raise _bad("request is not a msgpack map")
     version = raw.get("v")
     if version != PROTOCOL_VERSION:
@@ -206,22 +275,25 @@ def decode_request(data: bytes) -> Request:
             ErrorType.VERSION_MISMATCH,
             f"request speaks protocol version {version!r}; this host speaks {PROTOCOL_VERSION}",
         )
-    env = _canon_map("request", tuple(f for f in REQUEST_ENVELOPE if f.name != "body"), raw)
-    op = _parse_op(env["op"])
-    body = _canon_map(f"{op.value} request body", request_body_fields(op), raw.get("body", {}))
-    if env["epoch"] < 1 or env["seq"] < 0:
+    _checked("request", _REQUEST_ENVELOPE, raw, False)
+    op = _parse_op(raw["op"])
+    body = _checked(f"{op.value} request body", _REQUEST_BODIES[op], raw.get("body", {}), False)
+    if raw["epoch"] < 1 or raw["seq"] < 0:
         raise _bad("request epoch must be >= 1 and seq >= 0")
-    return Request(op=op, sid=env["sid"], epoch=env["epoch"], seq=env["seq"], body=body)
+    return Request(op=op, sid=raw["sid"], epoch=raw["epoch"], seq=raw["seq"], body=body)
 
 
 # --- replies ------------------------------------------------------------------------------
 
 
-def encode_reply(reply: Reply, op: Op) -> bytes:
+def encode_reply(reply: Reply, op: Op, *, validate: bool = True) -> bytes:
     """Encode a reply to ``op`` (the op decides the body schema)."""
     out: dict[str, Any] = {"v": reply.v, "seq": reply.seq, "ok": reply.ok}
     if reply.ok:
-        out["body"] = _canon_map(f"{op.value} reply body", reply_body_fields(op), reply.body or {})
+        body = reply.body or {}
+        out["body"] = (
+            _checked(f"{op.value} reply body", _REPLY_BODIES[op], body, True) if validate else body
+        )
     else:
         error = reply.error or ErrorInfo(ErrorType.BAD_REQUEST.value, "error reply without error")
         out["error"] = {
@@ -232,13 +304,13 @@ def encode_reply(reply: Reply, op: Op) -> bytes:
         }
     out["host"] = reply.host
     out["compute_ns"] = reply.compute_ns
-    return msgpack.packb(out, use_bin_type=True)
+    return _pack(out)
 
 
 def decode_reply(data: bytes, op: Op) -> Reply:
     """Decode and validate a reply to ``op``. Raises ProtocolError on malformed replies."""
     raw = _unpack(data, "reply")
-    if not isinstance(raw, Mapping):
+    if not isinstance(raw, dict):
         raise _bad("reply is not a msgpack map")
     if raw.get("v") != PROTOCOL_VERSION:
         raise ProtocolError(
@@ -246,16 +318,21 @@ def decode_reply(data: bytes, op: Op) -> Reply:
             f"reply speaks protocol version {raw.get('v')!r}; this client speaks "
             f"{PROTOCOL_VERSION}",
         )
-    env = _canon_map("reply", tuple(f for f in REPLY_ENVELOPE if f.name != "body"), raw)
-    if "body" in raw:
-        env["body"] = raw["body"]
-    if env["ok"]:
-        body = _canon_map(f"{op.value} reply body", reply_body_fields(op), env.get("body", {}))
-        return Reply(env["seq"], True, env["host"], body=body, compute_ns=env["compute_ns"])
-    if "error" not in env:
+    _checked("reply", _REPLY_ENVELOPE, raw, False)
+    if raw["ok"]:
+        body = _checked(f"{op.value} reply body", _REPLY_BODIES[op], raw.get("body", {}), False)
+        return Reply(raw["seq"], True, raw["host"], body=body, compute_ns=raw["compute_ns"])
+    error = raw.get("error")
+    if error is None:
         raise _bad("error reply without an 'error' map")
-    error = ErrorInfo(**env["error"])
-    return Reply(env["seq"], False, env["host"], error=error, compute_ns=env["compute_ns"])
+    _checked("reply.error", _ERROR, error, False)
+    return Reply(
+        raw["seq"],
+        False,
+        raw["host"],
+        error=ErrorInfo(error["type"], error["message"], error["traceback"], error["python_type"]),
+        compute_ns=raw["compute_ns"],
+    )
 
 
 def all_finite(values: list[float]) -> bool:

@@ -214,7 +214,8 @@ class PluginClient:
     def _exchange(
         self, request: Request, wait: Callable[[Any, Request, float], Any] | None
     ) -> Reply:
-        payload = encode_request(request)
+        # The control cycle's body is built in schema order by this package: skip re-checking.
+        payload = encode_request(request, validate=request.op is not Op.COMPUTE_VELOCITY_COMMANDS)
         timeout = self._timeout(request.op)
         start = time.perf_counter_ns()
         replies = self.session.get(self.keys.call(request.op), payload=payload, timeout=timeout)

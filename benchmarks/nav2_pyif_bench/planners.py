@@ -1,0 +1,23 @@
+"""Planners for the benchmarks: as cheap as possible, so what is measured is the path."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from geometry_msgs.msg import TwistStamped
+from nav2_pyif import Controller, GoalChecker, Plan
+
+
+class TrivialController(Controller):
+    """Returns a constant command; touches the plan as NumPy so set_plan's cost is real."""
+
+    def set_plan(self, plan: Plan) -> None:
+        self.plan = plan
+        self.last_plan_length = plan.xy_yaw.shape[0]  # (N, 3) NumPy, computed here
+
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
+        cmd = TwistStamped(header=pose.header)
+        cmd.twist.linear.x = 0.1
+        return cmd

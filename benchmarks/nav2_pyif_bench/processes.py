@@ -1,0 +1,55 @@
+"""Start and stop the benchmark's peer processes (planner host, bare queryable, rclpy node)."""
+
+from __future__ import annotations
+
+import os
+import random
+import signal
+import socket
+import subprocess
+import sys
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+def ros_localhost_env() -> dict[str, str]:
+    """Keep DDS on this machine and away from other ROS graphs."""
+    return {
+        "ROS_DOMAIN_ID": str(random.randint(120, 200)),
+        "ROS_AUTOMATIC_DISCOVERY_RANGE": "LOCALHOST",
+    }
+
+
+@contextmanager
+def peer_processes(commands: dict[str, list[str]], env: dict[str, str]) -> Iterator[None]:
+    """Run each command; SIGTERM (then SIGKILL) them all on exit."""
+    procs: list[subprocess.Popen[bytes]] = []
+    try:
+        for command in commands.values():
+            procs.append(
+                subprocess.Popen(
+                    [sys.executable, *command],
+                    env=dict(os.environ, **env),
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                )
+            )
+        yield
+    finally:
+        for proc in procs:
+            if proc.poll() is None:
+                proc.send_signal(signal.SIGTERM)
+        deadline = time.monotonic() + 5
+        for proc in procs:
+            try:
+                proc.wait(max(0.1, deadline - time.monotonic()))
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
