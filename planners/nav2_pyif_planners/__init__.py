@@ -1,0 +1,16 @@
+"""Reference planners for nav2_pyif, each short, documented and vectorised with NumPy.
+
+    astar.AStar                     global planner: cost-aware 8-connected A* on the costmap
+    pure_pursuit.RegulatedPurePursuit  controller: Nav2's regulated pure pursuit, in NumPy
+    mppi.MPPI                       controller: model predictive path integral, >= 1000 rollouts
+    apf                             controller: the seed paper's artificial potential field, in
+                                    its function-delegate style (module functions)
+"""
+
+#: Short names the offline runner accepts for the reference planners.
+ALIASES = {
+    "astar": "nav2_pyif_planners.astar:AStar",
+    "pure_pursuit": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
+    "mppi": "nav2_pyif_planners.mppi:MPPI",
+    "apf": "nav2_pyif_planners.apf",  # function-delegate style: see apf.DELEGATES
+}

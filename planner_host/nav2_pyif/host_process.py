@@ -1,0 +1,87 @@
+"""Start a planner host as a child process (what the offline runner and the testing helpers
+use): the same ``planner-host`` a robot runs, listening on a free loopback port."""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+class PlannerHostProcess:
+    """``planners``: a list of {key, planner} or {key, module, delegates} entries."""
+
+    def __init__(self, planners: list[dict[str, Any]], *, port: int | None = None,
+                 log_level: str = "WARNING", extra_path: list[str] | None = None) -> None:
+        self.planners = planners
+        self.port = port or free_port()
+        self.log_level = log_level
+        self.extra_path = extra_path or []
+        self.proc: subprocess.Popen[bytes] | None = None
+        self._dir = tempfile.TemporaryDirectory(prefix="nav2_pyif_host_")
+        self.log_path = Path(self._dir.name) / "host.log"
+
+    @property
+    def endpoint(self) -> str:
+        return f"tcp/127.0.0.1:{self.port}"
+
+    def start(self) -> PlannerHostProcess:
+        config = Path(self._dir.name) / "planners.yaml"
+        config.write_text(yaml.safe_dump({"planners": self.planners}))
+        command = [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint,
+                   "--config", str(config), "--log-level", self.log_level]
+        for directory in self.extra_path:
+            command += ["--path", directory]
+        with open(self.log_path, "ab") as log:
+            self.proc = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
+                                         env=dict(os.environ))
+        return self
+
+    def check_alive(self) -> None:
+        """Raise with the host's own words when it has exited (e.g. an unknown planner)."""
+        if self.proc is not None and self.proc.poll() is not None:
+            raise RuntimeError(
+                f"planner host exited with code {self.proc.returncode}:\n{self.log().strip()}")
+
+    def log(self) -> str:
+        return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""
+
+    def stop(self, timeout: float = 10.0) -> None:
+        if self.proc is not None and self.proc.poll() is None:
+            self.proc.send_signal(signal.SIGTERM)
+            try:
+                self.proc.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.proc.kill()
+                self.proc.wait()
+
+    def __enter__(self) -> PlannerHostProcess:
+        return self.start()
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+        self._dir.cleanup()
+
+
+def wait_alive(host: PlannerHostProcess, ready: Any, timeout: float = 30.0) -> None:
+    """Wait for ``ready()`` (e.g. a client's wait_for_host) while checking the process."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        host.check_alive()
+        if ready(0.2):
+            return
+    raise TimeoutError(f"planner host did not come up within {timeout:.0f} s:\n{host.log()}")

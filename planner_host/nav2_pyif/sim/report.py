@@ -1,0 +1,87 @@
+"""What a run prints and records: a summary, a latency table per call, a JSON record."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from nav2_pyif.sim.runner import SimResult
+
+
+def latency_rows(result: SimResult) -> list[dict[str, Any]]:
+    """Per op: calls, round trip / host compute / transport (= round trip - compute), in µs."""
+    rows = []
+    for op in dict.fromkeys(r.op for r in result.records):
+        records = [r for r in result.records if r.op == op and r.ok]
+        if not records:
+            continue
+        total = np.array([r.total_ns for r in records]) / 1000.0
+        compute = np.array([r.compute_ns for r in records]) / 1000.0
+        transport = np.array([r.transport_ns for r in records]) / 1000.0
+        rows.append({
+            "op": op, "calls": len(records),
+            "round_trip_median_us": float(np.median(total)),
+            "round_trip_p99_us": float(np.percentile(total, 99)),
+            "compute_median_us": float(np.median(compute)),
+            "compute_p99_us": float(np.percentile(compute, 99)),
+            "transport_median_us": float(np.median(transport)),
+            "transport_p99_us": float(np.percentile(transport, 99)),
+        })
+    return rows
+
+
+def summary(result: SimResult) -> dict[str, Any]:
+    c = result.config
+    return {
+        "map": str(c.map), "controller": c.controller, "planner": c.planner,
+        "start": list(result.start), "goal": list(result.goal),
+        "reached": result.reached, "outcome": result.outcome,
+        "sim_time_s": round(result.sim_time, 3), "wall_time_s": round(result.wall_time, 3),
+        "cycles": result.cycles, "control_rate_hz": c.rate,
+        "plan_length_m": round(result.path_length, 3),
+        "driven_distance_m": round(result.driven_distance, 3),
+        "min_clearance_m": round(result.min_clearance, 3),
+        "collisions": result.collisions,
+        "controller_errors": len(result.controller_errors),
+    }
+
+
+def format_report(result: SimResult) -> str:
+    s = summary(result)
+    lines = [
+        f"{'REACHED' if s['reached'] else 'NOT REACHED'}: {s['outcome']}",
+        f"  map {s['map']}, controller {s['controller']}, planner {s['planner']}",
+        f"  simulated time {s['sim_time_s']:.1f} s in {s['cycles']} cycles at "
+        f"{s['control_rate_hz']:.0f} Hz (wall {s['wall_time_s']:.1f} s)",
+        f"  plan {s['plan_length_m']:.2f} m, driven {s['driven_distance_m']:.2f} m, "
+        f"minimum clearance {s['min_clearance_m']:.3f} m, collisions {s['collisions']}, "
+        f"controller errors {s['controller_errors']}",
+        "",
+        "latency per call (µs)          calls   round trip         host compute       transport",
+        "                                        median     p99     median     p99     median     p99",
+    ]
+    for r in latency_rows(result):
+        lines.append(
+            f"  {r['op']:<28}{r['calls']:>6} {r['round_trip_median_us']:>8.0f} "
+            f"{r['round_trip_p99_us']:>7.0f}   {r['compute_median_us']:>8.0f} "
+            f"{r['compute_p99_us']:>7.0f}   {r['transport_median_us']:>8.0f} "
+            f"{r['transport_p99_us']:>7.0f}")
+    if result.controller_errors:
+        lines += ["", "controller errors (first 5):"]
+        lines += [f"  {e}" for e in result.controller_errors[:5]]
+    return "\n".join(lines)
+
+
+def write_json(result: SimResult, path: Path) -> None:
+    record = {
+        "summary": summary(result),
+        "latency": latency_rows(result),
+        "plan": result.plan.round(4).tolist(),
+        "trajectory": [[round(v, 4) for v in p] for p in result.trajectory],
+        "trajectory_columns": ["t", "x", "y", "yaw", "v", "w"],
+        "controller_errors": result.controller_errors,
+    }
+    path.write_text(json.dumps(record, indent=1))

@@ -1,0 +1,258 @@
+"""The offline runner: plan with a global planner and drive a simulated differential-drive
+robot with a controller, both served by a real planner host over Zenoh, through the
+reference client: the very protocol and path the Nav2 plugins use."""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import zenoh
+from geometry_msgs.msg import PoseStamped, Twist
+from tqdm import tqdm
+
+from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
+from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.costmap import Costmap
+from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.host_process import PlannerHostProcess, wait_alive
+from nav2_pyif.params import ParamValue
+from nav2_pyif.sim.inflation import inflate, window
+from nav2_pyif.sim.mapfile import MapError, OccupancyMap, load_map
+from nav2_pyif.sim.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
+
+CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
+PLANNER_KEY = "nav2_pyif/sim/GridBased"
+Pose3 = tuple[float, float, float]
+
+
+class SimError(Exception):
+    """Bad input for a run (map, poses, planner spec), with the reason."""
+
+
+@dataclass
+class SimConfig:
+    map: Path
+    controller: str = "pure_pursuit"
+    planner: str = "astar"
+    start: Pose3 | None = None
+    goal: Pose3 | None = None
+    rate: float = 20.0  # [Hz] control rate (simulated time)
+    timeout: float = 180.0  # [s] simulated time
+    realtime: bool = False  # pace the loop to wall-clock time
+    footprint: tuple[tuple[float, float], ...] = DEFAULT_FOOTPRINT
+    inflation_radius: float = 0.55
+    cost_scaling_factor: float = 3.0
+    local_costmap_size: float = 5.0  # [m] rolling window
+    local_costmap_rate: float = 5.0  # [Hz], as Nav2's local costmap update_frequency
+    goal_checker: GoalChecker = field(default_factory=lambda: GoalChecker(0.25, 0.25, 0.25, 0.25))
+    failure_tolerance: float = 0.3  # [s] of consecutive controller failures before aborting
+    controller_params: dict[str, ParamValue] = field(default_factory=dict)
+    planner_params: dict[str, ParamValue] = field(default_factory=dict)
+    call_timeout: float = 0.25  # [s] per control cycle
+    endpoint: str | None = None  # connect to a running host instead of starting one
+    controller_key: str = CONTROLLER_KEY
+    planner_key: str = PLANNER_KEY
+    progress: bool = False
+
+
+@dataclass
+class SimResult:
+    config: SimConfig
+    world: OccupancyMap
+    global_costmap: Costmap
+    start: Pose3
+    goal: Pose3
+    reached: bool = False
+    outcome: str = "not started"
+    sim_time: float = 0.0
+    wall_time: float = 0.0
+    plan: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    trajectory: list[tuple[float, float, float, float, float, float]] = field(default_factory=list)
+    collisions: int = 0
+    min_clearance: float = math.inf
+    controller_errors: list[str] = field(default_factory=list)
+    records: list[CallRecord] = field(default_factory=list)
+
+    @property
+    def path_length(self) -> float:
+        d = np.diff(self.plan[:, :2], axis=0)
+        return float(np.hypot(d[:, 0], d[:, 1]).sum()) if len(d) else 0.0
+
+    @property
+    def driven_distance(self) -> float:
+        t = np.array([p[1:3] for p in self.trajectory]) if self.trajectory else np.zeros((0, 2))
+        d = np.diff(t, axis=0)
+        return float(np.hypot(d[:, 0], d[:, 1]).sum()) if len(d) else 0.0
+
+    @property
+    def cycles(self) -> int:
+        return len(self.trajectory)
+
+
+def planner_entry(key: str, spec: str) -> dict[str, Any]:
+    """A host config entry for a planner name: a reference alias, ``module:Class``, or the
+    APF module (function-delegate style)."""
+    from nav2_pyif_planners import ALIASES, apf
+
+    resolved = ALIASES.get(spec, spec)
+    if resolved == "nav2_pyif_planners.apf":
+        return {"key": key, "module": resolved, "delegates": apf.DELEGATES}
+    if ":" not in resolved:
+        raise SimError(f"unknown planner {spec!r}: give one of {', '.join(ALIASES)} "
+                       "or package.module:ClassName")
+    return {"key": key, "planner": resolved}
+
+
+def pose_msg(x: float, y: float, yaw: float, frame: str = "map", stamp_s: float = 0.0) -> Any:
+    msg = PoseStamped()
+    msg.header.frame_id = frame
+    msg.header.stamp.sec = int(stamp_s)
+    msg.header.stamp.nanosec = int((stamp_s % 1.0) * 1e9)
+    msg.pose.position.x, msg.pose.position.y = float(x), float(y)
+    msg.pose.orientation.z, msg.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    return msg
+
+
+def prepare(config: SimConfig) -> SimResult:
+    """Load and check everything that can be checked before any process starts."""
+    try:
+        world = load_map(config.map)
+    except MapError as exc:
+        raise SimError(str(exc)) from exc
+    start, goal = config.start or world.start, config.goal or world.goal
+    if start is None or goal is None:
+        raise SimError(f"no start/goal given and {config.map} has no default task")
+    footprint = np.array(config.footprint)
+    inscribed = float(np.min(np.abs(footprint).max(axis=0)))  # half the narrower side
+    costmap = inflate(world, inscribed, config.inflation_radius, config.cost_scaling_factor,
+                      footprint=footprint, frame_id="map")
+    checker = WorldChecker(world, footprint)
+    for what, (x, y, yaw) in (("start", start), ("goal", goal)):
+        if costmap.world_to_map(x, y) is None:
+            raise SimError(f"{what} ({x}, {y}) is outside the map")
+        if checker.collides(x, y, yaw):
+            raise SimError(f"{what} ({x}, {y}) is inside an obstacle")
+    return SimResult(config, world, costmap, start, goal)
+
+
+def run_sim(config: SimConfig) -> SimResult:
+    """Run one navigation task; raises SimError for bad input, returns the outcome."""
+    result = prepare(config)
+    entries = [planner_entry(config.controller_key, config.controller),
+               planner_entry(config.planner_key, config.planner)]
+    host = None if config.endpoint else PlannerHostProcess(entries).start()
+    endpoint = config.endpoint or (host.endpoint if host else "")
+    zconfig = zenoh.Config()
+    zconfig.insert_json5("connect/endpoints", json.dumps([endpoint]))
+    zconfig.insert_json5("scouting/multicast/enabled", "false")
+    session = zenoh.open(zconfig)
+    started = time.perf_counter()
+    try:
+        _drive(config, result, session, host)
+    finally:
+        result.wall_time = time.perf_counter() - started
+        session.close()
+        if host is not None:
+            host.stop()
+    return result
+
+
+def _drive(config: SimConfig, result: SimResult, session: zenoh.Session,
+           host: PlannerHostProcess | None) -> None:
+    start, goal, costmap = result.start, result.goal, result.global_costmap
+    timeouts = Timeouts(call=config.call_timeout, lifecycle=10.0, configure=60.0, plan=60.0)
+    planner = GlobalPlannerClient(session, config.planner_key, costmap, timeouts=timeouts,
+                                  params=config.planner_params, record_calls=True)
+    local_version = 1
+    controller = ControllerClient(
+        session, config.controller_key,
+        window(costmap, start[0], start[1], config.local_costmap_size, local_version),
+        timeouts=timeouts, params=config.controller_params, record_calls=True)
+    try:
+        for client in (planner, controller):
+            if host is not None:
+                wait_alive(host, client.wait_for_host)
+            elif not client.wait_for_host(10.0):
+                raise SimError(f"no planner host on {client.keys.prefix} at {config.endpoint}")
+            client.configure()
+            client.activate()
+        try:
+            plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
+        except Nav2Error as exc:
+            result.outcome = f"no plan: {type(exc).__name__}: {exc}"
+            return
+        result.plan = plan.xy_yaw.copy()
+        controller.set_plan(plan)
+        _control_loop(config, result, controller, local_version)
+        for client in (controller, planner):
+            client.deactivate()
+            client.cleanup()
+    finally:
+        result.records = (planner.records or []) + (controller.records or [])
+        planner.close()
+        controller.close()
+
+
+def _control_loop(config: SimConfig, result: SimResult, controller: ControllerClient,
+                  local_version: int) -> None:
+    robot = DiffDrive(*result.start)
+    checker = WorldChecker(result.world, np.array(config.footprint))
+    dt, goal = 1.0 / config.rate, result.goal
+    local_every = max(1, round(config.rate / config.local_costmap_rate))
+    failing_since: float | None = None
+    bar = tqdm(total=round(config.timeout, 1), unit="sim s", disable=not config.progress,
+               bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}")
+    wall_start = time.perf_counter()
+    cycle = 0
+    try:
+        while result.sim_time < config.timeout:
+            if cycle % local_every == 0 and cycle:
+                local_version += 1
+                controller.update_costmap(window(result.global_costmap, robot.x, robot.y,
+                                                 config.local_costmap_size, local_version))
+            velocity = Twist()
+            velocity.linear.x, velocity.angular.z = robot.v, robot.w
+            try:
+                cmd = controller.compute_velocity_commands(
+                    pose_msg(robot.x, robot.y, robot.yaw, stamp_s=result.sim_time), velocity,
+                    config.goal_checker)
+                cmd_v, cmd_w = cmd.twist.linear.x, cmd.twist.angular.z
+                failing_since = None
+            except Nav2Error as exc:
+                result.controller_errors.append(f"t={result.sim_time:.2f}s {type(exc).__name__}: {exc}")
+                cmd_v = cmd_w = 0.0  # as Nav2's controller server: stop, then retry
+                failing_since = result.sim_time if failing_since is None else failing_since
+                if result.sim_time - failing_since > config.failure_tolerance:
+                    result.outcome = f"controller failed: {type(exc).__name__}: {exc}"
+                    return
+            robot.step(cmd_v, cmd_w, dt)
+            result.sim_time += dt
+            cycle += 1
+            result.trajectory.append((result.sim_time, robot.x, robot.y, robot.yaw, robot.v,
+                                      robot.w))
+            result.min_clearance = min(result.min_clearance,
+                                       checker.clearance(robot.x, robot.y, robot.yaw))
+            if checker.collides(robot.x, robot.y, robot.yaw):
+                result.collisions += 1
+                result.outcome = f"collision at ({robot.x:.2f}, {robot.y:.2f})"
+                return
+            distance = math.hypot(goal[0] - robot.x, goal[1] - robot.y)
+            if config.goal_checker.is_goal_reached(robot.x, robot.y, robot.yaw, *goal):
+                result.reached = True
+                result.outcome = "goal reached"
+                return
+            bar.update(dt)
+            if cycle % 10 == 0:
+                bar.set_postfix_str(f"{distance:.1f} m to goal")
+            if config.realtime:
+                time.sleep(max(0.0, wall_start + result.sim_time - time.perf_counter()))
+        result.outcome = f"timeout after {config.timeout:.0f} s"
+    finally:
+        bar.close()

@@ -1,0 +1,148 @@
+"""Model predictive path integral control (after Nav2's MPPI controller), vectorised in NumPy.
+
+Each cycle samples ``batch_size`` noisy control sequences (vx, wz) around the previous
+optimum, rolls a unicycle model forward ``time_steps`` x ``model_dt`` seconds, scores every
+rollout and moves the optimum towards the softmin-weighted average of the noise:
+
+    cost = w_path * mean distance to the local plan           (follow the path)
+         + w_progress * distance from the end to a point down the plan   (make progress)
+         + w_obstacle * mean footprint cost / 252  +  w_collision * [footprint cost >= 253]
+         + temperature * gamma * sum(u . Sigma^-1 . eps)       (control effort, MPPI's term)
+
+Footprint costs use ``Costmap.footprint_costs`` over all (rollouts, steps) poses at once.
+Within the goal tolerance the robot turns in place to the goal's heading.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+from geometry_msgs.msg import TwistStamped
+
+from nav2_pyif import Controller, Costmap, GoalChecker, NoValidControl, Plan
+from nav2_pyif_planners.geometry import closest_index, limit_speed, pose_xy_yaw, wrap
+
+
+class MPPI(Controller):
+    def configure(self) -> None:
+        p = self.params
+        self.batch_size = p.declare("batch_size", 1000, "rollouts per cycle")
+        self.time_steps = p.declare("time_steps", 40, "steps per rollout")
+        self.model_dt = p.declare("model_dt", 0.05, "[s] per step")
+        self.temperature = p.declare("temperature", 0.3)
+        self.gamma = p.declare("gamma", 0.015)
+        self.vx_max = p.declare("vx_max", 0.5, "[m/s]")
+        self.vx_min = p.declare("vx_min", 0.0, "[m/s]")
+        self.wz_max = p.declare("wz_max", 1.9, "[rad/s]")
+        self.vx_std = p.declare("vx_std", 0.2)
+        self.wz_std = p.declare("wz_std", 0.4)
+        self.w_path = p.declare("path_weight", 5.0)
+        self.w_progress = p.declare("progress_weight", 3.0)
+        self.w_obstacle = p.declare("obstacle_weight", 2.0)
+        self.w_collision = p.declare("collision_cost", 10000.0)
+        self.xy_goal_tolerance = p.declare("xy_goal_tolerance", 0.25, "[m] when no goal checker")
+        self.seed = p.declare("seed", 0)
+        self.rng = np.random.default_rng(self.seed)
+        self.optimal = np.zeros((self.time_steps, 2))
+        self.index = 0
+        self.outline: np.ndarray | None = None
+        self.last_compute_s = 0.0
+
+    def on_parameters_changed(self, changed: dict[str, Any]) -> None:
+        self.configure()
+
+    def set_plan(self, plan: Plan) -> None:
+        super().set_plan(plan)
+        self.index = 0
+
+    def reset(self) -> None:
+        self.optimal[:] = 0.0
+        self.index = 0
+
+    def compute_velocity_commands(self, pose: Any, velocity: Any,
+                                  goal_checker: GoalChecker | None) -> Any:
+        started = time.perf_counter()
+        if self.plan is None or len(self.plan) == 0:
+            raise NoValidControl("no plan to follow")
+        x, y, yaw = pose_xy_yaw(pose)
+        path = self.plan.xy_yaw
+        self.index = closest_index(path[:, :2], x, y, self.index, window=200)
+        cmd = TwistStamped(header=pose.header)
+        cmd.header.frame_id = self.robot_base_frame
+        goal = path[-1]
+        tolerance = goal_checker.xy_goal_tolerance if goal_checker else self.xy_goal_tolerance
+        if math.hypot(goal[0] - x, goal[1] - y) < tolerance:
+            self.optimal[:] = 0.0
+            cmd.twist.angular.z = float(np.clip(2.0 * wrap(goal[2] - yaw), -1.5, 1.5))
+            return cmd
+        vx, wz = self._optimise(np.array([x, y, yaw]), path[:, :2])
+        if not (math.isfinite(vx) and math.isfinite(wz)):
+            raise NoValidControl("MPPI produced a non-finite command")
+        cmd.twist.linear.x, cmd.twist.angular.z = vx, wz
+        self.last_compute_s = time.perf_counter() - started
+        return cmd
+
+    def _optimise(self, state: np.ndarray, path_xy: np.ndarray) -> tuple[float, float]:
+        k, t, dt = self.batch_size, self.time_steps, self.model_dt
+        vx_top = limit_speed(self.vx_max, self.speed_limit)
+        sigma = np.array([self.vx_std, self.wz_std])
+        noise = self.rng.standard_normal((k, t, 2)) * sigma
+        controls = self.optimal[None] + noise
+        np.clip(controls[..., 0], self.vx_min, vx_top, out=controls[..., 0])
+        np.clip(controls[..., 1], -self.wz_max, self.wz_max, out=controls[..., 1])
+        noise = controls - self.optimal[None]
+
+        rollouts = self._rollout(state, controls, dt)  # (k, t, 3)
+        costs = self._score(rollouts, path_xy, vx_top, t * dt)
+        costs += self.temperature * self.gamma * np.einsum(
+            "tc,ktc->k", self.optimal / sigma**2, noise)
+
+        weights = np.exp(-(costs - costs.min()) / self.temperature)
+        weights /= weights.sum()
+        self.optimal = self.optimal + np.einsum("k,ktc->tc", weights, noise)
+        command = self.optimal[0].copy()
+        self.optimal = np.roll(self.optimal, -1, axis=0)  # warm start for the next cycle
+        self.optimal[-1] = self.optimal[-2]
+        return float(command[0]), float(command[1])
+
+    @staticmethod
+    def _rollout(state: np.ndarray, controls: np.ndarray, dt: float) -> np.ndarray:
+        yaw = state[2] + np.cumsum(controls[..., 1] * dt, axis=1)
+        heading = np.concatenate([np.full((controls.shape[0], 1), state[2]), yaw[:, :-1]], axis=1)
+        x = state[0] + np.cumsum(controls[..., 0] * np.cos(heading) * dt, axis=1)
+        y = state[1] + np.cumsum(controls[..., 0] * np.sin(heading) * dt, axis=1)
+        return np.stack([x, y, yaw], axis=-1)
+
+    def _score(self, rollouts: np.ndarray, path_xy: np.ndarray, vx_top: float,
+               horizon_s: float) -> np.ndarray:
+        reach = vx_top * horizon_s + 0.5
+        local = self._local_path(path_xy, reach)
+        sub = rollouts[:, 1::2, :2]  # every other step: enough for path distance
+        d = np.linalg.norm(sub[:, :, None, :] - local[None, None], axis=-1).min(axis=-1)
+        path_cost = d.mean(axis=1)
+        progress = np.linalg.norm(rollouts[:, -1, :2] - local[-1], axis=-1)
+
+        costmap = self.costmap
+        if self.outline is None or len(self.outline) == 0:
+            self.outline = costmap.footprint_outline(spacing=max(costmap.resolution, 0.1))
+        footprint = costmap.footprint_costs(rollouts[:, ::2], self.outline).astype(np.float64)
+        unknown = footprint == Costmap.NO_INFORMATION
+        footprint[unknown] = 0.0
+        collision = (footprint >= Costmap.INSCRIBED).any(axis=1)
+        obstacle = (footprint / 252.0).mean(axis=1)
+        return (self.w_path * path_cost + self.w_progress * progress
+                + self.w_obstacle * obstacle + self.w_collision * collision)
+
+    def _local_path(self, path_xy: np.ndarray, reach: float) -> np.ndarray:
+        """Plan points from the closest one to ``reach`` metres ahead, at most 40 of them."""
+        ahead = path_xy[self.index:]
+        seg = np.hypot(*np.diff(ahead, axis=0).T) if len(ahead) > 1 else np.zeros(0)
+        cumulative = np.concatenate([[0.0], np.cumsum(seg)])
+        end = int(np.searchsorted(cumulative, reach)) + 1
+        local = ahead[:max(end, 1)]
+        if len(local) > 40:
+            local = local[np.linspace(0, len(local) - 1, 40).round().astype(int)]
+        return local
