@@ -117,21 +117,26 @@ class Costmap:
     def world_to_map_array(
         self, xy: npt.ArrayLike
     ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
-        """(N, 2) world x, y [m] -> ((N, 2) int64 mx, my; (N,) bool inside). Outside cells are
-        clipped into the map so they can index ``data``; use the mask."""
+        """(..., 2) world x, y [m] -> ((..., 2) int64 mx, my; (...,) bool inside). Outside
+        cells are clipped into the map so they can index ``data``; use the mask."""
         pts = np.asarray(xy, dtype=np.float64)
-        cells = np.floor((pts - np.array([self.origin_x, self.origin_y])) / self.resolution).astype(
-            np.int64
-        )
-        inside = (
-            (cells[..., 0] >= 0)
-            & (cells[..., 1] >= 0)
-            & (cells[..., 0] < self.size_x)
-            & (cells[..., 1] < self.size_y)
-        )
-        np.clip(cells[..., 0], 0, self.size_x - 1, out=cells[..., 0])
-        np.clip(cells[..., 1], 0, self.size_y - 1, out=cells[..., 1])
-        return cells, inside
+        mx = np.floor((pts[..., 0] - self.origin_x) / self.resolution).astype(np.int64)
+        my = np.floor((pts[..., 1] - self.origin_y) / self.resolution).astype(np.int64)
+        inside = (mx >= 0) & (my >= 0) & (mx < self.size_x) & (my < self.size_y)
+        np.clip(mx, 0, self.size_x - 1, out=mx)
+        np.clip(my, 0, self.size_y - 1, out=my)
+        return np.stack([mx, my], axis=-1), inside
+
+    def _cells_and_mask(
+        self, wx: npt.NDArray[np.float64], wy: npt.NDArray[np.float64]
+    ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]]:
+        """Flat cell indices (my * size_x + mx, clipped) and the inside mask."""
+        mx = np.floor((wx - self.origin_x) * (1.0 / self.resolution)).astype(np.int64)
+        my = np.floor((wy - self.origin_y) * (1.0 / self.resolution)).astype(np.int64)
+        inside = (mx >= 0) & (my >= 0) & (mx < self.size_x) & (my < self.size_y)
+        np.clip(mx, 0, self.size_x - 1, out=mx)
+        np.clip(my, 0, self.size_y - 1, out=my)
+        return my * self.size_x + mx, inside
 
     def map_to_world_array(self, mxy: npt.ArrayLike) -> FloatArray:
         """(N, 2) cells -> (N, 2) world coordinates of the cell centres [m]."""
@@ -152,9 +157,11 @@ class Costmap:
 
     def costs_at_world(self, xy: npt.ArrayLike) -> ByteArray:
         """(..., 2) world points -> (...,) uint8 costs; NO_INFORMATION outside the map."""
-        cells, inside = self.world_to_map_array(xy)
-        costs = self.data[cells[..., 1], cells[..., 0]]
-        return np.where(inside, costs, np.uint8(self.NO_INFORMATION)).astype(np.uint8)
+        pts = np.asarray(xy, dtype=np.float64)
+        flat, inside = self._cells_and_mask(pts[..., 0], pts[..., 1])
+        costs = self.data.ravel()[flat]
+        costs[~inside] = self.NO_INFORMATION
+        return costs
 
     def footprint_outline(self, spacing: float | None = None) -> FloatArray:
         """(M, 2) points on the footprint's edges (or the robot_radius circle) in the robot
@@ -183,7 +190,9 @@ class Costmap:
         c, s = np.cos(p[..., 2:3]), np.sin(p[..., 2:3])
         wx = p[..., 0:1] + c * pts[:, 0] - s * pts[:, 1]
         wy = p[..., 1:2] + s * pts[:, 0] + c * pts[:, 1]
-        costs = self.costs_at_world(np.stack([wx, wy], axis=-1))
+        flat, inside = self._cells_and_mask(wx, wy)
+        costs = self.data.ravel()[flat]
+        costs[~inside] = self.NO_INFORMATION
         worst: ByteArray = costs.max(axis=-1)
         return worst
 

@@ -25,8 +25,14 @@ def free_port() -> int:
 class PlannerHostProcess:
     """``planners``: a list of {key, planner} or {key, module, delegates} entries."""
 
-    def __init__(self, planners: list[dict[str, Any]], *, port: int | None = None,
-                 log_level: str = "WARNING", extra_path: list[str] | None = None) -> None:
+    def __init__(
+        self,
+        planners: list[dict[str, Any]],
+        *,
+        port: int | None = None,
+        log_level: str = "WARNING",
+        extra_path: list[str] | None = None,
+    ) -> None:
         self.planners = planners
         self.port = port or free_port()
         self.log_level = log_level
@@ -42,20 +48,31 @@ class PlannerHostProcess:
     def start(self) -> PlannerHostProcess:
         config = Path(self._dir.name) / "planners.yaml"
         config.write_text(yaml.safe_dump({"planners": self.planners}))
-        command = [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint,
-                   "--config", str(config), "--log-level", self.log_level]
+        command = [
+            sys.executable,
+            "-m",
+            "nav2_pyif.cli",
+            "--listen",
+            self.endpoint,
+            "--config",
+            str(config),
+            "--log-level",
+            self.log_level,
+        ]
         for directory in self.extra_path:
             command += ["--path", directory]
         with open(self.log_path, "ab") as log:
-            self.proc = subprocess.Popen(command, stdout=log, stderr=subprocess.STDOUT,
-                                         env=dict(os.environ))
+            self.proc = subprocess.Popen(
+                command, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ)
+            )
         return self
 
     def check_alive(self) -> None:
         """Raise with the host's own words when it has exited (e.g. an unknown planner)."""
         if self.proc is not None and self.proc.poll() is not None:
             raise RuntimeError(
-                f"planner host exited with code {self.proc.returncode}:\n{self.log().strip()}")
+                f"planner host exited with code {self.proc.returncode}:\n{self.log().strip()}"
+            )
 
     def log(self) -> str:
         return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""

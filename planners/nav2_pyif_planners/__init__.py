@@ -1,10 +1,10 @@
 """Reference planners for nav2_pyif, each short, documented and vectorised with NumPy.
 
-    astar.AStar                     global planner: cost-aware 8-connected A* on the costmap
-    pure_pursuit.RegulatedPurePursuit  controller: Nav2's regulated pure pursuit, in NumPy
-    mppi.MPPI                       controller: model predictive path integral, >= 1000 rollouts
-    apf                             controller: the seed paper's artificial potential field, in
-                                    its function-delegate style (module functions)
+astar.AStar                     global planner: cost-aware 8-connected A* on the costmap
+pure_pursuit.RegulatedPurePursuit  controller: Nav2's regulated pure pursuit, in NumPy
+mppi.MPPI                       controller: model predictive path integral, >= 1000 rollouts
+apf                             controller: the seed paper's artificial potential field, in
+                                its function-delegate style (module functions)
 """
 
 #: Short names the offline runner accepts for the reference planners.

@@ -19,8 +19,8 @@ from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-
 from nav2_pyif import Costmap, NoValidControl, Parameters, Plan
+
 from nav2_pyif_planners.geometry import (
     closest_index,
     limit_speed,
@@ -53,8 +53,7 @@ STATE: dict[str, Any] = {"params": dict(DEFAULTS), "plan": None, "index": 0, "li
 
 
 def configure(params: Parameters) -> None:
-    STATE["params"] = {name: float(params.declare(name, value)) for name, value in
-                       DEFAULTS.items()}
+    STATE["params"] = {name: float(params.declare(name, value)) for name, value in DEFAULTS.items()}
     STATE.update(plan=None, index=0, limit=None)
 
 
@@ -68,10 +67,11 @@ def set_speed_limit(speed_limit: float, is_percentage: bool) -> None:
     STATE["limit"] = None if unlimited else (speed_limit, is_percentage)
 
 
-def repulsion(costmap: Costmap, x: float, y: float, radius: float, threshold: float,
-              gain: float) -> np.ndarray:
+def repulsion(
+    costmap: Costmap, x: float, y: float, radius: float, threshold: float, gain: float
+) -> np.ndarray:
     """Sum of repulsive forces (2,) from costly cells within ``radius`` of (x, y)."""
-    r = int(math.ceil(radius / costmap.resolution))
+    r = math.ceil(radius / costmap.resolution)
     centre = costmap.world_to_map(x, y)
     if centre is None:
         return np.zeros(2)
@@ -107,8 +107,16 @@ def compute_velocity_commands(costmap: Costmap, pose: Any, twist: Any) -> Any:
         return cmd
     target = point_at_distance(plan[:, :2], STATE["index"], params["lookahead"])
     attraction = params["k_attractive"] * (target - np.array([x, y]))
-    force = attraction + repulsion(costmap, x, y, params["influence_radius"],
-                                   params["obstacle_cost"], params["k_repulsive"])
+    push = repulsion(
+        costmap, x, y, params["influence_radius"], params["obstacle_cost"], params["k_repulsive"]
+    )
+    # Classic APF stalls where a wall ahead balances the pull (a doorway, a corridor mouth):
+    # drop the part of the push that opposes travel along the plan, keep the sideways part.
+    tangent = attraction / max(float(np.hypot(*attraction)), 1e-9)
+    backwards = float(push @ tangent)
+    if backwards < 0.0:
+        push = push - backwards * tangent
+    force = attraction + push
     heading_error = float(wrap(math.atan2(force[1], force[0]) - yaw))
     v_max = limit_speed(params["max_linear_vel"], STATE["limit"])
     distance_to_goal = math.hypot(goal[0] - x, goal[1] - y)

@@ -14,7 +14,6 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
-
 from nav2_pyif import (
     Costmap,
     GlobalPlanner,
@@ -25,20 +24,31 @@ from nav2_pyif import (
     StartOccupied,
     StartOutsideMapBounds,
 )
+
 from nav2_pyif_planners.geometry import pose_xy_yaw
 
 SQRT2 = math.sqrt(2.0)
-MOVES = [(1, 0, 1.0), (-1, 0, 1.0), (0, 1, 1.0), (0, -1, 1.0),
-         (1, 1, SQRT2), (1, -1, SQRT2), (-1, 1, SQRT2), (-1, -1, SQRT2)]
+MOVES = [
+    (1, 0, 1.0),
+    (-1, 0, 1.0),
+    (0, 1, 1.0),
+    (0, -1, 1.0),
+    (1, 1, SQRT2),
+    (1, -1, SQRT2),
+    (-1, 1, SQRT2),
+    (-1, -1, SQRT2),
+]
 CANCEL_CHECK_EVERY = 4096
 
 
 class AStar(GlobalPlanner):
     def configure(self) -> None:
         self.cost_weight = self.params.declare(
-            "cost_weight", 3.0, "how strongly the plan avoids inflated cells (0: shortest)")
+            "cost_weight", 3.0, "how strongly the plan avoids inflated cells (0: shortest)"
+        )
         self.lethal_cost = self.params.declare(
-            "lethal_cost", 253, "cells with this cost or more are impassable")
+            "lethal_cost", 253, "cells with this cost or more are impassable"
+        )
         self.allow_unknown = self.params.declare("allow_unknown", False)
         self.smoothing = self.params.declare("smoothing_window", 5, "moving-average cells")
 
@@ -76,8 +86,13 @@ class AStar(GlobalPlanner):
             return bool(self.allow_unknown)
         return cost < self.lethal_cost
 
-    def _search(self, cm: Costmap, start: tuple[int, int], goal: tuple[int, int],
-                cancel_checker: Callable[[], bool]) -> list[tuple[int, int]]:
+    def _search(
+        self,
+        cm: Costmap,
+        start: tuple[int, int],
+        goal: tuple[int, int],
+        cancel_checker: Callable[[], bool],
+    ) -> list[tuple[int, int]]:
         width, height = cm.size_x, cm.size_y
         costs = cm.data.ravel().tolist()
         blocked = [not self._passable(c) for c in costs]
@@ -116,7 +131,8 @@ class AStar(GlobalPlanner):
                     heapq.heappush(heap, (ng + math.hypot(nx - gx, ny - gy), ng, j))
         if goal_i not in parent:
             raise NoValidPathCouldBeFound(
-                f"no path from cell {start} to cell {goal} (expanded {expanded} cells)")
+                f"no path from cell {start} to cell {goal} (expanded {expanded} cells)"
+            )
         path = []
         i = goal_i
         while i != -1:
@@ -130,7 +146,8 @@ class AStar(GlobalPlanner):
             return xy
         kernel = np.ones(window) / window
         padded = np.pad(xy, ((window // 2, window - 1 - window // 2), (0, 0)), mode="edge")
-        smooth = np.column_stack([np.convolve(padded[:, k], kernel, mode="valid")
-                                  for k in range(2)])
+        smooth = np.column_stack(
+            [np.convolve(padded[:, k], kernel, mode="valid") for k in range(2)]
+        )
         smooth[0], smooth[-1] = xy[0], xy[-1]
         return smooth

@@ -23,8 +23,9 @@ def wrap(angle: Any) -> Any:
     return np.arctan2(np.sin(angle), np.cos(angle))
 
 
-def closest_index(path_xy: FloatArray, x: float, y: float, start: int = 0,
-                  window: int | None = None) -> int:
+def closest_index(
+    path_xy: FloatArray, x: float, y: float, start: int = 0, window: int | None = None
+) -> int:
     """Index of the path point closest to (x, y), searching from ``start`` (monotone progress)
     over ``window`` points (all when None)."""
     end = len(path_xy) if window is None else min(len(path_xy), start + window)
@@ -48,10 +49,12 @@ def point_at_distance(path_xy: FloatArray, index: int, distance: float) -> Float
     cumulative = np.cumsum(lengths)
     k = int(np.searchsorted(cumulative, distance))
     if k >= len(lengths):
-        return path_xy[-1].copy()
+        last: FloatArray = path_xy[-1].copy()
+        return last
     before = cumulative[k] - lengths[k]
     t = (distance - before) / lengths[k] if lengths[k] > 0 else 0.0
-    return path_xy[index + k] + t * seg[k]
+    point: FloatArray = path_xy[index + k] + t * seg[k]
+    return point
 
 
 def limit_speed(v_max: float, speed_limit: tuple[float, bool] | None) -> float:

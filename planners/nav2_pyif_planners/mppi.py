@@ -21,8 +21,8 @@ from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-
 from nav2_pyif import Controller, Costmap, GoalChecker, NoValidControl, Plan
+
 from nav2_pyif_planners.geometry import closest_index, limit_speed, pose_xy_yaw, wrap
 
 
@@ -62,8 +62,9 @@ class MPPI(Controller):
         self.optimal[:] = 0.0
         self.index = 0
 
-    def compute_velocity_commands(self, pose: Any, velocity: Any,
-                                  goal_checker: GoalChecker | None) -> Any:
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
         started = time.perf_counter()
         if self.plan is None or len(self.plan) == 0:
             raise NoValidControl("no plan to follow")
@@ -97,8 +98,9 @@ class MPPI(Controller):
 
         rollouts = self._rollout(state, controls, dt)  # (k, t, 3)
         costs = self._score(rollouts, path_xy, vx_top, t * dt)
-        costs += self.temperature * self.gamma * np.einsum(
-            "tc,ktc->k", self.optimal / sigma**2, noise)
+        costs += (
+            self.temperature * self.gamma * np.einsum("tc,ktc->k", self.optimal / sigma**2, noise)
+        )
 
         weights = np.exp(-(costs - costs.min()) / self.temperature)
         weights /= weights.sum()
@@ -116,33 +118,43 @@ class MPPI(Controller):
         y = state[1] + np.cumsum(controls[..., 0] * np.sin(heading) * dt, axis=1)
         return np.stack([x, y, yaw], axis=-1)
 
-    def _score(self, rollouts: np.ndarray, path_xy: np.ndarray, vx_top: float,
-               horizon_s: float) -> np.ndarray:
+    def _score(
+        self, rollouts: np.ndarray, path_xy: np.ndarray, vx_top: float, horizon_s: float
+    ) -> np.ndarray:
         reach = vx_top * horizon_s + 0.5
         local = self._local_path(path_xy, reach)
-        sub = rollouts[:, 1::2, :2]  # every other step: enough for path distance
-        d = np.linalg.norm(sub[:, :, None, :] - local[None, None], axis=-1).min(axis=-1)
-        path_cost = d.mean(axis=1)
-        progress = np.linalg.norm(rollouts[:, -1, :2] - local[-1], axis=-1)
+        sub = rollouts[:, 3::4, :2].reshape(-1, 2)  # every 4th step: enough for the path
+        # squared distances to every local plan point as one matrix product (BLAS), not a
+        # (rollouts, steps, points, 2) difference array
+        d2 = (sub**2).sum(axis=1)[:, None] + (local**2).sum(axis=1)[None] - 2.0 * sub @ local.T
+        nearest = np.sqrt(np.maximum(d2.min(axis=1), 0.0)).reshape(rollouts.shape[0], -1)
+        path_cost = nearest.mean(axis=1)
+        end = rollouts[:, -1, :2] - local[-1]
+        progress = np.sqrt((end**2).sum(axis=1))
 
         costmap = self.costmap
         if self.outline is None or len(self.outline) == 0:
-            self.outline = costmap.footprint_outline(spacing=max(costmap.resolution, 0.1))
+            self.outline = costmap.footprint_outline(spacing=max(costmap.resolution, 0.2))
         footprint = costmap.footprint_costs(rollouts[:, ::2], self.outline).astype(np.float64)
         unknown = footprint == Costmap.NO_INFORMATION
         footprint[unknown] = 0.0
         collision = (footprint >= Costmap.INSCRIBED).any(axis=1)
         obstacle = (footprint / 252.0).mean(axis=1)
-        return (self.w_path * path_cost + self.w_progress * progress
-                + self.w_obstacle * obstacle + self.w_collision * collision)
+        total: np.ndarray = (
+            self.w_path * path_cost
+            + self.w_progress * progress
+            + self.w_obstacle * obstacle
+            + self.w_collision * collision
+        )
+        return total
 
     def _local_path(self, path_xy: np.ndarray, reach: float) -> np.ndarray:
-        """Plan points from the closest one to ``reach`` metres ahead, at most 40 of them."""
-        ahead = path_xy[self.index:]
+        """Plan points from the closest one to ``reach`` metres ahead, at most 24 of them."""
+        ahead = path_xy[self.index :]
         seg = np.hypot(*np.diff(ahead, axis=0).T) if len(ahead) > 1 else np.zeros(0)
         cumulative = np.concatenate([[0.0], np.cumsum(seg)])
         end = int(np.searchsorted(cumulative, reach)) + 1
-        local = ahead[:max(end, 1)]
-        if len(local) > 40:
-            local = local[np.linspace(0, len(local) - 1, 40).round().astype(int)]
+        local = ahead[: max(end, 1)]
+        if len(local) > 24:
+            local = local[np.linspace(0, len(local) - 1, 24).round().astype(int)]
         return local

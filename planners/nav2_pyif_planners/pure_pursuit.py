@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-
 from nav2_pyif import Controller, Costmap, GoalChecker, NoValidControl, Plan
+
 from nav2_pyif_planners.geometry import (
     closest_index,
     limit_speed,
@@ -40,8 +40,9 @@ class RegulatedPurePursuit(Controller):
         self.min_regulated_speed = p.declare("regulated_linear_scaling_min_speed", 0.25, "[m/s]")
         self.cost_scaling_dist = p.declare("cost_scaling_dist", 0.6, "[m]")
         self.cost_scaling_gain = p.declare("cost_scaling_gain", 1.0)
-        self.inflation_scaling = p.declare("inflation_cost_scaling_factor", 3.0,
-                                           "must match the inflation layer")
+        self.inflation_scaling = p.declare(
+            "inflation_cost_scaling_factor", 3.0, "must match the inflation layer"
+        )
         self.inscribed_radius = p.declare("inscribed_radius", 0.15, "[m], the footprint's")
         self.approach_dist = p.declare("approach_velocity_scaling_dist", 0.6, "[m]")
         self.min_approach_vel = p.declare("min_approach_linear_velocity", 0.05, "[m/s]")
@@ -59,8 +60,9 @@ class RegulatedPurePursuit(Controller):
     def reset(self) -> None:
         self.index = 0
 
-    def compute_velocity_commands(self, pose: Any, velocity: Any,
-                                  goal_checker: GoalChecker | None) -> Any:
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
         if self.plan is None or len(self.plan) == 0:
             raise NoValidControl("no plan to follow")
         x, y, yaw = pose_xy_yaw(pose)
@@ -76,8 +78,9 @@ class RegulatedPurePursuit(Controller):
             return cmd
 
         speed = abs(velocity.linear.x)
-        lookahead = float(np.clip(speed * self.lookahead_time, self.min_lookahead,
-                                  self.max_lookahead))
+        lookahead = float(
+            np.clip(speed * self.lookahead_time, self.min_lookahead, self.max_lookahead)
+        )
         carrot = point_at_distance(path[:, :2], self.index, lookahead)
         dx, dy = carrot[0] - x, carrot[1] - y
         cx = math.cos(yaw) * dx + math.sin(yaw) * dy  # carrot in the robot frame
@@ -123,7 +126,8 @@ class RegulatedPurePursuit(Controller):
         else:
             xs, ys = x + v * t * math.cos(yaw), y + v * t * math.sin(yaw)
         costs = self.costmap.footprint_costs(np.column_stack([xs, ys, headings]))
-        hits = np.nonzero((costs == Costmap.LETHAL))[0]
+        hits = np.nonzero(costs == Costmap.LETHAL)[0]
         if len(hits):
             raise NoValidControl(
-                f"collision ahead in {t[hits[0]]:.2f} s at ({xs[hits[0]]:.2f}, {ys[hits[0]]:.2f})")
+                f"collision ahead in {t[hits[0]]:.2f} s at ({xs[hits[0]]:.2f}, {ys[hits[0]]:.2f})"
+            )

@@ -1,6 +1,6 @@
 """Render the schema as the Markdown tables of PROTOCOL.md (kept in sync by a test).
 
-    python -m nav2_pyif_protocol.spec_tables --update protocol/PROTOCOL.md
+python -m nav2_pyif_protocol.spec_tables --update protocol/PROTOCOL.md
 """
 
 from __future__ import annotations

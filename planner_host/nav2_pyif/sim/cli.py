@@ -23,29 +23,48 @@ examples:
 
 def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p = subparsers.add_parser(
-        "sim", help="drive a simulated robot on a map with a Python controller and planner",
+        "sim",
+        help="drive a simulated robot on a map with a Python controller and planner",
         description="Plan with a global planner and drive a simulated differential-drive "
-                    "robot with a controller, both served by a planner host over Zenoh "
-                    "(the path Nav2 uses). Writes a PNG and a JSON record.",
-        epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("--map", default="office",
-                   help="bundled map name (office, cluttered) or a map_server YAML path")
+        "robot with a controller, both served by a planner host over Zenoh "
+        "(the path Nav2 uses). Writes a PNG and a JSON record.",
+        epilog=EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    p.add_argument(
+        "--map",
+        default="office",
+        help="bundled map name (office, cluttered) or a map_server YAML path",
+    )
     p.add_argument("--controller", default="pure_pursuit")
     p.add_argument("--planner", default="astar")
-    p.add_argument("--start", nargs=3, type=float, metavar=("X", "Y", "YAW"),
-                   help="default: the map's task")
+    p.add_argument(
+        "--start", nargs=3, type=float, metavar=("X", "Y", "YAW"), help="default: the map's task"
+    )
     p.add_argument("--goal", nargs=3, type=float, metavar=("X", "Y", "YAW"))
     p.add_argument("--rate", type=float, default=20.0, help="control rate [Hz] (default 20)")
     p.add_argument("--timeout", type=float, default=180.0, help="simulated seconds")
     p.add_argument("--realtime", action="store_true", help="pace to wall-clock time")
-    p.add_argument("--call-timeout", type=float, default=0.25,
-                   help="seconds to wait for each control cycle's reply")
-    p.add_argument("--param", action="append", default=[], metavar="NAME=VALUE",
-                   help="controller parameter (YAML value), repeatable")
+    p.add_argument(
+        "--call-timeout",
+        type=float,
+        default=0.25,
+        help="seconds to wait for each control cycle's reply",
+    )
+    p.add_argument(
+        "--param",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="controller parameter (YAML value), repeatable",
+    )
     p.add_argument("--planner-param", action="append", default=[], metavar="NAME=VALUE")
-    p.add_argument("--connect", metavar="ENDPOINT",
-                   help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
-                        "nav2_pyif/sim/GridBased) instead of starting one")
+    p.add_argument(
+        "--connect",
+        metavar="ENDPOINT",
+        help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
+        "nav2_pyif/sim/GridBased) instead of starting one",
+    )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
     p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
     p.add_argument("--no-progress", action="store_true")
@@ -65,20 +84,26 @@ def _params(items: list[str]) -> dict[str, object]:
 
 
 def run_command(args: argparse.Namespace) -> int:
+    from nav2_pyif_planners.maps import map_path
+
     from nav2_pyif.sim.plot import draw
     from nav2_pyif.sim.report import format_report, write_json
-    from nav2_pyif_planners.maps import map_path
 
     try:
         config = SimConfig(
-            map=map_path(args.map), controller=args.controller, planner=args.planner,
+            map=map_path(args.map),
+            controller=args.controller,
+            planner=args.planner,
             start=tuple(args.start) if args.start else None,  # type: ignore[arg-type]
             goal=tuple(args.goal) if args.goal else None,  # type: ignore[arg-type]
-            rate=args.rate, timeout=args.timeout, realtime=args.realtime,
+            rate=args.rate,
+            timeout=args.timeout,
+            realtime=args.realtime,
             call_timeout=args.call_timeout,
             controller_params=_params(args.param),  # type: ignore[arg-type]
             planner_params=_params(args.planner_param),  # type: ignore[arg-type]
-            endpoint=args.connect, progress=not args.no_progress and sys.stderr.isatty(),
+            endpoint=args.connect,
+            progress=not args.no_progress and sys.stderr.isatty(),
         )
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")

@@ -17,32 +17,40 @@ from nav2_pyif.costmap import Costmap
 from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
 
 
-def obstacle_distance(lethal: npt.NDArray[np.bool_], resolution: float,
-                      max_distance: float) -> npt.NDArray[np.float64]:
+def obstacle_distance(
+    lethal: npt.NDArray[np.bool_], resolution: float, max_distance: float
+) -> npt.NDArray[np.float64]:
     """Distance [m] from each cell centre to the nearest lethal cell centre, capped at
     ``max_distance`` (cells farther away get +inf)."""
     reach = int(np.ceil(max_distance / resolution))
     size_y, size_x = lethal.shape
     distance = np.full(lethal.shape, np.inf)
     padded = np.zeros((size_y + 2 * reach, size_x + 2 * reach), bool)
-    padded[reach:reach + size_y, reach:reach + size_x] = lethal
+    padded[reach : reach + size_y, reach : reach + size_x] = lethal
     for dy in range(-reach, reach + 1):
         for dx in range(-reach, reach + 1):
             d = np.hypot(dx, dy) * resolution
             if d > max_distance:
                 continue
-            shifted = padded[reach + dy:reach + dy + size_y, reach + dx:reach + dx + size_x]
+            shifted = padded[reach + dy : reach + dy + size_y, reach + dx : reach + dx + size_x]
             np.minimum(distance, np.where(shifted, d, np.inf), out=distance)
     return distance
 
 
-def inflate(occupancy: OccupancyMap, inscribed_radius: float = 0.22,
-            inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0,
-            footprint: npt.ArrayLike | None = None, robot_radius: float = 0.0,
-            frame_id: str = "map", version: int = 1) -> Costmap:
+def inflate(
+    occupancy: OccupancyMap,
+    inscribed_radius: float = 0.22,
+    inflation_radius: float = 0.55,
+    cost_scaling_factor: float = 3.0,
+    footprint: npt.ArrayLike | None = None,
+    robot_radius: float = 0.0,
+    frame_id: str = "map",
+    version: int = 1,
+) -> Costmap:
     """The inflated costmap of a whole occupancy map."""
     lethal = occupancy.occupancy == OCCUPIED
-    distance = obstacle_distance(lethal, occupancy.resolution, inflation_radius)
+    # cell distances are multiples of the resolution: round away float noise (3 * 0.05 m)
+    distance = np.round(obstacle_distance(lethal, occupancy.resolution, inflation_radius), 9)
     costs = np.zeros(lethal.shape, np.uint8)
     ramp = (distance > inscribed_radius) & (distance <= inflation_radius)
     costs[ramp] = np.floor(
@@ -51,22 +59,36 @@ def inflate(occupancy: OccupancyMap, inscribed_radius: float = 0.22,
     costs[distance <= inscribed_radius] = Costmap.INSCRIBED
     costs[lethal] = Costmap.LETHAL
     costs[(occupancy.occupancy == UNKNOWN) & ~lethal & (costs == 0)] = Costmap.NO_INFORMATION
-    return Costmap(costs, occupancy.resolution, occupancy.origin_x, occupancy.origin_y,
-                   frame_id, footprint=footprint, robot_radius=robot_radius, version=version)
+    return Costmap(
+        costs,
+        occupancy.resolution,
+        occupancy.origin_x,
+        occupancy.origin_y,
+        frame_id,
+        footprint=footprint,
+        robot_radius=robot_radius,
+        version=version,
+    )
 
 
 def window(costmap: Costmap, x: float, y: float, size_m: float, version: int) -> Costmap:
     """A rolling local costmap: ``size_m`` square centred on (x, y), origin snapped to cells
     (Nav2's rolling_window). Outside the map reads NO_INFORMATION."""
-    cells = int(round(size_m / costmap.resolution))
+    cells = round(size_m / costmap.resolution)
     mx0 = int(np.floor((x - costmap.origin_x) / costmap.resolution)) - cells // 2
     my0 = int(np.floor((y - costmap.origin_y) / costmap.resolution)) - cells // 2
     out = np.full((cells, cells), Costmap.NO_INFORMATION, np.uint8)
     sx0, sy0 = max(mx0, 0), max(my0, 0)
     sx1, sy1 = min(mx0 + cells, costmap.size_x), min(my0 + cells, costmap.size_y)
     if sx1 > sx0 and sy1 > sy0:
-        out[sy0 - my0:sy1 - my0, sx0 - mx0:sx1 - mx0] = costmap.data[sy0:sy1, sx0:sx1]
-    return Costmap(out, costmap.resolution, costmap.origin_x + mx0 * costmap.resolution,
-                   costmap.origin_y + my0 * costmap.resolution, costmap.frame_id,
-                   footprint=costmap.footprint, robot_radius=costmap.robot_radius,
-                   version=version)
+        out[sy0 - my0 : sy1 - my0, sx0 - mx0 : sx1 - mx0] = costmap.data[sy0:sy1, sx0:sx1]
+    return Costmap(
+        out,
+        costmap.resolution,
+        costmap.origin_x + mx0 * costmap.resolution,
+        costmap.origin_y + my0 * costmap.resolution,
+        costmap.frame_id,
+        footprint=costmap.footprint,
+        robot_radius=costmap.robot_radius,
+        version=version,
+    )

@@ -55,7 +55,7 @@ def read_pgm(path: Path) -> npt.NDArray[np.uint8]:
     magic, width, height, maxval = header.group(1), *(int(header.group(i)) for i in (2, 3, 4))
     if maxval > 255:
         raise MapError(f"{path}: 16-bit PGM (maxval {maxval}) is not supported")
-    body = data[header.end():]
+    body = data[header.end() :]
     if magic == b"P5":
         if len(body) < width * height:
             raise MapError(f"{path}: truncated ({len(body)} of {width * height} pixel bytes)")
@@ -120,9 +120,14 @@ def _pose3(value: object) -> tuple[float, float, float] | None:
     return (x, y, rest[0] if rest else 0.0)
 
 
-def save_map(path: Path, occupancy: npt.NDArray[np.int8], resolution: float,
-             origin: tuple[float, float], start: tuple[float, float, float],
-             goal: tuple[float, float, float]) -> None:
+def save_map(
+    path: Path,
+    occupancy: npt.NDArray[np.int8],
+    resolution: float,
+    origin: tuple[float, float],
+    start: tuple[float, float, float],
+    goal: tuple[float, float, float],
+) -> None:
     """Write ``path`` (.yaml) and its .pgm the way map_saver does (trinary)."""
     image = np.full(occupancy.shape, 205, np.uint8)
     image[occupancy == FREE] = 254
@@ -135,9 +140,11 @@ def save_map(path: Path, occupancy: npt.NDArray[np.int8], resolution: float,
         "origin": [origin[0], origin[1], 0.0],
         "negate": 0,
         "occupied_thresh": 0.65,
-        "free_thresh": 0.25,
-        "nav2_pyif": {"start": [start[0], start[1], round(start[2], 4)],
-                      "goal": [goal[0], goal[1], round(goal[2], 4)]},
+        "free_thresh": 0.196,  # 205 (unknown) stays unknown, as in ROS map_saver maps
+        "nav2_pyif": {
+            "start": [start[0], start[1], round(start[2], 4)],
+            "goal": [goal[0], goal[1], round(goal[2], 4)],
+        },
     }
     path.write_text(yaml.safe_dump(meta, sort_keys=False))
 

@@ -9,20 +9,24 @@ import matplotlib
 
 matplotlib.use("Agg")  # files only, no display needed
 
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.colors import ListedColormap  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.colors import ListedColormap
 
-from nav2_pyif.costmap import Costmap  # noqa: E402
-from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN  # noqa: E402
-from nav2_pyif.sim.report import summary  # noqa: E402
-from nav2_pyif.sim.runner import SimResult  # noqa: E402
+from nav2_pyif.costmap import Costmap
+from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN
+from nav2_pyif.sim.report import summary
+from nav2_pyif.sim.runner import SimResult
 
 
 def draw(result: SimResult, path: Path) -> None:
     world, costmap = result.world, result.global_costmap
-    extent = (world.origin_x, world.origin_x + world.size_x * world.resolution,
-              world.origin_y, world.origin_y + world.size_y * world.resolution)
+    extent = (
+        world.origin_x,
+        world.origin_x + world.size_x * world.resolution,
+        world.origin_y,
+        world.origin_y + world.size_y * world.resolution,
+    )
     fig = plt.figure(figsize=(13, 6.5), constrained_layout=True)
     grid = fig.add_gridspec(2, 3)
     ax = fig.add_subplot(grid[:, :2])
@@ -31,33 +35,62 @@ def draw(result: SimResult, path: Path) -> None:
     base[world.occupancy == OCCUPIED] = 0.0
     ax.imshow(base, cmap="gray", origin="lower", extent=extent, vmin=0, vmax=1)
     inflated = np.ma.masked_where(
-        (costmap.data == 0) | (costmap.data >= Costmap.LETHAL), costmap.data.astype(float))
-    ax.imshow(inflated, cmap=ListedColormap(plt.cm.magma_r(np.linspace(0.05, 0.7, 64))),
-              origin="lower", extent=extent, alpha=0.45, vmin=1, vmax=253)
+        (costmap.data == 0) | (costmap.data >= Costmap.LETHAL), costmap.data.astype(float)
+    )
+    ax.imshow(
+        inflated,
+        cmap=ListedColormap(plt.cm.magma_r(np.linspace(0.05, 0.7, 64))),
+        origin="lower",
+        extent=extent,
+        alpha=0.45,
+        vmin=1,
+        vmax=253,
+    )
     if len(result.plan):
-        ax.plot(result.plan[:, 0], result.plan[:, 1], "-", color="tab:blue", lw=1.5,
-                label="plan (A*)" if result.config.planner == "astar" else "plan")
+        ax.plot(
+            result.plan[:, 0],
+            result.plan[:, 1],
+            "-",
+            color="tab:blue",
+            lw=1.5,
+            label="plan (A*)" if result.config.planner == "astar" else "plan",
+        )
     if result.trajectory:
         t = np.array(result.trajectory)
         ax.plot(t[:, 1], t[:, 2], "-", color="tab:green", lw=2.0, label="driven")
     sx, sy, syaw = result.start
     gx, gy, gyaw = result.goal
-    ax.quiver([sx, gx], [sy, gy], np.cos([syaw, gyaw]), np.sin([syaw, gyaw]),
-              color=["tab:orange", "tab:red"], scale=25, width=0.006)
+    ax.quiver(
+        [sx, gx],
+        [sy, gy],
+        np.cos([syaw, gyaw]),
+        np.sin([syaw, gyaw]),
+        color=["tab:orange", "tab:red"],
+        scale=25,
+        width=0.006,
+    )
     ax.plot([sx], [sy], "o", color="tab:orange", label="start")
     ax.plot([gx], [gy], "*", color="tab:red", ms=14, label="goal")
     if result.collisions and result.trajectory:
-        ax.plot([result.trajectory[-1][1]], [result.trajectory[-1][2]], "X", color="red",
-                ms=14, label="collision")
+        ax.plot(
+            [result.trajectory[-1][1]],
+            [result.trajectory[-1][2]],
+            "X",
+            color="red",
+            ms=14,
+            label="collision",
+        )
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_aspect("equal")
     ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
     s = summary(result)
-    ax.set_title(f"{Path(s['map']).stem}: {s['controller']} + {s['planner']} — "
-                 f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
-                 f"{s['driven_distance_m']:.1f} m, clearance ≥ {s['min_clearance_m']:.2f} m",
-                 fontsize=10)
+    ax.set_title(
+        f"{Path(s['map']).stem}: {s['controller']} + {s['planner']} — "
+        f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
+        f"{s['driven_distance_m']:.1f} m, clearance ≥ {s['min_clearance_m']:.2f} m",
+        fontsize=10,
+    )
 
     speed = fig.add_subplot(grid[0, 2])
     if result.trajectory:
@@ -75,8 +108,9 @@ def draw(result: SimResult, path: Path) -> None:
         compute = np.array([r.compute_ns for r in cycles]) / 1e6
         latency.plot(total, lw=0.8, label="round trip")
         latency.plot(compute, lw=0.8, label="host compute")
-        latency.axhline(1000.0 / result.config.rate, color="red", ls="--", lw=0.8,
-                        label="control period")
+        latency.axhline(
+            1000.0 / result.config.rate, color="red", ls="--", lw=0.8, label="control period"
+        )
         latency.set_yscale("log")
     latency.set_xlabel("control cycle")
     latency.set_ylabel("ms")

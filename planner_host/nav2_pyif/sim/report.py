@@ -21,26 +21,35 @@ def latency_rows(result: SimResult) -> list[dict[str, Any]]:
         total = np.array([r.total_ns for r in records]) / 1000.0
         compute = np.array([r.compute_ns for r in records]) / 1000.0
         transport = np.array([r.transport_ns for r in records]) / 1000.0
-        rows.append({
-            "op": op, "calls": len(records),
-            "round_trip_median_us": float(np.median(total)),
-            "round_trip_p99_us": float(np.percentile(total, 99)),
-            "compute_median_us": float(np.median(compute)),
-            "compute_p99_us": float(np.percentile(compute, 99)),
-            "transport_median_us": float(np.median(transport)),
-            "transport_p99_us": float(np.percentile(transport, 99)),
-        })
+        rows.append(
+            {
+                "op": op,
+                "calls": len(records),
+                "round_trip_median_us": float(np.median(total)),
+                "round_trip_p99_us": float(np.percentile(total, 99)),
+                "compute_median_us": float(np.median(compute)),
+                "compute_p99_us": float(np.percentile(compute, 99)),
+                "transport_median_us": float(np.median(transport)),
+                "transport_p99_us": float(np.percentile(transport, 99)),
+            }
+        )
     return rows
 
 
 def summary(result: SimResult) -> dict[str, Any]:
     c = result.config
     return {
-        "map": str(c.map), "controller": c.controller, "planner": c.planner,
-        "start": list(result.start), "goal": list(result.goal),
-        "reached": result.reached, "outcome": result.outcome,
-        "sim_time_s": round(result.sim_time, 3), "wall_time_s": round(result.wall_time, 3),
-        "cycles": result.cycles, "control_rate_hz": c.rate,
+        "map": str(c.map),
+        "controller": c.controller,
+        "planner": c.planner,
+        "start": list(result.start),
+        "goal": list(result.goal),
+        "reached": result.reached,
+        "outcome": result.outcome,
+        "sim_time_s": round(result.sim_time, 3),
+        "wall_time_s": round(result.wall_time, 3),
+        "cycles": result.cycles,
+        "control_rate_hz": c.rate,
         "plan_length_m": round(result.path_length, 3),
         "driven_distance_m": round(result.driven_distance, 3),
         "min_clearance_m": round(result.min_clearance, 3),
@@ -61,14 +70,16 @@ def format_report(result: SimResult) -> str:
         f"controller errors {s['controller_errors']}",
         "",
         "latency per call (µs)          calls   round trip         host compute       transport",
-        "                                        median     p99     median     p99     median     p99",
+        "                                        median     p99     median     p99     "
+        "median     p99",
     ]
     for r in latency_rows(result):
         lines.append(
             f"  {r['op']:<28}{r['calls']:>6} {r['round_trip_median_us']:>8.0f} "
             f"{r['round_trip_p99_us']:>7.0f}   {r['compute_median_us']:>8.0f} "
             f"{r['compute_p99_us']:>7.0f}   {r['transport_median_us']:>8.0f} "
-            f"{r['transport_p99_us']:>7.0f}")
+            f"{r['transport_p99_us']:>7.0f}"
+        )
     if result.controller_errors:
         lines += ["", "controller errors (first 5):"]
         lines += [f"  {e}" for e in result.controller_errors[:5]]

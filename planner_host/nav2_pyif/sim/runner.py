@@ -105,8 +105,10 @@ def planner_entry(key: str, spec: str) -> dict[str, Any]:
     if resolved == "nav2_pyif_planners.apf":
         return {"key": key, "module": resolved, "delegates": apf.DELEGATES}
     if ":" not in resolved:
-        raise SimError(f"unknown planner {spec!r}: give one of {', '.join(ALIASES)} "
-                       "or package.module:ClassName")
+        raise SimError(
+            f"unknown planner {spec!r}: give one of {', '.join(ALIASES)} "
+            "or package.module:ClassName"
+        )
     return {"key": key, "planner": resolved}
 
 
@@ -131,8 +133,14 @@ def prepare(config: SimConfig) -> SimResult:
         raise SimError(f"no start/goal given and {config.map} has no default task")
     footprint = np.array(config.footprint)
     inscribed = float(np.min(np.abs(footprint).max(axis=0)))  # half the narrower side
-    costmap = inflate(world, inscribed, config.inflation_radius, config.cost_scaling_factor,
-                      footprint=footprint, frame_id="map")
+    costmap = inflate(
+        world,
+        inscribed,
+        config.inflation_radius,
+        config.cost_scaling_factor,
+        footprint=footprint,
+        frame_id="map",
+    )
     checker = WorldChecker(world, footprint)
     for what, (x, y, yaw) in (("start", start), ("goal", goal)):
         if costmap.world_to_map(x, y) is None:
@@ -145,8 +153,10 @@ def prepare(config: SimConfig) -> SimResult:
 def run_sim(config: SimConfig) -> SimResult:
     """Run one navigation task; raises SimError for bad input, returns the outcome."""
     result = prepare(config)
-    entries = [planner_entry(config.controller_key, config.controller),
-               planner_entry(config.planner_key, config.planner)]
+    entries = [
+        planner_entry(config.controller_key, config.controller),
+        planner_entry(config.planner_key, config.planner),
+    ]
     host = None if config.endpoint else PlannerHostProcess(entries).start()
     endpoint = config.endpoint or (host.endpoint if host else "")
     zconfig = zenoh.Config()
@@ -164,17 +174,28 @@ def run_sim(config: SimConfig) -> SimResult:
     return result
 
 
-def _drive(config: SimConfig, result: SimResult, session: zenoh.Session,
-           host: PlannerHostProcess | None) -> None:
+def _drive(
+    config: SimConfig, result: SimResult, session: zenoh.Session, host: PlannerHostProcess | None
+) -> None:
     start, goal, costmap = result.start, result.goal, result.global_costmap
     timeouts = Timeouts(call=config.call_timeout, lifecycle=10.0, configure=60.0, plan=60.0)
-    planner = GlobalPlannerClient(session, config.planner_key, costmap, timeouts=timeouts,
-                                  params=config.planner_params, record_calls=True)
+    planner = GlobalPlannerClient(
+        session,
+        config.planner_key,
+        costmap,
+        timeouts=timeouts,
+        params=config.planner_params,
+        record_calls=True,
+    )
     local_version = 1
     controller = ControllerClient(
-        session, config.controller_key,
+        session,
+        config.controller_key,
         window(costmap, start[0], start[1], config.local_costmap_size, local_version),
-        timeouts=timeouts, params=config.controller_params, record_calls=True)
+        timeouts=timeouts,
+        params=config.controller_params,
+        record_calls=True,
+    )
     try:
         for client in (planner, controller):
             if host is not None:
@@ -200,33 +221,49 @@ def _drive(config: SimConfig, result: SimResult, session: zenoh.Session,
         controller.close()
 
 
-def _control_loop(config: SimConfig, result: SimResult, controller: ControllerClient,
-                  local_version: int) -> None:
+def _control_loop(
+    config: SimConfig, result: SimResult, controller: ControllerClient, local_version: int
+) -> None:
     robot = DiffDrive(*result.start)
     checker = WorldChecker(result.world, np.array(config.footprint))
     dt, goal = 1.0 / config.rate, result.goal
     local_every = max(1, round(config.rate / config.local_costmap_rate))
     failing_since: float | None = None
-    bar = tqdm(total=round(config.timeout, 1), unit="sim s", disable=not config.progress,
-               bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}")
+    bar = tqdm(
+        total=round(config.timeout, 1),
+        unit="sim s",
+        disable=not config.progress,
+        bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
+    )
     wall_start = time.perf_counter()
     cycle = 0
     try:
         while result.sim_time < config.timeout:
             if cycle % local_every == 0 and cycle:
                 local_version += 1
-                controller.update_costmap(window(result.global_costmap, robot.x, robot.y,
-                                                 config.local_costmap_size, local_version))
+                controller.update_costmap(
+                    window(
+                        result.global_costmap,
+                        robot.x,
+                        robot.y,
+                        config.local_costmap_size,
+                        local_version,
+                    )
+                )
             velocity = Twist()
             velocity.linear.x, velocity.angular.z = robot.v, robot.w
             try:
                 cmd = controller.compute_velocity_commands(
-                    pose_msg(robot.x, robot.y, robot.yaw, stamp_s=result.sim_time), velocity,
-                    config.goal_checker)
+                    pose_msg(robot.x, robot.y, robot.yaw, stamp_s=result.sim_time),
+                    velocity,
+                    config.goal_checker,
+                )
                 cmd_v, cmd_w = cmd.twist.linear.x, cmd.twist.angular.z
                 failing_since = None
             except Nav2Error as exc:
-                result.controller_errors.append(f"t={result.sim_time:.2f}s {type(exc).__name__}: {exc}")
+                result.controller_errors.append(
+                    f"t={result.sim_time:.2f}s {type(exc).__name__}: {exc}"
+                )
                 cmd_v = cmd_w = 0.0  # as Nav2's controller server: stop, then retry
                 failing_since = result.sim_time if failing_since is None else failing_since
                 if result.sim_time - failing_since > config.failure_tolerance:
@@ -235,10 +272,12 @@ def _control_loop(config: SimConfig, result: SimResult, controller: ControllerCl
             robot.step(cmd_v, cmd_w, dt)
             result.sim_time += dt
             cycle += 1
-            result.trajectory.append((result.sim_time, robot.x, robot.y, robot.yaw, robot.v,
-                                      robot.w))
-            result.min_clearance = min(result.min_clearance,
-                                       checker.clearance(robot.x, robot.y, robot.yaw))
+            result.trajectory.append(
+                (result.sim_time, robot.x, robot.y, robot.yaw, robot.v, robot.w)
+            )
+            result.min_clearance = min(
+                result.min_clearance, checker.clearance(robot.x, robot.y, robot.yaw)
+            )
             if checker.collides(robot.x, robot.y, robot.yaw):
                 result.collisions += 1
                 result.outcome = f"collision at ({robot.x:.2f}, {robot.y:.2f})"

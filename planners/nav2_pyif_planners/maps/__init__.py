@@ -1,7 +1,7 @@
 """Bundled maps (map_server format), each with a default start and goal.
 
-    office       20 x 14 m: rooms, doorways 1 m wide, a corridor, furniture
-    cluttered    14 x 10 m: scattered boxes and a 0.8 m zig-zag corridor
+office       20 x 14 m: rooms, doorways 1 m wide, a corridor, furniture
+cluttered    14 x 10 m: scattered boxes and a 0.8 m zig-zag corridor
 """
 
 from __future__ import annotations

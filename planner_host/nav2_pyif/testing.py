@@ -1,0 +1,48 @@
+"""Test your planners offline, with pytest, through a real planner host over Zenoh::
+
+    from nav2_pyif.testing import assert_reaches_goal, drive
+
+    def test_my_controller_reaches_the_goal():
+        result = drive("my_pkg.ctrl:MyController", map="cluttered")
+        assert_reaches_goal(result, min_clearance=0.05)
+
+``drive`` takes the runner's options (``start``, ``goal``, ``rate``, ``timeout``,
+``controller_params``, ...; see ``nav2_pyif.sim.runner.SimConfig``) and returns a SimResult
+with the outcome, the trajectory, the plan and every call's timing.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from nav2_pyif.sim.report import format_report
+from nav2_pyif.sim.runner import SimConfig, SimResult, run_sim
+from nav2_pyif_planners.maps import map_path
+
+
+def drive(
+    controller: str, planner: str = "astar", map: str | Path = "office", **options: Any
+) -> SimResult:
+    """One navigation task on a bundled map (by name) or a map_server YAML."""
+    return run_sim(
+        SimConfig(map=map_path(str(map)), controller=controller, planner=planner, **options)
+    )
+
+
+def assert_reaches_goal(
+    result: SimResult, *, min_clearance: float = 0.0, max_time: float | None = None
+) -> None:
+    """Fail with the run's report unless it reached the goal without collision, keeping
+    ``min_clearance`` metres from obstacles, within ``max_time`` simulated seconds."""
+    problems = []
+    if not result.reached:
+        problems.append(f"goal not reached ({result.outcome})")
+    if result.collisions:
+        problems.append(f"{result.collisions} collision(s)")
+    if result.min_clearance < min_clearance:
+        problems.append(f"clearance {result.min_clearance:.3f} m < {min_clearance} m")
+    if max_time is not None and result.sim_time > max_time:
+        problems.append(f"took {result.sim_time:.1f} s > {max_time} s")
+    if problems:
+        raise AssertionError("; ".join(problems) + "\n" + format_report(result))
