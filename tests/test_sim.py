@@ -12,7 +12,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from nav2_pyif.sim.inflation import inflate, window
 from nav2_pyif.sim.mapfile import (
     FREE,

@@ -16,9 +16,10 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+from nav2_pyif_planners.maps import map_path
+
 from nav2_pyif.sim.report import format_report
 from nav2_pyif.sim.runner import SimConfig, SimResult, run_sim
-from nav2_pyif_planners.maps import map_path
 
 
 def drive(
