@@ -1,9 +1,8 @@
-"""nav2-pyif-bench: the protocol's cost, beside the bare Zenoh floor and the rclpy-node
-workaround, all measured in one run with interleaved rounds (so drift hits all alike).
+"""The protocol's cost, beside the bare Zenoh floor and the rclpy-node workaround, all
+measured in one run with interleaved rounds (so drift hits all alike).
 
-    nav2-pyif-bench                 # about a minute; prints the tables of BENCHMARKS.md
-    nav2-pyif-bench --quick         # a smoke run
-    nav2-pyif-bench --json out.json
+    nav2-pyif-bench protocol            # about a minute; prints the tables of BENCHMARKS.md
+    nav2-pyif-bench protocol --quick    # a smoke run
 """
 
 from __future__ import annotations
@@ -26,7 +25,7 @@ from nav_msgs.msg import Odometry
 
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
 from nav2_pyif_bench.rclpy_client import RclpyWorkaroundClient, path_message
-from nav2_pyif_bench.stats import Summary, header_row, machine_description
+from nav2_pyif_bench.stats import Summary, header_row
 
 KEY = "nav2_pyif/bench/FollowPath"
 BARE_KEY = "nav2_pyif/bench/bare"
@@ -139,7 +138,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     import os
 
     os.environ.update(env)
-    results: dict[str, Any] = {"machine": machine_description()}
+    results: dict[str, Any] = {}
     with peer_processes(commands, env):
         session = open_session([f"tcp/127.0.0.1:{host_port}", f"tcp/127.0.0.1:{bare_port}"])
         ros = RclpyWorkaroundClient()
@@ -243,7 +242,7 @@ def report(results: dict[str, Any]) -> str:
     def summary(d: dict[str, Any]) -> Summary:
         return Summary(**d)
 
-    lines = [f"machine: {results['machine']}", ""]
+    lines = []
     c = {k: summary(v) for k, v in results["cycle"].items()}
     lines += [
         "control cycle: PoseStamped + Twist in, TwistStamped out (trivial planner)",
@@ -290,12 +289,7 @@ def report(results: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(
-        prog="nav2-pyif-bench",
-        description=__doc__,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
     parser.add_argument("--calls", type=int, default=300, help="control cycles per round")
     parser.add_argument("--plan-calls", type=int, default=40, help="plans per round")
@@ -303,18 +297,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--threads", type=int, nargs="+", default=[1, 4])
     parser.add_argument("--seconds", type=float, default=3.0, help="per throughput run")
     parser.add_argument("--quick", action="store_true", help="a short smoke run")
-    parser.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
-    args = parser.parse_args(argv)
+
+
+def apply_quick(args: argparse.Namespace) -> argparse.Namespace:
     if args.quick:
         args.rounds, args.calls, args.plan_calls, args.costmap_calls = 2, 50, 5, 10
         args.seconds = 0.5
-    results = run(args)
-    print(report(results))
-    if args.json:
-        with open(args.json, "w") as f:
-            json.dump(results, f, indent=1)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
+    return args

@@ -1,0 +1,47 @@
+"""nav2-pyif-bench: the project's benchmarks; each prints its figures (see BENCHMARKS.md).
+
+nav2-pyif-bench protocol [--quick] [--json F]   control cycle, plans, costmaps, throughput
+nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controller's rate through a host
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+
+from nav2_pyif_bench import mppi_bench, protocol_bench
+from nav2_pyif_bench.stats import machine_description
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(
+        prog="nav2-pyif-bench",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    sub = parser.add_subparsers(dest="bench", required=True, metavar="BENCHMARK")
+    protocol = sub.add_parser("protocol", help="the protocol beside bare Zenoh and rclpy")
+    protocol_bench.add_arguments(protocol)
+    mppi = sub.add_parser("mppi", help="the MPPI controller's rate through a planner host")
+    mppi.add_argument("--batch-sizes", type=int, nargs="+", default=[1000, 2000])
+    mppi.add_argument("--map", default="office")
+    for p in (protocol, mppi):
+        p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
+    args = parser.parse_args(argv)
+    print(f"machine: {machine_description()}\n", flush=True)
+    if args.bench == "protocol":
+        results = protocol_bench.run(protocol_bench.apply_quick(args))
+        text = protocol_bench.report(results)
+    else:
+        results = mppi_bench.run(args)
+        text = mppi_bench.report(results)
+    print(text)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(results, f, indent=1)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,50 @@
+"""The MPPI controller's rate through the real path: a planner host serving it over Zenoh,
+the offline runner driving the office map at 20 Hz; host compute and round trip per cycle."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+import numpy as np
+from nav2_pyif.sim.report import summary
+from nav2_pyif.testing import drive
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    results: dict[str, Any] = {}
+    for batch in args.batch_sizes:
+        print(f"  … MPPI with {batch} rollouts on the {args.map} map", flush=True)
+        result = drive(
+            "mppi", map=args.map, controller_params={"batch_size": batch}, call_timeout=1.0
+        )
+        cycles = [r for r in result.records if r.op == "compute_velocity_commands" and r.ok]
+        compute = np.array([r.compute_ns for r in cycles]) / 1e6
+        total = np.array([r.total_ns for r in cycles]) / 1e6
+        results[str(batch)] = {
+            "reached": result.reached,
+            "cycles": len(cycles),
+            "compute_median_ms": float(np.median(compute)),
+            "compute_p99_ms": float(np.percentile(compute, 99)),
+            "round_trip_median_ms": float(np.median(total)),
+            "round_trip_p99_ms": float(np.percentile(total, 99)),
+            "max_rate_hz_at_p99": float(1000.0 / np.percentile(total, 99)),
+            "summary": summary(result),
+        }
+    return results
+
+
+def report(results: dict[str, Any]) -> str:
+    lines = [
+        "MPPI controller through the planner host (office map, 20 Hz, time_steps 40)",
+        f"  {'rollouts':>8} {'compute median':>15} {'p99':>8} {'round trip median':>18} "
+        f"{'p99':>8} {'rate at p99':>12}  reached",
+    ]
+    for batch, r in results.items():
+        lines.append(
+            f"  {batch:>8} {r['compute_median_ms']:>12.1f} ms {r['compute_p99_ms']:>5.1f} ms "
+            f"{r['round_trip_median_ms']:>15.1f} ms {r['round_trip_p99_ms']:>5.1f} ms "
+            f"{r['max_rate_hz_at_p99']:>9.0f} Hz  {r['reached']}"
+        )
+    lines.append("  target: >= 1000 rollouts per cycle at 20 Hz (round trip p99 <= 50 ms)")
+    return "\n".join(lines)
