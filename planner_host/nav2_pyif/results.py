@@ -21,8 +21,9 @@ from nav2_pyif.plan import Plan
 TWIST_FIELDS = ("linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z")
 
 
-def checked_twist_stamped(result: Any, method: str) -> Any:
-    """``result`` if it is a TwistStamped with finite components; else a typed error."""
+def checked_twist_stamped(result: Any, method: str) -> list[float]:
+    """The 6 components of ``result`` if it is a TwistStamped and they are finite; else a
+    typed error."""
     if not isinstance(result, TwistStamped):
         hint = (
             " — wrap it: TwistStamped(header=pose.header, twist=your_twist)"
@@ -39,7 +40,7 @@ def checked_twist_stamped(result: Any, method: str) -> Any:
     bad = [f"{n}={v}" for n, v in zip(TWIST_FIELDS, values, strict=False) if not math.isfinite(v)]
     if bad:
         raise NoValidControl(f"{method} returned a non-finite velocity: {', '.join(bad)}")
-    return result
+    return values
 
 
 def checked_plan(result: Any, frame_id: str, stamp_ns: int, method: str) -> Plan:

@@ -37,7 +37,7 @@ from nav2_pyif.exceptions import (
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.messages import pose_from_wire, twist_from_list, twist_stamped_to_wire
+from nav2_pyif.messages import pose_from_wire, stamp_to_ns, twist_from_list
 from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
@@ -290,10 +290,15 @@ class PlannerRuntime:
             twist_from_list(body["velocity"]),
             GoalChecker.from_wire(checker) if checker is not None else None,
         )
-        cmd = checked_twist_stamped(result, "compute_velocity_commands")
-        if not cmd.header.frame_id:
-            cmd.header.frame_id = session.context.robot_base_frame
-        return {"cmd_vel": twist_stamped_to_wire(cmd)}
+        values = checked_twist_stamped(result, "compute_velocity_commands")
+        header = result.header
+        return {
+            "cmd_vel": {
+                "frame_id": header.frame_id or session.context.robot_base_frame,
+                "stamp_ns": stamp_to_ns(header.stamp),
+                "twist": values,
+            }
+        }
 
     def _set_speed_limit(self, session: Session, request: Request) -> Body:
         body = request.body
