@@ -58,6 +58,17 @@ def bare_get(session: zenoh.Session) -> int:
     return time.perf_counter_ns() - start
 
 
+def host_floor(session: zenoh.Session, payload: bytes) -> int:
+    """A request the host answers with its cheapest reply (SessionUnknown): the host's fixed
+    cost per query (decode, session look-up, encode) without any planner or message work."""
+    start = time.perf_counter_ns()
+    for reply in session.get(f"{KEY}/rpc/activate", payload=payload, timeout=2.0):
+        if reply.ok is None:
+            raise TimeoutError("planner host did not answer")
+        break
+    return time.perf_counter_ns() - start
+
+
 def timed(call: Callable[[], Any]) -> int:
     start = time.perf_counter_ns()
     call()
@@ -162,9 +173,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
             pose, velocity, odom = PoseStamped(), Twist(), Odometry()
             pose.header.frame_id = odom.header.frame_id = "odom"
+            unknown = encode_request(Request(Op.ACTIVATE, "not-a-session", 1, 1, {}))
             cycle = interleaved(
                 {
                     "bare": lambda: bare_get(session),
+                    "host_floor": lambda: host_floor(session, unknown),
                     "pyif": lambda: timed(lambda: client.compute_velocity_commands(pose, velocity)),
                     "rclpy": lambda: ros.cycle(odom),
                 },

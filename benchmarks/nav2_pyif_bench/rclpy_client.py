@@ -29,10 +29,10 @@ class RclpyWorkaroundClient:
         self.node.create_subscription(
             Header, "/pyif_bench/plan_ack", lambda _m: self._ack.set(), QOS
         )
+        # Spun by the measuring thread itself (publish, then spin until the answer): no
+        # background executor thread competing for the GIL while Zenoh rounds are measured.
         self.executor = SingleThreadedExecutor()
         self.executor.add_node(self.node)
-        self._spinner = threading.Thread(target=self.executor.spin, daemon=True)
-        self._spinner.start()
 
     def wait_ready(self, timeout: float = 30.0) -> bool:
         """Both directions matched and one full exchange done (DDS discovery is slow)."""
@@ -44,27 +44,34 @@ class RclpyWorkaroundClient:
                     return True
                 except TimeoutError:
                     pass
-            time.sleep(0.05)
+            self.executor.spin_once(timeout_sec=0.05)
         return False
+
+    def _spin_until(self, event: threading.Event, deadline: float, what: str) -> None:
+        while not event.is_set():
+            remaining = deadline - time.monotonic()
+            if remaining <= 0:
+                raise TimeoutError(what)
+            self.executor.spin_once(timeout_sec=remaining)
 
     def cycle(self, odom: Any, timeout: float = 1.0) -> int:
         self._cmd.clear()
         start = time.perf_counter_ns()
         self.odom_pub.publish(odom)
-        if not self._cmd.wait(timeout):
-            raise TimeoutError("rclpy node did not answer")
+        self._spin_until(self._cmd, time.monotonic() + timeout, "rclpy node did not answer")
         return time.perf_counter_ns() - start
 
     def send_plan(self, path: Any, timeout: float = 5.0) -> int:
         self._ack.clear()
         start = time.perf_counter_ns()
         self.plan_pub.publish(path)
-        if not self._ack.wait(timeout):
-            raise TimeoutError("rclpy node did not acknowledge the plan")
+        self._spin_until(
+            self._ack, time.monotonic() + timeout, "rclpy node did not acknowledge the plan"
+        )
         return time.perf_counter_ns() - start
 
     def close(self) -> None:
-        self.executor.shutdown()
+        self.executor.shutdown(timeout_sec=1.0)
         self.node.destroy_node()
         rclpy.try_shutdown()  # type: ignore[attr-defined]
 
