@@ -21,6 +21,8 @@ import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif import Costmap, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
+from nav2_pyif_protocol.codec import Request, encode_request
+from nav2_pyif_protocol.constants import Op
 from nav_msgs.msg import Odometry
 
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
@@ -261,6 +263,7 @@ def report(results: dict[str, Any]) -> str:
         "control cycle: PoseStamped + Twist in, TwistStamped out (trivial planner)",
         header_row(),
         c["bare"].row("bare Zenoh get -> empty reply"),
+        c["host_floor"].row("host's cheapest reply (SessionUnknown)"),
         c["pyif"].row("nav2_pyif client -> Zenoh -> host"),
         c["host_handler"].row("  of which host handler (decode..encode)"),
         c["rclpy"].row("rclpy node over topics (workaround)"),
