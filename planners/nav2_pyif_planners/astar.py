@@ -104,6 +104,8 @@ class AStar(GlobalPlanner):
         heap = [(math.hypot(start[0] - gx, start[1] - gy), 0.0, start_i)]
         closed: set[int] = set()
         expanded = 0
+        if cancel_checker():
+            raise PlannerCancelled("cancelled before the search started")
         while heap:
             _, g, i = heapq.heappop(heap)
             if i in closed:
