@@ -8,7 +8,6 @@ import os
 import signal
 import sys
 import threading
-from dataclasses import dataclass
 from pathlib import Path
 from types import FrameType
 from typing import Any
@@ -16,12 +15,12 @@ from typing import Any
 import yaml
 from nav2_pyif_protocol.keys import validate_prefix
 
-from nav2_pyif.delegates import delegate_class, parse_delegates
+from nav2_pyif.delegates import parse_delegates
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.host import PlannerHost, new_host_id
-from nav2_pyif.loader import load_class
-from nav2_pyif.plugin import PlannerPlugin
-from nav2_pyif.runtime import PlannerRuntime
+from nav2_pyif.service import InProcessPlanner, PlannerService
+from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.supervisor import Deadlines, SupervisedPlanner
 from nav2_pyif.zenoh_config import add_zenoh_arguments, open_session, options_from_args
 
 EPILOG = """\
@@ -41,23 +40,6 @@ examples:
   # from a YAML file: planners: [{key: K, planner: M:C}, {key: K, module: M, delegates: {..}}]
   planner-host --config planners.yaml
 """
-
-
-@dataclass
-class PlannerSpec:
-    key: str
-    planner: str | None = None
-    module: str | None = None
-    delegates: dict[str, str] | None = None
-
-    def load(self) -> type[PlannerPlugin]:
-        if self.planner:
-            return load_class(self.planner)
-        assert self.module is not None
-        return delegate_class(self.module, self.delegates or {})
-
-    def describe(self) -> str:
-        return self.planner or f"{self.module} (delegates)"
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -108,6 +90,38 @@ def build_parser() -> argparse.ArgumentParser:
         help="directory to import planners from, repeatable (the current "
         "directory is always searched, as with python -m)",
     )
+    safety = parser.add_argument_group("isolation")
+    safety.add_argument(
+        "--isolation",
+        choices=["process", "none"],
+        default="process",
+        help="process (default): each planner in a supervised worker process, restarted with "
+        "its sessions when it dies; none: in the host process (lowest latency; a crash takes "
+        "the host down)",
+    )
+    safety.add_argument(
+        "--deadline",
+        type=float,
+        default=1.0,
+        metavar="SECONDS",
+        help="control-loop calls running longer are answered with ControllerTimedOut (default 1.0)",
+    )
+    safety.add_argument("--plan-deadline", type=float, default=30.0, metavar="SECONDS")
+    safety.add_argument(
+        "--hang-grace",
+        type=float,
+        default=3.0,
+        metavar="SECONDS",
+        help="a worker still busy this long after a deadline is killed and restarted (default 3.0)",
+    )
+    safety.add_argument(
+        "--memory-limit",
+        type=int,
+        default=8192,
+        metavar="MB",
+        help="address-space limit of each worker process; a planner exceeding it gets "
+        "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
+    )
     add_zenoh_arguments(parser)
     parser.add_argument(
         "--log-level", default="INFO", choices=["DEBUG", "INFO", "WARNING", "ERROR"]
@@ -127,7 +141,7 @@ def collect_specs(args: argparse.Namespace, parser: argparse.ArgumentParser) -> 
             parser.error(
                 "--module needs --delegate ROLE=FUNCTION (e.g. compute_velocity_commands=f)"
             )
-        specs.append(PlannerSpec(args.key, args.planner, args.module, delegates))
+        specs.append(PlannerSpec(args.key, args.planner, args.module, delegates or {}))
     elif args.key:
         parser.error("--key needs --planner MODULE:CLASS or --module MODULE")
     for item in args.serve:
@@ -182,9 +196,10 @@ def main(argv: list[str] | None = None) -> int:
     for directory in [os.getcwd(), *args.path][::-1]:
         if directory not in sys.path:
             sys.path.insert(0, directory)
+    host_id = new_host_id()
     try:
         specs = collect_specs(args, parser)
-        classes = [(spec, spec.load()) for spec in specs]
+        services = [start_service(spec, host_id, args) for spec in specs]
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 2
@@ -201,20 +216,54 @@ def main(argv: list[str] | None = None) -> int:
     try:
         session = open_session(options_from_args(args))
     except (ConnectionError, FileNotFoundError) as exc:
+        for service in services:
+            service.close()
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 3
-    host_id = new_host_id()
     host = PlannerHost(session, host_id)
+    reload_requested = threading.Event()
+
+    def on_hangup(_signum: int, _frame: FrameType | None) -> None:
+        reload_requested.set()
+        stop.set()
+
+    signal.signal(signal.SIGHUP, on_hangup)
     try:
-        for spec, cls in classes:
-            host.serve(spec.key, PlannerRuntime(cls, host_id, label=spec.describe()))
-        log.info("host %s ready (%d planner%s)", host_id, len(classes), "s"[: len(classes) > 1])
-        stop.wait()
+        for spec, service in zip(specs, services, strict=True):
+            host.serve(spec.key, service)
+        log.info(
+            "host %s ready (%d planner%s, isolation: %s)",
+            host_id,
+            len(services),
+            "s"[: len(services) > 1],
+            args.isolation,
+        )
+        while True:
+            stop.wait()
+            if not reload_requested.is_set():
+                break
+            reload_requested.clear()
+            stop.clear()
+            log.info("SIGHUP: reloading every planner")
+            host.reload_all()
     finally:
         # Close explicitly on every path: an open session keeps the process alive.
         host.close()
         session.close()
     return 0
+
+
+def start_service(spec: PlannerSpec, host_id: str, args: argparse.Namespace) -> PlannerService:
+    if args.isolation == "none":
+        return InProcessPlanner(spec, host_id)
+    deadlines = Deadlines(call=args.deadline, plan=args.plan_deadline, hang_grace=args.hang_grace)
+    return SupervisedPlanner(
+        spec,
+        host_id,
+        deadlines=deadlines,
+        memory_limit=args.memory_limit * 2**20 or None,
+        log_level=args.log_level,
+    ).start()
 
 
 if __name__ == "__main__":

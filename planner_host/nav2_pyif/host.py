@@ -1,6 +1,6 @@
 """The planner host's Zenoh side: per served key, a queryable for calls (answered in order on
 one thread per planner, so planners need not be thread-safe), a queryable for out-of-band
-cancellation, and a liveliness token the plugin watches."""
+cancellation, a queryable for hot swap, and a liveliness token the plugin watches."""
 
 from __future__ import annotations
 
@@ -12,10 +12,13 @@ import socket
 import threading
 from typing import Any
 
+import msgpack
 import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
-from nav2_pyif.runtime import PlannerRuntime
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.service import PlannerService
+from nav2_pyif.spec import PlannerSpec
 
 log = logging.getLogger("nav2_pyif.host")
 
@@ -31,21 +34,24 @@ def _payload(query: Any) -> bytes:
 
 
 class ServedPlanner:
-    """One planner runtime answering under one key prefix."""
+    """One planner answering under one key prefix."""
 
-    def __init__(self, session: zenoh.Session, keys: KeySpace, runtime: PlannerRuntime) -> None:
+    def __init__(
+        self, session: zenoh.Session, keys: KeySpace, runtime: PlannerService, host_id: str
+    ) -> None:
         self.keys = keys
         self.runtime = runtime
         self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
         # Reading the channel (not the queryable) lets close() undeclare from another thread.
         self._receiver = self._calls.handler
         self._cancel = session.declare_queryable(keys.cancel, self._on_cancel)
+        self._admin = session.declare_queryable(keys.admin_reload, self._on_reload)
         self._thread = threading.Thread(
             target=self._serve, name=f"planner:{keys.prefix}", daemon=True
         )
         self._thread.start()
         # Announce last: a plugin that sees the token can call at once.
-        self._token = session.liveliness().declare_token(keys.host_token(runtime.host_id))
+        self._token = session.liveliness().declare_token(keys.host_token(host_id))
 
     def _serve(self) -> None:
         while True:
@@ -70,8 +76,33 @@ class ServedPlanner:
         finally:
             query.drop()
 
+    def _on_reload(self, query: Any) -> None:
+        """Hot swap request: {planner?, module?, delegates?} -> {ok, message}. Loading takes
+        a while: done on a thread so Zenoh's callback thread is not held."""
+        threading.Thread(target=self._reload, args=(query,), daemon=True).start()
+
+    def _reload(self, query: Any) -> None:
+        try:
+            request = msgpack.unpackb(_payload(query)) if query.payload is not None else {}
+            current = getattr(self.runtime, "spec", None)
+            spec = None
+            if isinstance(current, PlannerSpec) and isinstance(request, dict):
+                spec = current.with_planner(
+                    request.get("planner"), request.get("module"), request.get("delegates")
+                )
+            answer = {"ok": True, "message": self.runtime.reload(spec)}
+        except PlannerLoadError as exc:
+            answer = {"ok": False, "message": str(exc)}
+        except Exception as exc:
+            log.exception("%s: reload failed", self.keys.prefix)
+            answer = {"ok": False, "message": f"reload failed: {exc}"}
+        try:
+            query.reply(query.key_expr, msgpack.packb(answer))
+        finally:
+            query.drop()
+
     def close(self) -> None:
-        for entity in (self._token, self._cancel, self._calls):
+        for entity in (self._token, self._admin, self._cancel, self._calls):
             with contextlib.suppress(Exception):  # already gone with the session
                 entity.undeclare()
         self._thread.join(timeout=5.0)
@@ -86,14 +117,22 @@ class PlannerHost:
         self.host_id = host_id or new_host_id()
         self.served: dict[str, ServedPlanner] = {}
 
-    def serve(self, key_prefix: str, runtime: PlannerRuntime) -> ServedPlanner:
+    def serve(self, key_prefix: str, runtime: PlannerService) -> ServedPlanner:
         keys = KeySpace(key_prefix)
         if key_prefix in self.served:
             raise ValueError(f"key {key_prefix!r} is already served by this host")
-        served = ServedPlanner(self.session, keys, runtime)
+        served = ServedPlanner(self.session, keys, runtime, self.host_id)
         self.served[key_prefix] = served
         log.info("serving %s on %s/** (%s)", runtime.label, key_prefix, runtime.plugin_type.value)
         return served
+
+    def reload_all(self) -> None:
+        """SIGHUP: re-import every planner (fresh worker processes) without dropping a key."""
+        for served in self.served.values():
+            try:
+                log.info("%s", served.runtime.reload())
+            except Exception as exc:
+                log.error("%s: %s", served.keys.prefix, exc)
 
     def close(self) -> None:
         for served in self.served.values():

@@ -49,6 +49,11 @@ class KeySpace:
         return f"{self.prefix}/host/{host_id}"
 
     @property
+    def admin_reload(self) -> str:
+        """Hot swap: ``nav2-pyif reload`` asks the host to load a new planner here."""
+        return f"{self.prefix}/admin/reload"
+
+    @property
     def hosts(self) -> str:
         return f"{self.prefix}/host/*"
 

@@ -1,0 +1,36 @@
+"""Which planner to serve: a class spec or a module with delegates. Picklable, so it can be
+sent to a worker process, and loadable there."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from nav2_pyif.plugin import PlannerPlugin
+
+
+@dataclass(frozen=True)
+class PlannerSpec:
+    key: str
+    planner: str | None = None  # package.module:Class
+    module: str | None = None  # function-delegate style
+    delegates: dict[str, str] = field(default_factory=dict)
+
+    def load(self, *, reload: bool = False) -> type[PlannerPlugin]:
+        from nav2_pyif.delegates import delegate_class
+        from nav2_pyif.loader import load_class
+
+        if self.planner:
+            return load_class(self.planner, reload=reload)
+        assert self.module is not None
+        return delegate_class(self.module, self.delegates, reload=reload)
+
+    def describe(self) -> str:
+        return self.planner or f"{self.module} (delegates)"
+
+    def with_planner(
+        self, planner: str | None, module: str | None, delegates: dict[str, str] | None
+    ) -> PlannerSpec:
+        """The same key with another planner (hot swap); None keeps the current one."""
+        if planner is None and module is None:
+            return self
+        return PlannerSpec(self.key, planner, module, dict(delegates or {}))

@@ -1,0 +1,431 @@
+"""Crash isolation: a planner runs in a worker process watched by the host.
+
+- A worker that dies (segfault, OOM kill, ``os._exit``, ``kill -9``) is restarted and every
+  session is restored on the new one from the journal; meanwhile calls are answered at once
+  with a typed ``Unavailable`` error naming the cause, never left hanging.
+- A worker that crash-loops is restarted with exponential back-off, and says so.
+- A call that overruns its deadline is answered with ControllerTimedOut / PlannerTimedOut; a
+  worker that does not come back within the grace period (stuck in native code) is killed
+  and restarted.
+- ``reload`` swaps in a new planner (or a fresh import of the same one) on a live key: the
+  new worker is loaded and given every session while the old one keeps serving, then the two
+  are swapped between two calls.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import logging
+import multiprocessing
+import signal
+import threading
+import time
+from collections import deque
+from dataclasses import dataclass
+from multiprocessing.connection import wait
+
+import msgpack
+from nav2_pyif_protocol.codec import ErrorInfo, Reply, encode_reply
+from nav2_pyif_protocol.constants import ErrorType, Op, PluginType
+
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.journal import Journal, Snapshot
+from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.worker import LOAD_ERROR, worker_main
+
+log = logging.getLogger("nav2_pyif.supervisor")
+_SPAWN = multiprocessing.get_context("spawn")  # never fork a process that runs Zenoh threads
+
+
+@dataclass(frozen=True)
+class Deadlines:
+    """Seconds the host lets a planner method run before answering with a timeout."""
+
+    call: float = 1.0  # control-loop ops
+    configure: float = 60.0
+    plan: float = 30.0
+    lifecycle: float = 10.0
+    hang_grace: float = 3.0  # then a worker still busy is killed and restarted
+
+    def of(self, op: str) -> float:
+        if op == Op.CONFIGURE.value:
+            return self.configure
+        if op == Op.CREATE_PLAN.value:
+            return self.plan
+        if op in (
+            Op.ACTIVATE.value,
+            Op.DEACTIVATE.value,
+            Op.CLEANUP.value,
+            Op.SET_PARAMETERS.value,
+        ):
+            return self.lifecycle
+        return self.call
+
+
+class WorkerDied(Exception):
+    pass
+
+
+def describe_exit(code: int | None) -> str:
+    if code is None:
+        return "still running"
+    if code < 0:
+        try:
+            return f"killed by signal {signal.Signals(-code).name}"
+        except ValueError:
+            return f"killed by signal {-code}"
+    return f"exited with code {code}"
+
+
+class Worker:
+    """One worker process and its two pipes."""
+
+    def __init__(
+        self, spec: PlannerSpec, host_id: str, memory_limit: int | None, log_level: str
+    ) -> None:
+        self.calls, child_calls = _SPAWN.Pipe()
+        self.cancels, child_cancels = _SPAWN.Pipe()
+        self.process = _SPAWN.Process(
+            target=worker_main,
+            name=f"planner-worker:{spec.key}",
+            daemon=True,
+            args=(child_calls, child_cancels, spec, host_id, memory_limit, log_level),
+        )
+        self.process.start()
+        child_calls.close()
+        child_cancels.close()
+        self.cancel_lock = threading.Lock()
+
+    @property
+    def pid(self) -> int | None:
+        return self.process.pid
+
+    def exit_description(self) -> str:
+        self.process.join(0.5)
+        return describe_exit(self.process.exitcode)
+
+    def wait_loaded(self, timeout: float) -> PluginType:
+        reply = self._receive(timeout, "loading")
+        if reply is None:
+            self.stop()
+            raise PlannerLoadError(f"planner worker did not load within {timeout:.0f} s")
+        kind, detail = msgpack.unpackb(reply)
+        if kind == LOAD_ERROR:
+            self.process.join(5)
+            raise PlannerLoadError(detail)
+        return PluginType(detail)
+
+    def call(self, op: str, payload: bytes, timeout: float) -> bytes | None:
+        """The reply, or None when ``timeout`` passed first. Raises WorkerDied."""
+        try:
+            self.calls.send_bytes(op.encode() + b"\0" + payload)
+        except (BrokenPipeError, OSError) as exc:
+            raise WorkerDied(self.exit_description()) from exc
+        return self._receive(timeout, op)
+
+    def _receive(self, timeout: float, what: str) -> bytes | None:
+        ready = wait([self.calls, self.process.sentinel], timeout)
+        if not ready:
+            return None
+        if self.calls in ready or self.calls.poll(0):
+            try:
+                return self.calls.recv_bytes()
+            except (EOFError, OSError):
+                pass
+        raise WorkerDied(self.exit_description())
+
+    def drain(self) -> bool:
+        """Consume a late reply, if one arrived; True when the worker is free again."""
+        try:
+            if self.calls.poll(0):
+                self.calls.recv_bytes()
+                return True
+        except (EOFError, OSError):
+            pass
+        return False
+
+    def cancel(self, payload: bytes, timeout: float = 1.0) -> bytes | None:
+        with self.cancel_lock:
+            try:
+                self.cancels.send_bytes(payload)
+                if self.cancels.poll(timeout):
+                    return self.cancels.recv_bytes()
+            except (EOFError, OSError):
+                pass
+        return None
+
+    def alive(self) -> bool:
+        return self.process.is_alive()
+
+    def stop(self, grace: float = 2.0) -> None:
+        if self.process.is_alive():
+            with contextlib.suppress(OSError):
+                self.calls.send_bytes(b"")
+            self.process.join(grace)
+        if self.process.is_alive():
+            self.process.kill()
+            self.process.join(5)
+        for conn in (self.calls, self.cancels):
+            conn.close()
+
+    def kill(self) -> None:
+        if self.process.is_alive():
+            self.process.kill()
+        self.process.join(5)
+
+
+def _reply_ok(reply: bytes) -> bool:
+    try:
+        return bool(msgpack.unpackb(reply).get("ok"))
+    except Exception:
+        return False
+
+
+class SupervisedPlanner:
+    """The interface of PlannerRuntime (handle, handle_cancel, close), backed by a worker."""
+
+    def __init__(
+        self,
+        spec: PlannerSpec,
+        host_id: str,
+        *,
+        deadlines: Deadlines | None = None,
+        memory_limit: int | None = None,
+        log_level: str = "INFO",
+        crash_window: float = 10.0,
+        crash_threshold: int = 3,
+        max_backoff: float = 30.0,
+    ) -> None:
+        self.spec = spec
+        self.host_id = host_id
+        self.deadlines = deadlines or Deadlines()
+        self.memory_limit = memory_limit
+        self.log_level = log_level
+        self.crash_window, self.crash_threshold = crash_window, crash_threshold
+        self.max_backoff = max_backoff
+        self.journal = Journal()
+        self.plugin_type = PluginType.CONTROLLER
+        self.worker: Worker | None = None
+        self.reason = "starting"
+        self.overrun_since: float | None = None
+        self.deaths: deque[float] = deque(maxlen=50)
+        self.restarts = 0
+        self._lock = threading.RLock()  # one call at a time; swaps happen between calls
+        self._wake = threading.Event()
+        self._closing = False
+        self._monitor = threading.Thread(
+            target=self._watch, name=f"supervisor:{spec.key}", daemon=True
+        )
+
+    @property
+    def label(self) -> str:
+        return self.spec.describe()
+
+    # --- lifecycle ---------------------------------------------------------------------
+    def start(self) -> SupervisedPlanner:
+        """Start the first worker; a planner that cannot load raises PlannerLoadError."""
+        worker = self._new_worker(self.spec)
+        self.plugin_type = worker.wait_loaded(self.deadlines.configure)
+        self.worker, self.reason = worker, ""
+        self._monitor.start()
+        log.info("%s: worker %s serving %s", self.spec.key, worker.pid, self.label)
+        return self
+
+    def close(self) -> None:
+        self._closing = True
+        self._wake.set()
+        with self._lock:
+            if self.worker is not None:
+                self.worker.stop()
+                self.worker = None
+
+    def _new_worker(self, spec: PlannerSpec) -> Worker:
+        return Worker(spec, self.host_id, self.memory_limit, self.log_level)
+
+    # --- calls -------------------------------------------------------------------------
+    def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
+        op = key_op or ""
+        with self._lock:
+            worker = self.worker
+            if worker is not None and self.overrun_since is not None and worker.drain():
+                self.overrun_since, self.reason = None, ""  # the late call finished
+            if worker is None or self.reason:
+                return self._error(
+                    payload,
+                    ErrorType.UNAVAILABLE,
+                    f"{self.spec.key}: planner unavailable: {self.reason}",
+                )
+            deadline = self.deadlines.of(op)
+            try:
+                reply = worker.call(op, payload, deadline)
+            except WorkerDied as died:
+                self._on_death(worker, f"{died} during {op}")
+                return self._error(
+                    payload,
+                    ErrorType.UNAVAILABLE,
+                    f"{self.spec.key}: planner worker {died} during {op}; "
+                    "restarting it and restoring every session",
+                )
+            if reply is None:
+                self.overrun_since = time.monotonic()
+                self.reason = (
+                    f"busy: {op} overran its {deadline:g} s deadline; the worker is "
+                    f"restarted unless it returns within {self.deadlines.hang_grace:g} s"
+                )
+                self._wake.set()
+                timed_out = (
+                    ErrorType.CONTROLLER_TIMED_OUT
+                    if self.plugin_type is PluginType.CONTROLLER
+                    else ErrorType.PLANNER_TIMED_OUT
+                )
+                return self._error(
+                    payload, timed_out, f"{self.label}.{op} overran its {deadline:g} s deadline"
+                )
+            if Journal.worth_recording(op, payload) and _reply_ok(reply):
+                self.journal.record(payload)
+            return reply
+
+    def handle_cancel(self, payload: bytes) -> bytes:
+        worker = self.worker  # no lock: a cancel must get through while a call runs
+        reply = worker.cancel(payload) if worker is not None else None
+        if reply is None:
+            return self._error(payload, ErrorType.UNAVAILABLE, "planner worker unavailable")
+        return reply
+
+    def _error(self, payload: bytes, error_type: ErrorType, message: str) -> bytes:
+        from nav2_pyif.runtime import _peek_seq
+
+        error = ErrorInfo(error_type.value, message)
+        return encode_reply(
+            Reply(_peek_seq(payload), False, self.host_id, error=error), Op.ACTIVATE
+        )
+
+    # --- restarts ------------------------------------------------------------------------
+    def _on_death(self, worker: Worker, cause: str) -> None:
+        """Called with the lock held."""
+        if self.worker is not worker:
+            return
+        log.error("%s: planner worker %s %s; restarting it", self.spec.key, worker.pid, cause)
+        worker.kill()
+        self.worker, self.overrun_since = None, None
+        self.deaths.append(time.monotonic())
+        self.reason = f"planner worker {cause}; restarting"
+        self._wake.set()
+
+    def _backoff(self) -> float:
+        now = time.monotonic()
+        recent = [t for t in self.deaths if now - t < self.crash_window]
+        if len(recent) < self.crash_threshold:
+            return 0.0
+        return float(min(self.max_backoff, 2.0 ** (len(recent) - self.crash_threshold)))
+
+    def _watch(self) -> None:
+        """Restart dead workers, kill hung ones, notice deaths between calls."""
+        while not self._closing:
+            self._wake.wait(0.2)
+            self._wake.clear()
+            if self._closing:
+                return
+            with self._lock:
+                worker = self.worker
+                if worker is not None and not worker.alive():
+                    self._on_death(worker, worker.exit_description() + " between calls")
+                    worker = None
+                if (
+                    worker is not None
+                    and self.overrun_since is not None
+                    and time.monotonic() - self.overrun_since > self.deadlines.hang_grace
+                ):
+                    if worker.drain():
+                        self.overrun_since, self.reason = None, ""
+                    else:
+                        self._on_death(worker, "stayed stuck past its deadline and was killed")
+                        worker = None
+                needs_restart = self.worker is None
+            if needs_restart:
+                self._restart()
+
+    def _restart(self) -> None:
+        delay = self._backoff()
+        if delay:
+            recent = sum(1 for t in self.deaths if time.monotonic() - t < self.crash_window)
+            with self._lock:
+                self.reason = (
+                    f"crash-looping: the worker died {recent} times in "
+                    f"{self.crash_window:g} s; next restart in {delay:g} s"
+                )
+            log.error("%s: %s", self.spec.key, self.reason)
+            if self._sleep(delay):
+                return
+        try:
+            worker = self._new_worker(self.spec)
+            worker.wait_loaded(self.deadlines.configure)
+            self._replay(worker, self.journal.snapshot())
+        except (PlannerLoadError, WorkerDied) as exc:
+            self.deaths.append(time.monotonic())
+            with self._lock:
+                self.reason = f"restart failed: {exc}"
+            log.error("%s: restart failed: %s", self.spec.key, exc)
+            self._wake.set()
+            return
+        with self._lock:  # no state changed meanwhile: calls were answered Unavailable
+            self.worker, self.reason, self.restarts = worker, "", self.restarts + 1
+        log.warning(
+            "%s: worker %s restarted, %d session(s) restored",
+            self.spec.key,
+            worker.pid,
+            len(self.journal),
+        )
+
+    def _sleep(self, seconds: float) -> bool:
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            if self._closing:
+                return True
+            time.sleep(0.05)
+        return False
+
+    def _replay(self, worker: Worker, snapshot: Snapshot) -> None:
+        """Tell ``worker`` what each session told the planner. A session whose replay fails
+        is dropped from the journal: its plugin gets SessionUnknown and re-sends its state."""
+        for sid, (_, requests) in snapshot.items():
+            for op, payload in requests:
+                reply = worker.call(op, payload, self.deadlines.of(op))
+                if reply is None or not _reply_ok(reply):
+                    log.warning(
+                        "%s: could not restore session %s (%s failed)", self.spec.key, sid[:8], op
+                    )
+                    self.journal.forget(sid)
+                    break
+
+    # --- hot swap ----------------------------------------------------------------------
+    def reload(self, spec: PlannerSpec | None = None) -> str:
+        """Swap in ``spec`` (default: a fresh import of the current planner) on this live
+        key. Raises PlannerLoadError (the old planner keeps serving) when it cannot."""
+        new_spec = spec or self.spec
+        worker = self._new_worker(new_spec)
+        try:
+            plugin_type = worker.wait_loaded(self.deadlines.configure)
+            if len(self.journal) and plugin_type is not self.plugin_type:
+                raise PlannerLoadError(
+                    f"{new_spec.describe()} is a {plugin_type.value}; this "
+                    f"key serves a {self.plugin_type.value}"
+                )
+            snapshot = self.journal.snapshot()
+            self._replay(worker, snapshot)
+            with self._lock:
+                self._replay(worker, self.journal.changed_since(snapshot))
+                old, self.worker = self.worker, worker
+                self.spec, self.plugin_type = new_spec, plugin_type
+                self.reason, self.overrun_since = "", None
+        except (PlannerLoadError, WorkerDied) as exc:
+            worker.kill()
+            raise PlannerLoadError(f"reload refused, still serving {self.label}: {exc}") from exc
+        if old is not None:
+            old.stop()
+        message = (
+            f"{self.spec.key}: now serving {new_spec.describe()} "
+            f"(worker {worker.pid}, {len(self.journal)} session(s) carried over)"
+        )
+        log.info("%s", message)
+        return message

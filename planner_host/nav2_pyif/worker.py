@@ -1,0 +1,74 @@
+"""The worker process: loads one planner and answers calls from its supervisor over a pipe.
+
+Pipe messages: supervisor -> worker ``op NUL request-bytes`` (empty: exit); worker ->
+supervisor, first a load report (msgpack ``["loaded", plugin_type]`` or ``["load_error",
+message]``), then one reply per call. Cancellations arrive on a second pipe and are answered
+by a thread, while the main thread may be busy in the planner.
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import signal
+import threading
+from multiprocessing.connection import Connection
+
+import msgpack
+
+from nav2_pyif.runtime import PlannerRuntime
+from nav2_pyif.spec import PlannerSpec
+
+LOADED, LOAD_ERROR = "loaded", "load_error"
+
+
+def _limit_memory(limit_bytes: int | None) -> None:
+    """An address-space cap: a memory hog gets MemoryError (a typed error), not the OOM
+    killer's attention for the whole machine."""
+    if limit_bytes:
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (limit_bytes, limit_bytes))
+
+
+def _serve_cancels(cancels: Connection, runtime: PlannerRuntime) -> None:
+    while True:
+        try:
+            payload = cancels.recv_bytes()
+        except (EOFError, OSError):
+            return
+        cancels.send_bytes(runtime.handle_cancel(payload))
+
+
+def worker_main(
+    calls: Connection,
+    cancels: Connection,
+    spec: PlannerSpec,
+    host_id: str,
+    memory_limit: int | None,
+    log_level: str,
+) -> None:
+    logging.basicConfig(
+        level=log_level,
+        format=f"[%(asctime)s] [%(levelname)s] [worker {os.getpid()}] [%(name)s] %(message)s",
+    )
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the host's: it stops us
+    _limit_memory(memory_limit)
+    try:
+        planner_class = spec.load()
+    except BaseException as exc:  # import errors, syntax errors, SystemExit at import...
+        calls.send_bytes(msgpack.packb([LOAD_ERROR, str(exc)]))
+        return
+    runtime = PlannerRuntime(planner_class, host_id, label=spec.describe())
+    calls.send_bytes(msgpack.packb([LOADED, runtime.plugin_type.value]))
+    threading.Thread(target=_serve_cancels, args=(cancels, runtime), daemon=True).start()
+    while True:
+        try:
+            message = calls.recv_bytes()
+        except (EOFError, OSError):
+            break
+        if not message:
+            break
+        op, _, payload = message.partition(b"\0")
+        calls.send_bytes(runtime.handle(payload, key_op=op.decode()))
+    runtime.close()
