@@ -117,7 +117,7 @@ def build_parser() -> argparse.ArgumentParser:
     safety.add_argument(
         "--memory-limit",
         type=int,
-        default=8192,
+        default=0,
         metavar="MB",
         help="address-space limit of each worker process; a planner exceeding it gets "
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",

@@ -7,12 +7,51 @@ import logging
 import sys
 
 from nav2_pyif.sim.cli import add_sim_parser
+from nav2_pyif.zenoh_config import add_zenoh_arguments
+
+
+def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    p = subparsers.add_parser(
+        "reload",
+        help="hot-swap the planner served on a key (no Nav2 restart)",
+        description="Ask the planner host serving KEY to load a new planner, or re-import "
+        "the current one, while Nav2 keeps calling: sessions carry over.",
+    )
+    p.add_argument("--key", required=True, metavar="PREFIX")
+    p.add_argument("--planner", metavar="MODULE:CLASS", help="default: re-import the current")
+    p.add_argument("--module", metavar="MODULE", help="function-delegate style")
+    p.add_argument("--delegate", action="append", default=[], metavar="ROLE=FUNCTION")
+    add_zenoh_arguments(p)
+    p.set_defaults(func=run_reload)
+
+
+def run_reload(args: argparse.Namespace) -> int:
+    from nav2_pyif.client.admin import request_reload
+    from nav2_pyif.delegates import parse_delegates
+    from nav2_pyif.exceptions import PlannerLoadError
+    from nav2_pyif.zenoh_config import open_session, options_from_args
+
+    session = open_session(options_from_args(args))
+    try:
+        delegates = parse_delegates(args.delegate) if args.delegate else None
+        print(
+            request_reload(
+                session, args.key, planner=args.planner, module=args.module, delegates=delegates
+            )
+        )
+        return 0
+    except (PlannerLoadError, TimeoutError) as exc:
+        print(f"nav2-pyif reload: {exc}", file=sys.stderr)
+        return 1
+    finally:
+        session.close()
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="nav2-pyif", description="nav2_pyif tools")
     subparsers = parser.add_subparsers(required=True, metavar="COMMAND")
     add_sim_parser(subparsers)
+    add_reload_parser(subparsers)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
     code: int = args.func(args)

@@ -1,0 +1,58 @@
+// The operations of the protocol and their wire names (the request's `op`, also the last
+// chunk of the Zenoh key `P/rpc/<op>`).
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+namespace nav2_pyif_bridge::protocol
+{
+
+// The enumerator order is also the order of the alternatives of RequestBody and ReplyBody
+// (bodies.hpp), so a body's variant index *is* its op; bodies.hpp checks this at compile time.
+enum class Op : std::uint8_t
+{
+  Configure,
+  Activate,
+  Deactivate,
+  Cleanup,
+  SetParameters,
+  // controller
+  SetPlan,
+  ComputeVelocityCommands,
+  SetSpeedLimit,
+  Cancel,
+  Reset,
+  // global planner
+  CreatePlan,
+  CancelPlan,
+};
+
+inline constexpr std::size_t kOpCount = 12;
+
+inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
+  "configure", "activate", "deactivate", "cleanup", "set_parameters", "set_plan",
+  "compute_velocity_commands", "set_speed_limit", "cancel", "reset", "create_plan",
+  "cancel_plan",
+};
+
+constexpr std::string_view op_name(Op op) noexcept
+{
+  return kOpNames[static_cast<std::size_t>(op)];
+}
+
+// std::nullopt for a name this version of the protocol does not know.
+constexpr std::optional<Op> op_from_name(std::string_view name) noexcept
+{
+  for (std::size_t i = 0; i < kOpCount; ++i) {
+    if (kOpNames[i] == name) {
+      return static_cast<Op>(i);
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace nav2_pyif_bridge::protocol
