@@ -257,6 +257,7 @@ def test_a_worker_stuck_in_native_code_is_killed_and_restarted(fresh_rig: Rig) -
 
 def test_kill_9_of_the_worker_from_outside(fresh_rig: Rig) -> None:
     worker = worker_pid(fresh_rig)
+    assert worker is not None, fresh_rig.host.log()
     os.kill(worker, signal.SIGKILL)
     deadline = time.monotonic() + 30
     while worker_pid(fresh_rig) in (worker, None):
