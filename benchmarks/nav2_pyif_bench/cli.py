@@ -10,7 +10,7 @@ import argparse
 import json
 import sys
 
-from nav2_pyif_bench import mppi_bench, protocol_bench
+from nav2_pyif_bench import mppi_bench, protocol_bench, reliability_bench
 from nav2_pyif_bench.stats import machine_description
 
 
@@ -26,16 +26,23 @@ def main(argv: list[str] | None = None) -> int:
     mppi = sub.add_parser("mppi", help="the MPPI controller's rate through a planner host")
     mppi.add_argument("--batch-sizes", type=int, nargs="+", default=[1000, 2000])
     mppi.add_argument("--map", default="office")
-    for p in (protocol, mppi):
+    reliability = sub.add_parser("reliability", help="hot swap gap, memory over a long run")
+    reliability.add_argument("--swaps", type=int, default=6)
+    reliability.add_argument("--calls", type=int, default=200_000)
+    reliability.add_argument("--cycles", type=int, default=100, help="lifecycle cycles")
+    for p in (protocol, mppi, reliability):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     print(f"machine: {machine_description()}\n", flush=True)
     if args.bench == "protocol":
         results = protocol_bench.run(protocol_bench.apply_quick(args))
         text = protocol_bench.report(results)
-    else:
+    elif args.bench == "mppi":
         results = mppi_bench.run(args)
         text = mppi_bench.report(results)
+    else:
+        results = reliability_bench.run(args)
+        text = reliability_bench.report(results)
     print(text)
     if args.json:
         with open(args.json, "w") as f:

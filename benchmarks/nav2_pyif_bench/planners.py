@@ -21,3 +21,14 @@ class TrivialController(Controller):
         cmd = TwistStamped(header=pose.header)
         cmd.twist.linear.x = 0.1
         return cmd
+
+
+class TrivialControllerV2(TrivialController):
+    """A 'new version' for hot-swap runs: reports 2.0 in angular.x."""
+
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
+        cmd = super().compute_velocity_commands(pose, velocity, goal_checker)
+        cmd.twist.angular.x = 2.0
+        return cmd

@@ -30,6 +30,7 @@ from nav2_pyif_bench.rclpy_client import RclpyWorkaroundClient, path_message
 from nav2_pyif_bench.stats import Summary, header_row
 
 KEY = "nav2_pyif/bench/FollowPath"
+INPROC_KEY = "nav2_pyif/bench/InProcess"
 BARE_KEY = "nav2_pyif/bench/bare"
 TIMEOUTS = Timeouts(call=2.0, lifecycle=5.0, configure=10.0)
 
@@ -123,7 +124,7 @@ def throughput(session: zenoh.Session, threads: int, seconds: float) -> float:
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    host_port, bare_port = free_port(), free_port()
+    host_port, bare_port, inproc_port = free_port(), free_port(), free_port()
     env = ros_localhost_env()
     commands = {
         "host": [
@@ -137,6 +138,20 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             "nav2_pyif_bench.planners:TrivialController",
             "--log-level",
             "WARNING",
+        ],
+        "inproc": [
+            "-m",
+            "nav2_pyif.cli",
+            "--listen",
+            f"tcp/127.0.0.1:{inproc_port}",
+            "--key",
+            INPROC_KEY,
+            "--planner",
+            "nav2_pyif_bench.planners:TrivialController",
+            "--log-level",
+            "WARNING",
+            "--isolation",
+            "none",
         ],
         "bare": [
             "-m",
@@ -153,7 +168,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     os.environ.update(env)
     results: dict[str, Any] = {}
     with peer_processes(commands, env):
-        session = open_session([f"tcp/127.0.0.1:{host_port}", f"tcp/127.0.0.1:{bare_port}"])
+        session = open_session(
+            [f"tcp/127.0.0.1:{port}" for port in (host_port, bare_port, inproc_port)]
+        )
         ros = RclpyWorkaroundClient()
         client = ControllerClient(session, KEY, costmap(10), timeouts=TIMEOUTS, record_calls=True)
         try:
@@ -162,6 +179,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                 raise RuntimeError("planner host did not come up")
             client.configure()
             client.activate()
+            inproc = ControllerClient(session, INPROC_KEY, costmap(10), timeouts=TIMEOUTS)
+            if not inproc.wait_for_host(30):
+                raise RuntimeError("in-process planner host did not come up")
+            inproc.configure()
+            inproc.activate()
             deadline = time.monotonic() + 30
             while True:
                 try:
@@ -181,6 +203,9 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                     "bare": lambda: bare_get(session),
                     "host_floor": lambda: host_floor(session, unknown),
                     "pyif": lambda: timed(lambda: client.compute_velocity_commands(pose, velocity)),
+                    "pyif_inproc": lambda: timed(
+                        lambda: inproc.compute_velocity_commands(pose, velocity)
+                    ),
                     "rclpy": lambda: ros.cycle(odom),
                 },
                 args.rounds,
@@ -264,16 +289,19 @@ def report(results: dict[str, Any]) -> str:
         header_row(),
         c["bare"].row("bare Zenoh get -> empty reply"),
         c["host_floor"].row("host's cheapest reply (SessionUnknown)"),
-        c["pyif"].row("nav2_pyif client -> Zenoh -> host"),
+        c["pyif"].row("nav2_pyif cycle, worker process (default)"),
+        c["pyif_inproc"].row("nav2_pyif cycle, --isolation none"),
         c["host_handler"].row("  of which host handler (decode..encode)"),
         c["rclpy"].row("rclpy node over topics (workaround)"),
     ]
-    overhead = c["pyif"].median_us - c["bare"].median_us
+    overhead = c["pyif_inproc"].median_us - c["bare"].median_us
+    isolation = c["pyif"].median_us - c["pyif_inproc"].median_us
     ratio = c["rclpy"].median_us / c["pyif"].median_us
     lines += [
-        f"  nav2_pyif over bare Zenoh: +{overhead:.1f} µs median (target <= 50 µs): "
-        f"{'MET' if overhead <= 50 else 'NOT MET'}",
-        f"  rclpy node / nav2_pyif: {ratio:.2f}x median (target >= 2x): "
+        f"  nav2_pyif (--isolation none) over bare Zenoh: +{overhead:.1f} µs median "
+        f"(target <= 50 µs): {'MET' if overhead <= 50 else 'NOT MET'}",
+        f"  the worker process (crash isolation) adds {isolation:+.1f} µs median",
+        f"  rclpy node / nav2_pyif (worker process): {ratio:.2f}x median (target >= 2x): "
         f"{'MET' if ratio >= 2 else 'NOT MET'}",
         "",
     ]

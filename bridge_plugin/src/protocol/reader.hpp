@@ -1,0 +1,98 @@
+// Typed reads of a decoded msgpack tree, each naming the field at fault when the tree breaks
+// the schema. decode.cpp says *which* fields a message has; this says how each kind of field
+// is read and checked (PROTOCOL.md section 2: an int is accepted where a float is specified,
+// nil counts as absent, unknown keys are ignored).
+#pragma once
+
+#include <msgpack.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "field_path.hpp"
+#include "nav2_pyif_bridge/protocol/params.hpp"
+
+namespace nav2_pyif_bridge::protocol::detail
+{
+
+using Object = msgpack::object;
+
+// Throws DecodeError (BadRequest) for the field at `where`.
+[[noreturn]] void fail(const FieldPath & where, const std::string & problem);
+
+// The msgpack name of an object's type ("int", "str", "array", ...), for "got ..." messages.
+const char * type_name(const Object & object) noexcept;
+
+std::string read_str(const Object & object, const FieldPath & where);
+bool read_bool(const Object & object, const FieldPath & where);
+std::int64_t read_i64(const Object & object, const FieldPath & where);
+std::uint64_t read_u64(const Object & object, const FieldPath & where);
+std::uint32_t read_u32(const Object & object, const FieldPath & where);
+double read_f64(const Object & object, const FieldPath & where);
+std::vector<std::uint8_t> read_bin(const Object & object, const FieldPath & where);
+// A packed little-endian float64 array whose length is a whole number of rows.
+std::vector<double> read_packed_f64(
+  const Object & object, const FieldPath & where, std::size_t row_size);
+Params read_params(const Object & object, const FieldPath & where);
+StringMap read_str_map(const Object & object, const FieldPath & where);
+
+// A msgpack array of exactly N floats (float[6], float[7]).
+void read_f64_array(const Object & object, const FieldPath & where, double * out, std::size_t n);
+template<std::size_t N>
+std::array<double, N> read_f64_array(const Object & object, const FieldPath & where)
+{
+  std::array<double, N> out{};
+  read_f64_array(object, where, out.data(), N);
+  return out;
+}
+
+// A map with string keys, read field by field.
+class MapReader
+{
+public:
+  // Throws unless `object` is a map.
+  MapReader(const Object & object, const FieldPath & where);
+
+  // nullptr when the key is absent or nil. A repeated key counts with its last value, as in
+  // a Python dict.
+  const Object * find(std::string_view key) const noexcept;
+
+  // `read(object, path)` on a field that must be present.
+  template<class Read>
+  auto required(std::string_view key, Read read) const
+  {
+    const Object * object = find(key);
+    if (object == nullptr) {
+      fail(where_, "missing field '" + std::string(key) + "'");
+    }
+    return read(*object, where_.key(key));
+  }
+
+  // `read(object, path)` on a field that may be absent.
+  template<class Read>
+  auto optional(std::string_view key, Read read) const
+  ->std::optional<decltype(read(std::declval<const Object &>(), std::declval<FieldPath>()))>
+  {
+    const Object * object = find(key);
+    if (object == nullptr) {
+      return std::nullopt;
+    }
+    return read(*object, where_.key(key));
+  }
+
+  const FieldPath & where() const noexcept {return where_;}
+
+private:
+  const msgpack::object_map & map_;
+  // A copy, so a MapReader built from a temporary path stays valid; the parents it points
+  // to live further up the stack.
+  FieldPath where_;
+};
+
+}  // namespace nav2_pyif_bridge::protocol::detail

@@ -1,0 +1,105 @@
+#include "writer.hpp"
+
+#include <limits>
+#include <string>
+
+#include "nav2_pyif_bridge/protocol/errors.hpp"
+#include "packed.hpp"
+#include "utf8.hpp"
+
+namespace nav2_pyif_bridge::protocol::detail
+{
+namespace
+{
+
+// msgpack lengths are 32-bit; nothing in this protocol comes near that, but a silent
+// truncation would corrupt the message, so refuse it.
+std::uint32_t length32(std::size_t size, const char * what)
+{
+  if (size > std::numeric_limits<std::uint32_t>::max()) {
+    throw EncodeError(std::string(what) + " of " + std::to_string(size) +
+            " elements exceeds msgpack's 32-bit length");
+  }
+  return static_cast<std::uint32_t>(size);
+}
+
+}  // namespace
+
+Writer::Writer(std::size_t capacity_hint)
+{
+  out_.reserve(capacity_hint);
+}
+
+void Writer::map(std::size_t entries)
+{
+  packer_.pack_map(length32(entries, "map"));
+}
+
+void Writer::array(std::size_t elements)
+{
+  packer_.pack_array(length32(elements, "array"));
+}
+
+void Writer::key(std::string_view name)
+{
+  const auto size = length32(name.size(), "str");
+  packer_.pack_str(size);
+  packer_.pack_str_body(name.data(), size);
+}
+
+void Writer::str(std::string_view text, const FieldPath & where)
+{
+  if (!is_valid_utf8(text.data(), text.size())) {
+    throw EncodeError(where.str() + ": not valid UTF-8 (msgpack str is UTF-8 text)");
+  }
+  key(text);
+}
+
+void Writer::i64(std::int64_t value)
+{
+  // pack_int64 picks the shortest form and writes non-negative values as unsigned, exactly
+  // as msgpack-python does; the vectors check both.
+  packer_.pack_int64(value);
+}
+
+void Writer::u64(std::uint64_t value)
+{
+  packer_.pack_uint64(value);
+}
+
+void Writer::f64(double value)
+{
+  packer_.pack_double(value);  // always 0xcb + 8 bytes, even for whole numbers
+}
+
+void Writer::boolean(bool value)
+{
+  if (value) {
+    packer_.pack_true();
+  } else {
+    packer_.pack_false();
+  }
+}
+
+void Writer::bin(const std::uint8_t * data, std::size_t size)
+{
+  const auto size32 = length32(size, "bin");
+  packer_.pack_bin(size32);
+  packer_.pack_bin_body(reinterpret_cast<const char *>(data), size32);
+}
+
+void Writer::packed_f64(const std::vector<double> & values)
+{
+  const std::size_t bytes = values.size() * 8;
+  packer_.pack_bin(length32(bytes, "bin"));
+  // The body goes straight into the output (no temporary buffer for a 1000-pose plan).
+  const std::size_t start = out_.size();
+  out_.resize(start + bytes);
+  std::uint8_t * cursor = out_.data() + start;
+  for (const double value : values) {
+    store_f64_le(value, cursor);
+    cursor += 8;
+  }
+}
+
+}  // namespace nav2_pyif_bridge::protocol::detail
