@@ -366,3 +366,40 @@ def test_host_survives_a_session_of_zenoh_clients_leaving(rig: Rig) -> None:
     client.configure()
     other.close()  # vanishes without cleanup
     assert_recovered(rig)
+
+
+def test_a_new_version_of_the_module_replaces_the_old_one(tmp_path: Path) -> None:
+    source = tmp_path / "versioned_ctrl.py"
+    template = (
+        "from geometry_msgs.msg import TwistStamped\n"
+        "from nav2_pyif import Controller\n\n\n"
+        "class Versioned(Controller):\n"
+        "    def compute_velocity_commands(self, pose, velocity, goal_checker):\n"
+        "        cmd = TwistStamped(header=pose.header)\n"
+        "        cmd.twist.linear.x = float(len(self.plan)) if self.plan else 0.0\n"
+        "        cmd.twist.angular.z = VERSION\n"
+        "        return cmd\n"
+    )
+    source.write_text(template.replace("VERSION", "1.0"))
+    host = HostProcess(
+        free_port(),
+        ["--key", KEY, "--planner", "versioned_ctrl:Versioned", "--path", str(tmp_path)],
+        tmp_path / "host.log",
+    ).start()
+    session = open_client_session(host.endpoint)
+    client = ControllerClient(session, KEY, make_costmap(), timeouts=TIMEOUTS)
+    try:
+        assert client.wait_for_host(30), host.log()
+        client.configure()
+        client.activate()
+        client.set_plan(Plan(np.zeros((PLAN_LENGTH, 3)), "odom"))
+        assert client.compute_velocity_commands(pose(), Twist()).twist.angular.z == 1.0
+        source.write_text(template.replace("VERSION", "2.0"))  # the researcher edits the file
+        assert "now serving versioned_ctrl:Versioned" in request_reload(session, KEY)
+        cmd = client.compute_velocity_commands(pose(), Twist())
+        assert (cmd.twist.angular.z, cmd.twist.linear.x) == (2.0, PLAN_LENGTH)
+        assert client.resyncs == 0
+    finally:
+        client.close()
+        session.close()
+        host.stop()
