@@ -403,3 +403,29 @@ def test_a_new_version_of_the_module_replaces_the_old_one(tmp_path: Path) -> Non
         client.close()
         session.close()
         host.stop()
+
+
+def _rss_mib(pid: int) -> float:
+    from nav2_pyif_bench.reliability_bench import _family, _rss_kb
+
+    return sum(_rss_kb(p) for p in _family(pid)) / 1024
+
+
+def test_100_lifecycle_cycles_with_numpy_do_not_grow_memory(rig: Rig) -> None:
+    assert rig.host.proc is not None
+    client = ControllerClient(rig.session, KEY, make_costmap(), timeouts=TIMEOUTS)
+    assert client.wait_for_host(10)
+    for _ in range(10):  # warm-up
+        client.configure()
+        client.cleanup()
+    before = _rss_mib(rig.host.proc.pid)
+    for _ in range(100):
+        client.configure()
+        client.activate()
+        client.set_plan(Plan(np.zeros((50, 3)), "odom"))  # NumPy arrays in the planner
+        assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 50
+        client.deactivate()
+        client.cleanup()
+    growth = _rss_mib(rig.host.proc.pid) - before
+    assert growth < 8.0, f"host + workers grew {growth:.1f} MiB over 100 cycles"
+    client.close()

@@ -1,0 +1,435 @@
+#include "json_tree.hpp"
+
+#include <msgpack.hpp>
+#include <zlib.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <variant>
+
+namespace nav2_pyif_bridge::protocol::test
+{
+namespace
+{
+
+constexpr std::size_t kInlineBinLimit = 4096;
+
+Json bin_json(const std::uint8_t * data, std::size_t size)
+{
+  if (size > kInlineBinLimit) {
+    const auto crc = crc32(0L, data, static_cast<uInt>(size));
+    return Json{{"$bin_len", size}, {"$bin_crc32", static_cast<std::uint64_t>(crc)}};
+  }
+  static const char * digits = "0123456789abcdef";
+  std::string hex;
+  hex.reserve(2 * size);
+  for (std::size_t i = 0; i < size; ++i) {
+    hex.push_back(digits[data[i] >> 4]);
+    hex.push_back(digits[data[i] & 0xF]);
+  }
+  return Json{{"$bin", hex}};
+}
+
+Json bin_json(const std::vector<std::uint8_t> & bytes)
+{
+  return bin_json(bytes.data(), bytes.size());
+}
+
+// float64 values as little-endian bytes, written out byte by byte on purpose (an oracle
+// independent of the codec's own packing).
+Json packed_json(const std::vector<double> & values)
+{
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(values.size() * 8);
+  for (const double value : values) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &value, 8);
+    for (int i = 0; i < 8; ++i) {
+      bytes.push_back(static_cast<std::uint8_t>((bits >> (8 * i)) & 0xFF));
+    }
+  }
+  return bin_json(bytes);
+}
+
+Json float_json(double value)
+{
+  if (std::isnan(value)) {
+    return Json{{"$float", "nan"}};
+  }
+  if (std::isinf(value)) {
+    return Json{{"$float", value > 0 ? "inf" : "-inf"}};
+  }
+  return Json(value);
+}
+
+template<std::size_t N>
+Json floats_json(const std::array<double, N> & values)
+{
+  Json out = Json::array();
+  for (const double value : values) {
+    out.push_back(float_json(value));
+  }
+  return out;
+}
+
+Json to_json(const PoseStamped & pose)
+{
+  return Json{{"frame_id", pose.frame_id}, {"stamp_ns", pose.stamp_ns},
+    {"pose", floats_json(pose.pose)}};
+}
+
+Json to_json(const TwistStamped & twist)
+{
+  return Json{{"frame_id", twist.frame_id}, {"stamp_ns", twist.stamp_ns},
+    {"twist", floats_json(twist.twist)}};
+}
+
+Json to_json(const Path & path)
+{
+  return Json{{"frame_id", path.frame_id}, {"stamp_ns", path.stamp_ns},
+    {"poses", packed_json(path.poses)}};
+}
+
+Json to_json(const Costmap & c)
+{
+  Json out = Json::object();
+  out["version"] = c.version;
+  out["frame_id"] = c.frame_id;
+  out["size_x"] = c.size_x;
+  out["size_y"] = c.size_y;
+  out["resolution"] = float_json(c.resolution);
+  out["origin_x"] = float_json(c.origin_x);
+  out["origin_y"] = float_json(c.origin_y);
+  out["data"] = bin_json(c.data);
+  out["footprint"] = packed_json(c.footprint);
+  out["robot_radius"] = float_json(c.robot_radius);
+  return out;
+}
+
+Json to_json(const GoalChecker & g)
+{
+  Json out = Json::object();
+  out["xy_goal_tolerance"] = float_json(g.xy_goal_tolerance);
+  out["yaw_goal_tolerance"] = float_json(g.yaw_goal_tolerance);
+  out["trans_stopped_velocity"] = float_json(g.trans_stopped_velocity);
+  out["rot_stopped_velocity"] = float_json(g.rot_stopped_velocity);
+  return out;
+}
+
+Json to_json(const Error & e)
+{
+  return Json{{"type", e.type}, {"message", e.message}, {"traceback", e.traceback},
+    {"python_type", e.python_type}};
+}
+
+Json param_json(const ParamValue & value)
+{
+  return std::visit(
+    [](const auto & v) -> Json {
+      using T = std::decay_t<decltype(v)>;
+      if constexpr (std::is_same_v<T, double>) {
+        return float_json(v);
+      } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+        Json out = Json::array();
+        for (const double item : v) {
+          out.push_back(float_json(item));
+        }
+        return out;
+      } else if constexpr (std::is_same_v<T, std::vector<bool>>) {
+        Json out = Json::array();
+        for (const bool item : v) {
+          out.push_back(item);
+        }
+        return out;
+      } else {
+        return Json(v);
+      }
+    },
+    value);
+}
+
+template<class Value>
+Json map_json(const OrderedMap<Value> & map)
+{
+  Json out = Json::object();
+  for (const auto & [name, value] : map) {
+    if constexpr (std::is_same_v<Value, ParamValue>) {
+      out[name] = param_json(value);
+    } else {
+      out[name] = value;
+    }
+  }
+  return out;
+}
+
+// An empty body is `{}`, whatever its op.
+template<class Body>
+Json body_json(const Body &)
+{
+  static_assert(std::is_empty_v<Body>, "every non-empty body has its own overload");
+  return Json::object();
+}
+
+Json body_json(const ConfigureRequest & b)
+{
+  Json out = Json::object();
+  out["plugin_type"] = b.plugin_type;
+  out["name"] = b.name;
+  out["node"] = b.node;
+  out["params"] = map_json(b.params);
+  out["global_frame"] = b.global_frame;
+  out["robot_base_frame"] = b.robot_base_frame;
+  out["costmap"] = to_json(b.costmap);
+  return out;
+}
+
+Json body_json(const SetParametersRequest & b) {return Json{{"params", map_json(b.params)}};}
+Json body_json(const SetPlanRequest & b) {return Json{{"path", to_json(b.path)}};}
+
+Json body_json(const ComputeVelocityCommandsRequest & b)
+{
+  Json out = Json::object();
+  out["pose"] = to_json(b.pose);
+  out["velocity"] = floats_json(b.velocity);
+  if (b.goal_checker) {
+    out["goal_checker"] = to_json(*b.goal_checker);
+  }
+  if (b.costmap) {
+    out["costmap"] = to_json(*b.costmap);
+  }
+  return out;
+}
+
+Json body_json(const SetSpeedLimitRequest & b)
+{
+  return Json{{"speed_limit", float_json(b.speed_limit)}, {"percentage", b.percentage}};
+}
+
+Json body_json(const CreatePlanRequest & b)
+{
+  Json out = Json::object();
+  out["start"] = to_json(b.start);
+  out["goal"] = to_json(b.goal);
+  if (b.costmap) {
+    out["costmap"] = to_json(*b.costmap);
+  }
+  return out;
+}
+
+Json body_json(const CancelPlanRequest & b) {return Json{{"target_seq", b.target_seq}};}
+Json body_json(const ConfigureReply & b) {return Json{{"declared", map_json(b.declared)}};}
+Json body_json(const SetParametersReply & b) {return Json{{"rejected", map_json(b.rejected)}};}
+Json body_json(const ComputeVelocityCommandsReply & b)
+{
+  return Json{{"cmd_vel", to_json(b.cmd_vel)}};
+}
+Json body_json(const CancelReply & b) {return Json{{"cancelled", b.cancelled}};}
+Json body_json(const CreatePlanReply & b) {return Json{{"path", to_json(b.path)}};}
+Json body_json(const CancelPlanReply & b) {return Json{{"accepted", b.accepted}};}
+
+// --- comparison ---------------------------------------------------------------------------
+
+// An integer as (negative, magnitude): JSON parsers keep non-negative ints unsigned and the
+// typed structs give signed ones, and only the value matters.
+std::pair<bool, std::uint64_t> int_value(const Json & j)
+{
+  if (j.is_number_unsigned()) {
+    return {false, j.get<std::uint64_t>()};
+  }
+  const auto v = j.get<std::int64_t>();
+  return v < 0 ? std::make_pair(true, static_cast<std::uint64_t>(-(v + 1)) + 1) :
+         std::make_pair(false, static_cast<std::uint64_t>(v));
+}
+
+std::string kind(const Json & j)
+{
+  if (j.is_number_integer()) {
+    return "int";
+  }
+  if (j.is_number_float()) {
+    return "float";
+  }
+  return j.type_name();
+}
+
+std::string diff(const Json & expected, const Json & actual, const std::string & where)
+{
+  const std::string at = where.empty() ? "<root>" : where;
+  if (kind(expected) != kind(actual)) {
+    return at + ": expected " + kind(expected) + " " + expected.dump() + ", got " +
+           kind(actual) + " " + actual.dump();
+  }
+  if (expected.is_object()) {
+    auto e = expected.items().begin();
+    auto a = actual.items().begin();
+    for (; e != expected.items().end() && a != actual.items().end(); ++e, ++a) {
+      if (e.key() != a.key()) {
+        return at + ": expected key '" + e.key() + "', got key '" + a.key() + "' (order)";
+      }
+      std::string d = diff(e.value(), a.value(), where + "." + e.key());
+      if (!d.empty()) {
+        return d;
+      }
+    }
+    if (expected.size() != actual.size()) {
+      return at + ": expected " + std::to_string(expected.size()) + " keys " + expected.dump() +
+             ", got " + std::to_string(actual.size()) + " " + actual.dump();
+    }
+    return "";
+  }
+  if (expected.is_array()) {
+    if (expected.size() != actual.size()) {
+      return at + ": expected " + std::to_string(expected.size()) + " elements, got " +
+             std::to_string(actual.size());
+    }
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      std::string d = diff(expected[i], actual[i], where + "[" + std::to_string(i) + "]");
+      if (!d.empty()) {
+        return d;
+      }
+    }
+    return "";
+  }
+  bool equal = false;
+  if (expected.is_number_integer()) {
+    equal = int_value(expected) == int_value(actual);
+  } else if (expected.is_number_float()) {
+    const double e = expected.get<double>();
+    const double a = actual.get<double>();
+    equal = std::memcmp(&e, &a, sizeof e) == 0;
+  } else {
+    equal = expected == actual;
+  }
+  return equal ? "" : at + ": expected " + expected.dump() + ", got " + actual.dump();
+}
+
+// --- packing ------------------------------------------------------------------------------
+
+std::string unhex(const std::string & hex)
+{
+  std::string out;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) {
+    out.push_back(static_cast<char>(std::stoi(hex.substr(i, 2), nullptr, 16)));
+  }
+  return out;
+}
+
+struct Sink
+{
+  std::vector<std::uint8_t> & out;
+  void write(const char * data, std::size_t size) {out.insert(out.end(), data, data + size);}
+};
+
+void pack(msgpack::packer<Sink> & p, const Json & j)
+{
+  switch (j.type()) {
+    case Json::value_t::null:
+      p.pack_nil();
+      return;
+    case Json::value_t::boolean:
+      j.get<bool>() ? p.pack_true() : p.pack_false();
+      return;
+    case Json::value_t::number_unsigned:
+      p.pack_uint64(j.get<std::uint64_t>());
+      return;
+    case Json::value_t::number_integer:
+      p.pack_int64(j.get<std::int64_t>());
+      return;
+    case Json::value_t::number_float:
+      p.pack_double(j.get<double>());
+      return;
+    case Json::value_t::string: {
+        const auto & s = j.get_ref<const std::string &>();
+        p.pack_str(static_cast<std::uint32_t>(s.size()));
+        p.pack_str_body(s.data(), static_cast<std::uint32_t>(s.size()));
+        return;
+      }
+    case Json::value_t::array:
+      p.pack_array(static_cast<std::uint32_t>(j.size()));
+      for (const auto & item : j) {
+        pack(p, item);
+      }
+      return;
+    case Json::value_t::object:
+      if (j.size() == 1 && j.contains("$bin")) {
+        const std::string bytes = unhex(j["$bin"].get<std::string>());
+        p.pack_bin(static_cast<std::uint32_t>(bytes.size()));
+        p.pack_bin_body(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+        return;
+      }
+      if (j.size() == 1 && j.contains("$float")) {
+        const auto name = j["$float"].get<std::string>();
+        const double inf = std::numeric_limits<double>::infinity();
+        p.pack_double(name == "nan" ? std::numeric_limits<double>::quiet_NaN() :
+          name == "inf" ? inf : -inf);
+        return;
+      }
+      if (j.size() == 1 && j.contains("$float32")) {
+        p.pack_float(j["$float32"].get<float>());
+        return;
+      }
+      if (j.contains("$bin_len")) {
+        throw std::invalid_argument("pack_json: a bin above 4 KiB has no bytes in its JSON form");
+      }
+      p.pack_map(static_cast<std::uint32_t>(j.size()));
+      for (const auto & item : j.items()) {
+        p.pack_str(static_cast<std::uint32_t>(item.key().size()));
+        p.pack_str_body(item.key().data(), static_cast<std::uint32_t>(item.key().size()));
+        pack(p, item.value());
+      }
+      return;
+    default:
+      throw std::invalid_argument("pack_json: cannot pack " + std::string(j.type_name()));
+  }
+}
+
+}  // namespace
+
+Json to_json(const Request & request)
+{
+  Json out = Json::object();
+  out["v"] = request.v;
+  out["op"] = std::string(op_name(request.op()));
+  out["sid"] = request.sid;
+  out["epoch"] = request.epoch;
+  out["seq"] = request.seq;
+  out["body"] = std::visit([](const auto & body) {return body_json(body);}, request.body);
+  return out;
+}
+
+Json to_json(const Reply & reply)
+{
+  Json out = Json::object();
+  out["v"] = reply.v;
+  out["seq"] = reply.seq;
+  out["ok"] = reply.ok();
+  if (reply.ok()) {
+    out["body"] = std::visit([](const auto & body) {return body_json(body);}, reply.body());
+  } else {
+    out["error"] = to_json(reply.error());
+  }
+  out["host"] = reply.host;
+  out["compute_ns"] = reply.compute_ns;
+  return out;
+}
+
+std::string first_difference(const Json & expected, const Json & actual)
+{
+  return diff(expected, actual, "");
+}
+
+std::vector<std::uint8_t> pack_json(const Json & tree)
+{
+  std::vector<std::uint8_t> out;
+  Sink sink{out};
+  msgpack::packer<Sink> packer(sink);
+  pack(packer, tree);
+  return out;
+}
+
+}  // namespace nav2_pyif_bridge::protocol::test
