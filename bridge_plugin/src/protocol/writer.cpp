@@ -1,5 +1,6 @@
 #include "writer.hpp"
 
+#include <cstring>
 #include <limits>
 #include <string>
 
@@ -69,7 +70,16 @@ void Writer::u64(std::uint64_t value)
 
 void Writer::f64(double value)
 {
-  packer_.pack_double(value);  // always 0xcb + 8 bytes, even for whole numbers
+  // Written by hand: msgpack-cxx 4.1's pack_double writes whole numbers as ints (2.0 as 2,
+  // -0.0 as 0), which the canonical form forbids. float64 is 0xcb + 8 bytes big-endian.
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  char buf[9];
+  buf[0] = static_cast<char>(0xcb);
+  for (int i = 0; i < 8; ++i) {
+    buf[1 + i] = static_cast<char>((bits >> (56 - 8 * i)) & 0xFF);
+  }
+  sink_.write(buf, sizeof buf);
 }
 
 void Writer::boolean(bool value)

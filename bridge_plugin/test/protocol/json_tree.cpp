@@ -325,7 +325,22 @@ struct Sink
   void write(const char * data, std::size_t size) {out.insert(out.end(), data, data + size);}
 };
 
-void pack(msgpack::packer<Sink> & p, const Json & j)
+// float64 / float32 written by hand: msgpack-cxx 4.1's pack_double and pack_float write
+// whole numbers as ints, and these trees need the exact float forms.
+template<class Float, class Bits>
+void pack_float_bits(Sink & sink, std::uint8_t marker, Float value)
+{
+  Bits bits = 0;
+  std::memcpy(&bits, &value, sizeof bits);
+  std::uint8_t buf[1 + sizeof bits];
+  buf[0] = marker;
+  for (std::size_t i = 0; i < sizeof bits; ++i) {
+    buf[1 + i] = static_cast<std::uint8_t>((bits >> (8 * (sizeof bits - 1 - i))) & 0xFF);
+  }
+  sink.out.insert(sink.out.end(), buf, buf + sizeof buf);
+}
+
+void pack(msgpack::packer<Sink> & p, Sink & sink, const Json & j)
 {
   switch (j.type()) {
     case Json::value_t::null:
@@ -341,7 +356,7 @@ void pack(msgpack::packer<Sink> & p, const Json & j)
       p.pack_int64(j.get<std::int64_t>());
       return;
     case Json::value_t::number_float:
-      p.pack_double(j.get<double>());
+      pack_float_bits<double, std::uint64_t>(sink, 0xcb, j.get<double>());
       return;
     case Json::value_t::string: {
         const auto & s = j.get_ref<const std::string &>();
@@ -352,7 +367,7 @@ void pack(msgpack::packer<Sink> & p, const Json & j)
     case Json::value_t::array:
       p.pack_array(static_cast<std::uint32_t>(j.size()));
       for (const auto & item : j) {
-        pack(p, item);
+        pack(p, sink, item);
       }
       return;
     case Json::value_t::object:
@@ -365,12 +380,13 @@ void pack(msgpack::packer<Sink> & p, const Json & j)
       if (j.size() == 1 && j.contains("$float")) {
         const auto name = j["$float"].get<std::string>();
         const double inf = std::numeric_limits<double>::infinity();
-        p.pack_double(name == "nan" ? std::numeric_limits<double>::quiet_NaN() :
+        pack_float_bits<double, std::uint64_t>(
+          sink, 0xcb, name == "nan" ? std::numeric_limits<double>::quiet_NaN() :
           name == "inf" ? inf : -inf);
         return;
       }
       if (j.size() == 1 && j.contains("$float32")) {
-        p.pack_float(j["$float32"].get<float>());
+        pack_float_bits<float, std::uint32_t>(sink, 0xca, j["$float32"].get<float>());
         return;
       }
       if (j.contains("$bin_len")) {
@@ -380,7 +396,7 @@ void pack(msgpack::packer<Sink> & p, const Json & j)
       for (const auto & item : j.items()) {
         p.pack_str(static_cast<std::uint32_t>(item.key().size()));
         p.pack_str_body(item.key().data(), static_cast<std::uint32_t>(item.key().size()));
-        pack(p, item.value());
+        pack(p, sink, item.value());
       }
       return;
     default:
@@ -428,7 +444,7 @@ std::vector<std::uint8_t> pack_json(const Json & tree)
   std::vector<std::uint8_t> out;
   Sink sink{out};
   msgpack::packer<Sink> packer(sink);
-  pack(packer, tree);
+  pack(packer, sink, tree);
   return out;
 }
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,9 @@ struct VectorEntry
   std::string op;
   std::string description;
 };
+
+// Test names show the vector's name, not a byte dump of the struct.
+inline void PrintTo(const VectorEntry & entry, std::ostream * os) {*os << entry.name;}
 
 // $NAV2_PYIF_VECTORS_DIR when set, else the directory CMake compiled in.
 std::filesystem::path vectors_dir();
