@@ -17,7 +17,8 @@ def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
     assert result.returncode == 0, result.stderr[-3000:]
     for line in (
         "bare Zenoh get -> empty reply",
-        "nav2_pyif client -> Zenoh -> host",
+        "nav2_pyif cycle, worker process (default)",
+        "nav2_pyif cycle, --isolation none",
         "rclpy node over topics",
         "1000-pose plan",
         "400 x 400 costmap",
