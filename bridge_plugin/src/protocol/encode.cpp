@@ -194,9 +194,14 @@ void write(Writer & w, const StringMap & map, const FieldPath & where)
 }
 
 // Bytes to reserve for the large arrays a body carries.
+std::size_t payload_size(const Costmap & costmap)
+{
+  return costmap.data.size() + costmap.footprint.size() * 8;
+}
+
 std::size_t payload_size(const std::optional<Costmap> & costmap)
 {
-  return costmap ? costmap->data.size() + costmap->footprint.size() * 8 : 0;
+  return costmap ? payload_size(*costmap) : 0;
 }
 
 // --- request bodies -------------------------------------------------------------------------
@@ -236,7 +241,7 @@ void write_body(Writer & w, const SetPlanRequest & body, const FieldPath & where
 
 void write_body(Writer & w, const ComputeVelocityCommandsRequest & body, const FieldPath & where)
 {
-  w.map(2 + (body.goal_checker ? 1 : 0) + (body.costmap ? 1 : 0));
+  w.map(std::size_t{2} + (body.goal_checker ? 1u : 0u) + (body.costmap ? 1u : 0u));
   w.key("pose");
   write(w, body.pose, where.key("pose"));
   w.key("velocity");
@@ -262,7 +267,7 @@ void write_body(Writer & w, const SetSpeedLimitRequest & body, const FieldPath &
 
 void write_body(Writer & w, const CreatePlanRequest & body, const FieldPath & where)
 {
-  w.map(2 + (body.costmap ? 1 : 0));
+  w.map(std::size_t{2} + (body.costmap ? 1u : 0u));
   w.key("start");
   write(w, body.start, where.key("start"));
   w.key("goal");

@@ -259,8 +259,8 @@ TEST(DecodeErrors, TrailingBytesAreRefused)
 TEST(DecodeErrors, ForgedLengthsFailWithoutAllocatingThem)
 {
   // An array, a map, a str and a bin each claiming 2^32 - 1 elements / bytes.
-  for (const std::uint8_t header : {0xDD, 0xDF, 0xDB, 0xC6}) {
-    const Bytes forged{header, 0xFF, 0xFF, 0xFF, 0xFF, 0x00};
+  for (const int header : {0xDD, 0xDF, 0xDB, 0xC6}) {
+    const Bytes forged{static_cast<std::uint8_t>(header), 0xFF, 0xFF, 0xFF, 0xFF, 0x00};
     const std::string outcome = request_outcome(forged);
     EXPECT_EQ(outcome.rfind("BadRequest: request: not valid msgpack: ", 0), 0u) << outcome;
   }
@@ -273,6 +273,42 @@ TEST(DecodeErrors, ForgedLengthsFailWithoutAllocatingThem)
   tree["x_future"] = deep;
   const std::string outcome = request_outcome(tree);
   EXPECT_EQ(outcome.rfind("BadRequest: request: not valid msgpack: ", 0), 0u) << outcome;
+}
+
+TEST(DecodeErrors, CorruptedBytesFailOnlyWithDecodeError)
+{
+  // Every byte of a few vectors replaced by a few values: the decoder may accept the result
+  // (a changed value is still a message) but must never crash or throw anything else.
+  struct Case
+  {
+    const char * name;
+    bool is_request;
+    Op op;
+  };
+  for (const Case & c : {Case{"compute_velocity_commands_request", true, Op::ComputeVelocityCommands},
+      Case{"configure_controller", true, Op::Configure},
+      Case{"set_plan_request", true, Op::SetPlan},
+      Case{"set_parameters_reply", false, Op::SetParameters},
+      Case{"error_no_path_unicode", false, Op::CreatePlan}})
+  {
+    const Bytes original = read_vector_bytes(c.name);
+    for (std::size_t i = 0; i < original.size(); ++i) {
+      for (const int value : {0x00, 0x7F, 0x80, 0xC1, 0xFF, original[i] ^ 0x01}) {
+        Bytes bytes = original;
+        bytes[i] = static_cast<std::uint8_t>(value);
+        try {
+          if (c.is_request) {
+            decode_request(bytes);
+          } else {
+            decode_reply(bytes, c.op);
+          }
+        } catch (const DecodeError &) {
+        } catch (const std::exception & e) {
+          ADD_FAILURE() << c.name << " byte " << i << " = " << value << ": " << e.what();
+        }
+      }
+    }
+  }
 }
 
 TEST(DecodeErrors, ParamsAreScalarsOrArraysOfOneScalarType)

@@ -81,7 +81,7 @@ TEST_P(Vector, DecodesToItsTreeAndReencodesByteForByte)
 
 INSTANTIATE_TEST_SUITE_P(
   SharedVectors, Vector, ::testing::ValuesIn(index_entries()),
-  [](const ::testing::TestParamInfo<VectorEntry> & info) {return info.param.name;});
+  [](const ::testing::TestParamInfo<VectorEntry> & param) {return param.param.name;});
 
 TEST(VectorIndex, CoversEveryOpInBothDirections)
 {
