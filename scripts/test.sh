@@ -4,6 +4,7 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/bootstrap.sh"
+"$ROOT/scripts/cpp_test_deps.sh"
 # shellcheck disable=SC1091
 source "${NAV2_PYIF_VENV:-$ROOT/.venv}/nav2_pyif_env.sh"
 cd "$ROOT"

@@ -160,3 +160,8 @@ def test_the_hot_path_fast_encoding_gives_the_canonical_bytes() -> None:
     )
     op = Op.COMPUTE_VELOCITY_COMMANDS
     assert encode_reply(reply, op, validate=False) == encode_reply(reply, op)
+
+
+@pytest.mark.parametrize("version", [True, 1.0, "1", None])
+def test_a_version_that_only_looks_like_1_is_a_mismatch(version: object) -> None:
+    assert bad_request(raw(v=version)).error_type is ErrorType.VERSION_MISMATCH

@@ -270,7 +270,7 @@ def decode_request(data: bytes) -> Request:
     if not isinstance(raw, dict):
         raise _bad("request is not a msgpack map")
     version = raw.get("v")
-    if version != PROTOCOL_VERSION:
+    if type(version) is not int or version != PROTOCOL_VERSION:  # true / 1.0 are not 1
         raise ProtocolError(
             ErrorType.VERSION_MISMATCH,
             f"request speaks protocol version {version!r}; this host speaks {PROTOCOL_VERSION}",
@@ -312,7 +312,7 @@ def decode_reply(data: bytes, op: Op) -> Reply:
     raw = _unpack(data, "reply")
     if not isinstance(raw, dict):
         raise _bad("reply is not a msgpack map")
-    if raw.get("v") != PROTOCOL_VERSION:
+    if type(raw.get("v")) is not int or raw.get("v") != PROTOCOL_VERSION:
         raise ProtocolError(
             ErrorType.VERSION_MISMATCH,
             f"reply speaks protocol version {raw.get('v')!r}; this client speaks "

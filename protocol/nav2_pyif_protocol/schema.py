@@ -82,7 +82,7 @@ REQUEST_ENVELOPE: tuple[Field, ...] = (
     _f("op", STR, "operation (also the last key chunk)"),
     _f("sid", STR, "session id chosen by the client at configure"),
     _f("epoch", INT, "session epoch: 1 at the first configure, +1 at each re-establishment"),
-    _f("seq", INT, "per-session sequence number, strictly increasing"),
+    _f("seq", INT, "per-plugin sequence number, strictly increasing across epochs"),
     _f("body", "body", "operation-specific map"),
 )
 

@@ -137,7 +137,7 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     yield (
         "compute_velocity_commands_no_goal_checker",
         req(Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=2**32),
-        "no goal checker; 5-byte seq",
+        "no goal checker; seq 2^32 (uint64)",
     )
     with_map = dict(cvc, costmap=costmap(400, 400, 17, "odom"))
     yield (
