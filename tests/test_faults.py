@@ -100,6 +100,19 @@ def inject(rig: Rig, fault: str, **extra: Any) -> None:
     assert rig.ctrl.set_parameters({"fault": fault, **extra}) == {}
 
 
+def clear_fault_once_back(rig: Rig, timeout: float = 30.0) -> None:
+    """The restarted worker got the session back, fault parameter included: clear the fault
+    the moment the worker answers again."""
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            inject(rig, "none")
+            return
+        except api.ControllerException:
+            assert time.monotonic() < deadline, rig.host.log()[-3000:]
+            time.sleep(0.1)
+
+
 def assert_recovered(rig: Rig) -> None:
     assert rig.host.proc is not None and rig.host.proc.poll() is None, "the host died"
     inject(rig, "none")
@@ -217,16 +230,7 @@ def test_worker_crash_is_unavailable_then_restored(fresh_rig: Rig, fault: str, w
     inject(fresh_rig, fault)
     with pytest.raises(api.ControllerException, match=words):
         fresh_rig.cycle()
-    # the restarted worker got the session back, fault parameter included: clear it the
-    # moment the worker is back, then check the plan survived
-    deadline = time.monotonic() + 30
-    while True:
-        try:
-            inject(fresh_rig, "none")
-            break
-        except api.ControllerException:
-            assert time.monotonic() < deadline, fresh_rig.host.log()[-3000:]
-            time.sleep(0.1)
+    clear_fault_once_back(fresh_rig)
     assert_recovered(fresh_rig)
     assert (
         "restarted, 1 session(s) restored" in fresh_rig.host.log()
@@ -244,14 +248,7 @@ def test_a_worker_stuck_in_native_code_is_killed_and_restarted(fresh_rig: Rig) -
     while "stayed stuck past its deadline and was killed" not in fresh_rig.host.log():
         assert time.monotonic() < deadline, fresh_rig.host.log()[-3000:]
         time.sleep(0.1)
-    deadline = time.monotonic() + 30
-    while True:
-        try:
-            inject(fresh_rig, "none")
-            break
-        except api.ControllerException:
-            assert time.monotonic() < deadline
-            time.sleep(0.1)
+    clear_fault_once_back(fresh_rig)
     assert_recovered(fresh_rig)
 
 

@@ -74,26 +74,31 @@ def delegate_class(
     return _planner_class(module_name, funcs)
 
 
-def _lifecycle(funcs: dict[str, Callable[..., Any]], plugin: PlannerPlugin, role: str) -> None:
-    if role == "configure" and role in funcs:
-        funcs[role](plugin.params)
-    elif role in funcs:
-        funcs[role]()
+class _DelegateLifecycle(PlannerPlugin):
+    """configure(params) / activate() / deactivate() / cleanup() delegates, when given."""
+
+    _funcs: dict[str, Callable[..., Any]]
+
+    def configure(self) -> None:
+        if "configure" in self._funcs:
+            self._funcs["configure"](self.params)
+
+    def activate(self) -> None:
+        if "activate" in self._funcs:
+            self._funcs["activate"]()
+
+    def deactivate(self) -> None:
+        if "deactivate" in self._funcs:
+            self._funcs["deactivate"]()
+
+    def cleanup(self) -> None:
+        if "cleanup" in self._funcs:
+            self._funcs["cleanup"]()
 
 
 def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[Controller]:
-    class DelegateController(Controller):
-        def configure(self) -> None:
-            _lifecycle(funcs, self, "configure")
-
-        def activate(self) -> None:
-            _lifecycle(funcs, self, "activate")
-
-        def deactivate(self) -> None:
-            _lifecycle(funcs, self, "deactivate")
-
-        def cleanup(self) -> None:
-            _lifecycle(funcs, self, "cleanup")
+    class DelegateController(_DelegateLifecycle, Controller):
+        _funcs = funcs
 
         def set_plan(self, plan: Plan) -> None:
             super().set_plan(plan)
@@ -122,18 +127,8 @@ def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) ->
 
 
 def _planner_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[GlobalPlanner]:
-    class DelegatePlanner(GlobalPlanner):
-        def configure(self) -> None:
-            _lifecycle(funcs, self, "configure")
-
-        def activate(self) -> None:
-            _lifecycle(funcs, self, "activate")
-
-        def deactivate(self) -> None:
-            _lifecycle(funcs, self, "deactivate")
-
-        def cleanup(self) -> None:
-            _lifecycle(funcs, self, "cleanup")
+    class DelegatePlanner(_DelegateLifecycle, GlobalPlanner):
+        _funcs = funcs
 
         def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
             return funcs["create_plan"](self.costmap, start, goal)

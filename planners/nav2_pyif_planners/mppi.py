@@ -20,13 +20,13 @@ import time
 from typing import Any
 
 import numpy as np
-from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, Costmap, GoalChecker, NoValidControl, Plan
+from nav2_pyif import Costmap, GoalChecker, NoValidControl
 
-from nav2_pyif_planners.geometry import closest_index, limit_speed, pose_xy_yaw, wrap
+from nav2_pyif_planners.follower import PathFollower
+from nav2_pyif_planners.geometry import limit_speed
 
 
-class MPPI(Controller):
+class MPPI(PathFollower):
     def configure(self) -> None:
         p = self.params
         self.batch_size = p.declare("batch_size", 1000, "rollouts per cycle")
@@ -51,13 +51,6 @@ class MPPI(Controller):
         self.outline: np.ndarray | None = None
         self.last_compute_s = 0.0
 
-    def on_parameters_changed(self, changed: dict[str, Any]) -> None:
-        self.configure()
-
-    def set_plan(self, plan: Plan) -> None:
-        super().set_plan(plan)
-        self.index = 0
-
     def reset(self) -> None:
         self.optimal[:] = 0.0
         self.index = 0
@@ -66,18 +59,10 @@ class MPPI(Controller):
         self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
     ) -> Any:
         started = time.perf_counter()
-        if self.plan is None or len(self.plan) == 0:
-            raise NoValidControl("no plan to follow")
-        x, y, yaw = pose_xy_yaw(pose)
-        path = self.plan.xy_yaw
-        self.index = closest_index(path[:, :2], x, y, self.index, window=200)
-        cmd = TwistStamped(header=pose.header)
-        cmd.header.frame_id = self.robot_base_frame
-        goal = path[-1]
-        tolerance = goal_checker.xy_goal_tolerance if goal_checker else self.xy_goal_tolerance
-        if math.hypot(goal[0] - x, goal[1] - y) < tolerance:
+        x, y, yaw, path = self.track(pose)
+        cmd = self.command(pose)
+        if self.turn_at_goal(cmd, x, y, yaw, path, goal_checker):
             self.optimal[:] = 0.0
-            cmd.twist.angular.z = float(np.clip(2.0 * wrap(goal[2] - yaw), -1.5, 1.5))
             return cmd
         vx, wz = self._optimise(np.array([x, y, yaw]), path[:, :2])
         if not (math.isfinite(vx) and math.isfinite(wz)):

@@ -14,20 +14,17 @@ import math
 from typing import Any
 
 import numpy as np
-from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, Costmap, GoalChecker, NoValidControl, Plan
+from nav2_pyif import Costmap, GoalChecker, NoValidControl
 
+from nav2_pyif_planners.follower import PathFollower
 from nav2_pyif_planners.geometry import (
-    closest_index,
     limit_speed,
     point_at_distance,
-    pose_xy_yaw,
     remaining_length,
-    wrap,
 )
 
 
-class RegulatedPurePursuit(Controller):
+class RegulatedPurePursuit(PathFollower):
     def configure(self) -> None:
         p = self.params
         self.desired_linear_vel = p.declare("desired_linear_vel", 0.5, "[m/s]")
@@ -50,31 +47,13 @@ class RegulatedPurePursuit(Controller):
         self.xy_goal_tolerance = p.declare("xy_goal_tolerance", 0.25, "[m] when no goal checker")
         self.index = 0
 
-    def on_parameters_changed(self, changed: dict[str, Any]) -> None:
-        self.configure()
-
-    def set_plan(self, plan: Plan) -> None:
-        super().set_plan(plan)
-        self.index = 0
-
-    def reset(self) -> None:
-        self.index = 0
-
     def compute_velocity_commands(
         self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
     ) -> Any:
-        if self.plan is None or len(self.plan) == 0:
-            raise NoValidControl("no plan to follow")
-        x, y, yaw = pose_xy_yaw(pose)
-        path = self.plan.xy_yaw
-        self.index = closest_index(path[:, :2], x, y, self.index, window=200)
-        tolerance = goal_checker.xy_goal_tolerance if goal_checker else self.xy_goal_tolerance
-        goal = path[-1]
-        cmd = TwistStamped(header=pose.header)
-        cmd.header.frame_id = self.robot_base_frame
-        if math.hypot(goal[0] - x, goal[1] - y) < tolerance:
-            error = float(wrap(goal[2] - yaw))  # at the goal: turn to its heading
-            cmd.twist.angular.z = float(np.clip(2.0 * error, -self.rotate_vel, self.rotate_vel))
+        x, y, yaw, path = self.track(pose)
+        cmd = self.command(pose)
+        self.goal_turn_rate = self.rotate_vel
+        if self.turn_at_goal(cmd, x, y, yaw, path, goal_checker):
             return cmd
 
         speed = abs(velocity.linear.x)
