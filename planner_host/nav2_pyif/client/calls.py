@@ -12,6 +12,7 @@ class CallRecord:
     compute_ns: int  # host-side handler time, as the host reported it
     request_bytes: int
     ok: bool
+    costmap_sent: bool = False
 
     @property
     def transport_ns(self) -> int:

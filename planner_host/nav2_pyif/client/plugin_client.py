@@ -222,7 +222,7 @@ class PluginClient:
         sample = wait(replies, request, timeout) if wait else _first_ok(replies)
         elapsed = time.perf_counter_ns() - start
         if sample is None:
-            self._record(request.op, elapsed, 0, len(payload), False)
+            self._record(request, elapsed, 0, len(payload), False)
             raise timed_out_error(self.plugin_type)(
                 f"{request.op.value} got no reply from {self.keys.prefix} within "
                 f"{timeout * 1000:.0f} ms"
@@ -233,7 +233,7 @@ class PluginClient:
             raise generic_error(self.plugin_type)(
                 f"bad reply to {request.op.value}: {exc}"
             ) from exc
-        self._record(request.op, elapsed, reply.compute_ns, len(payload), reply.ok)
+        self._record(request, elapsed, reply.compute_ns, len(payload), reply.ok)
         if reply.seq != request.seq:
             raise generic_error(self.plugin_type)(
                 f"reply to {request.op.value} has seq {reply.seq}, expected {request.seq}"
@@ -241,9 +241,18 @@ class PluginClient:
         self.last_host = reply.host
         return reply
 
-    def _record(self, op: Op, total: int, compute: int, size: int, ok: bool) -> None:
+    def _record(self, request: Request, total: int, compute: int, size: int, ok: bool) -> None:
         if self.records is not None:
-            self.records.append(CallRecord(op.value, total, compute, size, ok))
+            self.records.append(
+                CallRecord(
+                    request.op.value,
+                    total,
+                    compute,
+                    size,
+                    ok,
+                    costmap_sent="costmap" in request.body,
+                )
+            )
 
     def _reestablish(self, host: str) -> None:
         log.warning(

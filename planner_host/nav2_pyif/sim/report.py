@@ -14,16 +14,26 @@ from nav2_pyif.sim.runner import SimResult
 def latency_rows(result: SimResult) -> list[dict[str, Any]]:
     """Per op: calls, round trip / host compute / transport (= round trip - compute), in µs."""
     rows = []
-    for op in dict.fromkeys(r.op for r in result.records):
-        records = [r for r in result.records if r.op == op and r.ok]
+    groups = dict.fromkeys(
+        (r.op, r.costmap_sent and r.op == "compute_velocity_commands") for r in result.records
+    )
+    for op, with_costmap in groups:
+        records = [
+            r
+            for r in result.records
+            if r.op == op
+            and r.ok
+            and (r.costmap_sent and op == "compute_velocity_commands") == with_costmap
+        ]
         if not records:
             continue
+        label = f"{op} +costmap" if with_costmap else op
         total = np.array([r.total_ns for r in records]) / 1000.0
         compute = np.array([r.compute_ns for r in records]) / 1000.0
         transport = np.array([r.transport_ns for r in records]) / 1000.0
         rows.append(
             {
-                "op": op,
+                "op": label,
                 "calls": len(records),
                 "round_trip_median_us": float(np.median(total)),
                 "round_trip_p99_us": float(np.percentile(total, 99)),
@@ -69,13 +79,14 @@ def format_report(result: SimResult) -> str:
         f"minimum clearance {s['min_clearance_m']:.3f} m, collisions {s['collisions']}, "
         f"controller errors {s['controller_errors']}",
         "",
-        "latency per call (µs)          calls   round trip         host compute       transport",
-        "                                        median     p99     median     p99     "
+        "latency per call (µs)                  calls   round trip         host compute       "
+        "transport",
+        "                                                median     p99     median     p99     "
         "median     p99",
     ]
     for r in latency_rows(result):
         lines.append(
-            f"  {r['op']:<28}{r['calls']:>6} {r['round_trip_median_us']:>8.0f} "
+            f"  {r['op']:<36}{r['calls']:>6} {r['round_trip_median_us']:>8.0f} "
             f"{r['round_trip_p99_us']:>7.0f}   {r['compute_median_us']:>8.0f} "
             f"{r['compute_p99_us']:>7.0f}   {r['transport_median_us']:>8.0f} "
             f"{r['transport_p99_us']:>7.0f}"
