@@ -22,7 +22,6 @@ import threading
 import time
 from collections import deque
 from dataclasses import dataclass
-from multiprocessing.connection import wait
 
 import msgpack
 from nav2_pyif_protocol.codec import ErrorInfo, Reply, encode_reply
@@ -124,15 +123,16 @@ class Worker:
         return self._receive(timeout, op)
 
     def _receive(self, timeout: float, what: str) -> bytes | None:
-        ready = wait([self.calls, self.process.sentinel], timeout)
-        if not ready:
+        # poll() on the pipe alone (not wait() on pipe + process sentinel): one fd, cheaper on
+        # every call; a dead worker's pipe reads EOF, so deaths are still seen at once.
+        if not self.calls.poll(timeout):
+            if not self.process.is_alive():
+                raise WorkerDied(self.exit_description())
             return None
-        if self.calls in ready or self.calls.poll(0):
-            try:
-                return self.calls.recv_bytes()
-            except (EOFError, OSError):
-                pass
-        raise WorkerDied(self.exit_description())
+        try:
+            return self.calls.recv_bytes()
+        except (EOFError, OSError):
+            raise WorkerDied(self.exit_description()) from None
 
     def drain(self) -> bool:
         """Consume a late reply, if one arrived; True when the worker is free again."""

@@ -1,0 +1,46 @@
+// Time, behind an interface where a unit waits (for a host's liveliness token, between
+// restarts of a local host), so the tests can run those waits on a fake clock in no time.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
+
+namespace nav2_pyif_bridge::client
+{
+
+using Duration = std::chrono::nanoseconds;
+using TimePoint = std::chrono::steady_clock::time_point;
+
+class Clock
+{
+public:
+  virtual ~Clock() = default;
+
+  virtual TimePoint now() const = 0;
+
+  // Wait on `cv`, `lock` held, until notified or `timeout` has passed. May return early
+  // (spurious wake-ups, a fake clock): callers re-check their condition and the time.
+  virtual void wait_for(
+    std::condition_variable & cv, std::unique_lock<std::mutex> & lock, Duration timeout) = 0;
+
+  virtual void sleep_for(Duration duration) = 0;
+};
+
+// std::chrono::steady_clock.
+class SteadyClock final : public Clock
+{
+public:
+  static SteadyClock & instance();
+
+  TimePoint now() const override {return std::chrono::steady_clock::now();}
+  void wait_for(
+    std::condition_variable & cv, std::unique_lock<std::mutex> & lock,
+    Duration timeout) override;
+  void sleep_for(Duration duration) override;
+};
+
+// Milliseconds as a double, for messages ("within 40 ms").
+inline double to_ms(Duration d) {return std::chrono::duration<double, std::milli>(d).count();}
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,43 @@
+// The controller's calls (the reference client's ControllerClient): set_plan, the control
+// cycle, the speed limit, cancel and reset; the plan and speed limit are the state re-sent
+// after a host restart.
+#pragma once
+
+#include <array>
+#include <optional>
+
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+
+class ControllerSession : public PluginSession
+{
+public:
+  // config.kind is set to Controller.
+  ControllerSession(
+    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {});
+
+  // The plan in the costmap's global frame; remembered (after an ok reply) for re-sending.
+  void set_plan(const protocol::Path & path);
+  // The command, every component finite (else NoValidControl). The costmap travels when it
+  // changed since the host last got it.
+  protocol::TwistStamped compute_velocity_commands(
+    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
+    const std::optional<protocol::GoalChecker> & goal_checker);
+  void set_speed_limit(double speed_limit, bool percentage);
+  bool cancel();
+  void reset();
+
+  bool has_plan() const;
+
+protected:
+  void restore_state() override;
+  void forget_state() override;
+
+private:
+  std::optional<protocol::Path> plan_;
+  std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
+};
+
+}  // namespace nav2_pyif_bridge::client

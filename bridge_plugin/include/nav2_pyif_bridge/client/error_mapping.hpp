@@ -1,0 +1,113 @@
+// From an error reply (or a plugin-side failure) to the nav2_core exception the plugin throws
+// (PROTOCOL.md section 7). The units throw CallError, which names the exception by ErrorKind;
+// only the Nav2 plugin classes turn it into the nav2_core class (nav2_exceptions.hpp), so
+// everything here builds and is tested without Nav2.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "nav2_pyif_bridge/protocol/types.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+
+enum class PluginKind : std::uint8_t {Controller, GlobalPlanner};
+
+// The wire's configure.plugin_type: "controller" or "global_planner".
+std::string_view plugin_type_name(PluginKind kind) noexcept;
+
+// Which nav2_core exception classes exist: Humble has only PlannerException (its controllers
+// throw it too); Jazzy and Kilted have the controller and planner classes below.
+enum class Nav2Api : std::uint8_t {Humble, Jazzy};
+
+// The nav2_core exception classes of Jazzy / Kilted, by name; the names are also the wire's
+// error.type values (PROTOCOL.md section 7).
+enum class ErrorKind : std::uint8_t
+{
+  // controller
+  ControllerException,
+  InvalidController,
+  ControllerTFError,
+  FailedToMakeProgress,
+  PatienceExceeded,
+  InvalidPath,
+  NoValidControl,
+  ControllerTimedOut,
+  // global planner
+  PlannerException,
+  InvalidPlanner,
+  StartOccupied,
+  GoalOccupied,
+  StartOutsideMapBounds,
+  GoalOutsideMapBounds,
+  NoValidPathCouldBeFound,
+  PlannerTimedOut,
+  PlannerTFError,
+  NoViapointsGiven,
+  PlannerCancelled,
+};
+
+inline constexpr std::size_t kErrorKindCount = 19;
+
+std::string_view error_kind_name(ErrorKind kind) noexcept;
+// std::nullopt for a name that is no nav2_core exception (protocol errors included).
+std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept;
+// The plugin type whose exceptions `kind` belongs to.
+PluginKind plugin_kind_of(ErrorKind kind) noexcept;
+// ControllerException / PlannerException.
+ErrorKind generic_error(PluginKind kind) noexcept;
+// ControllerTimedOut / PlannerTimedOut.
+ErrorKind timed_out_error(PluginKind kind) noexcept;
+// The class actually thrown on `api`: `kind` itself on Jazzy, PlannerException on Humble.
+ErrorKind for_api(ErrorKind kind, Nav2Api api) noexcept;
+
+// Why a call failed. Remote errors come from the host; the others happen in the plugin.
+enum class Cause : std::uint8_t
+{
+  Remote,         // an error reply
+  NoHost,         // no host liveliness token under P: nothing was sent
+  TimedOut,       // no reply within the op's timeout
+  BadReply,       // a reply that does not decode, or answers another seq
+  NotConfigured,  // a call before configure (or after cleanup)
+  Local,          // the plugin refused (a non-finite command, a message it cannot encode, ...)
+};
+
+// What the units throw. what() is the message Nav2's action result and log show; log_text()
+// adds the Python traceback for the log.
+class CallError : public std::runtime_error
+{
+public:
+  struct Remote
+  {
+    std::string type;         // error.type as received (may be a protocol error's name)
+    std::string traceback;    // the Python traceback, empty when none
+    std::string python_type;  // e.g. builtins.ZeroDivisionError
+  };
+
+  CallError(ErrorKind kind, Cause cause, const std::string & message, Remote remote = {});
+
+  ErrorKind kind() const noexcept {return kind_;}
+  Cause cause() const noexcept {return cause_;}
+  const Remote & remote() const noexcept {return remote_;}
+  // A failure of reaching a host (none alive, or no reply in time) rather than its answer.
+  bool unreachable() const noexcept {return cause_ == Cause::NoHost || cause_ == Cause::TimedOut;}
+  // The message, then the Python exception's type and traceback when the host sent them.
+  std::string log_text() const;
+
+private:
+  ErrorKind kind_;
+  Cause cause_;
+  Remote remote_;
+};
+
+// The exception for an error reply: the named class when it belongs to `kind`'s plugin type
+// (message as sent); otherwise the generic class, with "[<type>] " before the message
+// (protocol errors, and the other plugin type's names). Same as the reference client's
+// error_from_reply.
+CallError error_from_reply(const protocol::Error & error, PluginKind kind);
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,168 @@
+// One plugin instance's session with the planner host: sid, epoch and seq, and the call
+// procedure of PROTOCOL.md section 4 ("Plugin rules"), exactly as the reference client
+// (planner_host/nav2_pyif/client/plugin_client.py) does it:
+//   1. no host alive under P/host/*: fail at once with the generic exception, send nothing;
+//   2. no reply within the op's timeout: ControllerTimedOut / PlannerTimedOut;
+//   3. SessionUnknown (the host restarted, or another replica answered): epoch + 1, configure
+//      (current parameters, full costmap), activate if active, re-send the subclass's state
+//      (plan, speed limit), then retry the call once; a second SessionUnknown fails it;
+//   4. the costmap travels only when its version differs from the one this session last
+//      delivered (delivered = sent in a request that got an ok reply; configure forgets it);
+//   5. a reply of another seq, or one that does not decode, fails the call (generic);
+//   6. other error replies throw the nav2_core-named exception (error_mapping.hpp).
+// Every failure is a CallError. Thread-safe: each public call holds the session's lock (Nav2
+// calls from its action thread, parameter changes come from the executor's thread).
+//
+// Two additions for a plugin living inside Nav2 (the reference client has no need of them):
+// - defer_configure(): Nav2 configures its plugins at bring-up, maybe before any host runs.
+//   The plugin then marks the session configured without a host; the first call that needs
+//   the host establishes it as rule 3 does (configure, activate if active, state), and
+//   activate/deactivate/cleanup/set_parameters before that only update the local state.
+// - a failed re-establishment leaves the session configured and not established, so the
+//   next call tries again (the reference client would refuse every later call).
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "nav2_pyif_bridge/client/costmap_version.hpp"
+#include "nav2_pyif_bridge/client/error_mapping.hpp"
+#include "nav2_pyif_bridge/client/keys.hpp"
+#include "nav2_pyif_bridge/client/log.hpp"
+#include "nav2_pyif_bridge/client/transport.hpp"
+#include "nav2_pyif_bridge/protocol/codec.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+
+// How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults).
+struct Timeouts
+{
+  // compute_velocity_commands, set_plan, set_speed_limit, cancel: below the control period.
+  Duration call{std::chrono::milliseconds(40)};
+  // activate, deactivate, cleanup, set_parameters, reset, cancel_plan.
+  Duration lifecycle{std::chrono::seconds(5)};
+  // configure: imports, JIT compilation.
+  Duration configure{std::chrono::seconds(10)};
+  // create_plan.
+  Duration plan{std::chrono::seconds(5)};
+
+  Duration for_op(protocol::Op op) const noexcept;
+};
+
+struct SessionConfig
+{
+  PluginKind kind{PluginKind::Controller};
+  std::string key_prefix;        // P (validated: std::invalid_argument)
+  std::string name;              // plugin name in Nav2, e.g. FollowPath
+  std::string node;              // the Nav2 server node, e.g. controller_server
+  protocol::Params params;       // forwarded in configure (prefix stripped)
+  std::string global_frame;      // the costmap's global frame
+  std::string robot_base_frame{"base_link"};
+  Timeouts timeouts;
+};
+
+class PluginSession
+{
+public:
+  // `transport` and `costmap` must outlive the session.
+  PluginSession(
+    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {});
+  virtual ~PluginSession() = default;
+  PluginSession(const PluginSession &) = delete;
+  PluginSession & operator=(const PluginSession &) = delete;
+
+  // Start a session (epoch + 1, full costmap); returns the parameters the planner declared.
+  // Those the session did not have join its parameters (sent again in a later configure).
+  protocol::Params configure();
+  // Configured without a host yet: the first call establishes the session (see above).
+  void defer_configure();
+  void activate();
+  void deactivate();
+  // Ends the session; configured and active are false afterwards even when the call failed.
+  void cleanup();
+  // Send changed parameters; returns the rejected ones (name -> reason). The accepted ones
+  // join the parameters re-sent by a later configure. Before the session is established,
+  // the changes are only kept for configure (nothing rejects them).
+  protocol::StringMap set_parameters(const protocol::Params & changes);
+
+  // Block until a host is alive (the transport's liveliness watch); false on timeout.
+  bool wait_for_host(Duration timeout);
+
+  // --- state, for the plugins' logs and the tests ---
+  const KeySpace & keys() const noexcept {return keys_;}
+  PluginKind kind() const noexcept {return config_.kind;}
+  const std::string & sid() const noexcept {return sid_;}
+  std::uint64_t epoch() const;
+  std::uint64_t last_seq() const;
+  bool configured() const;
+  bool established() const;
+  bool active() const;
+  std::uint64_t resyncs() const;              // re-establishments after SessionUnknown
+  std::string last_host() const;              // the host of the last reply
+  std::optional<std::uint64_t> delivered_costmap() const;
+  protocol::Params params() const;
+  Timeouts timeouts() const;
+  void set_timeouts(const Timeouts & timeouts);
+
+protected:
+  enum class CostmapMode {None, IfChanged, Always};
+  struct CallOptions
+  {
+    CostmapMode costmap{CostmapMode::None};
+    bool allow_resync{true};
+    // Runs about every 5 ms while waiting for the reply, with the request's seq.
+    std::function<void(std::uint64_t)> while_waiting;
+  };
+
+  // One call, following rules 1-6. The caller holds mutex().
+  protocol::ReplyBody call(const protocol::RequestBody & body, const CallOptions & options);
+  template<class ReplyT>
+  ReplyT call_for(const protocol::RequestBody & body, const CallOptions & options = {})
+  {
+    return std::get<ReplyT>(call(body, options));
+  }
+
+  // Re-send what the planner was told since configure (plan, speed limit); mutex() held.
+  virtual void restore_state() {}
+  // Forget that state (cleanup ends the session); mutex() held.
+  virtual void forget_state() {}
+
+  std::recursive_mutex & mutex() const noexcept {return mutex_;}
+  Transport & transport() noexcept {return transport_;}
+  const Logger & logger() const noexcept {return logger_;}
+  std::uint64_t next_seq() noexcept {return ++seq_;}
+  [[noreturn]] void fail(ErrorKind kind, Cause cause, const std::string & message) const;
+
+private:
+  protocol::Params configure_locked();
+  void establish();
+  void reestablish(const std::string & host);
+  protocol::Reply exchange(const protocol::Request & request, const CallOptions & options);
+
+  SessionConfig config_;
+  KeySpace keys_;
+  Transport & transport_;
+  CostmapSource & costmap_;
+  Logger logger_;
+  std::string sid_;
+
+  mutable std::recursive_mutex mutex_;
+  std::uint64_t epoch_{0};
+  std::uint64_t seq_{0};
+  bool configured_{false};
+  bool established_{false};
+  bool active_{false};
+  std::uint64_t resyncs_{0};
+  std::string last_host_;
+  std::optional<std::uint64_t> delivered_costmap_;
+};
+
+// A random UUID4 as 32 lowercase hex digits (Python's uuid.uuid4().hex).
+std::string new_session_id();
+
+}  // namespace nav2_pyif_bridge::client

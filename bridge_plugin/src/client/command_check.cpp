@@ -1,0 +1,68 @@
+#include "nav2_pyif_bridge/client/command_check.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <string_view>
+
+#include "nav2_pyif_bridge/client/error_mapping.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+namespace
+{
+
+constexpr std::array<std::string_view, 6> kTwistNames = {"vx", "vy", "vz", "wx", "wy", "wz"};
+
+std::string describe(double value)
+{
+  if (std::isnan(value)) {
+    return "nan";
+  }
+  return value > 0 ? "inf" : "-inf";
+}
+
+std::string host_part(const std::string & host)
+{
+  return host.empty() ? std::string() : " from host " + host;
+}
+
+}  // namespace
+
+std::string non_finite_components(const protocol::TwistStamped & cmd)
+{
+  std::string out;
+  for (std::size_t i = 0; i < cmd.twist.size(); ++i) {
+    if (!std::isfinite(cmd.twist[i])) {
+      out += (out.empty() ? "" : ", ") + std::string(kTwistNames[i]) + "=" +
+        describe(cmd.twist[i]);
+    }
+  }
+  return out;
+}
+
+void check_command(const protocol::TwistStamped & cmd, const std::string & host)
+{
+  const std::string bad = non_finite_components(cmd);
+  if (!bad.empty()) {
+    throw CallError(
+            ErrorKind::NoValidControl, Cause::Local,
+            "compute_velocity_commands reply" + host_part(host) +
+            " has non-finite components: " + bad + "; no command returned");
+  }
+}
+
+void check_path(const protocol::Path & path, const std::string & host)
+{
+  for (std::size_t i = 0; i < path.poses.size(); ++i) {
+    if (!std::isfinite(path.poses[i])) {
+      std::ostringstream message;
+      message << "create_plan reply" << host_part(host) << " has a non-finite value in pose "
+              << i / protocol::kPoseRowSize << " of " << path.size();
+      throw CallError(ErrorKind::NoValidPathCouldBeFound, Cause::Local, message.str());
+    }
+  }
+}
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,95 @@
+#include "nav2_pyif_bridge/client/controller_session.hpp"
+
+#include <utility>
+
+#include "nav2_pyif_bridge/client/command_check.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+namespace proto = protocol;
+
+namespace
+{
+
+SessionConfig as_controller(SessionConfig config)
+{
+  config.kind = PluginKind::Controller;
+  return config;
+}
+
+}  // namespace
+
+ControllerSession::ControllerSession(
+  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
+: PluginSession(as_controller(std::move(config)), transport, costmap, std::move(logger))
+{
+}
+
+void ControllerSession::set_plan(const proto::Path & path)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  call(proto::SetPlanRequest{path}, {});
+  plan_ = path;
+}
+
+proto::TwistStamped ControllerSession::compute_velocity_commands(
+  const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
+  const std::optional<proto::GoalChecker> & goal_checker)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::ComputeVelocityCommandsRequest body;
+  body.pose = pose;
+  body.velocity = velocity;
+  body.goal_checker = goal_checker;
+  CallOptions options;
+  options.costmap = CostmapMode::IfChanged;
+  auto reply = call_for<proto::ComputeVelocityCommandsReply>(body, options);
+  check_command(reply.cmd_vel, last_host());
+  return std::move(reply.cmd_vel);
+}
+
+void ControllerSession::set_speed_limit(double speed_limit, bool percentage)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  const proto::SetSpeedLimitRequest body{speed_limit, percentage};
+  call(body, {});
+  speed_limit_ = body;
+}
+
+bool ControllerSession::cancel()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  return call_for<proto::CancelReply>(proto::CancelRequest{}).cancelled;
+}
+
+void ControllerSession::reset()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  call(proto::ResetRequest{}, {});
+}
+
+bool ControllerSession::has_plan() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  return plan_.has_value();
+}
+
+void ControllerSession::restore_state()
+{
+  CallOptions options;
+  options.allow_resync = false;
+  if (plan_) {
+    call(proto::SetPlanRequest{*plan_}, options);
+  }
+  if (speed_limit_) {
+    call(*speed_limit_, options);
+  }
+}
+
+void ControllerSession::forget_state()
+{
+  plan_.reset();
+  speed_limit_.reset();
+}
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,367 @@
+#include "nav2_pyif_bridge/client/local_host.hpp"
+
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/prctl.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <stdexcept>
+#include <system_error>
+#include <utility>
+
+extern char ** environ;  // NOLINT: POSIX
+
+namespace nav2_pyif_bridge::client
+{
+namespace
+{
+
+bool is_executable_file(const std::string & path)
+{
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+         ::access(path.c_str(), X_OK) == 0;
+}
+
+std::string describe_status(int status)
+{
+  if (WIFEXITED(status)) {
+    return "exited with status " + std::to_string(WEXITSTATUS(status));
+  }
+  if (WIFSIGNALED(status)) {
+    const int sig = WTERMSIG(status);
+    const char * name = ::strsignal(sig);
+    return "killed by signal " + std::to_string(sig) + (name ? std::string(" (") + name + ")" : "");
+  }
+  return "ended with wait status " + std::to_string(status);
+}
+
+std::string seconds_text(Duration d)
+{
+  return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count() / 1000.0)
+         .substr(0, 4) + " s";
+}
+
+std::string command_line(const std::vector<std::string> & argv)
+{
+  std::string out;
+  for (const auto & arg : argv) {
+    out += (out.empty() ? "" : " ") + arg;
+  }
+  return out;
+}
+
+}  // namespace
+
+std::uint16_t pick_free_tcp_port()
+{
+  const int fd = ::socket(AF_INET, SOCK_STREAM | SOCK_CLOEXEC, 0);
+  if (fd < 0) {
+    throw std::system_error(errno, std::generic_category(), "socket");
+  }
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  address.sin_port = 0;
+  socklen_t length = sizeof(address);
+  if (::bind(fd, reinterpret_cast<sockaddr *>(&address), sizeof(address)) != 0 ||
+    ::getsockname(fd, reinterpret_cast<sockaddr *>(&address), &length) != 0)
+  {
+    const int error = errno;
+    ::close(fd);
+    throw std::system_error(error, std::generic_category(), "bind 127.0.0.1:0");
+  }
+  ::close(fd);
+  return ntohs(address.sin_port);
+}
+
+std::string find_executable(const std::string & command, std::string_view search_path)
+{
+  if (command.empty()) {
+    return {};
+  }
+  if (command.find('/') != std::string::npos) {
+    return is_executable_file(command) ? command : std::string();
+  }
+  std::size_t start = 0;
+  while (start <= search_path.size()) {
+    const std::size_t end = std::min(search_path.find(':', start), search_path.size());
+    std::string dir(search_path.substr(start, end - start));
+    start = end + 1;
+    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + command;
+    if (is_executable_file(candidate)) {
+      return candidate;
+    }
+  }
+  return {};
+}
+
+std::string local_host_key(std::string_view node, std::string_view plugin)
+{
+  auto chunk = [](std::string_view text) {
+      std::string out;
+      for (const char c : text) {
+        const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+          (c >= '0' && c <= '9') || c == '_' || c == '-' || c == '.';
+        out += plain ? c : '_';
+      }
+      return out.empty() ? std::string("_") : out;
+    };
+  return "nav2_pyif/local/" + chunk(node) + "/" + chunk(plugin);
+}
+
+std::vector<std::string> local_host_arguments(
+  const LocalHostSpec & spec, const std::string & key, const std::string & listen_endpoint)
+{
+  std::vector<std::string> argv{spec.command, "--key", key};
+  if (!spec.planner.empty()) {
+    argv.insert(argv.end(), {"--planner", spec.planner});
+  } else {
+    argv.insert(argv.end(), {"--module", spec.module});
+    for (const auto & [role, function] : spec.delegates) {
+      argv.insert(argv.end(), {"--delegate", role + "=" + function});
+    }
+  }
+  for (const auto & path : spec.paths) {
+    argv.insert(argv.end(), {"--path", path});
+  }
+  argv.insert(argv.end(), {"--listen", listen_endpoint});
+  argv.insert(argv.end(), spec.extra_args.begin(), spec.extra_args.end());
+  return argv;
+}
+
+// --- ProcessSupervisor ----------------------------------------------------------------------
+
+ProcessSupervisor::ProcessSupervisor(Options options, Logger logger)
+: options_(std::move(options)), logger_(std::move(logger))
+{
+  if (options_.argv.empty()) {
+    throw std::invalid_argument("ProcessSupervisor: empty argv");
+  }
+}
+
+ProcessSupervisor::~ProcessSupervisor()
+{
+  stop();
+}
+
+void ProcessSupervisor::start()
+{
+  const char * path = std::getenv("PATH");
+  program_ = find_executable(options_.argv.front(), path ? path : "/usr/local/bin:/usr/bin:/bin");
+  if (program_.empty()) {
+    throw std::runtime_error(
+            "cannot start '" + options_.argv.front() + "': not found on PATH or not executable");
+  }
+  environment_.clear();
+  for (char ** entry = environ; entry && *entry; ++entry) {
+    if (std::strncmp(*entry, "PYTHONUNBUFFERED=", 17) != 0) {
+      environment_.emplace_back(*entry);
+    }
+  }
+  environment_.emplace_back("PYTHONUNBUFFERED=1");
+
+  std::unique_lock<std::mutex> lock(mutex_);
+  if (thread_.joinable()) {
+    throw std::logic_error("ProcessSupervisor::start called twice");
+  }
+  stopping_ = false;
+  first_spawned_ = false;
+  spawn_error_.clear();
+  thread_ = std::thread([this]() {supervise();});
+  changed_.wait(lock, [this]() {return first_spawned_;});
+  if (!spawn_error_.empty()) {
+    const std::string error = spawn_error_;
+    lock.unlock();
+    thread_.join();
+    throw std::runtime_error(error);
+  }
+}
+
+bool ProcessSupervisor::spawn()
+{
+  std::vector<char *> argv;
+  for (auto & arg : options_.argv) {
+    argv.push_back(arg.data());
+  }
+  argv.push_back(nullptr);
+  std::vector<char *> envp;
+  for (auto & entry : environment_) {
+    envp.push_back(entry.data());
+  }
+  envp.push_back(nullptr);
+
+  int error_pipe[2];
+  if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    spawn_error_ = "pipe: " + std::string(std::strerror(errno));
+    return false;
+  }
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    // The child: async-signal-safe calls only until execve.
+    ::setpgid(0, 0);
+    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (::getppid() != parent) {
+      ::_exit(127);
+    }
+    sigset_t none;
+    ::sigemptyset(&none);
+    ::sigprocmask(SIG_SETMASK, &none, nullptr);
+    ::execve(program_.c_str(), argv.data(), envp.data());
+    const int error = errno;
+    [[maybe_unused]] const auto written = ::write(error_pipe[1], &error, sizeof(error));
+    ::_exit(127);
+  }
+  ::close(error_pipe[1]);
+  if (pid < 0) {
+    ::close(error_pipe[0]);
+    std::lock_guard<std::mutex> lock(mutex_);
+    spawn_error_ = "fork: " + std::string(std::strerror(errno));
+    return false;
+  }
+  int exec_error = 0;
+  ssize_t got = 0;
+  do {
+    got = ::read(error_pipe[0], &exec_error, sizeof(exec_error));
+  } while (got < 0 && errno == EINTR);
+  ::close(error_pipe[0]);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (got == static_cast<ssize_t>(sizeof(exec_error))) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    spawn_error_ = "cannot run " + program_ + ": " + std::strerror(exec_error);
+    return false;
+  }
+  pid_ = pid;
+  ++starts_;
+  spawn_error_.clear();
+  return true;
+}
+
+void ProcessSupervisor::supervise()
+{
+  Duration delay = options_.restart_delay;
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stopping_) {
+    lock.unlock();
+    const bool started = spawn();
+    lock.lock();
+    const bool first = !first_spawned_;
+    first_spawned_ = true;
+    changed_.notify_all();
+    if (!started) {
+      if (first) {
+        return;  // start() reports spawn_error_
+      }
+      log(logger_, LogLevel::Error, "planner host: " + spawn_error_);
+    } else {
+      const pid_t pid = pid_;
+      const auto started_at = std::chrono::steady_clock::now();
+      log(
+        logger_, LogLevel::Info,
+        "planner host started (pid " + std::to_string(pid) + "): " + command_line(options_.argv));
+      lock.unlock();
+      int status = 0;
+      pid_t waited = 0;
+      do {
+        waited = ::waitpid(pid, &status, 0);
+      } while (waited < 0 && errno == EINTR);
+      lock.lock();
+      pid_ = 0;
+      last_exit_ = waited == pid ? describe_status(status) : "lost (waitpid failed)";
+      changed_.notify_all();
+      if (stopping_) {
+        break;
+      }
+      if (std::chrono::steady_clock::now() - started_at >= options_.stable_after) {
+        delay = options_.restart_delay;
+      }
+      log(
+        logger_, LogLevel::Error,
+        "planner host (pid " + std::to_string(pid) + ") " + last_exit_ + "; restarting in " +
+        seconds_text(delay));
+    }
+    changed_.wait_for(lock, delay, [this]() {return stopping_;});
+    delay = std::min(delay * 2, options_.max_restart_delay);
+  }
+}
+
+void ProcessSupervisor::stop()
+{
+  pid_t pid = 0;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!thread_.joinable()) {
+      return;
+    }
+    stopping_ = true;
+    pid = pid_;
+  }
+  changed_.notify_all();
+  if (pid > 0) {
+    ::kill(pid, SIGTERM);
+    std::unique_lock<std::mutex> lock(mutex_);
+    if (!changed_.wait_for(lock, options_.stop_grace, [this]() {return pid_ == 0;})) {
+      log(
+        logger_, LogLevel::Warn, "planner host (pid " + std::to_string(pid) +
+        ") ignored SIGTERM; killing it");
+      ::kill(-pid, SIGKILL);
+      ::kill(pid, SIGKILL);
+    }
+  }
+  thread_.join();
+  if (pid > 0) {
+    ::kill(-pid, SIGKILL);  // whatever the host left in its process group (its workers)
+  }
+}
+
+pid_t ProcessSupervisor::pid() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return pid_;
+}
+
+unsigned ProcessSupervisor::starts() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return starts_;
+}
+
+std::string ProcessSupervisor::last_exit() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return last_exit_;
+}
+
+bool ProcessSupervisor::wait_for_starts(unsigned n, Duration timeout) const
+{
+  std::unique_lock<std::mutex> lock(mutex_);
+  return changed_.wait_for(lock, timeout, [this, n]() {return starts_ >= n;});
+}
+
+// --- LocalHost ------------------------------------------------------------------------------
+
+LocalHost::LocalHost(
+  const LocalHostSpec & spec, std::string key, Logger logger,
+  ProcessSupervisor::Options supervision)
+: key_(std::move(key))
+{
+  validate_prefix(key_);
+  endpoint_ = "tcp/127.0.0.1:" + std::to_string(pick_free_tcp_port());
+  supervision.argv = local_host_arguments(spec, key_, endpoint_);
+  process_ = std::make_unique<ProcessSupervisor>(std::move(supervision), std::move(logger));
+  process_->start();
+}
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,75 @@
+#include "nav2_pyif_bridge/client/planner_session.hpp"
+
+#include <utility>
+
+#include "nav2_pyif_bridge/client/command_check.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+namespace proto = protocol;
+
+namespace
+{
+
+SessionConfig as_planner(SessionConfig config)
+{
+  config.kind = PluginKind::GlobalPlanner;
+  return config;
+}
+
+}  // namespace
+
+PlannerSession::PlannerSession(
+  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
+: PluginSession(as_planner(std::move(config)), transport, costmap, std::move(logger))
+{
+}
+
+proto::Path PlannerSession::create_plan(
+  const proto::PoseStamped & start, const proto::PoseStamped & goal,
+  const std::function<bool()> & cancel_checker)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::CreatePlanRequest body;
+  body.start = start;
+  body.goal = goal;
+  CallOptions options;
+  options.costmap = CostmapMode::IfChanged;
+  if (cancel_checker) {
+    // One cancel_plan per create_plan request (a retry after SessionUnknown is a new one).
+    std::uint64_t cancelled_seq = 0;
+    options.while_waiting = [this, &cancel_checker, cancelled_seq](std::uint64_t seq) mutable {
+        if (cancelled_seq != seq && cancel_checker()) {
+          cancelled_seq = seq;
+          send_cancel(seq);
+        }
+      };
+  }
+  auto reply = call_for<proto::CreatePlanReply>(body, options);
+  check_path(reply.path, last_host());
+  return std::move(reply.path);
+}
+
+void PlannerSession::send_cancel(std::uint64_t target_seq)
+{
+  proto::Request request;
+  request.sid = sid();
+  request.epoch = epoch();
+  request.seq = next_seq();
+  request.body = proto::CancelPlanRequest{target_seq};
+  // Fire and forget: the planner's own answer to create_plan (PlannerCancelled) is what counts.
+  transport().send(keys().cancel(), proto::encode_request(request), timeouts().lifecycle);
+  ++cancels_sent_;
+  log(
+    logger(), LogLevel::Info,
+    keys().prefix() + ": create_plan (seq " + std::to_string(target_seq) +
+    ") cancelled by Nav2; cancel_plan sent");
+}
+
+std::uint64_t PlannerSession::cancels_sent() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  return cancels_sent_;
+}
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,399 @@
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
+
+#include <array>
+#include <cstdio>
+#include <random>
+#include <utility>
+#include <variant>
+
+namespace nav2_pyif_bridge::client
+{
+namespace proto = protocol;
+
+namespace
+{
+
+// The costmap rides in these three requests only.
+void attach_costmap(proto::RequestBody & body, proto::Costmap costmap)
+{
+  if (auto * configure = std::get_if<proto::ConfigureRequest>(&body)) {
+    configure->costmap = std::move(costmap);
+  } else if (auto * compute = std::get_if<proto::ComputeVelocityCommandsRequest>(&body)) {
+    compute->costmap = std::move(costmap);
+  } else if (auto * plan = std::get_if<proto::CreatePlanRequest>(&body)) {
+    plan->costmap = std::move(costmap);
+  }
+}
+
+std::string milliseconds(Duration d)
+{
+  std::array<char, 32> text{};
+  std::snprintf(text.data(), text.size(), "%.0f", to_ms(d));
+  return text.data();
+}
+
+}  // namespace
+
+Duration Timeouts::for_op(proto::Op op) const noexcept
+{
+  switch (op) {
+    case proto::Op::Configure:
+      return configure;
+    case proto::Op::ComputeVelocityCommands:
+    case proto::Op::SetPlan:
+    case proto::Op::SetSpeedLimit:
+    case proto::Op::Cancel:
+      return call;
+    case proto::Op::CreatePlan:
+      return plan;
+    default:
+      return lifecycle;
+  }
+}
+
+std::string new_session_id()
+{
+  std::random_device device;
+  std::array<std::uint8_t, 16> bytes{};
+  for (std::size_t i = 0; i < bytes.size(); i += 4) {
+    const std::uint32_t word = device();
+    for (std::size_t j = 0; j < 4; ++j) {
+      bytes[i + j] = static_cast<std::uint8_t>(word >> (8 * j));
+    }
+  }
+  bytes[6] = static_cast<std::uint8_t>((bytes[6] & 0x0f) | 0x40);  // version 4
+  bytes[8] = static_cast<std::uint8_t>((bytes[8] & 0x3f) | 0x80);  // RFC 4122 variant
+  static constexpr char kHex[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(32);
+  for (const std::uint8_t byte : bytes) {
+    out += kHex[byte >> 4];
+    out += kHex[byte & 0x0f];
+  }
+  return out;
+}
+
+PluginSession::PluginSession(
+  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
+: config_(std::move(config)), keys_(config_.key_prefix), transport_(transport),
+  costmap_(costmap), logger_(std::move(logger)), sid_(new_session_id())
+{
+}
+
+// --- lifecycle ------------------------------------------------------------------------------
+
+proto::Params PluginSession::configure()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return configure_locked();
+}
+
+proto::Params PluginSession::configure_locked()
+{
+  ++epoch_;
+  delivered_costmap_.reset();
+  established_ = false;
+  proto::ConfigureRequest body;
+  body.plugin_type = std::string(plugin_type_name(config_.kind));
+  body.name = config_.name;
+  body.node = config_.node;
+  body.params = config_.params;
+  body.global_frame = config_.global_frame;
+  body.robot_base_frame = config_.robot_base_frame;
+  CallOptions options;
+  options.costmap = CostmapMode::Always;
+  options.allow_resync = false;
+  auto reply = call_for<proto::ConfigureReply>(body, options);
+  configured_ = true;
+  established_ = true;
+  for (const auto & [name, value] : reply.declared) {
+    if (config_.params.find(name) == nullptr) {
+      config_.params.set(name, value);
+    }
+  }
+  return std::move(reply.declared);
+}
+
+void PluginSession::defer_configure()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  configured_ = true;
+  established_ = false;
+}
+
+void PluginSession::activate()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  if (configured_ && !established_) {
+    active_ = true;  // sent when the session is established
+    if (transport_.hosts_alive()) {
+      try {
+        establish();
+      } catch (const CallError & error) {
+        if (!error.unreachable()) {
+          throw;
+        }
+        log(logger_, LogLevel::Warn, keys_.prefix() + ": " + error.what());
+      }
+    }
+    return;
+  }
+  call(proto::ActivateRequest{}, {});
+  active_ = true;
+}
+
+void PluginSession::deactivate()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  if (configured_ && !established_) {
+    active_ = false;
+    return;
+  }
+  call(proto::DeactivateRequest{}, {});
+  active_ = false;
+}
+
+void PluginSession::cleanup()
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  const bool send = !configured_ || established_;  // not configured: the call says so
+  struct Reset
+  {
+    PluginSession & session;
+    ~Reset()
+    {
+      session.configured_ = false;
+      session.established_ = false;
+      session.active_ = false;
+      session.forget_state();
+    }
+  } reset{*this};
+  if (send) {
+    CallOptions options;
+    options.allow_resync = false;
+    call(proto::CleanupRequest{}, options);
+  }
+}
+
+proto::StringMap PluginSession::set_parameters(const proto::Params & changes)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  if (!configured_ || !established_) {
+    for (const auto & [name, value] : changes) {
+      config_.params.set(name, value);
+    }
+    return {};
+  }
+  auto reply = call_for<proto::SetParametersReply>(proto::SetParametersRequest{changes});
+  for (const auto & [name, value] : changes) {
+    if (reply.rejected.find(name) == nullptr) {
+      config_.params.set(name, value);
+    }
+  }
+  return std::move(reply.rejected);
+}
+
+bool PluginSession::wait_for_host(Duration timeout)
+{
+  return transport_.wait_for_host(timeout);
+}
+
+// --- the call procedure ---------------------------------------------------------------------
+
+proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const CallOptions & options)
+{
+  const proto::Op op = proto::op_of(body);
+  const std::string op_text(proto::op_name(op));
+  if (op != proto::Op::Configure && !configured_) {
+    fail(
+      generic_error(config_.kind), Cause::NotConfigured,
+      op_text + " before configure on " + keys_.prefix());
+  }
+  if (!transport_.hosts_alive()) {
+    fail(
+      generic_error(config_.kind), Cause::NoHost,
+      "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +
+      keys_.prefix() + " ...); " + op_text + " not sent");
+  }
+  if (op != proto::Op::Configure && !established_) {
+    establish();  // deferred configure, or a re-establishment that failed before
+  }
+
+  proto::Request request;
+  request.sid = sid_;
+  request.epoch = epoch_;
+  request.body = body;
+  std::optional<std::uint64_t> version;
+  bool costmap_sent = false;
+  if (options.costmap != CostmapMode::None) {
+    CostmapRead read = costmap_.read(
+      options.costmap == CostmapMode::Always ? std::nullopt : delivered_costmap_);
+    version = read.version;
+    if (read.costmap) {
+      attach_costmap(request.body, std::move(*read.costmap));
+      costmap_sent = true;
+    }
+  }
+  request.seq = next_seq();
+
+  proto::Reply reply = exchange(request, options);
+  if (reply.ok()) {
+    if (costmap_sent) {
+      delivered_costmap_ = version;
+    }
+    return std::get<proto::ReplyBody>(std::move(reply.outcome));
+  }
+  const proto::Error & error = reply.error();
+  if (error.type == proto::error_type::kSessionUnknown && options.allow_resync) {
+    reestablish(reply.host);
+    CallOptions retry = options;
+    retry.allow_resync = false;
+    return call(body, retry);
+  }
+  throw error_from_reply(error, config_.kind);
+}
+
+proto::Reply PluginSession::exchange(const proto::Request & request, const CallOptions & options)
+{
+  const proto::Op op = request.op();
+  const std::string op_text(proto::op_name(op));
+  proto::Bytes payload;
+  try {
+    payload = proto::encode_request(request);
+  } catch (const proto::EncodeError & error) {
+    fail(generic_error(config_.kind), Cause::Local, "cannot encode " + op_text + ": " + error.what());
+  }
+  const Duration timeout = config_.timeouts.for_op(op);
+  WaitHook hook;
+  const WaitHook * hook_ptr = nullptr;
+  if (options.while_waiting) {
+    hook.poll = [&options, seq = request.seq]() {options.while_waiting(seq);};
+    hook_ptr = &hook;
+  }
+  std::optional<proto::Bytes> answer;
+  try {
+    answer = transport_.query(keys_.call(op), payload, timeout, hook_ptr);
+  } catch (const CallError &) {
+    throw;
+  } catch (const std::exception & error) {
+    fail(
+      generic_error(config_.kind), Cause::Local,
+      op_text + " on " + keys_.prefix() + ": Zenoh query failed: " + error.what());
+  }
+  if (!answer) {
+    fail(
+      timed_out_error(config_.kind), Cause::TimedOut,
+      op_text + " got no reply from " + keys_.prefix() + " within " + milliseconds(timeout) +
+      " ms");
+  }
+  proto::Reply reply;
+  try {
+    reply = proto::decode_reply(*answer, op);
+  } catch (const proto::DecodeError & error) {
+    fail(generic_error(config_.kind), Cause::BadReply, "bad reply to " + op_text + ": " + error.what());
+  }
+  if (reply.seq != request.seq) {
+    fail(
+      generic_error(config_.kind), Cause::BadReply,
+      "reply to " + op_text + " has seq " + std::to_string(reply.seq) + ", expected " +
+      std::to_string(request.seq));
+  }
+  last_host_ = reply.host;
+  return reply;
+}
+
+void PluginSession::reestablish(const std::string & host)
+{
+  log(
+    logger_, LogLevel::Warn,
+    keys_.prefix() + ": host " + host + " does not know session " + sid_.substr(0, 8) +
+    "; re-sending state");
+  ++resyncs_;
+  establish();
+}
+
+void PluginSession::establish()
+{
+  configure_locked();
+  if (active_) {
+    CallOptions options;
+    options.allow_resync = false;
+    call(proto::ActivateRequest{}, options);
+  }
+  restore_state();
+}
+
+void PluginSession::fail(ErrorKind kind, Cause cause, const std::string & message) const
+{
+  throw CallError(kind, cause, message);
+}
+
+// --- state ----------------------------------------------------------------------------------
+
+std::uint64_t PluginSession::epoch() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return epoch_;
+}
+
+std::uint64_t PluginSession::last_seq() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return seq_;
+}
+
+bool PluginSession::configured() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return configured_;
+}
+
+bool PluginSession::established() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return established_;
+}
+
+bool PluginSession::active() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return active_;
+}
+
+std::uint64_t PluginSession::resyncs() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return resyncs_;
+}
+
+std::string PluginSession::last_host() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return last_host_;
+}
+
+std::optional<std::uint64_t> PluginSession::delivered_costmap() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return delivered_costmap_;
+}
+
+proto::Params PluginSession::params() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return config_.params;
+}
+
+Timeouts PluginSession::timeouts() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return config_.timeouts;
+}
+
+void PluginSession::set_timeouts(const Timeouts & timeouts)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  config_.timeouts = timeouts;
+}
+
+}  // namespace nav2_pyif_bridge::client

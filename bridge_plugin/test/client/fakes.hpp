@@ -1,0 +1,157 @@
+// Test doubles for the client units: a fake clock, a fake planner host behind the Transport
+// interface (it decodes every request with the real codec and follows the host rules of
+// PROTOCOL.md section 4, answering like tests/fixtures/echo_planners.py), and a costmap grid.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nav2_pyif_bridge/client/clock.hpp"
+#include "nav2_pyif_bridge/client/costmap_version.hpp"
+#include "nav2_pyif_bridge/client/host_watcher.hpp"
+#include "nav2_pyif_bridge/client/log.hpp"
+#include "nav2_pyif_bridge/client/transport.hpp"
+#include "nav2_pyif_bridge/protocol/codec.hpp"
+
+namespace nav2_pyif_bridge::client::test
+{
+
+using namespace std::chrono_literals;
+
+// Time moves only when advanced: by the test, by a fake host doing work, or by a wait.
+class FakeClock : public Clock
+{
+public:
+  TimePoint now() const override;
+  // A wait returns at the next scheduled event or at its timeout, whichever is first.
+  void wait_for(
+    std::condition_variable & cv, std::unique_lock<std::mutex> & lock,
+    Duration timeout) override;
+  void sleep_for(Duration duration) override {advance(duration);}
+
+  // Move time forward, running each event scheduled up to the new time, in order.
+  void advance(Duration duration);
+  // Run `event` when the clock reaches `elapsed()` == at.
+  void at(Duration at, std::function<void()> event);
+  Duration elapsed() const;
+
+private:
+  std::optional<Duration> next_event() const;
+
+  mutable std::mutex mutex_;
+  Duration now_{0};
+  std::multimap<Duration, std::function<void()>> events_;
+};
+
+// A costmap as a plain grid; read() goes through the real CostmapVersion.
+class GridCostmap : public CostmapSource
+{
+public:
+  GridCostmap(std::uint32_t size_x = 40, std::uint32_t size_y = 40, double resolution = 0.05);
+  CostmapRead read(std::optional<std::uint64_t> known) override;
+
+  std::string frame_id{"odom"};
+  std::uint32_t size_x;
+  std::uint32_t size_y;
+  double resolution;
+  double origin_x{0.0};
+  double origin_y{0.0};
+  std::vector<std::uint8_t> data;
+  std::vector<double> footprint{0.2, 0.1, 0.2, -0.1, -0.2, -0.1, -0.2, 0.1};
+  double robot_radius{0.0};
+  int reads{0};
+
+private:
+  CostmapVersion version_;
+};
+
+// The planner host as the plugin sees it through Transport.
+class FakeHost : public Transport
+{
+public:
+  explicit FakeHost(FakeClock & clock, bool alive = true);
+
+  // --- Transport ---
+  std::optional<protocol::Bytes> query(
+    const std::string & key, const protocol::Bytes & payload, Duration timeout,
+    const WaitHook * hook) override;
+  void send(const std::string & key, const protocol::Bytes & payload, Duration timeout) override;
+  bool hosts_alive() override {return watcher_.any_alive();}
+  bool wait_for_host(Duration timeout) override {return watcher_.wait_for_any(timeout);}
+
+  // --- the host process ---
+  void kill();     // SIGKILL: its token goes, its sessions are lost
+  void start();    // a new process: a new host id, no sessions, its token appears
+  void restart() {kill(); start();}
+  const std::string & host_id() const {return host_id_;}
+  HostWatcher & watcher() {return watcher_;}
+
+  // --- what it received ---
+  struct Received
+  {
+    std::string key;
+    protocol::Request request;
+    std::size_t bytes{0};
+    bool answered{false};  // false: the plugin's timeout passed first
+  };
+  std::vector<Received> received;
+  std::vector<std::string> ops() const;  // op names of `received`, in order
+  std::vector<std::string> ops_since(std::size_t index) const;
+  const protocol::Request & last() const {return received.back().request;}
+  bool last_had_costmap() const;
+
+  // --- faults and timing ---
+  Duration call_time{0};                     // how long each call takes
+  std::optional<Duration> next_call_time;    // ... or the next one only
+  int seq_offset_once{0};                    // the next reply answers another seq
+  std::optional<protocol::Error> error_once; // the next call fails with this
+  bool always_session_unknown{false};        // every non-configure call: SessionUnknown
+  bool nan_once{false};                      // the next command has vx = NaN (host not checking)
+  std::optional<protocol::Bytes> raw_reply_once;  // the next reply is these bytes
+  // What one session knows, echoed by compute_velocity_commands.
+  struct Session
+  {
+    std::uint64_t epoch{0};
+    protocol::Params params;
+    double plan_size{-1.0};
+    double speed_limit{-1.0};
+    std::uint64_t costmap_version{0};
+    double calls{0.0};
+    bool active{false};
+  };
+  std::map<std::string, Session> sessions;
+
+private:
+  protocol::Reply handle(const protocol::Request & request, Duration elapsed);
+  protocol::Reply error(const protocol::Request & request, std::string type, std::string message);
+
+  FakeClock & clock_;
+  HostWatcher watcher_;
+  std::string host_id_;
+  int generation_{0};
+  std::uint64_t running_seq_{0};  // create_plan being computed
+  bool cancel_requested_{false};
+};
+
+// Collects what a unit logs.
+struct LogSink
+{
+  std::vector<std::pair<LogLevel, std::string>> lines;
+  Logger logger()
+  {
+    return [this](LogLevel level, const std::string & text) {lines.emplace_back(level, text);};
+  }
+  bool contains(const std::string & text) const;
+};
+
+// A straight n-pose path from (0, 0) to (x, y) in frame "odom".
+protocol::Path straight_path(std::size_t n, double x, double y);
+protocol::PoseStamped pose_at(double x, double y, const std::string & frame = "odom");
+
+}  // namespace nav2_pyif_bridge::client::test
