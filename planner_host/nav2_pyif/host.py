@@ -41,6 +41,7 @@ class ServedPlanner:
     ) -> None:
         self.keys = keys
         self.runtime = runtime
+        self.host_id = host_id
         self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
         # Reading the channel (not the queryable) lets close() undeclare from another thread.
         self._receiver = self._calls.handler
@@ -59,6 +60,9 @@ class ServedPlanner:
                 query = self._receiver.recv()
             except Exception:  # channel closed: undeclared or session closed
                 return
+            if self._addressed_elsewhere(query):
+                query.drop()  # a replica's query: its pinned host answers
+                continue
             try:
                 op = str(query.key_expr).rsplit("/", 1)[-1]
                 reply = self.runtime.handle(_payload(query), key_op=op)
@@ -68,7 +72,15 @@ class ServedPlanner:
             finally:
                 query.drop()  # sends the final reply marker now, not at garbage collection
 
+    def _addressed_elsewhere(self, query: Any) -> bool:
+        """Plugins pin one host among replicas with the selector parameter host=<id>."""
+        host = query.parameters.get("host")
+        return host is not None and host != self.host_id
+
     def _on_cancel(self, query: Any) -> None:
+        if self._addressed_elsewhere(query):
+            query.drop()
+            return
         try:
             query.reply(query.key_expr, self.runtime.handle_cancel(_payload(query)))
         except Exception:

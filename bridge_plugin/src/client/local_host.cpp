@@ -28,7 +28,9 @@ namespace
 bool is_executable_file(const std::string & path)
 {
   struct stat info {};
+  // access(X_OK) alone is true for root whenever any execute bit is set; ask for one.
   return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
+         (info.st_mode & (S_IXUSR | S_IXGRP | S_IXOTH)) != 0 &&
          ::access(path.c_str(), X_OK) == 0;
 }
 

@@ -1,5 +1,8 @@
 #include "fakes.hpp"
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>

@@ -6,6 +6,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+import zenoh
 from nav2_pyif_protocol.codec import Request, encode_request
 from nav2_pyif_protocol.constants import Op, PluginType
 
@@ -63,5 +64,8 @@ class GlobalPlannerClient(PluginClient):
         cancel = self._next_request(Op.CANCEL_PLAN, {"target_seq": target_seq})
         # Fire and forget: the planner's own reply (PlannerCancelled) is what counts.
         self.session.get(
-            self.keys.cancel, payload=encode_request(cancel), timeout=self.timeouts.lifecycle
+            self.selector(self.keys.cancel),
+            payload=encode_request(cancel),
+            timeout=self.timeouts.lifecycle,
+            target=zenoh.QueryTarget.ALL,
         )

@@ -100,7 +100,9 @@ class PluginClient:
         self.configured = False
         self.active = False
         self.last_host: str | None = None
+        self.host: str | None = None  # the pinned host among replicas
         self.resyncs = 0
+        self.failovers = 0
         self.records: list[CallRecord] | None = [] if record_calls else None
         self.hosts = HostWatcher(session, self.keys)
 
@@ -172,6 +174,36 @@ class PluginClient:
             return self.timeouts.plan
         return self.timeouts.lifecycle
 
+    # --- replicas: several hosts may serve one key; this plugin talks to exactly one ------
+    def _pin_host(self) -> None:
+        """Keep the pinned host while it is alive; else pin the smallest alive host id."""
+        alive = self.hosts.alive
+        if self.host not in alive and alive:
+            if self.host is not None:
+                log.warning("%s: host %s is gone; using %s", self.keys.prefix, self.host,
+                            min(alive))
+                self.failovers += 1
+            self.host = min(alive)
+
+    def _fail_over(self, avoid: str | None = None) -> bool:
+        """Pin another alive host when the pinned one vanished (or, with ``avoid``, did not
+        answer or is unavailable). True when the pin changed: the call is then retried once
+        there, and the new host's SessionUnknown makes this plugin re-send its state."""
+        alive = self.hosts.alive
+        if avoid is None and self.host in alive:
+            return False
+        others = sorted(alive - {self.host, avoid})
+        if not others:
+            return False
+        log.warning("%s: failing over from host %s to %s", self.keys.prefix, self.host, others[0])
+        self.host = others[0]
+        self.failovers += 1
+        return True
+
+    def selector(self, key: str) -> str:
+        """``key?host=<pinned id>``: replicas other than the pinned host drop the query."""
+        return f"{key}?host={self.host}" if self.host else key
+
     def _next_request(self, op: Op, body: Body) -> Request:
         self._seq += 1
         return Request(op=op, sid=self.sid, epoch=self.epoch, seq=self._seq, body=body)
@@ -183,6 +215,7 @@ class PluginClient:
         *,
         with_costmap: bool = False,
         allow_resync: bool = True,
+        allow_failover: bool = True,
         wait: Callable[[Any, Request, float], Any] | None = None,
     ) -> Body:
         if op is not Op.CONFIGURE and not self.configured:
@@ -194,12 +227,29 @@ class PluginClient:
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
                 f"--key {self.keys.prefix} ...); {op.value} not sent"
             )
+        self._pin_host()
         version = self.costmap.version
         send_costmap = with_costmap and version != self._delivered_costmap
         request = self._next_request(
             op, dict(body, costmap=self.costmap.to_wire()) if send_costmap else body
         )
-        reply = self._exchange(request, wait)
+        retry = {"with_costmap": with_costmap, "allow_failover": False, "wait": wait}
+        try:
+            reply = self._exchange(request, wait)
+        except Nav2Error:
+            # No reply in time: the pinned replica died (its token may not be gone yet) or
+            # hangs. Another alive replica gets the call instead.
+            if allow_failover and self._fail_over(avoid=self.host):
+                return self._call(op, body, **retry)  # type: ignore[arg-type]
+            raise
+        if (
+            not reply.ok
+            and reply.error is not None
+            and allow_failover
+            and reply.error.type == ErrorType.UNAVAILABLE.value
+            and self._fail_over(avoid=reply.host)
+        ):
+            return self._call(op, body, **retry)  # type: ignore[arg-type]
         if reply.ok:
             if send_costmap or op is Op.CONFIGURE:
                 self._delivered_costmap = version
@@ -208,7 +258,14 @@ class PluginClient:
         assert reply.error is not None
         if reply.error.type == ErrorType.SESSION_UNKNOWN.value and allow_resync:
             self._reestablish(reply.host)
-            return self._call(op, body, with_costmap=with_costmap, allow_resync=False, wait=wait)
+            return self._call(
+                op,
+                body,
+                with_costmap=with_costmap,
+                allow_resync=False,
+                allow_failover=allow_failover,
+                wait=wait,
+            )
         raise error_from_reply(reply.error, self.plugin_type)
 
     def _exchange(
@@ -218,7 +275,12 @@ class PluginClient:
         payload = encode_request(request, validate=request.op is not Op.COMPUTE_VELOCITY_COMMANDS)
         timeout = self._timeout(request.op)
         start = time.perf_counter_ns()
-        replies = self.session.get(self.keys.call(request.op), payload=payload, timeout=timeout)
+        replies = self.session.get(
+            self.selector(self.keys.call(request.op)),
+            payload=payload,
+            timeout=timeout,
+            target=zenoh.QueryTarget.ALL,
+        )
         sample = wait(replies, request, timeout) if wait else _first_ok(replies)
         elapsed = time.perf_counter_ns() - start
         if sample is None:

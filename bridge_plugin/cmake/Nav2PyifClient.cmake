@@ -1,0 +1,44 @@
+# The plugin's logic without Nav2 or Zenoh (src/client): session/epoch/seq handling, the call
+# procedure of PROTOCOL.md section 4, error mapping, costmap versions, settings, the local
+# planner host's supervision. A static library linked into the Nav2 plugins, and tested on its
+# own in both builds of CMakeLists.txt:
+#
+#   nav2_pyif_client_test_sources(<out_var>)   the GoogleTest sources (test/client)
+#   nav2_pyif_client_test_setup(<target>)      includes and libraries for that executable
+
+find_package(Threads REQUIRED)
+
+add_library(nav2_pyif_client STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/clock.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/command_check.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/controller_session.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/costmap_version.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/error_mapping.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/host_watcher.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/keys.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/local_host.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/planner_session.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/plugin_session.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/settings.cpp
+)
+target_include_directories(nav2_pyif_client PUBLIC ${CMAKE_CURRENT_LIST_DIR}/../include)
+target_link_libraries(nav2_pyif_client PUBLIC nav2_pyif_protocol_codec Threads::Threads)
+set_target_properties(nav2_pyif_client PROPERTIES POSITION_INDEPENDENT_CODE ON)
+
+set(_nav2_pyif_client_test_dir ${CMAKE_CURRENT_LIST_DIR}/../test/client)
+
+function(nav2_pyif_client_test_sources out_var)
+  set(${out_var}
+    ${_nav2_pyif_client_test_dir}/controller_session_test.cpp
+    ${_nav2_pyif_client_test_dir}/fakes.cpp
+    ${_nav2_pyif_client_test_dir}/local_host_test.cpp
+    ${_nav2_pyif_client_test_dir}/planner_session_test.cpp
+    ${_nav2_pyif_client_test_dir}/settings_test.cpp
+    ${_nav2_pyif_client_test_dir}/units_test.cpp
+    PARENT_SCOPE)
+endfunction()
+
+function(nav2_pyif_client_test_setup target)
+  target_include_directories(${target} PRIVATE ${_nav2_pyif_client_test_dir})
+  target_link_libraries(${target} nav2_pyif_client)
+endfunction()
