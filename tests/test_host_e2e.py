@@ -177,7 +177,7 @@ def test_a_hung_call_times_out_and_the_next_call_works(
     host = start_host("--key", KEY, "--planner", "echo_planners:FaultyController")
     client = controller(zsession_factory, host, timeouts=Timeouts(call=0.3, lifecycle=5.0))
     client.configure()
-    client.set_parameters({"fault": "sleep", "sleep_s": 1.0})
+    client.set_parameters({"fault": "sleep", "sleep_s": 0.6})  # host deadline: 1 s
     started = time.monotonic()
     with pytest.raises(api.ControllerTimedOut, match="no reply"):
         client.compute_velocity_commands(pose(), Twist())
