@@ -10,7 +10,7 @@ import argparse
 import json
 import sys
 
-from nav2_pyif_bench import mppi_bench, protocol_bench, reliability_bench
+from nav2_pyif_bench import fleet_bench, mppi_bench, protocol_bench, reliability_bench
 from nav2_pyif_bench.stats import machine_description
 
 
@@ -26,11 +26,15 @@ def main(argv: list[str] | None = None) -> int:
     mppi = sub.add_parser("mppi", help="the MPPI controller's rate through a planner host")
     mppi.add_argument("--batch-sizes", type=int, nargs="+", default=[1000, 2000])
     mppi.add_argument("--map", default="office")
+    fleet = sub.add_parser("fleet", help="N robots at 20 Hz on one planner host")
+    fleet.add_argument("--robots", type=int, nargs="+", default=[1, 10, 50])
+    fleet.add_argument("--seconds", type=float, default=20.0)
+    fleet.add_argument("--isolation", choices=["process", "none"], default="process")
     reliability = sub.add_parser("reliability", help="hot swap gap, memory over a long run")
     reliability.add_argument("--swaps", type=int, default=6)
     reliability.add_argument("--calls", type=int, default=200_000)
     reliability.add_argument("--cycles", type=int, default=100, help="lifecycle cycles")
-    for p in (protocol, mppi, reliability):
+    for p in (protocol, mppi, reliability, fleet):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     print(f"machine: {machine_description()}\n", flush=True)
@@ -40,6 +44,9 @@ def main(argv: list[str] | None = None) -> int:
     elif args.bench == "mppi":
         results = mppi_bench.run(args)
         text = mppi_bench.report(results)
+    elif args.bench == "fleet":
+        results = fleet_bench.run(args)
+        text = fleet_bench.report(results)
     else:
         results = reliability_bench.run(args)
         text = reliability_bench.report(results)

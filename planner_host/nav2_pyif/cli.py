@@ -8,6 +8,7 @@ import os
 import signal
 import sys
 import threading
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from types import FrameType
 from typing import Any
@@ -197,9 +198,9 @@ def main(argv: list[str] | None = None) -> int:
         if directory not in sys.path:
             sys.path.insert(0, directory)
     host_id = new_host_id()
+    specs = collect_specs(args, parser)
     try:
-        specs = collect_specs(args, parser)
-        services = [start_service(spec, host_id, args) for spec in specs]
+        services = start_services(specs, host_id, args)
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 2
@@ -251,6 +252,26 @@ def main(argv: list[str] | None = None) -> int:
         host.close()
         session.close()
     return 0
+
+
+def start_services(
+    specs: list[PlannerSpec], host_id: str, args: argparse.Namespace
+) -> list[PlannerService]:
+    """Start every planner; workers load in parallel (a fleet host may serve dozens). If one
+    cannot load, the others are stopped and its PlannerLoadError is raised."""
+    with ThreadPoolExecutor(max_workers=min(8, len(specs))) as pool:
+        futures = [pool.submit(start_service, spec, host_id, args) for spec in specs]
+    started, error = [], None
+    for future in futures:
+        try:
+            started.append(future.result())
+        except PlannerLoadError as exc:
+            error = error or exc
+    if error is not None:
+        for service in started:
+            service.close()
+        raise error
+    return started
 
 
 def start_service(spec: PlannerSpec, host_id: str, args: argparse.Namespace) -> PlannerService:

@@ -38,6 +38,7 @@ class PlannerHostProcess:
         self.log_level = log_level
         self.extra_path = extra_path or []
         self.proc: subprocess.Popen[bytes] | None = None
+        self.extra_args: list[str] = []
         self._dir = tempfile.TemporaryDirectory(prefix="nav2_pyif_host_")
         self.log_path = Path(self._dir.name) / "host.log"
 
@@ -61,6 +62,7 @@ class PlannerHostProcess:
         ]
         for directory in self.extra_path:
             command += ["--path", directory]
+        command += self.extra_args
         with open(self.log_path, "ab") as log:
             self.proc = subprocess.Popen(
                 command, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ)

@@ -58,7 +58,12 @@ void PlannerSession::send_cancel(std::uint64_t target_seq)
   request.seq = next_seq();
   request.body = proto::CancelPlanRequest{target_seq};
   // Fire and forget: the planner's own answer to create_plan (PlannerCancelled) is what counts.
-  transport().send(keys().cancel(), proto::encode_request(request), timeouts().lifecycle);
+  try {
+    transport().send(target(keys().cancel()), proto::encode_request(request), timeouts().lifecycle);
+  } catch (const std::exception & error) {
+    log(logger(), LogLevel::Warn, keys().prefix() + ": cancel_plan not sent: " + error.what());
+    return;
+  }
   ++cancels_sent_;
   log(
     logger(), LogLevel::Info,

@@ -195,7 +195,7 @@ proto::StringMap PluginSession::set_parameters(const proto::Params & changes)
 
 bool PluginSession::wait_for_host(Duration timeout)
 {
-  return transport_.wait_for_host(timeout);
+  return transport_.wait_for_host(timeout);  // without the session's lock: calls may go on
 }
 
 // --- the call procedure ---------------------------------------------------------------------
@@ -215,6 +215,7 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
       "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +
       keys_.prefix() + " ...); " + op_text + " not sent");
   }
+  pin_host();
   if (op != proto::Op::Configure && !established_) {
     establish();  // deferred configure, or a re-establishment that failed before
   }
@@ -236,7 +237,28 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
   }
   request.seq = next_seq();
 
-  proto::Reply reply = exchange(request, options);
+  // After a fail-over: once, on the new replica, whose SessionUnknown re-sends the state.
+  CallOptions retry = options;
+  retry.allow_failover = false;
+  retry.allow_resync = true;
+  proto::Reply reply;
+  try {
+    reply = exchange(request, options);
+  } catch (const CallError & error) {
+    // No reply in time (the pinned replica died before its token went, or hangs), or a bad
+    // one: another alive replica gets the call instead.
+    const bool exchange_failed = error.cause() == Cause::TimedOut ||
+      error.cause() == Cause::BadReply;
+    if (exchange_failed && options.allow_failover && fail_over(pinned_host_)) {
+      return call(body, retry);
+    }
+    throw;
+  }
+  if (!reply.ok() && reply.error().type == proto::error_type::kUnavailable &&
+    options.allow_failover && fail_over(reply.host))
+  {
+    return call(body, retry);
+  }
   if (reply.ok()) {
     if (costmap_sent) {
       delivered_costmap_ = version;
@@ -246,9 +268,9 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
   const proto::Error & error = reply.error();
   if (error.type == proto::error_type::kSessionUnknown && options.allow_resync) {
     reestablish(reply.host);
-    CallOptions retry = options;
-    retry.allow_resync = false;
-    return call(body, retry);
+    CallOptions again = options;
+    again.allow_resync = false;
+    return call(body, again);
   }
   throw error_from_reply(error, config_.kind);
 }
@@ -272,7 +294,7 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
   }
   std::optional<proto::Bytes> answer;
   try {
-    answer = transport_.query(keys_.call(op), payload, timeout, hook_ptr);
+    answer = transport_.query(target(keys_.call(op)), payload, timeout, hook_ptr);
   } catch (const CallError &) {
     throw;
   } catch (const std::exception & error) {
@@ -310,6 +332,43 @@ void PluginSession::reestablish(const std::string & host)
     "; re-sending state");
   ++resyncs_;
   establish();
+}
+
+void PluginSession::pin_host()
+{
+  const HostWatcher::Hosts alive = transport_.hosts().alive();
+  if (alive.empty() || alive.count(pinned_host_) != 0) {
+    return;
+  }
+  const std::string & smallest = *alive.begin();
+  if (!pinned_host_.empty()) {
+    log(
+      logger_, LogLevel::Warn,
+      keys_.prefix() + ": host " + pinned_host_ + " is gone; using " + smallest);
+    ++failovers_;
+  }
+  pinned_host_ = smallest;
+}
+
+bool PluginSession::fail_over(const std::optional<std::string> & avoid)
+{
+  HostWatcher::Hosts alive = transport_.hosts().alive();
+  if (!avoid && alive.count(pinned_host_) != 0) {
+    return false;
+  }
+  alive.erase(pinned_host_);
+  if (avoid) {
+    alive.erase(*avoid);
+  }
+  if (alive.empty()) {
+    return false;
+  }
+  log(
+    logger_, LogLevel::Warn,
+    keys_.prefix() + ": failing over from host " + pinned_host_ + " to " + *alive.begin());
+  pinned_host_ = *alive.begin();
+  ++failovers_;
+  return true;
 }
 
 void PluginSession::establish()
@@ -370,6 +429,18 @@ std::string PluginSession::last_host() const
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
   return last_host_;
+}
+
+std::string PluginSession::pinned_host() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return pinned_host_;
+}
+
+std::uint64_t PluginSession::failovers() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return failovers_;
 }
 
 std::optional<std::uint64_t> PluginSession::delivered_costmap() const

@@ -463,5 +463,110 @@ TEST_F(ControllerSessionTest, EncodingFailuresAreGenericErrorsAndNothingIsSent)
   EXPECT_EQ(host.ops(), (std::vector<std::string>{"configure"}));
 }
 
+// --- replicas (tests/test_replicas.py) ------------------------------------------------------
+
+TEST_F(ControllerSessionTest, QueriesGoToThePinnedReplica)
+{
+  host.add_replica("a-replica");  // smaller than fake-host-1
+  auto & s = make();
+  s.configure();
+  s.activate();
+  EXPECT_EQ(s.pinned_host(), "a-replica");
+  for (const auto & r : host.received) {
+    EXPECT_EQ(r.host, "a-replica");
+    EXPECT_EQ(r.answered_by, "a-replica");
+  }
+  EXPECT_TRUE(host.has_session("a-replica", s.sid()));
+  EXPECT_FALSE(host.has_session(host.host_id(), s.sid()));  // the other one ran nothing
+  EXPECT_EQ(Target({"k/rpc/activate", "a-replica"}).selector(), "k/rpc/activate?host=a-replica");
+  EXPECT_EQ(Target({"k/rpc/activate", ""}).parameters(), "");
+}
+
+TEST_F(ControllerSessionTest, FailoverToAReplicaLosesNoCall)
+{
+  host.add_replica("a-replica");
+  Timeouts t = generous();
+  t.call = 300ms;
+  auto & s = make({}, t);
+  s.configure();
+  s.activate();
+  s.set_plan(straight_path(31, 1, 0));
+  EXPECT_EQ(compute().twist[0], 31.0);
+
+  // The pinned replica dies; its token is still there: the call gets no reply in time.
+  host.freeze_replica("a-replica");
+  const std::size_t sent = host.received.size();
+  EXPECT_EQ(compute().twist[0], 31.0);  // the plan was re-sent to the new replica
+  EXPECT_EQ(s.pinned_host(), host.host_id());
+  EXPECT_EQ(s.failovers(), 1u);
+  EXPECT_EQ(s.resyncs(), 1u);
+  EXPECT_EQ(
+    host.ops_since(sent), (std::vector<std::string>{"compute_velocity_commands",
+      "compute_velocity_commands", "configure", "activate", "set_plan",
+      "compute_velocity_commands"}));
+  EXPECT_FALSE(host.received[sent].answered);
+  EXPECT_EQ(host.received[sent + 1].host, host.host_id());
+
+  // Its token goes later: nothing changes any more.
+  host.kill_replica("a-replica");
+  EXPECT_EQ(compute().twist[0], 31.0);
+  EXPECT_EQ(s.failovers(), 1u);
+}
+
+TEST_F(ControllerSessionTest, AGoneTokenMovesThePinBeforeTheCall)
+{
+  host.add_replica("a-replica");
+  auto & s = make();
+  s.configure();
+  s.activate();
+  host.kill_replica("a-replica");
+  const std::size_t sent = host.received.size();
+  EXPECT_TRUE(std::isfinite(compute().twist[0]));
+  EXPECT_EQ(s.failovers(), 1u);
+  EXPECT_TRUE(log.contains("host a-replica is gone; using " + host.host_id()));
+  EXPECT_EQ(host.received[sent].host, host.host_id());  // no query to the dead one
+  EXPECT_EQ(
+    host.ops_since(sent), (std::vector<std::string>{"compute_velocity_commands", "configure",
+      "activate", "compute_velocity_commands"}));
+}
+
+TEST_F(ControllerSessionTest, UnavailableFailsOverWhenAnotherReplicaIsAlive)
+{
+  host.add_replica("a-replica");
+  auto & s = make();
+  s.configure();
+  s.activate();
+  host.error_once = proto::Error{"Unavailable", "worker restarting", "", ""};
+  EXPECT_TRUE(std::isfinite(compute().twist[0]));
+  EXPECT_EQ(s.pinned_host(), host.host_id());
+  EXPECT_EQ(s.failovers(), 1u);
+}
+
+TEST_F(ControllerSessionTest, UnavailableWithoutAReplicaFails)
+{
+  auto & s = make();
+  s.configure();
+  host.error_once = proto::Error{"Unavailable", "worker restarting", "", ""};
+  const CallError e = error_of([&] {s.activate();});
+  EXPECT_EQ(e.kind(), ErrorKind::ControllerException);
+  EXPECT_EQ(std::string(e.what()), "[Unavailable] worker restarting");
+  EXPECT_EQ(s.failovers(), 0u);
+}
+
+TEST_F(ControllerSessionTest, AFailoverRetriesOnlyOnce)
+{
+  host.add_replica("a-replica");
+  Timeouts t = generous();
+  t.call = 100ms;
+  auto & s = make({}, t);
+  s.configure();
+  s.activate();
+  host.freeze_replica("a-replica");
+  host.freeze_replica(host.host_id());
+  const CallError e = error_of([&] {compute();});
+  EXPECT_EQ(e.kind(), ErrorKind::ControllerTimedOut);
+  EXPECT_EQ(s.failovers(), 1u);
+}
+
 }  // namespace
 }  // namespace nav2_pyif_bridge::client::test

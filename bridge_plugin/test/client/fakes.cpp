@@ -118,15 +118,53 @@ FakeHost::FakeHost(FakeClock & clock, bool alive)
 
 void FakeHost::kill()
 {
-  sessions.clear();
-  watcher_.on_token(host_id_, false);
+  if (!primary_.empty()) {
+    kill_replica(primary_);
+  }
 }
 
 void FakeHost::start()
 {
-  sessions.clear();
-  host_id_ = "fake-host-" + std::to_string(++generation_);
-  watcher_.on_token(host_id_, true);
+  primary_ = "fake-host-" + std::to_string(++generation_);
+  add_replica(primary_);
+}
+
+void FakeHost::add_replica(const std::string & id)
+{
+  replicas_[id] = Replica{};
+  watcher_.on_token(id, true);
+}
+
+void FakeHost::kill_replica(const std::string & id)
+{
+  auto it = replicas_.find(id);
+  if (it != replicas_.end()) {
+    it->second.alive = false;
+    it->second.sessions.clear();
+  }
+  watcher_.on_token(id, false);
+}
+
+void FakeHost::freeze_replica(const std::string & id, bool frozen)
+{
+  replicas_.at(id).frozen = frozen;
+}
+
+bool FakeHost::has_session(const std::string & host, const std::string & sid) const
+{
+  const auto it = replicas_.find(host);
+  return it != replicas_.end() && it->second.sessions.count(sid) != 0;
+}
+
+FakeHost::Replica * FakeHost::answering(const std::string & host, std::string * id)
+{
+  for (auto & [name, replica] : replicas_) {
+    if (replica.alive && !replica.frozen && (host.empty() || host == name)) {
+      *id = name;
+      return &replica;
+    }
+  }
+  return nullptr;
 }
 
 std::vector<std::string> FakeHost::ops() const {return ops_since(0);}
@@ -153,21 +191,23 @@ bool FakeHost::last_had_costmap() const
 }
 
 std::optional<proto::Bytes> FakeHost::query(
-  const std::string & key, const proto::Bytes & payload, Duration timeout, const WaitHook * hook)
+  const Target & target, const proto::Bytes & payload, Duration timeout, const WaitHook * hook)
 {
-  if (!watcher_.any_alive()) {
+  received.push_back({target.key, target.host, proto::decode_request(payload), payload.size(),
+      false, ""});
+  const proto::Request request = received.back().request;
+  EXPECT_EQ(target.key.substr(target.key.rfind('/') + 1), proto::op_name(request.op()));
+  std::string id;
+  Replica * replica = answering(target.host, &id);
+  if (replica == nullptr) {
     clock_.advance(timeout);  // nobody answers
     return std::nullopt;
   }
-  received.push_back({key, proto::decode_request(payload), payload.size(), false});
-  const proto::Request request = received.back().request;
-  EXPECT_EQ(key.substr(key.rfind('/') + 1), proto::op_name(request.op()));
 
   Duration work = next_call_time.value_or(call_time);
   next_call_time.reset();
-  if (request.op() == proto::Op::CreatePlan) {
-    const auto * mode = sessions.count(request.sid) ?
-      sessions[request.sid].params.find("mode") : nullptr;
+  if (request.op() == proto::Op::CreatePlan && replica->sessions.count(request.sid)) {
+    const auto * mode = replica->sessions[request.sid].params.find("mode");
     if (mode && std::get<std::string>(*mode) == "slow") {
       work = std::max(work, Duration{10s});
     }
@@ -190,31 +230,33 @@ std::optional<proto::Bytes> FakeHost::query(
       hook->poll();
     }
   }
+  running_seq_ = 0;
   if (elapsed >= timeout && !cancel_requested_) {
-    running_seq_ = 0;
     return std::nullopt;
   }
-  running_seq_ = 0;
   received.back().answered = true;
+  received.back().answered_by = id;
   if (raw_reply_once) {
     auto raw = std::move(*raw_reply_once);
     raw_reply_once.reset();
     return raw;
   }
-  proto::Reply reply = handle(request, elapsed);
+  proto::Reply reply = handle(*replica, id, request, elapsed);
   reply.seq = request.seq + static_cast<std::uint64_t>(seq_offset_once);
   seq_offset_once = 0;
   return proto::encode_reply(reply);
 }
 
-void FakeHost::send(const std::string & key, const proto::Bytes & payload, Duration)
+void FakeHost::send(const Target & target, const proto::Bytes & payload, Duration)
 {
-  if (!watcher_.any_alive()) {
+  received.push_back({target.key, target.host, proto::decode_request(payload), payload.size(),
+      true, ""});
+  const auto & request = received.back().request;
+  EXPECT_EQ(target.key.substr(target.key.rfind('/') + 1), "cancel");
+  std::string id;
+  if (answering(target.host, &id) == nullptr) {
     return;
   }
-  received.push_back({key, proto::decode_request(payload), payload.size(), true});
-  const auto & request = received.back().request;
-  EXPECT_EQ(key.substr(key.rfind('/') + 1), "cancel");
   if (const auto * cancel = std::get_if<proto::CancelPlanRequest>(&request.body)) {
     if (cancel->target_seq == running_seq_) {
       cancel_requested_ = true;
@@ -222,22 +264,24 @@ void FakeHost::send(const std::string & key, const proto::Bytes & payload, Durat
   }
 }
 
-proto::Reply FakeHost::error(const proto::Request & request, std::string type, std::string message)
+proto::Reply FakeHost::error(
+  const std::string & id, const proto::Request & request, std::string type, std::string message)
 {
   proto::Reply reply;
   reply.seq = request.seq;
-  reply.host = host_id_;
+  reply.host = id;
   reply.outcome = proto::Error{std::move(type), std::move(message),
     "Traceback (most recent call last):\n  File \"echo_planners.py\", line 1\n", ""};
   return reply;
 }
 
-proto::Reply FakeHost::handle(const proto::Request & request, Duration elapsed)
+proto::Reply FakeHost::handle(
+  Replica & replica, const std::string & id, const proto::Request & request, Duration elapsed)
 {
   const proto::Op op = request.op();
   proto::Reply reply;
   reply.seq = request.seq;
-  reply.host = host_id_;
+  reply.host = id;
   reply.compute_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();
   if (error_once) {
     proto::Error e = std::move(*error_once);
@@ -245,6 +289,7 @@ proto::Reply FakeHost::handle(const proto::Request & request, Duration elapsed)
     reply.outcome = std::move(e);
     return reply;
   }
+  auto & sessions = replica.sessions;
   if (op == proto::Op::Configure) {
     const auto & body = std::get<proto::ConfigureRequest>(request.body);
     Session session;
@@ -268,7 +313,7 @@ proto::Reply FakeHost::handle(const proto::Request & request, Duration elapsed)
   auto it = sessions.find(request.sid);
   if (always_session_unknown || it == sessions.end() || it->second.epoch != request.epoch) {
     return error(
-      request, "SessionUnknown", "session " + request.sid.substr(0, 8) + " epoch " +
+      id, request, "SessionUnknown", "session " + request.sid.substr(0, 8) + " epoch " +
       std::to_string(request.epoch) + " is unknown to this host");
   }
   Session & s = it->second;
@@ -331,7 +376,7 @@ proto::Reply FakeHost::handle(const proto::Request & request, Duration elapsed)
       break;
     case proto::Op::CreatePlan: {
         if (cancel_requested_) {
-          return error(request, "PlannerCancelled", "create_plan cancelled");
+          return error(id, request, "PlannerCancelled", "create_plan cancelled");
         }
         const auto & body = std::get<proto::CreatePlanRequest>(request.body);
         if (body.costmap) {
@@ -339,7 +384,7 @@ proto::Reply FakeHost::handle(const proto::Request & request, Duration elapsed)
         }
         const auto * mode = s.params.find("mode");
         if (mode && std::get<std::string>(*mode) == "occupied") {
-          return error(request, "GoalOccupied", "goal is in a wall");
+          return error(id, request, "GoalOccupied", "goal is in a wall");
         }
         std::int64_t points = 25;
         if (const auto * p = s.params.find("points")) {
@@ -354,37 +399,8 @@ proto::Reply FakeHost::handle(const proto::Request & request, Duration elapsed)
         break;
       }
     default:
-      return error(request, "BadRequest", "unexpected op");
+      return error(id, request, "BadRequest", "unexpected op");
   }
   return reply;
 }
 
-// --- helpers --------------------------------------------------------------------------------
-
-bool LogSink::contains(const std::string & text) const
-{
-  for (const auto & line : lines) {
-    if (line.second.find(text) != std::string::npos) {
-      return true;
-    }
-  }
-  return false;
-}
-
-proto::Path straight_path(std::size_t n, double x, double y)
-{
-  proto::Path path;
-  path.frame_id = "odom";
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 1.0;
-    path.poses.insert(path.poses.end(), {t * x, t * y, 0.0, 0.0, 0.0, 0.0, 1.0});
-  }
-  return path;
-}
-
-proto::PoseStamped pose_at(double x, double y, const std::string & frame)
-{
-  return proto::PoseStamped{frame, 1700000000000000000, {x, y, 0.0, 0.0, 0.0, 0.0, 1.0}};
-}
-
-}  // namespace nav2_pyif_bridge::client::test

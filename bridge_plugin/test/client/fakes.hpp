@@ -71,7 +71,8 @@ private:
   CostmapVersion version_;
 };
 
-// The planner host as the plugin sees it through Transport.
+// The planner hosts serving one key, as the plugin sees them through Transport: a primary
+// host (kill / start / restart) and, for the replica tests, more hosts by id.
 class FakeHost : public Transport
 {
 public:
@@ -79,26 +80,32 @@ public:
 
   // --- Transport ---
   std::optional<protocol::Bytes> query(
-    const std::string & key, const protocol::Bytes & payload, Duration timeout,
+    const Target & target, const protocol::Bytes & payload, Duration timeout,
     const WaitHook * hook) override;
-  void send(const std::string & key, const protocol::Bytes & payload, Duration timeout) override;
-  bool hosts_alive() override {return watcher_.any_alive();}
-  bool wait_for_host(Duration timeout) override {return watcher_.wait_for_any(timeout);}
+  void send(const Target & target, const protocol::Bytes & payload, Duration timeout) override;
+  HostWatcher & hosts() override {return watcher_;}
 
-  // --- the host process ---
+  // --- the primary host's process ---
   void kill();     // SIGKILL: its token goes, its sessions are lost
   void start();    // a new process: a new host id, no sessions, its token appears
   void restart() {kill(); start();}
-  const std::string & host_id() const {return host_id_;}
-  HostWatcher & watcher() {return watcher_;}
+  const std::string & host_id() const {return primary_;}
 
-  // --- what it received ---
+  // --- replicas ---
+  void add_replica(const std::string & id);
+  void kill_replica(const std::string & id);           // token gone, sessions lost
+  void freeze_replica(const std::string & id, bool frozen = true);  // alive, never answers
+  bool has_session(const std::string & host, const std::string & sid) const;
+
+  // --- what the hosts received ---
   struct Received
   {
     std::string key;
+    std::string host;  // the Target's host ("" for any)
     protocol::Request request;
     std::size_t bytes{0};
-    bool answered{false};  // false: the plugin's timeout passed first
+    bool answered{false};  // false: nobody answered before the plugin's timeout
+    std::string answered_by;
   };
   std::vector<Received> received;
   std::vector<std::string> ops() const;  // op names of `received`, in order
@@ -106,7 +113,7 @@ public:
   const protocol::Request & last() const {return received.back().request;}
   bool last_had_costmap() const;
 
-  // --- faults and timing ---
+  // --- faults and timing (whichever host answers) ---
   Duration call_time{0};                     // how long each call takes
   std::optional<Duration> next_call_time;    // ... or the next one only
   int seq_offset_once{0};                    // the next reply answers another seq
@@ -114,6 +121,7 @@ public:
   bool always_session_unknown{false};        // every non-configure call: SessionUnknown
   bool nan_once{false};                      // the next command has vx = NaN (host not checking)
   std::optional<protocol::Bytes> raw_reply_once;  // the next reply is these bytes
+
   // What one session knows, echoed by compute_velocity_commands.
   struct Session
   {
@@ -125,15 +133,27 @@ public:
     double calls{0.0};
     bool active{false};
   };
-  std::map<std::string, Session> sessions;
 
 private:
-  protocol::Reply handle(const protocol::Request & request, Duration elapsed);
-  protocol::Reply error(const protocol::Request & request, std::string type, std::string message);
+  struct Replica
+  {
+    bool alive{true};
+    bool frozen{false};
+    std::map<std::string, Session> sessions;
+  };
+  // Who answers a query for `host`: that replica, or with no host the smallest alive one.
+  Replica * answering(const std::string & host, std::string * id);
+  protocol::Reply handle(
+    Replica & replica, const std::string & id, const protocol::Request & request,
+    Duration elapsed);
+  protocol::Reply error(
+    const std::string & id, const protocol::Request & request, std::string type,
+    std::string message);
 
   FakeClock & clock_;
   HostWatcher watcher_;
-  std::string host_id_;
+  std::map<std::string, Replica> replicas_;
+  std::string primary_;
   int generation_{0};
   std::uint64_t running_seq_{0};  // create_plan being computed
   bool cancel_requested_{false};

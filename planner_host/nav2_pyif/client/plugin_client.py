@@ -180,8 +180,9 @@ class PluginClient:
         alive = self.hosts.alive
         if self.host not in alive and alive:
             if self.host is not None:
-                log.warning("%s: host %s is gone; using %s", self.keys.prefix, self.host,
-                            min(alive))
+                log.warning(
+                    "%s: host %s is gone; using %s", self.keys.prefix, self.host, min(alive)
+                )
                 self.failovers += 1
             self.host = min(alive)
 

@@ -9,7 +9,12 @@
 //   4. the costmap travels only when its version differs from the one this session last
 //      delivered (delivered = sent in a request that got an ok reply; configure forgets it);
 //   5. a reply of another seq, or one that does not decode, fails the call (generic);
-//   6. other error replies throw the nav2_core-named exception (error_mapping.hpp).
+//   6. other error replies throw the nav2_core-named exception (error_mapping.hpp);
+//   7. replicas (PROTOCOL.md section 1): the session pins the smallest alive host id and
+//      addresses every query to it (Target::host); when the pinned host's token is gone, or
+//      a call gets no reply in time, a bad reply or Unavailable while another host is alive,
+//      it pins another one and retries the call once there (whose SessionUnknown re-sends
+//      the state), so a replica's death fails no call.
 // Every failure is a CallError. Thread-safe: each public call holds the session's lock (Nav2
 // calls from its action thread, parameter changes come from the executor's thread).
 //
@@ -104,6 +109,8 @@ public:
   bool active() const;
   std::uint64_t resyncs() const;              // re-establishments after SessionUnknown
   std::string last_host() const;              // the host of the last reply
+  std::string pinned_host() const;            // the replica queries go to; "" before the first
+  std::uint64_t failovers() const;            // times another replica was pinned
   std::optional<std::uint64_t> delivered_costmap() const;
   protocol::Params params() const;
   Timeouts timeouts() const;
@@ -115,6 +122,7 @@ protected:
   {
     CostmapMode costmap{CostmapMode::None};
     bool allow_resync{true};
+    bool allow_failover{true};
     // Runs about every 5 ms while waiting for the reply, with the request's seq.
     std::function<void(std::uint64_t)> while_waiting;
   };
@@ -136,12 +144,16 @@ protected:
   Transport & transport() noexcept {return transport_;}
   const Logger & logger() const noexcept {return logger_;}
   std::uint64_t next_seq() noexcept {return ++seq_;}
+  // Where a query for `key` goes: the pinned replica.
+  Target target(std::string key) const {return Target{std::move(key), pinned_host_};}
   [[noreturn]] void fail(ErrorKind kind, Cause cause, const std::string & message) const;
 
 private:
   protocol::Params configure_locked();
   void establish();
   void reestablish(const std::string & host);
+  void pin_host();
+  bool fail_over(const std::optional<std::string> & avoid);
   protocol::Reply exchange(const protocol::Request & request, const CallOptions & options);
 
   SessionConfig config_;
@@ -159,6 +171,8 @@ private:
   bool active_{false};
   std::uint64_t resyncs_{0};
   std::string last_host_;
+  std::string pinned_host_;
+  std::uint64_t failovers_{0};
   std::optional<std::uint64_t> delivered_costmap_;
 };
 
