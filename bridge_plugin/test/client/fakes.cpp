@@ -404,3 +404,4 @@ proto::Reply FakeHost::handle(
   return reply;
 }
 
+
