@@ -24,6 +24,7 @@ MIRRORED = [
     "ControllerSessionTest.AReplyOfAnotherSeqIsAnError",
     "ControllerSessionTest.ErrorsCrossTheWireTyped",
     "PlannerSessionTest.CancellationIsForwardedOnceAndThePlannerAnswers",
+    "ControllerSessionTest.FailoverToAReplicaLosesNoCall",  # tests/test_replicas.py
 ]
 
 

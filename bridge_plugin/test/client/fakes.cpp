@@ -405,3 +405,32 @@ proto::Reply FakeHost::handle(
 }
 
 
+// --- helpers --------------------------------------------------------------------------------
+
+bool LogSink::contains(const std::string & text) const
+{
+  for (const auto & line : lines) {
+    if (line.second.find(text) != std::string::npos) {
+      return true;
+    }
+  }
+  return false;
+}
+
+proto::Path straight_path(std::size_t n, double x, double y)
+{
+  proto::Path path;
+  path.frame_id = "odom";
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 1.0;
+    path.poses.insert(path.poses.end(), {t * x, t * y, 0.0, 0.0, 0.0, 0.0, 1.0});
+  }
+  return path;
+}
+
+proto::PoseStamped pose_at(double x, double y, const std::string & frame)
+{
+  return proto::PoseStamped{frame, 1700000000000000000, {x, y, 0.0, 0.0, 0.0, 0.0, 1.0}};
+}
+
+}  // namespace nav2_pyif_bridge::client::test
