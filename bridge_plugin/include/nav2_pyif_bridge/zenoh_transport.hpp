@@ -1,0 +1,88 @@
+// The Transport over zenoh-cpp, on the subset both its backends share: Session::get with a
+// timeout (target ALL, the host=<id> selector parameter), and a liveliness *subscriber with
+// history* on P/host/* (never a liveliness get: with zenoh-pico a get matching several tokens
+// breaks the session).
+//
+// Session configuration (as rmw_zenoh: a JSON5 file named by a parameter or an environment
+// variable, a router on tcp/localhost:7447 by default):
+//   - zenoh-c backend (ROS' zenoh_cpp_vendor): the file `zenoh_config`, else
+//     $NAV2_PYIF_ZENOH_CONFIG, else a client of tcp/localhost:7447 with multicast scouting
+//     off; `zenoh_connect` replaces the file's connect endpoints.
+//   - zenoh-pico backend (ZENOHCXX_ZENOHPICO): client mode only, configured by integer keys;
+//     no JSON5 files (a `zenoh_config` is refused), one connect endpoint (the first).
+// A session that cannot be opened (no router or host listening yet) is retried every second
+// in the background; meanwhile no host is alive, so calls fail fast.
+// Sessions are shared between the plugins of one process that use the same configuration.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "nav2_pyif_bridge/client/keys.hpp"
+#include "nav2_pyif_bridge/client/log.hpp"
+#include "nav2_pyif_bridge/client/transport.hpp"
+
+namespace zenoh
+{
+class Session;
+}
+
+namespace nav2_pyif_bridge
+{
+
+struct ZenohOptions
+{
+  std::string config_file;           // JSON5 (zenoh-c only); empty: $NAV2_PYIF_ZENOH_CONFIG
+  std::vector<std::string> connect;  // empty: the file's, else tcp/localhost:7447
+};
+
+// "zenoh-c" or "zenoh-pico": the backend this package was built with.
+const char * zenoh_backend() noexcept;
+
+class ZenohTransport : public client::Transport
+{
+public:
+  // Throws std::invalid_argument for options this backend cannot honour.
+  ZenohTransport(ZenohOptions options, const client::KeySpace & keys, client::Logger logger = {});
+  ~ZenohTransport() override;
+
+  std::optional<protocol::Bytes> query(
+    const client::Target & target, const protocol::Bytes & payload, client::Duration timeout,
+    const client::WaitHook * hook) override;
+  void send(
+    const client::Target & target, const protocol::Bytes & payload,
+    client::Duration timeout) override;
+  client::HostWatcher & hosts() override {return *watcher_;}
+
+  // Where the session connects, for messages ("tcp/localhost:7447", "config file x.json5").
+  const std::string & where() const noexcept {return where_;}
+  bool connected() const;
+
+private:
+  struct Link;  // the session and the liveliness subscriber
+
+  bool try_open(bool quiet);
+  void keep_opening();
+  std::shared_ptr<zenoh::Session> session() const;
+
+  ZenohOptions options_;
+  std::string hosts_key_;
+  client::Logger logger_;
+  std::string where_;
+  // Shared with the liveliness callback, which may outlive a destructor's undeclare by a call.
+  std::shared_ptr<client::HostWatcher> watcher_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable stop_cv_;
+  bool stopping_{false};
+  std::unique_ptr<Link> link_;
+  std::thread opener_;
+};
+
+}  // namespace nav2_pyif_bridge

@@ -1,0 +1,40 @@
+#include <string>
+
+#include "nav2_pyif_bridge/nav2_api.hpp"
+
+namespace nav2_pyif_bridge
+{
+
+void throw_nav2_exception(client::ErrorKind kind, const std::string & message)
+{
+#if NAV2_PYIF_JAZZY_API
+  using client::ErrorKind;
+  switch (kind) {
+    case ErrorKind::ControllerException: throw nav2_core::ControllerException(message);
+    case ErrorKind::InvalidController: throw nav2_core::InvalidController(message);
+    case ErrorKind::ControllerTFError: throw nav2_core::ControllerTFError(message);
+    case ErrorKind::FailedToMakeProgress: throw nav2_core::FailedToMakeProgress(message);
+    case ErrorKind::PatienceExceeded: throw nav2_core::PatienceExceeded(message);
+    case ErrorKind::InvalidPath: throw nav2_core::InvalidPath(message);
+    case ErrorKind::NoValidControl: throw nav2_core::NoValidControl(message);
+    case ErrorKind::ControllerTimedOut: throw nav2_core::ControllerTimedOut(message);
+    case ErrorKind::PlannerException: throw nav2_core::PlannerException(message);
+    case ErrorKind::InvalidPlanner: throw nav2_core::InvalidPlanner(message);
+    case ErrorKind::StartOccupied: throw nav2_core::StartOccupied(message);
+    case ErrorKind::GoalOccupied: throw nav2_core::GoalOccupied(message);
+    case ErrorKind::StartOutsideMapBounds: throw nav2_core::StartOutsideMapBounds(message);
+    case ErrorKind::GoalOutsideMapBounds: throw nav2_core::GoalOutsideMapBounds(message);
+    case ErrorKind::NoValidPathCouldBeFound: throw nav2_core::NoValidPathCouldBeFound(message);
+    case ErrorKind::PlannerTimedOut: throw nav2_core::PlannerTimedOut(message);
+    case ErrorKind::PlannerTFError: throw nav2_core::PlannerTFError(message);
+    case ErrorKind::NoViapointsGiven: throw nav2_core::NoViapointsGiven(message);
+    case ErrorKind::PlannerCancelled: throw nav2_core::PlannerCancelled(message);
+  }
+  throw nav2_core::PlannerException(message);
+#else
+  (void)kind;
+  throw nav2_core::PlannerException(message);
+#endif
+}
+
+}  // namespace nav2_pyif_bridge

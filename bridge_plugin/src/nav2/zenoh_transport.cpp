@@ -1,0 +1,296 @@
+#include "nav2_pyif_bridge/zenoh_transport.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include "zenoh.hxx"
+
+namespace nav2_pyif_bridge
+{
+namespace
+{
+
+using client::LogLevel;
+constexpr const char * kConfigEnv = "NAV2_PYIF_ZENOH_CONFIG";
+constexpr const char * kDefaultRouter = "tcp/localhost:7447";
+
+std::string json_string_list(const std::vector<std::string> & items)
+{
+  std::string out = "[";
+  for (const auto & item : items) {
+    out += (out.size() > 1 ? ",\"" : "\"") + item + "\"";
+  }
+  return out + "]";
+}
+
+std::string config_file(const ZenohOptions & options)
+{
+  if (!options.config_file.empty()) {
+    return options.config_file;
+  }
+  const char * env = std::getenv(kConfigEnv);
+  return env ? env : "";
+}
+
+zenoh::Config make_config(const ZenohOptions & options)
+{
+  const std::string file = config_file(options);
+#if defined(ZENOHCXX_ZENOHPICO)
+  if (!file.empty()) {
+    throw std::invalid_argument(
+            "zenoh_config / $" + std::string(kConfigEnv) + " (" + file + "): JSON5 config files "
+            "need zenoh-cpp's zenoh-c backend; this plugin was built with zenoh-pico: set "
+            "zenoh_connect instead");
+  }
+  zenoh::Config config = zenoh::Config::create_default();
+  config.insert(Z_CONFIG_MODE_KEY, "client");
+  const std::string endpoint = options.connect.empty() ? kDefaultRouter : options.connect.front();
+  config.insert(Z_CONFIG_CONNECT_KEY, endpoint.c_str());
+  config.insert(Z_CONFIG_MULTICAST_SCOUTING_KEY, "false");
+  return config;
+#else
+  zenoh::Config config = file.empty() ? zenoh::Config::create_default() :
+    zenoh::Config::from_file(file);
+  if (file.empty()) {
+    config.insert_json5("mode", "\"client\"");
+    config.insert_json5("scouting/multicast/enabled", "false");
+    if (options.connect.empty()) {
+      config.insert_json5("connect/endpoints", json_string_list({kDefaultRouter}));
+    }
+  }
+  if (!options.connect.empty()) {
+    config.insert_json5("connect/endpoints", json_string_list(options.connect));
+  }
+  return config;
+#endif
+}
+
+std::string describe(const ZenohOptions & options)
+{
+  const std::string file = config_file(options);
+  std::string out = file.empty() ? std::string() : "config file " + file;
+  const auto & connect = options.connect;
+  if (!connect.empty() || file.empty()) {
+    std::string endpoints;
+#if defined(ZENOHCXX_ZENOHPICO)
+    endpoints = connect.empty() ? kDefaultRouter : connect.front();
+#else
+    for (const auto & e : (connect.empty() ? std::vector<std::string>{kDefaultRouter} : connect)) {
+      endpoints += (endpoints.empty() ? "" : ", ") + e;
+    }
+#endif
+    out += (out.empty() ? "" : ", ") + endpoints;
+  }
+  return out;
+}
+
+// One session per configuration and process, shared by its plugins.
+std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options)
+{
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<zenoh::Session>> sessions;
+  const std::string id = config_file(options) + "|" + json_string_list(options.connect);
+  std::lock_guard<std::mutex> lock(mutex);
+  if (auto existing = sessions[id].lock()) {
+    return existing;
+  }
+  auto session = std::make_shared<zenoh::Session>(zenoh::Session::open(make_config(options)));
+  sessions[id] = session;
+  return session;
+}
+
+}  // namespace
+
+const char * zenoh_backend() noexcept
+{
+#if defined(ZENOHCXX_ZENOHPICO)
+  return "zenoh-pico";
+#else
+  return "zenoh-c";
+#endif
+}
+
+struct ZenohTransport::Link
+{
+  std::shared_ptr<zenoh::Session> session;
+  std::optional<zenoh::Subscriber<void>> hosts;
+
+  ~Link()
+  {
+    hosts.reset();  // undeclare before the session may go
+  }
+};
+
+ZenohTransport::ZenohTransport(
+  ZenohOptions options, const client::KeySpace & keys, client::Logger logger)
+: options_(std::move(options)), hosts_key_(keys.hosts()), logger_(std::move(logger)),
+  where_(describe(options_)), watcher_(std::make_shared<client::HostWatcher>())
+{
+  (void)make_config(options_);  // refuse what this backend cannot do, now
+  if (!try_open(false)) {
+    opener_ = std::thread([this]() {keep_opening();});
+  }
+}
+
+ZenohTransport::~ZenohTransport()
+{
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  stop_cv_.notify_all();
+  if (opener_.joinable()) {
+    opener_.join();
+  }
+  std::unique_ptr<Link> link;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    link = std::move(link_);
+  }
+  link.reset();
+}
+
+bool ZenohTransport::try_open(bool quiet)
+{
+  auto link = std::make_unique<Link>();
+  try {
+    link->session = open_shared_session(options_);
+    zenoh::Session::LivelinessSubscriberOptions subscriber_options;
+    subscriber_options.history = true;  // the tokens alive before this subscriber, too
+    std::weak_ptr<client::HostWatcher> watcher = watcher_;
+    link->hosts.emplace(
+      link->session->liveliness_declare_subscriber(
+        zenoh::KeyExpr(hosts_key_),
+        [watcher](zenoh::Sample & sample) {
+          if (auto w = watcher.lock()) {
+            w->on_token(
+              client::KeySpace::host_id_of(sample.get_keyexpr().as_string_view()),
+              sample.get_kind() == Z_SAMPLE_KIND_PUT);
+          }
+        },
+        []() {}, std::move(subscriber_options)));
+  } catch (const std::exception & error) {
+    client::log(
+      logger_, quiet ? LogLevel::Debug : LogLevel::Warn,
+      std::string("cannot open a Zenoh session (") + zenoh_backend() + ", " + where_ + "): " +
+      error.what() + "; retrying every second");
+    return false;
+  }
+  client::log(
+    logger_, LogLevel::Info,
+    std::string("Zenoh session open (") + zenoh_backend() + ", " + where_ + "), watching " +
+    hosts_key_);
+  std::lock_guard<std::mutex> lock(mutex_);
+  link_ = std::move(link);
+  return true;
+}
+
+void ZenohTransport::keep_opening()
+{
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stopping_) {
+    if (stop_cv_.wait_for(lock, std::chrono::seconds(1), [this]() {return stopping_;})) {
+      return;
+    }
+    lock.unlock();
+    const bool opened = try_open(true);
+    lock.lock();
+    if (opened) {
+      return;
+    }
+  }
+}
+
+std::shared_ptr<zenoh::Session> ZenohTransport::session() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return link_ ? link_->session : nullptr;
+}
+
+bool ZenohTransport::connected() const
+{
+  return session() != nullptr;
+}
+
+std::optional<protocol::Bytes> ZenohTransport::query(
+  const client::Target & target, const protocol::Bytes & payload, client::Duration timeout,
+  const client::WaitHook * hook)
+{
+  const auto session = this->session();
+  if (!session) {
+    return std::nullopt;
+  }
+  struct Pending
+  {
+    std::mutex mutex;
+    std::condition_variable cv;
+    std::optional<protocol::Bytes> reply;
+    bool done{false};
+  };
+  auto pending = std::make_shared<Pending>();
+  zenoh::Session::GetOptions options;
+  options.target = Z_QUERY_TARGET_ALL;  // replicas drop what is not theirs (host=<id>)
+  options.payload = zenoh::Bytes(payload);
+  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
+  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
+  session->get(
+    zenoh::KeyExpr(target.key), target.parameters(),
+    [pending](zenoh::Reply & reply) {
+      if (!reply.is_ok()) {
+        return;
+      }
+      std::lock_guard<std::mutex> lock(pending->mutex);
+      if (!pending->reply) {
+        pending->reply = reply.get_ok().get_payload().as_vector();
+        pending->cv.notify_all();
+      }
+    },
+    [pending]() {
+      std::lock_guard<std::mutex> lock(pending->mutex);
+      pending->done = true;
+      pending->cv.notify_all();
+    },
+    std::move(options));
+
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  std::unique_lock<std::mutex> lock(pending->mutex);
+  for (;;) {
+    auto until = deadline;
+    if (hook && hook->poll) {
+      until = std::min(deadline, std::chrono::steady_clock::now() + hook->period);
+    }
+    pending->cv.wait_until(lock, until, [&]() {return pending->reply || pending->done;});
+    if (pending->reply) {
+      return std::move(pending->reply);
+    }
+    if (pending->done || std::chrono::steady_clock::now() >= deadline) {
+      return std::nullopt;
+    }
+    lock.unlock();
+    hook->poll();
+    lock.lock();
+  }
+}
+
+void ZenohTransport::send(
+  const client::Target & target, const protocol::Bytes & payload, client::Duration timeout)
+{
+  const auto session = this->session();
+  if (!session) {
+    return;
+  }
+  zenoh::Session::GetOptions options;
+  options.target = Z_QUERY_TARGET_ALL;
+  options.payload = zenoh::Bytes(payload);
+  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
+  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
+  session->get(
+    zenoh::KeyExpr(target.key), target.parameters(), [](zenoh::Reply &) {}, []() {},
+    std::move(options));
+}
+
+}  // namespace nav2_pyif_bridge
