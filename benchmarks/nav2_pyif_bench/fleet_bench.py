@@ -39,12 +39,13 @@ def _robot(
         endpoint_session,
         key(index),
         Costmap(np.zeros((60, 60), np.uint8), 0.05, version=1),
-        timeouts=Timeouts(call=PERIOD, lifecycle=30, configure=60),
+        timeouts=Timeouts(call=10.0, lifecycle=30, configure=60),
     )
     client.wait_for_host(180)
-    client.configure()
+    client.configure()  # dozens of robots set up at once: generous timeouts
     client.activate()
     client.set_plan(Plan(np.zeros((100, 3)), "odom"))
+    client.timeouts = Timeouts(call=PERIOD, lifecycle=30, configure=60)  # the control loop
     pose, velocity = PoseStamped(), Twist()
     time.sleep(max(0.0, start_at - time.monotonic()))
     next_tick = time.monotonic() + (index % 20) * PERIOD / 20  # spread robots over a period
