@@ -52,7 +52,14 @@ void ControllerSession::set_speed_limit(double speed_limit, bool percentage)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
   const proto::SetSpeedLimitRequest body{speed_limit, percentage};
-  call(body, {});
+  try {
+    call(body, {});
+  } catch (const CallError & error) {
+    if (error.unreachable()) {
+      speed_limit_ = body;  // a speed zone must not be forgotten: the next host gets it
+    }
+    throw;
+  }
   speed_limit_ = body;
 }
 

@@ -138,7 +138,15 @@ void PluginSession::activate()
     }
     return;
   }
-  call(proto::ActivateRequest{}, {});
+  try {
+    call(proto::ActivateRequest{}, {});
+  } catch (const CallError & error) {
+    if (!error.unreachable()) {
+      throw;
+    }
+    unreachable_transition(error, true);
+    return;
+  }
   active_ = true;
 }
 
@@ -149,8 +157,26 @@ void PluginSession::deactivate()
     active_ = false;
     return;
   }
-  call(proto::DeactivateRequest{}, {});
+  try {
+    call(proto::DeactivateRequest{}, {});
+  } catch (const CallError & error) {
+    if (!error.unreachable()) {
+      throw;
+    }
+    unreachable_transition(error, false);
+    return;
+  }
   active_ = false;
+}
+
+void PluginSession::unreachable_transition(const CallError & error, bool active)
+{
+  active_ = active;
+  established_ = false;  // the next call re-establishes, in this state
+  log(
+    logger_, LogLevel::Warn,
+    keys_.prefix() + ": " + error.what() + "; the session is re-established (" +
+    (active ? "active" : "inactive") + ") by the next call");
 }
 
 void PluginSession::cleanup()

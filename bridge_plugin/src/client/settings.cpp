@@ -69,7 +69,9 @@ std::vector<std::string> as_strings(std::string_view name, const proto::ParamVal
   bad(name, "expected a string or a list of strings, got " + type_name(value));
 }
 
-Duration as_seconds(std::string_view name, const proto::ParamValue & value)
+}  // namespace
+
+Duration seconds_parameter(std::string_view name, const proto::ParamValue & value)
 {
   double seconds = 0.0;
   if (const auto * f = std::get_if<double>(&value)) {
@@ -83,6 +85,14 @@ Duration as_seconds(std::string_view name, const proto::ParamValue & value)
     bad(name, "expected seconds > 0, got " + std::to_string(seconds));
   }
   return std::chrono::duration_cast<Duration>(std::chrono::duration<double>(seconds));
+}
+
+namespace
+{
+
+Duration as_seconds(std::string_view name, const proto::ParamValue & value)
+{
+  return seconds_parameter(name, value);
 }
 
 std::string trim(std::string_view text)

@@ -279,7 +279,12 @@ TEST_F(ControllerSessionTest, EachOpUsesItsTimeout)
   host.call_time = 0s;
   s.configure();
   host.call_time = 100s;
-  EXPECT_EQ(waited([&] {s.activate();}), Duration{2s});
+  Duration before = clock.elapsed();
+  s.activate();  // no reply: applied when the session is re-established
+  EXPECT_EQ(clock.elapsed() - before, Duration{2s});
+  host.call_time = 0s;
+  s.set_plan(straight_path(2, 1, 0));  // re-establishes: configure, activate, set_plan
+  host.call_time = 100s;
   EXPECT_EQ(waited([&] {s.set_plan(straight_path(2, 1, 0));}), Duration{40ms});
   EXPECT_EQ(waited([&] {s.set_speed_limit(1.0, false);}), Duration{40ms});
   EXPECT_EQ(waited([&] {compute();}), Duration{40ms});
@@ -434,6 +439,40 @@ TEST_F(ControllerSessionTest, AFailedReestablishmentIsRetriedByTheNextCall)
     host.ops_since(sent), (std::vector<std::string>{"configure", "activate", "set_plan",
       "compute_velocity_commands"}));
   EXPECT_EQ(s.epoch(), 3u);
+}
+
+TEST_F(ControllerSessionTest, LifecycleTransitionsWithoutAHostAreAppliedLater)
+{
+  auto & s = make();
+  s.configure();
+  host.kill();
+  EXPECT_NO_THROW(s.activate());  // Nav2's activation does not fail for a missing host
+  EXPECT_TRUE(s.active());
+  EXPECT_FALSE(s.established());
+  host.start();
+  const std::size_t sent = host.received.size();
+  compute();
+  EXPECT_EQ(
+    host.ops_since(sent), (std::vector<std::string>{"configure", "activate",
+      "compute_velocity_commands"}));
+  host.kill();
+  EXPECT_NO_THROW(s.deactivate());
+  EXPECT_FALSE(s.active());
+  host.start();
+  s.set_plan(straight_path(2, 1, 0));
+  EXPECT_EQ(host.ops_since(sent + 3), (std::vector<std::string>{"configure", "set_plan"}));
+}
+
+TEST_F(ControllerSessionTest, ASpeedLimitSetWhileNoHostIsAliveReachesTheNextHost)
+{
+  auto & s = make();
+  s.configure();
+  s.activate();
+  s.set_speed_limit(0.5, false);
+  host.kill();
+  EXPECT_THROW(s.set_speed_limit(0.2, false), CallError);  // a slow zone, no host
+  host.start();
+  EXPECT_EQ(compute().twist[2], 0.2);
 }
 
 TEST_F(ControllerSessionTest, CleanupForgetsTheStateAndEndsTheSession)

@@ -25,6 +25,8 @@ public:
   protocol::TwistStamped compute_velocity_commands(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
+  // Remembered after an ok reply, and also when no host could be reached (the reference
+  // client forgets it then), so a host that comes back drives at the latest limit.
   void set_speed_limit(double speed_limit, bool percentage);
   bool cancel();
   void reset();

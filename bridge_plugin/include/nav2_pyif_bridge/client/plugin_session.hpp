@@ -23,6 +23,8 @@
 //   The plugin then marks the session configured without a host; the first call that needs
 //   the host establishes it as rule 3 does (configure, activate if active, state), and
 //   activate/deactivate/cleanup/set_parameters before that only update the local state.
+// - activate/deactivate with no host (none alive, or no reply in time) do not fail: Nav2's
+//   lifecycle goes on, and the next call re-establishes the session in the new state.
 // - a failed re-establishment leaves the session configured and not established, so the
 //   next call tries again (the reference client would refuse every later call).
 #pragma once
@@ -151,6 +153,7 @@ protected:
 private:
   protocol::Params configure_locked();
   void establish();
+  void unreachable_transition(const CallError & error, bool active);
   void reestablish(const std::string & host);
   void pin_host();
   bool fail_over(const std::optional<std::string> & avoid);

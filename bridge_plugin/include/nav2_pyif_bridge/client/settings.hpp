@@ -75,6 +75,9 @@ bool is_bridge_parameter(std::string_view name) noexcept;
 // outside the plugin's namespace.
 std::optional<std::string> plugin_parameter_name(std::string_view full_name, std::string_view plugin);
 
+// A duration parameter in seconds (a float or an int, > 0). Throws std::invalid_argument.
+Duration seconds_parameter(std::string_view name, const protocol::ParamValue & value);
+
 // Split the plugin's parameters (names without the plugin prefix). Throws
 // std::invalid_argument naming the parameter for a wrong type or value, a missing key, ...
 PluginParameters split_parameters(const protocol::Params & params);

@@ -1,0 +1,54 @@
+// ROS messages and parameters <-> the protocol's types (PROTOCOL.md sections 6 and 13), and
+// the frame changes the plugins make with the TF buffer.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "builtin_interfaces/msg/time.hpp"
+#include "geometry_msgs/msg/pose_stamped.hpp"
+#include "geometry_msgs/msg/twist.hpp"
+#include "geometry_msgs/msg/twist_stamped.hpp"
+#include "nav_msgs/msg/path.hpp"
+#include "rclcpp/parameter_value.hpp"
+#include "tf2_ros/buffer.h"
+
+#include "nav2_pyif_bridge/client/error_mapping.hpp"
+#include "nav2_pyif_bridge/protocol/params.hpp"
+#include "nav2_pyif_bridge/protocol/types.hpp"
+
+namespace nav2_pyif_bridge::ros
+{
+
+std::int64_t to_ns(const builtin_interfaces::msg::Time & stamp) noexcept;
+builtin_interfaces::msg::Time from_ns(std::int64_t ns) noexcept;
+
+protocol::PoseStamped to_wire(const geometry_msgs::msg::PoseStamped & pose);
+std::array<double, 6> to_wire(const geometry_msgs::msg::Twist & twist) noexcept;
+// The plan's header frame and stamp, and every pose (their own headers are not sent).
+protocol::Path to_wire(const nav_msgs::msg::Path & path);
+
+// Empty frame / zero stamp in the wire message: `frame` / `stamp` instead.
+geometry_msgs::msg::TwistStamped to_ros(
+  const protocol::TwistStamped & cmd, const std::string & frame,
+  const builtin_interfaces::msg::Time & stamp);
+nav_msgs::msg::Path to_ros(
+  const protocol::Path & path, const std::string & frame,
+  const builtin_interfaces::msg::Time & stamp);
+
+// NOT_SET gives std::nullopt; byte arrays travel as int arrays.
+std::optional<protocol::ParamValue> to_wire(const rclcpp::ParameterValue & value);
+rclcpp::ParameterValue to_ros(const protocol::ParamValue & value);
+
+// `pose` / `path` in `frame`, with the latest transform (unchanged when already in it).
+// Throw client::CallError of `tf_error` (ControllerTFError / PlannerTFError) naming the frames.
+geometry_msgs::msg::PoseStamped in_frame(
+  const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
+  tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error);
+nav_msgs::msg::Path in_frame(
+  const nav_msgs::msg::Path & path, const std::string & frame, tf2_ros::Buffer & tf,
+  double timeout_s, client::ErrorKind tf_error);
+
+}  // namespace nav2_pyif_bridge::ros

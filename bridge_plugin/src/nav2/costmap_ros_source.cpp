@@ -1,0 +1,56 @@
+#include "nav2_pyif_bridge/costmap_ros_source.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace nav2_pyif_bridge
+{
+namespace
+{
+
+// Costmap2DROS::getRobotRadius() where this Nav2 has it, else 0 (the footprint is sent).
+template<class T>
+auto robot_radius(T & costmap_ros, int) -> decltype(costmap_ros.getRobotRadius())
+{
+  return costmap_ros.getRobotRadius();
+}
+
+template<class T>
+double robot_radius(T &, long)
+{
+  return 0.0;
+}
+
+}  // namespace
+
+CostmapRosSource::CostmapRosSource(std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+: costmap_ros_(std::move(costmap_ros))
+{
+}
+
+client::CostmapRead CostmapRosSource::read(std::optional<std::uint64_t> known)
+{
+  std::lock_guard<std::mutex> tracker_lock(mutex_);
+  const std::string frame = costmap_ros_->getGlobalFrameID();
+  std::vector<double> footprint;
+  for (const auto & point : costmap_ros_->getRobotFootprint()) {
+    footprint.push_back(point.x);
+    footprint.push_back(point.y);
+  }
+  nav2_costmap_2d::Costmap2D * costmap = costmap_ros_->getCostmap();
+  std::unique_lock<nav2_costmap_2d::Costmap2D::mutex_t> lock(*costmap->getMutex());
+  client::CostmapView view;
+  view.frame_id = frame;
+  view.size_x = costmap->getSizeInCellsX();
+  view.size_y = costmap->getSizeInCellsY();
+  view.resolution = costmap->getResolution();
+  view.origin_x = costmap->getOriginX();
+  view.origin_y = costmap->getOriginY();
+  view.data = costmap->getCharMap();
+  view.footprint = std::move(footprint);
+  view.robot_radius = robot_radius(*costmap_ros_, 0);
+  return client::read_costmap(view, version_, known);
+}
+
+}  // namespace nav2_pyif_bridge

@@ -1,0 +1,197 @@
+#include "nav2_pyif_bridge/ros_conversions.hpp"
+
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "tf2/exceptions.h"
+#include "tf2/time.h"
+#include "tf2_geometry_msgs/tf2_geometry_msgs.hpp"
+
+namespace nav2_pyif_bridge::ros
+{
+namespace proto = protocol;
+
+std::int64_t to_ns(const builtin_interfaces::msg::Time & stamp) noexcept
+{
+  return static_cast<std::int64_t>(stamp.sec) * 1000000000LL + stamp.nanosec;
+}
+
+builtin_interfaces::msg::Time from_ns(std::int64_t ns) noexcept
+{
+  builtin_interfaces::msg::Time stamp;
+  std::int64_t sec = ns / 1000000000LL;
+  std::int64_t rest = ns % 1000000000LL;
+  if (rest < 0) {
+    rest += 1000000000LL;
+    sec -= 1;
+  }
+  stamp.sec = static_cast<std::int32_t>(sec);
+  stamp.nanosec = static_cast<std::uint32_t>(rest);
+  return stamp;
+}
+
+namespace
+{
+
+std::array<double, 7> pose_row(const geometry_msgs::msg::Pose & p) noexcept
+{
+  return {p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
+    p.orientation.z, p.orientation.w};
+}
+
+geometry_msgs::msg::Pose pose_of(const double * row) noexcept
+{
+  geometry_msgs::msg::Pose p;
+  p.position.x = row[0];
+  p.position.y = row[1];
+  p.position.z = row[2];
+  p.orientation.x = row[3];
+  p.orientation.y = row[4];
+  p.orientation.z = row[5];
+  p.orientation.w = row[6];
+  return p;
+}
+
+}  // namespace
+
+proto::PoseStamped to_wire(const geometry_msgs::msg::PoseStamped & pose)
+{
+  return proto::PoseStamped{pose.header.frame_id, to_ns(pose.header.stamp), pose_row(pose.pose)};
+}
+
+std::array<double, 6> to_wire(const geometry_msgs::msg::Twist & t) noexcept
+{
+  return {t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z};
+}
+
+proto::Path to_wire(const nav_msgs::msg::Path & path)
+{
+  proto::Path out;
+  out.frame_id = path.header.frame_id;
+  out.stamp_ns = to_ns(path.header.stamp);
+  out.poses.reserve(path.poses.size() * proto::kPoseRowSize);
+  for (const auto & pose : path.poses) {
+    const auto row = pose_row(pose.pose);
+    out.poses.insert(out.poses.end(), row.begin(), row.end());
+  }
+  return out;
+}
+
+geometry_msgs::msg::TwistStamped to_ros(
+  const proto::TwistStamped & cmd, const std::string & frame,
+  const builtin_interfaces::msg::Time & stamp)
+{
+  geometry_msgs::msg::TwistStamped out;
+  out.header.frame_id = cmd.frame_id.empty() ? frame : cmd.frame_id;
+  out.header.stamp = cmd.stamp_ns == 0 ? stamp : from_ns(cmd.stamp_ns);
+  out.twist.linear.x = cmd.twist[0];
+  out.twist.linear.y = cmd.twist[1];
+  out.twist.linear.z = cmd.twist[2];
+  out.twist.angular.x = cmd.twist[3];
+  out.twist.angular.y = cmd.twist[4];
+  out.twist.angular.z = cmd.twist[5];
+  return out;
+}
+
+nav_msgs::msg::Path to_ros(
+  const proto::Path & path, const std::string & frame,
+  const builtin_interfaces::msg::Time & stamp)
+{
+  nav_msgs::msg::Path out;
+  out.header.frame_id = path.frame_id.empty() ? frame : path.frame_id;
+  out.header.stamp = path.stamp_ns == 0 ? stamp : from_ns(path.stamp_ns);
+  out.poses.resize(path.size());
+  for (std::size_t i = 0; i < out.poses.size(); ++i) {
+    out.poses[i].header = out.header;
+    out.poses[i].pose = pose_of(&path.poses[i * proto::kPoseRowSize]);
+  }
+  return out;
+}
+
+std::optional<proto::ParamValue> to_wire(const rclcpp::ParameterValue & value)
+{
+  switch (value.get_type()) {
+    case rclcpp::ParameterType::PARAMETER_BOOL:
+      return proto::ParamValue{value.get<bool>()};
+    case rclcpp::ParameterType::PARAMETER_INTEGER:
+      return proto::ParamValue{std::int64_t{value.get<std::int64_t>()}};
+    case rclcpp::ParameterType::PARAMETER_DOUBLE:
+      return proto::ParamValue{value.get<double>()};
+    case rclcpp::ParameterType::PARAMETER_STRING:
+      return proto::ParamValue{value.get<std::string>()};
+    case rclcpp::ParameterType::PARAMETER_BYTE_ARRAY: {
+        std::vector<std::int64_t> ints;
+        for (const auto byte : value.get<std::vector<std::uint8_t>>()) {
+          ints.push_back(byte);
+        }
+        return proto::ParamValue{std::move(ints)};
+      }
+    case rclcpp::ParameterType::PARAMETER_BOOL_ARRAY:
+      return proto::ParamValue{value.get<std::vector<bool>>()};
+    case rclcpp::ParameterType::PARAMETER_INTEGER_ARRAY:
+      return proto::ParamValue{value.get<std::vector<std::int64_t>>()};
+    case rclcpp::ParameterType::PARAMETER_DOUBLE_ARRAY:
+      return proto::ParamValue{value.get<std::vector<double>>()};
+    case rclcpp::ParameterType::PARAMETER_STRING_ARRAY:
+      return proto::ParamValue{value.get<std::vector<std::string>>()};
+    default:
+      return std::nullopt;
+  }
+}
+
+rclcpp::ParameterValue to_ros(const proto::ParamValue & value)
+{
+  return std::visit([](const auto & v) {return rclcpp::ParameterValue(v);}, value);
+}
+
+geometry_msgs::msg::PoseStamped in_frame(
+  const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
+  tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error)
+{
+  if (pose.header.frame_id == frame || pose.header.frame_id.empty()) {
+    return pose;
+  }
+  try {
+    const auto transform = tf.lookupTransform(
+      frame, pose.header.frame_id, tf2::TimePointZero, tf2::durationFromSec(timeout_s));
+    geometry_msgs::msg::PoseStamped out;
+    tf2::doTransform(pose, out, transform);
+    return out;
+  } catch (const tf2::TransformException & error) {
+    throw client::CallError(
+            tf_error, client::Cause::Local,
+            "cannot transform a pose from " + pose.header.frame_id + " to " + frame + ": " +
+            error.what());
+  }
+}
+
+nav_msgs::msg::Path in_frame(
+  const nav_msgs::msg::Path & path, const std::string & frame, tf2_ros::Buffer & tf,
+  double timeout_s, client::ErrorKind tf_error)
+{
+  if (path.header.frame_id == frame || path.header.frame_id.empty()) {
+    return path;
+  }
+  geometry_msgs::msg::TransformStamped transform;
+  try {
+    transform = tf.lookupTransform(
+      frame, path.header.frame_id, tf2::TimePointZero, tf2::durationFromSec(timeout_s));
+  } catch (const tf2::TransformException & error) {
+    throw client::CallError(
+            tf_error, client::Cause::Local,
+            "cannot transform the plan from " + path.header.frame_id + " to " + frame + ": " +
+            error.what());
+  }
+  nav_msgs::msg::Path out;
+  out.header.frame_id = frame;
+  out.header.stamp = path.header.stamp;
+  out.poses.resize(path.poses.size());
+  for (std::size_t i = 0; i < path.poses.size(); ++i) {
+    tf2::doTransform(path.poses[i].pose, out.poses[i].pose, transform);
+    out.poses[i].header = out.header;
+  }
+  return out;
+}
+
+}  // namespace nav2_pyif_bridge::ros
