@@ -1,7 +1,9 @@
 """nav2-pyif-bench: the project's benchmarks; each prints its figures (see BENCHMARKS.md).
 
-nav2-pyif-bench protocol [--quick] [--json F]   control cycle, plans, costmaps, throughput
+nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controller's rate through a host
+nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
+nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 """
 
 from __future__ import annotations

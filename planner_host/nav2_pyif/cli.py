@@ -107,7 +107,13 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="SECONDS",
         help="control-loop calls running longer are answered with ControllerTimedOut (default 1.0)",
     )
-    safety.add_argument("--plan-deadline", type=float, default=30.0, metavar="SECONDS")
+    safety.add_argument(
+        "--plan-deadline",
+        type=float,
+        default=30.0,
+        metavar="SECONDS",
+        help="the same for create_plan (default 30)",
+    )
     safety.add_argument(
         "--hang-grace",
         type=float,
