@@ -12,7 +12,8 @@
 //     no JSON5 files (a `zenoh_config` is refused), one connect endpoint (the first).
 // A session that cannot be opened (no router or host listening yet) is retried every second
 // in the background; meanwhile no host is alive, so calls fail fast.
-// Sessions are shared between the plugins of one process that use the same configuration.
+// Sessions are shared between the plugins of one process that use the same configuration, and
+// live as long as the process (closing a zenoh-pico session whose peer went away can block).
 #pragma once
 
 #include <atomic>

@@ -175,10 +175,12 @@ TEST(CostmapVersion, CellsAreEncodedAsTheWireExpects)
   auto read = grid.read(std::nullopt);
   proto::Request request;
   request.sid = "s";
-  request.body = proto::ComputeVelocityCommandsRequest{{}, {}, std::nullopt, *read.costmap};
+  proto::ComputeVelocityCommandsRequest body;
+  body.costmap = *read.costmap;
+  request.body = body;
   const auto decoded = proto::decode_request(proto::encode_request(request));
-  const auto & body = std::get<proto::ComputeVelocityCommandsRequest>(decoded.body);
-  EXPECT_EQ(body.costmap->data, grid.data);
+  const auto & sent = std::get<proto::ComputeVelocityCommandsRequest>(decoded.body);
+  EXPECT_EQ(sent.costmap->data, grid.data);
 }
 
 // --- command checks -------------------------------------------------------------------------

@@ -1,0 +1,95 @@
+// What both Nav2 plugins share, so each plugin class only forwards: the YAML parameters
+// (client/settings.hpp), the local planner host (client/local_host.hpp), the Zenoh transport,
+// the costmap source, `ros2 param set` forwarding, and turning a CallError into the nav2_core
+// exception with the Python traceback in the log.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+
+#include "nav2_costmap_2d/costmap_2d_ros.hpp"
+#include "rclcpp/rclcpp.hpp"
+#include "rclcpp_lifecycle/lifecycle_node.hpp"
+
+#include "nav2_pyif_bridge/client/local_host.hpp"
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
+#include "nav2_pyif_bridge/client/settings.hpp"
+#include "nav2_pyif_bridge/costmap_ros_source.hpp"
+#include "nav2_pyif_bridge/nav2_api.hpp"
+#include "nav2_pyif_bridge/zenoh_transport.hpp"
+
+namespace nav2_pyif_bridge
+{
+
+class PluginBridge
+{
+public:
+  // Reads and declares the plugin's parameters, starts the local host when asked, opens the
+  // transport. Throws nav2_core InvalidController / InvalidPlanner (Humble: PlannerException)
+  // for bad parameters or a local host that cannot start.
+  PluginBridge(
+    const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
+    client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros);
+  ~PluginBridge();
+  PluginBridge(const PluginBridge &) = delete;
+  PluginBridge & operator=(const PluginBridge &) = delete;
+
+  // The parts a session is made of (the plugin creates its typed session with them).
+  client::SessionConfig session_config() const;
+  client::Transport & transport() {return *transport_;}
+  client::CostmapSource & costmap() {return *costmap_source_;}
+  client::Logger logger() const;
+
+  // Wait for a host (wait_for_host), configure the session or defer it when no host answers;
+  // declare the parameters the planner declared; start forwarding `ros2 param set`.
+  void configure(client::PluginSession & session);
+  // Stop forwarding parameters, end the session (never throws), stop the local host.
+  void cleanup(client::PluginSession & session) noexcept;
+
+  // Log the traceback (when the host sent one), then throw the nav2_core exception.
+  [[noreturn]] void fail(const client::CallError & error) const;
+  // Run `call`, turning a CallError into the nav2_core exception.
+  template<class F>
+  decltype(auto) forward(F && call) const
+  {
+    try {
+      return call();
+    } catch (const client::CallError & error) {
+      fail(error);
+    }
+  }
+
+  const rclcpp::Logger & ros_logger() const noexcept {return logger_;}
+  rclcpp::Clock::SharedPtr clock() const noexcept {return clock_;}
+  const client::BridgeSettings & settings() const noexcept {return settings_;}
+  const std::string & key() const noexcept {return key_;}
+  double transform_tolerance() const noexcept {return transform_tolerance_;}
+
+private:
+  rcl_interfaces::msg::SetParametersResult on_parameters(
+    const std::vector<rclcpp::Parameter> & parameters);
+  void declare_planner_parameters(const protocol::Params & declared);
+
+  rclcpp_lifecycle::LifecycleNode::WeakPtr node_;
+  std::string name_;
+  std::string node_name_;
+  client::PluginKind kind_;
+  rclcpp::Logger logger_;
+  rclcpp::Clock::SharedPtr clock_;
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
+  double transform_tolerance_{0.1};
+
+  client::BridgeSettings settings_;
+  protocol::Params forwarded_;
+  std::string key_;
+  std::unique_ptr<client::LocalHost> local_host_;
+  std::unique_ptr<ZenohTransport> transport_;
+  std::unique_ptr<CostmapRosSource> costmap_source_;
+
+  client::PluginSession * session_{nullptr};
+  rclcpp::node_interfaces::OnSetParametersCallbackHandle::SharedPtr parameter_callback_;
+  std::atomic<bool> declaring_{false};
+};
+
+}  // namespace nav2_pyif_bridge

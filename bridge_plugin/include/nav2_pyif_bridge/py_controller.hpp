@@ -1,0 +1,66 @@
+// nav2_pyif_bridge::PyController: a nav2_core::Controller whose every call is answered by a
+// Python controller in a planner host, over Zenoh. Thin: frames and messages here, the rest
+// in client::ControllerSession and PluginBridge.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "geometry_msgs/msg/pose_stamped.hpp"
+#include "geometry_msgs/msg/twist.hpp"
+#include "geometry_msgs/msg/twist_stamped.hpp"
+#include "nav2_core/controller.hpp"
+#include "nav2_core/goal_checker.hpp"
+#include "nav2_costmap_2d/costmap_2d_ros.hpp"
+#include "nav_msgs/msg/path.hpp"
+#include "rclcpp_lifecycle/lifecycle_node.hpp"
+#include "tf2_ros/buffer.h"
+
+#include "nav2_pyif_bridge/client/controller_session.hpp"
+#include "nav2_pyif_bridge/plugin_bridge.hpp"
+
+namespace nav2_pyif_bridge
+{
+
+class PyController : public nav2_core::Controller
+{
+public:
+  PyController() = default;
+  ~PyController() override;
+
+  void configure(
+    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
+    std::shared_ptr<tf2_ros::Buffer> tf,
+    std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
+  void cleanup() override;
+  void activate() override;
+  void deactivate() override;
+
+  // The plan, transformed into the costmap's global frame (ControllerTFError when it cannot be).
+  void setPlan(const nav_msgs::msg::Path & path) override;
+  // The host's command, every component finite; else the nav2_core exception it named, or
+  // ControllerTimedOut / ControllerException (Humble: PlannerException). Never a made-up twist.
+  geometry_msgs::msg::TwistStamped computeVelocityCommands(
+    const geometry_msgs::msg::PoseStamped & pose, const geometry_msgs::msg::Twist & velocity,
+    nav2_core::GoalChecker * goal_checker) override;
+  // Called from a subscription: logs instead of throwing; the limit reaches the next host.
+  void setSpeedLimit(const double & speed_limit, const bool & percentage) override;
+
+#if NAV2_PYIF_JAZZY_API
+  // True when the host says the controller finished cancelling, or when no host answers
+  // (nothing left to cancel there; Nav2 stops the robot).
+  bool cancel() override;
+  // Never throws (Nav2 calls it after every goal).
+  void reset() override;
+#endif
+
+private:
+  std::string name_;
+  std::shared_ptr<tf2_ros::Buffer> tf_;
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
+  // Destroyed in this order: the session uses the bridge's transport and costmap source.
+  std::unique_ptr<PluginBridge> bridge_;
+  std::unique_ptr<client::ControllerSession> session_;
+};
+
+}  // namespace nav2_pyif_bridge

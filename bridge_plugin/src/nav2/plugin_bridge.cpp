@@ -1,0 +1,285 @@
+#include "nav2_pyif_bridge/plugin_bridge.hpp"
+
+#include <chrono>
+#include <set>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "nav2_pyif_bridge/ros_conversions.hpp"
+
+namespace nav2_pyif_bridge
+{
+namespace proto = protocol;
+using client::CallError;
+using client::LogLevel;
+
+namespace
+{
+
+// The bridge parameters a running plugin can take: the timeouts. The others are read at
+// configure only.
+const std::set<std::string> kLiveSettings = {
+  "timeout", "configure_timeout", "plan_timeout", "lifecycle_timeout", "wait_for_host"};
+
+rcl_interfaces::msg::ParameterDescriptor dynamically_typed()
+{
+  rcl_interfaces::msg::ParameterDescriptor descriptor;
+  descriptor.dynamic_typing = true;  // the planner host judges the types (an int for a float)
+  return descriptor;
+}
+
+// Every parameter under `name.`, prefix stripped: those given to the node (the params YAML,
+// launch arguments), declared here, and those declared already (a configure after cleanup
+// sees the values `ros2 param set` left).
+proto::Params read_parameters(rclcpp_lifecycle::LifecycleNode & node, const std::string & name)
+{
+  const auto overrides = node.get_node_parameters_interface()->get_parameter_overrides();
+  for (const auto & [full_name, value] : overrides) {
+    if (client::plugin_parameter_name(full_name, name) && !node.has_parameter(full_name)) {
+      node.declare_parameter(full_name, value, dynamically_typed());
+    }
+  }
+  proto::Params out;
+  const auto listed = node.list_parameters({name}, 0);
+  for (const auto & full_name : listed.names) {
+    const auto stripped = client::plugin_parameter_name(full_name, name);
+    if (!stripped) {
+      continue;
+    }
+    if (auto value = ros::to_wire(node.get_parameter(full_name).get_parameter_value())) {
+      out.set(*stripped, std::move(*value));
+    }
+  }
+  return out;
+}
+
+client::ErrorKind invalid(client::PluginKind kind)
+{
+  return kind == client::PluginKind::Controller ? client::ErrorKind::InvalidController :
+         client::ErrorKind::InvalidPlanner;
+}
+
+}  // namespace
+
+PluginBridge::PluginBridge(
+  const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
+  client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+: node_(node), name_(name), node_name_(node->get_name()), kind_(kind),
+  logger_(node->get_logger().get_child(name)), clock_(node->get_clock()),
+  costmap_ros_(std::move(costmap_ros)), transform_tolerance_(costmap_ros_->getTransformTolerance())
+{
+  try {
+    client::PluginParameters parameters = client::split_parameters(read_parameters(*node, name));
+    settings_ = std::move(parameters.settings);
+    forwarded_ = std::move(parameters.forwarded);
+    key_ = settings_.key.empty() ? client::local_host_key(node_name_, name_) : settings_.key;
+    ZenohOptions zenoh{settings_.zenoh_config, settings_.zenoh_connect};
+    if (settings_.local_host.enabled()) {
+      local_host_ = std::make_unique<client::LocalHost>(settings_.local_host, key_, logger());
+      zenoh = ZenohOptions{"", {local_host_->endpoint()}};
+    }
+    transport_ = std::make_unique<ZenohTransport>(zenoh, client::KeySpace(key_), logger());
+  } catch (const std::exception & error) {
+    RCLCPP_FATAL(logger_, "%s: %s", name_.c_str(), error.what());
+    throw_nav2_exception(client::for_api(invalid(kind_), kNav2Api), name_ + ": " + error.what());
+  }
+  costmap_source_ = std::make_unique<CostmapRosSource>(costmap_ros_);
+  RCLCPP_INFO(
+    logger_, "%s: Python planner on Zenoh key %s (%s, %s%s)", name_.c_str(), key_.c_str(),
+    zenoh_backend(), transport_->where().c_str(),
+    local_host_ ? ", local planner-host started by this plugin" : "");
+}
+
+PluginBridge::~PluginBridge()
+{
+  parameter_callback_.reset();
+  transport_.reset();
+  local_host_.reset();  // stops the process
+}
+
+client::SessionConfig PluginBridge::session_config() const
+{
+  client::SessionConfig config;
+  config.kind = kind_;
+  config.key_prefix = key_;
+  config.name = name_;
+  config.node = node_name_;
+  config.params = forwarded_;
+  config.global_frame = costmap_ros_->getGlobalFrameID();
+  config.robot_base_frame = costmap_ros_->getBaseFrameID();
+  config.timeouts = settings_.timeouts;
+  return config;
+}
+
+client::Logger PluginBridge::logger() const
+{
+  const rclcpp::Logger logger = logger_;
+  return [logger](LogLevel level, const std::string & text) {
+           switch (level) {
+             case LogLevel::Debug:
+               RCLCPP_DEBUG(logger, "%s", text.c_str());
+               break;
+             case LogLevel::Info:
+               RCLCPP_INFO(logger, "%s", text.c_str());
+               break;
+             case LogLevel::Warn:
+               RCLCPP_WARN(logger, "%s", text.c_str());
+               break;
+             case LogLevel::Error:
+               RCLCPP_ERROR(logger, "%s", text.c_str());
+               break;
+           }
+         };
+}
+
+void PluginBridge::configure(client::PluginSession & session)
+{
+  session_ = &session;
+  const auto wait = settings_.host_wait();
+  if (!session.wait_for_host(wait)) {
+    RCLCPP_WARN(
+      logger_, "%s: no planner host on %s after %.1f s; configure deferred to the first call "
+      "(start one: planner-host --key %s ...)", name_.c_str(), key_.c_str(),
+      std::chrono::duration<double>(wait).count(), key_.c_str());
+    session.defer_configure();
+  } else {
+    try {
+      const proto::Params declared = session.configure();
+      RCLCPP_INFO(
+        logger_, "%s: configured on host %s (session %s)", name_.c_str(),
+        session.last_host().c_str(), session.sid().substr(0, 8).c_str());
+      declare_planner_parameters(declared);
+    } catch (const CallError & error) {
+      if (!error.unreachable()) {
+        fail(error);
+      }
+      RCLCPP_WARN(
+        logger_, "%s: %s; configure deferred to the first call", name_.c_str(), error.what());
+      session.defer_configure();
+    }
+  }
+  auto node = node_.lock();
+  if (node) {
+    parameter_callback_ = node->add_on_set_parameters_callback(
+      [this](const std::vector<rclcpp::Parameter> & parameters) {
+        return on_parameters(parameters);
+      });
+  }
+}
+
+void PluginBridge::cleanup(client::PluginSession & session) noexcept
+{
+  parameter_callback_.reset();
+  try {
+    session.cleanup();
+  } catch (const std::exception & error) {
+    RCLCPP_WARN(logger_, "%s: cleanup: %s", name_.c_str(), error.what());
+  }
+  session_ = nullptr;
+}
+
+void PluginBridge::declare_planner_parameters(const proto::Params & declared)
+{
+  auto node = node_.lock();
+  if (!node) {
+    return;
+  }
+  declaring_ = true;
+  for (const auto & [name, value] : declared) {
+    const std::string full_name = name_ + "." + name;
+    try {
+      if (!node->has_parameter(full_name)) {
+        node->declare_parameter(full_name, ros::to_ros(value), dynamically_typed());
+      }
+    } catch (const std::exception & error) {
+      RCLCPP_WARN(logger_, "cannot declare %s: %s", full_name.c_str(), error.what());
+    }
+  }
+  declaring_ = false;
+}
+
+rcl_interfaces::msg::SetParametersResult PluginBridge::on_parameters(
+  const std::vector<rclcpp::Parameter> & parameters)
+{
+  rcl_interfaces::msg::SetParametersResult result;
+  result.successful = true;
+  if (declaring_ || session_ == nullptr) {
+    return result;
+  }
+  proto::Params changes;
+  client::Timeouts timeouts = session_->timeouts();
+  std::string problems;
+  auto problem = [&problems](const std::string & text) {
+      problems += (problems.empty() ? "" : "; ") + text;
+    };
+  for (const auto & parameter : parameters) {
+    const auto name = client::plugin_parameter_name(parameter.get_name(), name_);
+    if (!name) {
+      continue;
+    }
+    const auto value = ros::to_wire(parameter.get_parameter_value());
+    if (!value) {
+      problem(*name + ": cannot be unset");
+      continue;
+    }
+    if (!client::is_bridge_parameter(*name)) {
+      changes.set(*name, *value);
+      continue;
+    }
+    if (kLiveSettings.count(*name) == 0) {
+      problem(*name + " is read at configure: cleanup and configure the node to change it");
+      continue;
+    }
+    try {
+      const client::Duration seconds = client::seconds_parameter(*name, *value);
+      if (*name == "timeout") {
+        timeouts.call = seconds;
+      } else if (*name == "configure_timeout") {
+        timeouts.configure = seconds;
+      } else if (*name == "plan_timeout") {
+        timeouts.plan = seconds;
+      } else if (*name == "lifecycle_timeout") {
+        timeouts.lifecycle = seconds;
+      } else {
+        settings_.wait_for_host = seconds;
+      }
+    } catch (const std::invalid_argument & error) {
+      problem(error.what());
+    }
+  }
+  if (!problems.empty()) {
+    result.successful = false;
+    result.reason = problems;
+    return result;
+  }
+  if (!changes.empty()) {
+    try {
+      const proto::StringMap rejected = session_->set_parameters(changes);
+      for (const auto & [name, reason] : rejected) {
+        problem(name + ": " + reason);
+      }
+    } catch (const CallError & error) {
+      problem(error.what());
+    }
+  }
+  if (!problems.empty()) {
+    result.successful = false;
+    result.reason = "the planner refused: " + problems;
+    return result;
+  }
+  session_->set_timeouts(timeouts);
+  return result;
+}
+
+void PluginBridge::fail(const CallError & error) const
+{
+  if (!error.remote().traceback.empty()) {
+    RCLCPP_ERROR(logger_, "%s: %s", name_.c_str(), error.log_text().c_str());
+  } else {
+    RCLCPP_DEBUG(logger_, "%s: %s", name_.c_str(), error.what());
+  }
+  throw_nav2_exception(client::for_api(error.kind(), kNav2Api), error.what());
+}
+
+}  // namespace nav2_pyif_bridge

@@ -1,0 +1,141 @@
+#include "nav2_pyif_bridge/py_controller.hpp"
+
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+#include "pluginlib/class_list_macros.hpp"
+#include "tf2/utils.h"
+
+#include "nav2_pyif_bridge/ros_conversions.hpp"
+
+namespace nav2_pyif_bridge
+{
+
+namespace
+{
+
+// The goal checker's tolerances, as the protocol carries them (std::nullopt without one).
+std::optional<protocol::GoalChecker> tolerances(nav2_core::GoalChecker * goal_checker)
+{
+  if (goal_checker == nullptr) {
+    return std::nullopt;
+  }
+  geometry_msgs::msg::Pose pose_tolerance;
+  geometry_msgs::msg::Twist velocity_tolerance;
+  if (!goal_checker->getTolerances(pose_tolerance, velocity_tolerance)) {
+    return std::nullopt;
+  }
+  return protocol::GoalChecker{
+    pose_tolerance.position.x, tf2::getYaw(pose_tolerance.orientation),
+    velocity_tolerance.linear.x, velocity_tolerance.angular.z};
+}
+
+}  // namespace
+
+PyController::~PyController()
+{
+  session_.reset();
+  bridge_.reset();
+}
+
+void PyController::configure(
+  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
+  std::shared_ptr<tf2_ros::Buffer> tf,
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+{
+  auto node = parent.lock();
+  if (!node) {
+    throw std::runtime_error("nav2_pyif_bridge::PyController: unable to lock the node");
+  }
+  name_ = std::move(name);
+  tf_ = std::move(tf);
+  costmap_ros_ = std::move(costmap_ros);
+  session_.reset();
+  bridge_ = std::make_unique<PluginBridge>(
+    node, name_, client::PluginKind::Controller, costmap_ros_);
+  session_ = std::make_unique<client::ControllerSession>(
+    bridge_->session_config(), bridge_->transport(), bridge_->costmap(), bridge_->logger());
+  bridge_->configure(*session_);
+}
+
+void PyController::cleanup()
+{
+  if (bridge_ && session_) {
+    bridge_->cleanup(*session_);
+  }
+  session_.reset();
+  bridge_.reset();
+}
+
+void PyController::activate()
+{
+  bridge_->forward([this]() {session_->activate();});
+}
+
+void PyController::deactivate()
+{
+  bridge_->forward([this]() {session_->deactivate();});
+}
+
+void PyController::setPlan(const nav_msgs::msg::Path & path)
+{
+  bridge_->forward(
+    [&]() {
+      const nav_msgs::msg::Path global = ros::in_frame(
+        path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
+        client::ErrorKind::ControllerTFError);
+      session_->set_plan(ros::to_wire(global));
+    });
+}
+
+geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
+  const geometry_msgs::msg::PoseStamped & pose, const geometry_msgs::msg::Twist & velocity,
+  nav2_core::GoalChecker * goal_checker)
+{
+  return bridge_->forward(
+    [&]() {
+      const geometry_msgs::msg::PoseStamped global = ros::in_frame(
+        pose, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
+        client::ErrorKind::ControllerTFError);
+      const protocol::TwistStamped cmd = session_->compute_velocity_commands(
+        ros::to_wire(global), ros::to_wire(velocity), tolerances(goal_checker));
+      return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
+    });
+}
+
+void PyController::setSpeedLimit(const double & speed_limit, const bool & percentage)
+{
+  try {
+    session_->set_speed_limit(speed_limit, percentage);
+  } catch (const client::CallError & error) {
+    RCLCPP_WARN(
+      bridge_->ros_logger(), "%s: speed limit %.3f%s: %s", name_.c_str(), speed_limit,
+      percentage ? " %" : " m/s", error.log_text().c_str());
+  }
+}
+
+#if NAV2_PYIF_JAZZY_API
+bool PyController::cancel()
+{
+  try {
+    return session_->cancel();
+  } catch (const client::CallError & error) {
+    RCLCPP_WARN(bridge_->ros_logger(), "%s: cancel: %s", name_.c_str(), error.what());
+    return true;
+  }
+}
+
+void PyController::reset()
+{
+  try {
+    session_->reset();
+  } catch (const client::CallError & error) {
+    RCLCPP_DEBUG(bridge_->ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
+  }
+}
+#endif
+
+}  // namespace nav2_pyif_bridge
+
+PLUGINLIB_EXPORT_CLASS(nav2_pyif_bridge::PyController, nav2_core::Controller)
