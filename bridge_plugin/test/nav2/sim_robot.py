@@ -1,0 +1,125 @@
+"""A small simulated robot for the Nav2 launch test: a unicycle that follows /cmd_vel, with a
+map, TF and odometry, as Nav2's servers expect them.
+
+- /map (nav_msgs/OccupancyGrid, transient local): 8 m x 8 m at 5 cm, centred on the origin,
+  with a wall x = 1 m, y in [-0.6, 2.5] m between the start and the test's goals;
+- TF map -> odom (static, identity) and odom -> base_link (the integrated pose, 50 Hz);
+- /odom (nav_msgs/Odometry) with the commanded velocity as the measured one.
+/cmd_vel is read as geometry_msgs/Twist (Jazzy's controller_server default); a command older
+than 0.5 s stops the robot.
+
+    python sim_robot.py [--x X --y Y --yaw YAW]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import signal
+from typing import Any
+
+import rclpy
+from geometry_msgs.msg import TransformStamped, Twist
+from nav_msgs.msg import OccupancyGrid, Odometry
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from tf2_ros import StaticTransformBroadcaster, TransformBroadcaster
+
+RATE_HZ = 50.0
+MAP_SIZE_M = 8.0
+RESOLUTION = 0.05
+WALL_X = 1.0
+WALL_Y = (-0.6, 2.5)
+
+
+def make_map(stamp: object) -> OccupancyGrid:
+    cells = int(MAP_SIZE_M / RESOLUTION)
+    grid = OccupancyGrid()
+    grid.header.frame_id = "map"
+    grid.header.stamp = stamp
+    grid.info.resolution = RESOLUTION
+    grid.info.width = grid.info.height = cells
+    grid.info.origin.position.x = grid.info.origin.position.y = -MAP_SIZE_M / 2
+    grid.info.origin.orientation.w = 1.0
+    data = [0] * (cells * cells)
+    mx = int((WALL_X + MAP_SIZE_M / 2) / RESOLUTION)
+    for my in range(int((WALL_Y[0] + 4) / RESOLUTION), int((WALL_Y[1] + 4) / RESOLUTION)):
+        for dx in range(2):
+            data[my * cells + mx + dx] = 100
+    grid.data = data
+    return grid
+
+
+def transform(parent: str, child: str, stamp: object, x: float, y: float, yaw: float) -> Any:
+    t = TransformStamped()
+    t.header.frame_id, t.child_frame_id, t.header.stamp = parent, child, stamp
+    t.transform.translation.x, t.transform.translation.y = x, y
+    t.transform.rotation.z, t.transform.rotation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+    return t
+
+
+class SimRobot(Node):
+    def __init__(self, x: float, y: float, yaw: float) -> None:
+        super().__init__("sim_robot")
+        self.x, self.y, self.yaw = x, y, yaw
+        self.cmd = Twist()
+        self.cmd_time = self.get_clock().now()
+        latched = QoSProfile(
+            depth=1,
+            durability=DurabilityPolicy.TRANSIENT_LOCAL,
+            reliability=ReliabilityPolicy.RELIABLE,
+        )
+        self.map_pub = self.create_publisher(OccupancyGrid, "map", latched)
+        self.map_pub.publish(make_map(self.get_clock().now().to_msg()))
+        self.static_tf = StaticTransformBroadcaster(self)
+        self.static_tf.sendTransform(
+            transform("map", "odom", self.get_clock().now().to_msg(), 0.0, 0.0, 0.0)
+        )
+        self.tf = TransformBroadcaster(self)
+        self.odom_pub = self.create_publisher(Odometry, "odom", 10)
+        self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
+        self.create_timer(1.0 / RATE_HZ, self.step)
+
+    def on_cmd(self, msg: Twist) -> None:
+        self.cmd = msg
+        self.cmd_time = self.get_clock().now()
+
+    def step(self) -> None:
+        now = self.get_clock().now()
+        if (now - self.cmd_time).nanoseconds > 500_000_000:
+            self.cmd = Twist()
+        dt = 1.0 / RATE_HZ
+        v, w = self.cmd.linear.x, self.cmd.angular.z
+        self.x += v * math.cos(self.yaw) * dt
+        self.y += v * math.sin(self.yaw) * dt
+        self.yaw = math.atan2(math.sin(self.yaw + w * dt), math.cos(self.yaw + w * dt))
+        stamp = now.to_msg()
+        self.tf.sendTransform(transform("odom", "base_link", stamp, self.x, self.y, self.yaw))
+        odom = Odometry()
+        odom.header.frame_id, odom.child_frame_id, odom.header.stamp = "odom", "base_link", stamp
+        odom.pose.pose.position.x, odom.pose.pose.position.y = self.x, self.y
+        odom.pose.pose.orientation.z = math.sin(self.yaw / 2)
+        odom.pose.pose.orientation.w = math.cos(self.yaw / 2)
+        odom.twist.twist = self.cmd
+        self.odom_pub.publish(odom)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--x", type=float, default=0.0)
+    parser.add_argument("--y", type=float, default=0.0)
+    parser.add_argument("--yaw", type=float, default=0.0)
+    args = parser.parse_args()
+    rclpy.init()
+    node = SimRobot(args.x, args.y, args.yaw)
+    signal.signal(signal.SIGTERM, lambda *_: rclpy.try_shutdown())
+    try:
+        rclpy.spin(node)
+    except Exception:  # shutdown from the signal handler
+        pass
+    finally:
+        rclpy.try_shutdown()
+
+
+if __name__ == "__main__":
+    main()
