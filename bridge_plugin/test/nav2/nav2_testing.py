@@ -1,0 +1,207 @@
+"""Helpers of the Nav2 launch tests: what they need, the processes they start (each in its own
+process group, stopped by pid), and an rclpy client of Nav2's lifecycle and actions."""
+
+from __future__ import annotations
+
+import os
+import shlex
+import shutil
+import signal
+import socket
+import subprocess
+import time
+from pathlib import Path
+from typing import Any
+
+HERE = Path(__file__).resolve().parent
+
+
+def prefixes() -> list[Path]:
+    return [Path(p) for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+
+
+def find(relative: str) -> Path | None:
+    for prefix in prefixes():
+        if (prefix / relative).exists():
+            return prefix / relative
+    return None
+
+
+def host_command() -> list[str] | None:
+    command = os.environ.get("NAV2_PYIF_PLANNER_HOST")
+    if command:
+        return shlex.split(command)
+    found = shutil.which("planner-host")
+    return [found] if found else None
+
+
+def missing() -> list[str]:
+    absent = []
+    try:
+        import nav2_msgs.action  # noqa: F401
+        import rclpy  # noqa: F401
+    except ImportError:
+        absent.append("a sourced ROS 2 with rclpy and nav2_msgs")
+    for exe in (
+        "lib/nav2_controller/controller_server",
+        "lib/nav2_planner/planner_server",
+        "lib/nav2_lifecycle_manager/lifecycle_manager",
+    ):
+        if find(exe) is None:
+            absent.append(exe.rsplit("/", 1)[-1])
+    if (
+        find("share/ament_index/resource_index/nav2_core__pluginlib__plugin/nav2_pyif_bridge")
+        is None
+    ):
+        absent.append("nav2_pyif_bridge built and sourced")
+    if host_command() is None:
+        absent.append("planner-host on PATH or $NAV2_PYIF_PLANNER_HOST")
+    return absent
+
+
+def free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+class Processes:
+    """Everything the test starts, each in its own process group, stopped by pid."""
+
+    def __init__(self, logs: Path, env: dict[str, str]) -> None:
+        self.logs, self.env = logs, env
+        self.procs: dict[str, subprocess.Popen[bytes]] = {}
+
+    def start(self, name: str, args: list[str], cwd: Path | None = None) -> None:
+        log = open(self.logs / f"{name}.log", "ab")  # noqa: SIM115  (closed with the process)
+        self.procs[name] = subprocess.Popen(
+            args,
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            env=self.env,
+            cwd=cwd,
+            start_new_session=True,
+        )
+
+    def kill(self, name: str, sig: int = signal.SIGKILL) -> None:
+        proc = self.procs.pop(name, None)
+        if proc is None or proc.poll() is not None:
+            return
+        os.killpg(proc.pid, sig)
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait(10)
+
+    def alive(self, name: str) -> bool:
+        proc = self.procs.get(name)
+        return proc is not None and proc.poll() is None
+
+    def log(self, name: str, lines: int = 40) -> str:
+        path = self.logs / f"{name}.log"
+        text = path.read_text(errors="replace").splitlines() if path.exists() else []
+        return f"--- {name} ---\n" + "\n".join(text[-lines:])
+
+    def stop_all(self) -> None:
+        for name in list(self.procs):
+            self.kill(name, signal.SIGINT)
+
+
+SUCCEEDED, ABORTED = 4, 6  # action_msgs/GoalStatus
+SERVERS = ("controller_server", "planner_server")
+
+
+def start_nav2(procs: Processes, params: Path) -> None:
+    """controller_server, planner_server and a lifecycle manager (autostart) with `params`."""
+    ros = ["--ros-args", "--params-file", str(params)]
+    procs.start("controller_server", [str(find("lib/nav2_controller/controller_server")), *ros])
+    procs.start("planner_server", [str(find("lib/nav2_planner/planner_server")), *ros])
+    procs.start(
+        "lifecycle_manager",
+        [
+            str(find("lib/nav2_lifecycle_manager/lifecycle_manager")),
+            "--ros-args",
+            "-r",
+            "__node:=lifecycle_manager_navigation",
+            "--params-file",
+            str(params),
+        ],
+    )
+
+
+def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when present)
+    import rclpy
+    from geometry_msgs.msg import PoseStamped
+    from lifecycle_msgs.srv import GetState
+    from nav2_msgs.action import ComputePathToPose, FollowPath
+    from nav_msgs.msg import Odometry
+    from rclpy.action import ActionClient
+    from rclpy.node import Node
+
+    class Client(Node):
+        def __init__(self) -> None:
+            super().__init__("nav2_pyif_launch_test")
+            self.plan_client = ActionClient(self, ComputePathToPose, "compute_path_to_pose")
+            self.follow_client = ActionClient(self, FollowPath, "follow_path")
+            self.pose: tuple[float, float] | None = None
+            self.create_subscription(Odometry, "odom", self._on_odom, 10)
+
+        def _on_odom(self, msg: Any) -> None:
+            self.pose = (msg.pose.pose.position.x, msg.pose.pose.position.y)
+
+        def spin_until(self, done: Any, timeout: float) -> bool:
+            end = time.monotonic() + timeout
+            while time.monotonic() < end:
+                if done():
+                    return True
+                rclpy.spin_once(self, timeout_sec=0.05)
+            return bool(done())
+
+        def wait(self, future: Any, timeout: float) -> Any:
+            self.spin_until(future.done, timeout)
+            return future.result() if future.done() else None
+
+        def state(self, node: str) -> str | None:
+            client = self.create_client(GetState, f"/{node}/get_state")
+            try:
+                if not client.wait_for_service(timeout_sec=2.0):
+                    return None
+                response = self.wait(client.call_async(GetState.Request()), 5.0)
+                return response.current_state.label if response else None
+            finally:
+                self.destroy_client(client)
+
+        def wait_active(self, nodes: tuple[str, ...], timeout: float) -> dict[str, str | None]:
+            end = time.monotonic() + timeout
+            states: dict[str, str | None] = {}
+            while time.monotonic() < end:
+                states = {n: self.state(n) for n in nodes}
+                if all(s == "active" for s in states.values()):
+                    break
+                time.sleep(0.5)
+            return states
+
+        def plan(self, x: float, y: float, timeout: float = 30.0) -> Any:
+            assert self.plan_client.wait_for_server(timeout_sec=10.0)
+            goal = ComputePathToPose.Goal()
+            goal.goal = PoseStamped()
+            goal.goal.header.frame_id = "map"
+            goal.goal.pose.position.x, goal.goal.pose.position.y = x, y
+            goal.goal.pose.orientation.w = 1.0
+            goal.use_start = False
+            handle = self.wait(self.plan_client.send_goal_async(goal), 10.0)
+            assert handle is not None and handle.accepted, "ComputePathToPose not accepted"
+            return self.wait(handle.get_result_async(), timeout)
+
+        def follow(self, path: Any) -> Any:
+            assert self.follow_client.wait_for_server(timeout_sec=10.0)
+            goal = FollowPath.Goal()
+            goal.path = path
+            goal.controller_id = "FollowPath"
+            goal.goal_checker_id = "general_goal_checker"
+            handle = self.wait(self.follow_client.send_goal_async(goal), 10.0)
+            assert handle is not None and handle.accepted, "FollowPath not accepted"
+            return handle
+
+    return Client()
