@@ -60,6 +60,19 @@ public:
     }
   }
 
+  // activate / deactivate: a planner that fails them (or no host) is logged, never thrown, so
+  // Nav2's lifecycle goes on (a thrown transition would leave the server in its error state).
+  template<class F>
+  void lifecycle(const char * transition, F && call) const
+  {
+    try {
+      call();
+    } catch (const client::CallError & error) {
+      RCLCPP_ERROR(
+        logger_, "%s: %s failed: %s", name_.c_str(), transition, error.log_text().c_str());
+    }
+  }
+
   const rclcpp::Logger & ros_logger() const noexcept {return logger_;}
   rclcpp::Clock::SharedPtr clock() const noexcept {return clock_;}
   const client::BridgeSettings & settings() const noexcept {return settings_;}

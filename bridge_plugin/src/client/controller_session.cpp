@@ -69,10 +69,12 @@ bool ControllerSession::cancel()
   return call_for<proto::CancelReply>(proto::CancelRequest{}).cancelled;
 }
 
-void ControllerSession::reset()
+void ControllerSession::reset(std::optional<Duration> timeout)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  call(proto::ResetRequest{}, {});
+  CallOptions options;
+  options.timeout = timeout;
+  call(proto::ResetRequest{}, options);
 }
 
 bool ControllerSession::has_plan() const

@@ -311,7 +311,7 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
   } catch (const proto::EncodeError & error) {
     fail(generic_error(config_.kind), Cause::Local, "cannot encode " + op_text + ": " + error.what());
   }
-  const Duration timeout = config_.timeouts.for_op(op);
+  const Duration timeout = options.timeout.value_or(config_.timeouts.for_op(op));
   WaitHook hook;
   const WaitHook * hook_ptr = nullptr;
   if (options.while_waiting) {
@@ -325,7 +325,7 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
     throw;
   } catch (const std::exception & error) {
     fail(
-      generic_error(config_.kind), Cause::Local,
+      generic_error(config_.kind), Cause::Transport,
       op_text + " on " + keys_.prefix() + ": Zenoh query failed: " + error.what());
   }
   if (!answer) {

@@ -70,12 +70,12 @@ void PyController::cleanup()
 
 void PyController::activate()
 {
-  bridge_->forward([this]() {session_->activate();});
+  bridge_->lifecycle("activate", [this]() {session_->activate();});
 }
 
 void PyController::deactivate()
 {
-  bridge_->forward([this]() {session_->deactivate();});
+  bridge_->lifecycle("deactivate", [this]() {session_->deactivate();});
 }
 
 void PyController::setPlan(const nav_msgs::msg::Path & path)
@@ -129,7 +129,7 @@ bool PyController::cancel()
 void PyController::reset()
 {
   try {
-    session_->reset();
+    session_->reset(session_->timeouts().call);
   } catch (const client::CallError & error) {
     RCLCPP_DEBUG(bridge_->ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
   }

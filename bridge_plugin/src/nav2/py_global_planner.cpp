@@ -47,12 +47,12 @@ void PyGlobalPlanner::cleanup()
 
 void PyGlobalPlanner::activate()
 {
-  bridge_->forward([this]() {session_->activate();});
+  bridge_->lifecycle("activate", [this]() {session_->activate();});
 }
 
 void PyGlobalPlanner::deactivate()
 {
-  bridge_->forward([this]() {session_->deactivate();});
+  bridge_->lifecycle("deactivate", [this]() {session_->deactivate();});
 }
 
 #if NAV2_PYIF_JAZZY_API

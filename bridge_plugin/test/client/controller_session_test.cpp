@@ -475,6 +475,32 @@ TEST_F(ControllerSessionTest, ASpeedLimitSetWhileNoHostIsAliveReachesTheNextHost
   EXPECT_EQ(compute().twist[2], 0.2);
 }
 
+TEST_F(ControllerSessionTest, ABrokenTransportIsUnreachableNotAPlannerError)
+{
+  auto & s = make();
+  s.configure();
+  s.activate();
+  host.transport_error_once = true;
+  const CallError e = error_of([&] {compute();});
+  EXPECT_EQ(e.kind(), ErrorKind::ControllerException);
+  EXPECT_EQ(e.cause(), Cause::Transport);
+  EXPECT_TRUE(e.unreachable());
+  EXPECT_NE(std::string(e.what()).find("Zenoh query failed"), std::string::npos);
+  host.transport_error_once = true;
+  EXPECT_NO_THROW(s.deactivate());  // Nav2's deactivation goes on
+  EXPECT_FALSE(s.active());
+}
+
+TEST_F(ControllerSessionTest, ResetCanUseAShorterTimeout)
+{
+  auto & s = make();
+  s.configure();
+  host.next_call_time = 10s;
+  const Duration before = clock.elapsed();
+  EXPECT_THROW(s.reset(100ms), CallError);
+  EXPECT_EQ(clock.elapsed() - before, Duration{100ms});  // not the 5 s lifecycle timeout
+}
+
 TEST_F(ControllerSessionTest, CleanupForgetsTheStateAndEndsTheSession)
 {
   auto & s = make();

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 #include <utility>
 #include <variant>
 
@@ -193,6 +194,10 @@ bool FakeHost::last_had_costmap() const
 std::optional<proto::Bytes> FakeHost::query(
   const Target & target, const proto::Bytes & payload, Duration timeout, const WaitHook * hook)
 {
+  if (transport_error_once) {
+    transport_error_once = false;
+    throw std::runtime_error("Failed to perform get operation(Error code: -100 )");
+  }
   received.push_back({target.key, target.host, proto::decode_request(payload), payload.size(),
       false, ""});
   const proto::Request request = received.back().request;

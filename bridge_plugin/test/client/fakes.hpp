@@ -121,6 +121,7 @@ public:
   bool always_session_unknown{false};        // every non-configure call: SessionUnknown
   bool nan_once{false};                      // the next command has vx = NaN (host not checking)
   std::optional<protocol::Bytes> raw_reply_once;  // the next reply is these bytes
+  bool transport_error_once{false};          // the next query throws (a broken Zenoh session)
 
   // What one session knows, echoed by compute_velocity_commands.
   struct Session

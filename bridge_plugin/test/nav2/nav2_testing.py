@@ -182,6 +182,36 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
                 time.sleep(0.5)
             return states
 
+        def list_parameters(self, node: str, prefix: str) -> list[str]:
+            from rcl_interfaces.srv import ListParameters
+
+            client = self.create_client(ListParameters, f"/{node}/list_parameters")
+            try:
+                assert client.wait_for_service(timeout_sec=5.0)
+                request = ListParameters.Request(prefixes=[prefix], depth=0)
+                response = self.wait(client.call_async(request), 10.0)
+                return list(response.result.names) if response else []
+            finally:
+                self.destroy_client(client)
+
+        def set_parameter(self, node: str, name: str, value: Any) -> tuple[bool, str]:
+            """`ros2 param set`: (successful, reason)."""
+            from rcl_interfaces.srv import SetParameters
+            from rclpy.parameter import Parameter
+
+            client = self.create_client(SetParameters, f"/{node}/set_parameters")
+            try:
+                assert client.wait_for_service(timeout_sec=5.0)
+                request = SetParameters.Request(
+                    parameters=[Parameter(name, value=value).to_parameter_msg()]
+                )
+                response = self.wait(client.call_async(request), 15.0)
+                assert response is not None, f"no answer to set_parameters {name}"
+                result = response.results[0]
+                return bool(result.successful), str(result.reason)
+            finally:
+                self.destroy_client(client)
+
         def plan(self, x: float, y: float, timeout: float = 30.0) -> Any:
             assert self.plan_client.wait_for_server(timeout_sec=10.0)
             goal = ComputePathToPose.Goal()

@@ -110,6 +110,19 @@ def test_reaches_the_goal_survives_a_host_crash_and_recovers(nav2: dict[str, Any
     x, y = client.pose
     assert math.hypot(x - GOAL_A[0], y - GOAL_A[1]) < 0.35, f"robot at {(x, y)}, goal {GOAL_A}"
 
+    # parameters: the planner's own are declared on the node; `ros2 param set` reaches it
+    names = client.list_parameters("controller_server", "FollowPath")
+    assert "FollowPath.desired_linear_vel" in names  # from the YAML
+    assert "FollowPath.max_lookahead_dist" in names  # declared by the Python planner
+    assert client.set_parameter("controller_server", "FollowPath.desired_linear_vel", 0.45) == (
+        True,
+        "",
+    )
+    ok, reason = client.set_parameter("controller_server", "FollowPath.desired_linear_vel", "x")
+    assert not ok and "desired_linear_vel" in reason, reason  # the planner refused it
+    ok, reason = client.set_parameter("controller_server", "FollowPath.timeout", 0.4)
+    assert ok, reason  # a bridge setting the plugin applies itself
+
     # 2. the host dies mid-goal: the goal aborts with the plugin's error code, Nav2 stays up
     handle = client.follow(_drive_to(nav2, GOAL_B))
     client.spin_until(lambda: False, 1.5)  # driving

@@ -29,7 +29,9 @@ public:
   // client forgets it then), so a host that comes back drives at the latest limit.
   void set_speed_limit(double speed_limit, bool percentage);
   bool cancel();
-  void reset();
+  // `timeout` instead of the lifecycle one (Nav2 resets its controller at the end of every
+  // goal, in the action's thread: the plugin keeps that short).
+  void reset(std::optional<Duration> timeout = std::nullopt);
 
   bool has_plan() const;
 

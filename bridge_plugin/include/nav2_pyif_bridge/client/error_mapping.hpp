@@ -73,6 +73,7 @@ enum class Cause : std::uint8_t
   TimedOut,       // no reply within the op's timeout
   BadReply,       // a reply that does not decode, or answers another seq
   NotConfigured,  // a call before configure (or after cleanup)
+  Transport,      // the transport failed (a Zenoh session that lost its connection)
   Local,          // the plugin refused (a non-finite command, a message it cannot encode, ...)
 };
 
@@ -93,8 +94,12 @@ public:
   ErrorKind kind() const noexcept {return kind_;}
   Cause cause() const noexcept {return cause_;}
   const Remote & remote() const noexcept {return remote_;}
-  // A failure of reaching a host (none alive, or no reply in time) rather than its answer.
-  bool unreachable() const noexcept {return cause_ == Cause::NoHost || cause_ == Cause::TimedOut;}
+  // A failure of reaching a host (none alive, no reply in time, a broken transport) rather
+  // than its answer.
+  bool unreachable() const noexcept
+  {
+    return cause_ == Cause::NoHost || cause_ == Cause::TimedOut || cause_ == Cause::Transport;
+  }
   // The message, then the Python exception's type and traceback when the host sent them.
   std::string log_text() const;
 

@@ -125,6 +125,7 @@ protected:
     CostmapMode costmap{CostmapMode::None};
     bool allow_resync{true};
     bool allow_failover{true};
+    std::optional<Duration> timeout;  // instead of the op's (Timeouts::for_op)
     // Runs about every 5 ms while waiting for the reply, with the request's seq.
     std::function<void(std::uint64_t)> while_waiting;
   };
