@@ -243,3 +243,24 @@ def test_concurrent_sessions_on_one_key_are_isolated(
     for t in threads:
         t.join(60)
     assert not errors, errors
+
+
+def test_a_speed_limit_set_while_no_host_is_up_survives(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host)
+    client.configure()
+    client.activate()
+    client.set_plan(Plan(np.zeros((9, 3)), "odom"))
+    host.kill()
+    assert client.hosts.wait_for(lambda alive: not alive, 10)
+    with pytest.raises(api.ControllerException, match="no planner host is alive"):
+        client.set_speed_limit(0.15, False)  # a slow zone starts while the host is down
+    start_host("--key", KEY, "--planner", "echo_planners:EchoController", port=host.port)
+    assert client.wait_for_host(15)
+    cmd = client.compute_velocity_commands(pose(), Twist())
+    assert (cmd.twist.linear.x, cmd.twist.linear.z) == (9.0, 0.15)  # plan and limit re-sent
+    client.cleanup()
+    client.configure()
+    assert client.compute_velocity_commands(pose(), Twist()).twist.linear.z == -1.0  # forgotten

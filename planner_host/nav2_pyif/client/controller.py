@@ -25,9 +25,8 @@ class ControllerClient(PluginClient):
     def set_plan(self, path: Plan | Any) -> None:
         """``path``: a Plan or a nav_msgs/Path, in the costmap's global frame."""
         plan = path if isinstance(path, Plan) else Plan.from_msg(path)
-        wire = plan.to_wire()
-        self._call(Op.SET_PLAN, {"path": wire})
-        self._plan = wire
+        self._plan = plan.to_wire()  # kept even if this call fails: re-sent on re-establishment
+        self._call(Op.SET_PLAN, {"path": self._plan})
 
     def compute_velocity_commands(
         self, pose: Any, velocity: Any, goal_checker: GoalChecker | None = None
@@ -40,8 +39,9 @@ class ControllerClient(PluginClient):
         return twist_stamped_from_wire(reply["cmd_vel"])
 
     def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:
-        self._call(Op.SET_SPEED_LIMIT, {"speed_limit": speed_limit, "percentage": percentage})
+        # kept even if this call fails (no host right now): a slow zone must survive a restart
         self._speed_limit = (speed_limit, percentage)
+        self._call(Op.SET_SPEED_LIMIT, {"speed_limit": speed_limit, "percentage": percentage})
 
     def cancel(self) -> bool:
         cancelled: bool = self._call(Op.CANCEL, {})["cancelled"]
@@ -49,6 +49,10 @@ class ControllerClient(PluginClient):
 
     def reset(self) -> None:
         self._call(Op.RESET, {})
+
+    def cleanup(self) -> None:
+        self._plan, self._speed_limit = None, None
+        super().cleanup()
 
     def _restore_state(self) -> None:
         if self._plan is not None:

@@ -168,7 +168,13 @@ class PluginClient:
     def _timeout(self, op: Op) -> float:
         if op is Op.CONFIGURE:
             return self.timeouts.configure
-        if op in (Op.COMPUTE_VELOCITY_COMMANDS, Op.SET_PLAN, Op.SET_SPEED_LIMIT, Op.CANCEL):
+        if op in (
+            Op.COMPUTE_VELOCITY_COMMANDS,
+            Op.SET_PLAN,
+            Op.SET_SPEED_LIMIT,
+            Op.CANCEL,
+            Op.RESET,
+        ):  # Nav2 calls reset after every goal: it must not stall an abort
             return self.timeouts.call
         if op is Op.CREATE_PLAN:
             return self.timeouts.plan
@@ -325,8 +331,12 @@ class PluginClient:
             self.sid[:8],
         )
         self.resyncs += 1
-        self.configured = False
-        self.configure()
+        try:
+            self.configure()
+        finally:
+            # even when re-establishing failed: the next call tries again (the host will
+            # answer SessionUnknown), instead of refusing every call as "before configure"
+            self.configured = True
         if self.active:
             self._call(Op.ACTIVATE, {}, allow_resync=False)
         self._restore_state()
