@@ -204,8 +204,8 @@ def main(argv: list[str] | None = None) -> int:
         if directory not in sys.path:
             sys.path.insert(0, directory)
     host_id = new_host_id()
-    specs = collect_specs(args, parser)
     try:
+        specs = collect_specs(args, parser)
         services = start_services(specs, host_id, args)
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
