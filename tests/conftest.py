@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import json
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
@@ -16,14 +14,37 @@ import numpy as np
 import pytest
 import zenoh
 from nav2_pyif import Costmap
+from nav2_pyif.host_process import free_port
+from nav2_pyif.zenoh_config import connect_to
+
+__all__ = ["free_port"]  # tests import it from here
 
 FIXTURES = Path(__file__).parent / "fixtures"
 
-
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+#: nav2_core exception names (Jazzy+), as the planner API must offer them
+CONTROLLER_ERRORS = [
+    "ControllerException",
+    "InvalidController",
+    "ControllerTFError",
+    "FailedToMakeProgress",
+    "PatienceExceeded",
+    "InvalidPath",
+    "NoValidControl",
+    "ControllerTimedOut",
+]
+PLANNER_ERRORS = [
+    "PlannerException",
+    "InvalidPlanner",
+    "StartOccupied",
+    "GoalOccupied",
+    "StartOutsideMapBounds",
+    "GoalOutsideMapBounds",
+    "NoValidPathCouldBeFound",
+    "PlannerTimedOut",
+    "PlannerTFError",
+    "NoViapointsGiven",
+    "PlannerCancelled",
+]
 
 
 class HostProcess:
@@ -92,11 +113,7 @@ def start_host(tmp_path: Path) -> Iterator[object]:
 
 
 def open_client_session(endpoint: str) -> zenoh.Session:
-    config = zenoh.Config()
-    config.insert_json5("mode", json.dumps("peer"))
-    config.insert_json5("connect/endpoints", json.dumps([endpoint]))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    return zenoh.open(config)
+    return connect_to([endpoint])
 
 
 @pytest.fixture

@@ -21,7 +21,14 @@ from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 from nav2_pyif.client.admin import request_reload
 
-from tests.conftest import HostProcess, free_port, make_costmap, open_client_session
+from tests.conftest import (
+    CONTROLLER_ERRORS,
+    PLANNER_ERRORS,
+    HostProcess,
+    free_port,
+    make_costmap,
+    open_client_session,
+)
 from tests.test_host_e2e import pose
 
 KEY = "nav2_pyif/faults/FollowPath"
@@ -119,31 +126,6 @@ def assert_recovered(rig: Rig) -> None:
     cmd = rig.next_call_works()
     assert cmd.twist.linear.x == PLAN_LENGTH  # the session's plan is still there
     assert rig.ctrl.resyncs == 0  # restored by the host, not re-sent by the client
-
-
-CONTROLLER_ERRORS = [
-    "ControllerException",
-    "InvalidController",
-    "ControllerTFError",
-    "FailedToMakeProgress",
-    "PatienceExceeded",
-    "InvalidPath",
-    "NoValidControl",
-    "ControllerTimedOut",
-]
-PLANNER_ERRORS = [
-    "PlannerException",
-    "InvalidPlanner",
-    "StartOccupied",
-    "GoalOccupied",
-    "StartOutsideMapBounds",
-    "GoalOutsideMapBounds",
-    "NoValidPathCouldBeFound",
-    "PlannerTimedOut",
-    "PlannerTFError",
-    "NoViapointsGiven",
-    "PlannerCancelled",
-]
 
 
 @pytest.mark.parametrize("name", CONTROLLER_ERRORS)

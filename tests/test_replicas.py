@@ -3,17 +3,16 @@ dies, and re-sends its state there — without a failed call, so without a faile
 
 from __future__ import annotations
 
-import json
 import time
 from pathlib import Path
 from typing import Any
 
 import nav2_pyif as api
 import numpy as np
-import zenoh
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
+from nav2_pyif.zenoh_config import connect_to
 
 from tests.conftest import HostProcess, free_port, make_costmap
 from tests.test_host_e2e import pose
@@ -30,10 +29,7 @@ def test_failover_to_a_replica_loses_no_call(tmp_path: Path) -> None:
         ).start()
         for i in range(2)
     ]
-    config = zenoh.Config()
-    config.insert_json5("connect/endpoints", json.dumps([h.endpoint for h in hosts]))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    session = zenoh.open(config)
+    session = connect_to([h.endpoint for h in hosts])
     client = ControllerClient(
         session, KEY, make_costmap(), timeouts=Timeouts(call=0.3, lifecycle=5, configure=20)
     )

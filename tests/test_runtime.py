@@ -18,7 +18,7 @@ from nav2_pyif_protocol.arrays import pack_poses
 from nav2_pyif_protocol.codec import Reply, Request, decode_reply, encode_request
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, Op
 
-from tests.conftest import make_costmap
+from tests.conftest import CONTROLLER_ERRORS, make_costmap
 from tests.fixtures.echo_planners import FaultyController, LinePlanner
 
 POSE = {"frame_id": "odom", "stamp_ns": 7, "pose": [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]}
@@ -82,17 +82,7 @@ def test_a_cycle_returns_the_planners_twist(driver: Driver) -> None:
     assert reply.compute_ns > 0 and reply.host == "test-host"
 
 
-CONTROLLER_NAMED = [
-    "ControllerException",
-    "InvalidController",
-    "ControllerTFError",
-    "FailedToMakeProgress",
-    "PatienceExceeded",
-    "InvalidPath",
-    "NoValidControl",
-    "ControllerTimedOut",
-    "PlannerException",
-]
+CONTROLLER_NAMED = [*CONTROLLER_ERRORS, "PlannerException"]  # Humble-style too
 
 
 @pytest.mark.parametrize("name", CONTROLLER_NAMED)

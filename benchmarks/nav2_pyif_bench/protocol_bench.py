@@ -8,7 +8,6 @@ measured in one run with interleaved rounds (so drift hits all alike).
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import threading
 import time
@@ -21,6 +20,7 @@ import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif import Costmap, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
+from nav2_pyif.zenoh_config import connect_to
 from nav2_pyif_protocol.codec import Request, encode_request
 from nav2_pyif_protocol.constants import Op
 from nav_msgs.msg import Odometry
@@ -45,31 +45,27 @@ def costmap(size: int, version: int = 1) -> Costmap:
     return Costmap(grid, 0.05, -10.0, -10.0, "odom", version=version)
 
 
-def open_session(endpoints: list[str]) -> zenoh.Session:
-    config = zenoh.Config()
-    config.insert_json5("connect/endpoints", json.dumps(endpoints))
-    config.insert_json5("scouting/multicast/enabled", "false")
-    return zenoh.open(config)
+open_session = connect_to  # the benchmarks' sessions: plain peers on loopback
+
+
+def timed_get(session: zenoh.Session, key: str, payload: bytes) -> int:
+    """Round trip [ns] of one get answered by one reply."""
+    start = time.perf_counter_ns()
+    for reply in session.get(key, payload=payload, timeout=2.0):
+        if reply.ok is None:
+            raise TimeoutError(f"nothing answered {key}")
+        break
+    return time.perf_counter_ns() - start
 
 
 def bare_get(session: zenoh.Session) -> int:
-    start = time.perf_counter_ns()
-    for reply in session.get(BARE_KEY, payload=b"", timeout=2.0):
-        if reply.ok is None:
-            raise TimeoutError("bare queryable did not answer")
-        break
-    return time.perf_counter_ns() - start
+    return timed_get(session, BARE_KEY, b"")
 
 
 def host_floor(session: zenoh.Session, payload: bytes) -> int:
     """A request the host answers with its cheapest reply (SessionUnknown): the host's fixed
     cost per query (decode, session look-up, encode) without any planner or message work."""
-    start = time.perf_counter_ns()
-    for reply in session.get(f"{KEY}/rpc/activate", payload=payload, timeout=2.0):
-        if reply.ok is None:
-            raise TimeoutError("planner host did not answer")
-        break
-    return time.perf_counter_ns() - start
+    return timed_get(session, f"{KEY}/rpc/activate", payload)
 
 
 def timed(call: Callable[[], Any]) -> int:

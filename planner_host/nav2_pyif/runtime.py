@@ -105,7 +105,7 @@ class PlannerRuntime:
         try:
             request = decode_request(payload)
         except ProtocolError as exc:
-            return self._error_reply(_peek_seq(payload), exc.error_type, str(exc))
+            return self._error_reply(peek_seq(payload), exc.error_type, str(exc))
         if key_op is not None and key_op != request.op.value:
             return self._error_reply(
                 request.seq,
@@ -156,7 +156,7 @@ class PlannerRuntime:
         try:
             request = decode_request(payload)
         except ProtocolError as exc:
-            return self._error_reply(_peek_seq(payload), exc.error_type, str(exc))
+            return self._error_reply(peek_seq(payload), exc.error_type, str(exc))
         if request.op is not Op.CANCEL_PLAN:
             return self._error_reply(
                 request.seq, ErrorType.BAD_REQUEST, f"{request.op.value} sent to the cancel key"
@@ -191,9 +191,7 @@ class PlannerRuntime:
         python_type: str = "",
         compute_ns: int = 0,
     ) -> bytes:
-        error = ErrorInfo(error_type.value, message, tb, python_type)
-        reply = Reply(seq=seq, ok=False, host=self.host_id, error=error, compute_ns=compute_ns)
-        return encode_reply(reply, Op.ACTIVATE)
+        return error_reply(seq, self.host_id, error_type, message, tb, python_type, compute_ns)
 
     def _exception_reply(self, request: Request, exc: BaseException, elapsed: int) -> bytes:
         if isinstance(exc, Nav2Error):
@@ -330,7 +328,22 @@ class PlannerRuntime:
         return {"path": plan.to_wire()}
 
 
-def _peek_seq(payload: bytes) -> int:
+def error_reply(
+    seq: int,
+    host_id: str,
+    error_type: ErrorType,
+    message: str,
+    tb: str = "",
+    python_type: str = "",
+    compute_ns: int = 0,
+) -> bytes:
+    """An encoded error reply (its body schema does not depend on the op)."""
+    error = ErrorInfo(error_type.value, message, tb, python_type)
+    reply = Reply(seq=seq, ok=False, host=host_id, error=error, compute_ns=compute_ns)
+    return encode_reply(reply, Op.ACTIVATE)
+
+
+def peek_seq(payload: bytes) -> int:
     """Best-effort seq of an undecodable request, so the client can match the error."""
     try:
         raw = msgpack.unpackb(payload, raw=False, strict_map_key=False)

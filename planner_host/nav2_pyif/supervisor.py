@@ -24,11 +24,11 @@ from collections import deque
 from dataclasses import dataclass
 
 import msgpack
-from nav2_pyif_protocol.codec import ErrorInfo, Reply, encode_reply
 from nav2_pyif_protocol.constants import ErrorType, Op, PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.journal import Journal, Snapshot
+from nav2_pyif.runtime import error_reply, peek_seq
 from nav2_pyif.spec import PlannerSpec
 from nav2_pyif.worker import LOAD_ERROR, worker_main
 
@@ -104,7 +104,7 @@ class Worker:
         return describe_exit(self.process.exitcode)
 
     def wait_loaded(self, timeout: float) -> PluginType:
-        reply = self._receive(timeout, "loading")
+        reply = self._receive(timeout)
         if reply is None:
             self.stop()
             raise PlannerLoadError(f"planner worker did not load within {timeout:.0f} s")
@@ -120,9 +120,9 @@ class Worker:
             self.calls.send_bytes(op.encode() + b"\0" + payload)
         except (BrokenPipeError, OSError) as exc:
             raise WorkerDied(self.exit_description()) from exc
-        return self._receive(timeout, op)
+        return self._receive(timeout)
 
-    def _receive(self, timeout: float, what: str) -> bytes | None:
+    def _receive(self, timeout: float) -> bytes | None:
         # poll() on the pipe alone (not wait() on pipe + process sentinel): one fd, cheaper on
         # every call; a dead worker's pipe reads EOF, so deaths are still seen at once.
         if not self.calls.poll(timeout):
@@ -293,12 +293,7 @@ class SupervisedPlanner:
         return reply
 
     def _error(self, payload: bytes, error_type: ErrorType, message: str) -> bytes:
-        from nav2_pyif.runtime import _peek_seq
-
-        error = ErrorInfo(error_type.value, message)
-        return encode_reply(
-            Reply(_peek_seq(payload), False, self.host_id, error=error), Op.ACTIVATE
-        )
+        return error_reply(peek_seq(payload), self.host_id, error_type, message)
 
     # --- restarts ------------------------------------------------------------------------
     def _on_death(self, worker: Worker, cause: str) -> None:

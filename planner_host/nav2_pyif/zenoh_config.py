@@ -26,6 +26,7 @@ class ZenohOptions:
     listen: list[str] = field(default_factory=list)
     mode: str | None = None
     multicast_scouting: bool = False
+    use_environment: bool = True  # read $NAV2_PYIF_ZENOH_CONFIG when no file is given
 
 
 def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
@@ -67,7 +68,7 @@ def options_from_args(args: argparse.Namespace) -> ZenohOptions:
 
 
 def build_config(options: ZenohOptions) -> zenoh.Config:
-    path = options.config_file or os.environ.get(CONFIG_ENV)
+    path = options.config_file or (os.environ.get(CONFIG_ENV) if options.use_environment else None)
     if path:
         if not os.path.isfile(path):
             raise FileNotFoundError(f"Zenoh config file {path!r} does not exist")
@@ -95,3 +96,9 @@ def open_session(options: ZenohOptions) -> zenoh.Session:
     except Exception as exc:
         where = ", ".join(options.listen + options.connect) or options.config_file or DEFAULT_ROUTER
         raise ConnectionError(f"cannot open a Zenoh session ({where}): {exc}") from exc
+
+
+def connect_to(endpoints: list[str]) -> zenoh.Session:
+    """A peer session that connects to ``endpoints`` only, whatever the environment says:
+    what the offline runner, the benchmarks and the tests use on loopback."""
+    return open_session(ZenohOptions(connect=list(endpoints), use_environment=False))

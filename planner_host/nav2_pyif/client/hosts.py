@@ -46,10 +46,6 @@ class HostWatcher:
         with self._lock:
             return frozenset(self._alive)
 
-    def any_alive(self) -> bool:
-        with self._lock:
-            return bool(self._alive)
-
     def wait(self, timeout: float) -> bool:
         """Wait until at least one host is alive; False on timeout."""
         with self._changed:

@@ -181,10 +181,9 @@ class PluginClient:
         return self.timeouts.lifecycle
 
     # --- replicas: several hosts may serve one key; this plugin talks to exactly one ------
-    def _pin_host(self) -> None:
+    def _pin_host(self, alive: frozenset[str]) -> None:
         """Keep the pinned host while it is alive; else pin the smallest alive host id."""
-        alive = self.hosts.alive
-        if self.host not in alive and alive:
+        if self.host not in alive:
             if self.host is not None:
                 log.warning(
                     "%s: host %s is gone; using %s", self.keys.prefix, self.host, min(alive)
@@ -229,12 +228,13 @@ class PluginClient:
             raise generic_error(self.plugin_type)(
                 f"{op.value} before configure on {self.keys.prefix}"
             )
-        if not self.hosts.any_alive():
+        alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
+        if not alive:
             raise generic_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
                 f"--key {self.keys.prefix} ...); {op.value} not sent"
             )
-        self._pin_host()
+        self._pin_host(alive)
         version = self.costmap.version
         send_costmap = with_costmap and version != self._delivered_costmap
         request = self._next_request(

@@ -108,7 +108,7 @@ def run_command(args: argparse.Namespace) -> int:
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")
         result = run_sim(config)
-    except (SimError, RuntimeError, TimeoutError) as exc:
+    except (SimError, RuntimeError, TimeoutError, ConnectionError) as exc:
         print(f"nav2-pyif sim: error: {exc}", file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)

@@ -4,7 +4,6 @@ reference client: the very protocol and path the Nav2 plugins use."""
 
 from __future__ import annotations
 
-import json
 import math
 import time
 from dataclasses import dataclass, field
@@ -26,6 +25,7 @@ from nav2_pyif.params import ParamValue
 from nav2_pyif.sim.inflation import inflate, window
 from nav2_pyif.sim.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.sim.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
+from nav2_pyif.zenoh_config import connect_to
 
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
@@ -159,10 +159,7 @@ def run_sim(config: SimConfig) -> SimResult:
     ]
     host = None if config.endpoint else PlannerHostProcess(entries).start()
     endpoint = config.endpoint or (host.endpoint if host else "")
-    zconfig = zenoh.Config()
-    zconfig.insert_json5("connect/endpoints", json.dumps([endpoint]))
-    zconfig.insert_json5("scouting/multicast/enabled", "false")
-    session = zenoh.open(zconfig)
+    session = connect_to([endpoint])
     started = time.perf_counter()
     try:
         _drive(config, result, session, host)
