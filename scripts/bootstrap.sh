@@ -6,7 +6,9 @@
 # Writes <venv>/nav2_pyif_env.sh, which sets LD_LIBRARY_PATH and AMENT_PREFIX_PATH itself so
 # the ROS wheels' start-up re-exec never runs (it surprises process supervisors).
 #
-# Environment: NAV2_PYIF_VENV (default: <repo>/.venv), PYTHON (interpreter to use).
+# Environment: NAV2_PYIF_VENV (default: <repo>/.venv), PYTHON (interpreter to use),
+# NAV2_PYIF_EXTRAS (default: dev; "ros" is added without a system ROS 2), NAV2_PYIF_EDITABLE
+# (default 1; 0 installs a copy, as the container image does).
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -58,7 +60,10 @@ if ! "$PY" -c 'import venv, ensurepip' 2>/dev/null; then
 fi
 
 # --- venv, re-made only when the inputs changed --------------------------------------------
-STAMP_INPUT="$(cat "$ROOT/pyproject.toml" "$ROOT/scripts/bootstrap.sh"; echo "$PY $SYSTEM_ROS")"
+EXTRAS="${NAV2_PYIF_EXTRAS-dev}"
+[ -z "$SYSTEM_ROS" ] && EXTRAS="${EXTRAS:+$EXTRAS,}ros"
+EDITABLE="${NAV2_PYIF_EDITABLE:-1}"
+STAMP_INPUT="$(cat "$ROOT/pyproject.toml" "$ROOT/scripts/bootstrap.sh"; echo "$PY $SYSTEM_ROS $EXTRAS $EDITABLE")"
 STAMP="$(printf '%s' "$STAMP_INPUT" | sha256sum | cut -d' ' -f1)"
 if [ -f "$VENV/.nav2_pyif_stamp" ] && [ "$(cat "$VENV/.nav2_pyif_stamp")" = "$STAMP" ]; then
   exit 0
@@ -72,10 +77,11 @@ else
 fi
 PIP=("$VENV/bin/python" -m pip --disable-pip-version-check -q)
 "${PIP[@]}" install --upgrade pip >/dev/null
-EXTRAS="dev"
-[ -z "$SYSTEM_ROS" ] && EXTRAS="dev,ros"
-log "installing nav2_pyif[$EXTRAS] (editable) and its dependencies"
-_ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "${PIP[@]}" install -e "$ROOT[$EXTRAS]" 2>&1 \
+TARGET="$ROOT${EXTRAS:+[$EXTRAS]}"
+INSTALL=("$TARGET") HOW="a copy"
+[ "$EDITABLE" = 1 ] && INSTALL=(-e "$TARGET") HOW="editable"
+log "installing nav2_pyif${EXTRAS:+[$EXTRAS]} ($HOW) and its dependencies"
+_ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "${PIP[@]}" install "${INSTALL[@]}" 2>&1 \
   | grep -v "^WARNING: Location" || true
 _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c 'import nav2_pyif, zenoh, msgpack' \
   || { log "install failed: see the pip output above"; exit 1; }

@@ -17,6 +17,7 @@ import yaml
 from nav2_pyif_protocol.keys import validate_prefix
 
 from nav2_pyif.delegates import parse_delegates
+from nav2_pyif.env_defaults import apply_environment, document_environment
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.host import PlannerHost, new_host_id
 from nav2_pyif.service import InProcessPlanner, PlannerService
@@ -40,6 +41,10 @@ examples:
 
   # from a YAML file: planners: [{key: K, planner: M:C}, {key: K, module: M, delegates: {..}}]
   planner-host --config planners.yaml
+
+  # every option also reads NAV2_PYIF_<OPTION> (containers); command-line flags win
+  NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \
+      NAV2_PYIF_CONNECT=tcp/router:7447 planner-host
 """
 
 
@@ -131,8 +136,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     add_zenoh_arguments(parser)
     parser.add_argument(
-        "--log-level", default="INFO", choices=["DEBUG", "INFO", "WARNING", "ERROR"]
+        "--log-level",
+        default="INFO",
+        choices=["DEBUG", "INFO", "WARNING", "ERROR"],
+        help="default INFO",
     )
+    document_environment(parser)
     return parser
 
 
@@ -195,11 +204,14 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
+    from_environment = apply_environment(parser)
     args = parser.parse_args(argv)
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
     )
     log = logging.getLogger("nav2_pyif.host")
+    for name, value in sorted(from_environment.items()):
+        log.info("from the environment: %s=%s", name, value)
     for directory in [os.getcwd(), *args.path][::-1]:
         if directory not in sys.path:
             sys.path.insert(0, directory)

@@ -6,6 +6,7 @@ import argparse
 import logging
 import sys
 
+from nav2_pyif.router import add_router_parser
 from nav2_pyif.sim.cli import add_sim_parser
 from nav2_pyif.zenoh_config import add_zenoh_arguments
 
@@ -52,6 +53,7 @@ def main(argv: list[str] | None = None) -> int:
     subparsers = parser.add_subparsers(required=True, metavar="COMMAND")
     add_sim_parser(subparsers)
     add_reload_parser(subparsers)
+    add_router_parser(subparsers)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
     code: int = args.func(args)

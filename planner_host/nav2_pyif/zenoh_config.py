@@ -29,26 +29,26 @@ class ZenohOptions:
     use_environment: bool = True  # read $NAV2_PYIF_ZENOH_CONFIG when no file is given
 
 
+def add_endpoint_arguments(
+    group: argparse._ArgumentGroup | argparse.ArgumentParser,
+    *,
+    config_help: str,
+    connect_help: str,
+    listen_help: str,
+) -> None:
+    """--zenoh-config, --connect and --listen (repeatable), shared by the host and router."""
+    group.add_argument("--zenoh-config", metavar="FILE", help=config_help)
+    for flag, text in (("--connect", connect_help), ("--listen", listen_help)):
+        group.add_argument(flag, action="append", default=[], metavar="ENDPOINT", help=text)
+
+
 def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("zenoh")
-    group.add_argument(
-        "--zenoh-config",
-        metavar="FILE",
-        help=f"Zenoh JSON5 config file (default: ${CONFIG_ENV}, else built-in)",
-    )
-    group.add_argument(
-        "--connect",
-        action="append",
-        default=[],
-        metavar="ENDPOINT",
-        help=f"endpoint to connect to, repeatable (default: {DEFAULT_ROUTER})",
-    )
-    group.add_argument(
-        "--listen",
-        action="append",
-        default=[],
-        metavar="ENDPOINT",
-        help="endpoint to listen on, repeatable, e.g. tcp/127.0.0.1:7447 "
+    add_endpoint_arguments(
+        group,
+        config_help=f"Zenoh JSON5 config file (default: ${CONFIG_ENV}, else built-in)",
+        connect_help=f"endpoint to connect to, repeatable (default: {DEFAULT_ROUTER})",
+        listen_help="endpoint to listen on, repeatable, e.g. tcp/127.0.0.1:7447 "
         "(use when no Zenoh router runs)",
     )
     group.add_argument(

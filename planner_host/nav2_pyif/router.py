@@ -1,0 +1,65 @@
+"""``nav2-pyif router``: a Zenoh router in Python, for machines without ``zenohd``.
+
+On a robot the router is usually rmw_zenoh's ``zenohd``; this one is for a GPU box or a
+container compose file that should route between planner hosts and robots with nothing else
+installed. It is an ordinary Zenoh session in router mode (eclipse-zenoh, the same version as
+the host), running until SIGINT or SIGTERM.
+"""
+
+from __future__ import annotations
+
+import argparse
+import signal
+import sys
+import threading
+from types import FrameType
+
+from nav2_pyif.zenoh_config import ZenohOptions, add_endpoint_arguments, open_session
+
+DEFAULT_LISTEN = "tcp/0.0.0.0:7447"
+
+
+def add_router_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    p = subparsers.add_parser(
+        "router",
+        help="run a Zenoh router (when no zenohd is at hand)",
+        description="Run a Zenoh router: planner hosts and plugins connect to it and it "
+        f"routes between them. Listens on {DEFAULT_LISTEN} unless --listen is given; "
+        "--connect joins other routers.",
+    )
+    add_endpoint_arguments(
+        p,
+        config_help="Zenoh JSON5 config file instead (its mode is set to router)",
+        connect_help="another router to join, repeatable",
+        listen_help=f"endpoint to listen on, repeatable (default {DEFAULT_LISTEN})",
+    )
+    p.set_defaults(func=run_router)
+
+
+def run_router(args: argparse.Namespace) -> int:
+    options = ZenohOptions(
+        args.zenoh_config,
+        list(args.connect),
+        list(args.listen) or [DEFAULT_LISTEN],
+        mode="router",
+        use_environment=False,
+    )
+    stop = threading.Event()
+
+    def on_signal(_signum: int, _frame: FrameType | None) -> None:
+        stop.set()
+
+    signal.signal(signal.SIGINT, on_signal)
+    signal.signal(signal.SIGTERM, on_signal)
+    try:
+        session = open_session(options)
+    except (ConnectionError, FileNotFoundError) as exc:
+        print(f"nav2-pyif router: error: {exc}", file=sys.stderr)
+        return 3
+    where = ", ".join(options.listen)
+    print(f"zenoh router {session.info.zid()} listening on {where}", flush=True)
+    try:
+        stop.wait()
+    finally:
+        session.close()
+    return 0

@@ -1,0 +1,183 @@
+"""The planner host in containers (docker/), run with podman: the image built from
+docker/Dockerfile on a locally made base, a controller session driven into it from outside
+through the reference client, the container killed mid-session and restarted; and
+docker/compose.yaml brought up as written (router + host serving the mounted planner
+directory), its host crashed and restarted by the restart policy. Skipped, saying why, only
+where this machine cannot run podman."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import time
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import nav2_pyif as api
+import numpy as np
+import pytest
+import zenoh
+from geometry_msgs.msg import Twist
+from nav2_pyif import Plan
+from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
+from nav2_pyif.zenoh_config import ZenohOptions, open_session
+
+from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.podman.support import (
+    CONTAINERS_CONF,
+    ROOT,
+    Unavailable,
+    base_image,
+    build_image,
+    podman,
+    probe,
+    require_podman,
+)
+from tests.test_host_e2e import pose
+
+pytestmark = pytest.mark.timeout(900)  # the first run makes a base image and builds
+KEY = "nav2_pyif/container/FollowPath"
+# Generous: the first calls into a fresh container import NumPy and rclpy in its worker.
+TIMEOUTS = Timeouts(call=5.0, lifecycle=10.0, configure=20.0, plan=20.0)
+
+
+@pytest.fixture(scope="module")
+def image() -> tuple[str, str]:
+    """(planner-host image, base image)."""
+    try:
+        require_podman()
+        base = base_image()
+        probe(base)
+    except Unavailable as exc:
+        pytest.skip(f"container test skipped: {exc}")
+    return build_image(base), base
+
+
+@pytest.fixture
+def client_session() -> Iterator[Any]:
+    sessions: list[zenoh.Session] = []
+
+    def make(endpoint: str, mode: str = "peer") -> zenoh.Session:
+        options = ZenohOptions(connect=[endpoint], mode=mode, use_environment=False)
+        sessions.append(open_session(options))
+        return sessions[-1]
+
+    yield make
+    for session in sessions:
+        session.close()
+
+
+def _logs(name: str) -> str:
+    return podman("logs", name, check=False).stdout + podman("logs", name, check=False).stderr
+
+
+def test_host_container_recovers_after_being_killed(
+    image: tuple[str, str], client_session: Any
+) -> None:
+    port, name = free_port(), f"nav2-pyif-test-{os.getpid()}"
+    podman(
+        "run", "--detach", "--init", "--name", name, "--publish", f"127.0.0.1:{port}:7447",
+        "--env", "NAV2_PYIF_LISTEN=tcp/0.0.0.0:7447",
+        "--env", f"NAV2_PYIF_KEY={KEY}",
+        "--env", "NAV2_PYIF_PLANNER=echo_planners:EchoController",
+        "--volume", f"{FIXTURES}:/planners:ro",
+        image[0],
+    )  # fmt: skip
+    try:
+        client = ControllerClient(
+            client_session(f"tcp/127.0.0.1:{port}"), KEY, make_costmap(),
+            params={"gain": 4.0}, timeouts=TIMEOUTS,
+        )  # fmt: skip
+        assert client.wait_for_host(60), _logs(name)
+        assert client.configure() == {"gain": 4.0, "label": "echo"}
+        client.activate()
+        client.set_plan(Plan(np.zeros((17, 3)), "odom"))
+        client.set_speed_limit(30.0, True)
+        client.set_parameters({"gain": 6.0})
+        assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 17.0
+
+        podman("kill", "--signal", "KILL", name)  # the whole container, mid-session
+        assert client.hosts.wait_for(lambda alive: not alive, 20), "host still looks alive"
+        with pytest.raises(api.ControllerException, match="no planner host is alive"):
+            client.compute_velocity_commands(pose(), Twist())
+
+        podman("start", name)
+        assert client.wait_for_host(60), _logs(name)
+        cmd = client.compute_velocity_commands(pose(), Twist())
+        assert (cmd.twist.linear.x, cmd.twist.linear.y, cmd.twist.linear.z) == (17.0, 6.0, 30.0)
+        assert client.resyncs == 1 and client.epoch == 2  # plan, params, limit re-sent once
+
+        started = time.monotonic()
+        podman("stop", "--time", "20", name)  # SIGTERM: the host must exit by itself
+        assert time.monotonic() - started < 10
+        exit_code = podman("inspect", "--format", "{{.State.ExitCode}}", name).stdout.strip()
+        assert exit_code == "0", _logs(name)
+    finally:
+        podman("rm", "--force", name, check=False)
+
+
+def _compose(project: str, env: dict[str, str], *args: str) -> str:
+    result = subprocess.run(
+        ["podman-compose", "-p", project, "-f", str(ROOT / "docker/compose.yaml"), *args],
+        capture_output=True, text=True, timeout=300, env=env,
+    )  # fmt: skip
+    assert result.returncode == 0, f"podman-compose {args}: {result.stdout}\n{result.stderr}"
+    return result.stdout
+
+
+def test_compose_router_and_host_serve_the_mounted_planners(
+    image: tuple[str, str], client_session: Any
+) -> None:
+    if shutil.which("podman-compose") is None:
+        pytest.skip("compose test skipped: podman-compose is not installed (nav2-pyif[dev])")
+    if not Path("/usr/lib/cni/dnsname").exists():
+        pytest.skip("compose test skipped: the CNI dnsname plugin (service names) is missing")
+    port, project = free_port(), f"nav2pyif{os.getpid()}"
+    env = dict(
+        os.environ,
+        CONTAINERS_CONF=str(CONTAINERS_CONF),
+        NAV2_PYIF_IMAGE=image[0],
+        BASE_IMAGE=image[1],
+        NAV2_PYIF_ROUTER_PORT=str(port),
+    )
+    try:
+        _compose(project, env, "up", "--detach")
+        # The robot's side, as the C++ plugin connects: a Zenoh client of the router.
+        session = client_session(f"tcp/127.0.0.1:{port}", mode="client")
+        controller = ControllerClient(
+            session, "nav2_pyif/robot1/FollowPath", make_costmap(), timeouts=TIMEOUTS
+        )
+        planner = GlobalPlannerClient(
+            session, "nav2_pyif/robot1/GridBased", make_costmap(), timeouts=TIMEOUTS
+        )
+        assert controller.wait_for_host(60) and planner.wait_for_host(60), _logs(
+            f"{project}_planner-host_1"
+        )
+        assert controller.configure() == {"speed": 0.3}  # docker/planners/go_to.py
+        planner.configure()
+        controller.activate()
+        planner.activate()
+        plan = planner.create_plan(pose(0.5, 0.5), pose(3.5, 0.5))  # A* from the image
+        assert len(plan) > 10 and np.allclose(plan.xy_yaw[-1, :2], [3.5, 0.5], atol=0.1)
+        controller.set_plan(plan)
+        cmd = controller.compute_velocity_commands(pose(0.5, 0.5), Twist())
+        assert cmd.twist.linear.x == pytest.approx(0.3)
+
+        # Crash the host process from outside: the restart policy brings the container back.
+        container = f"{project}_planner-host_1"
+        pid = podman("inspect", "--format", "{{.State.Pid}}", container).stdout.strip()
+        subprocess.run(["pkill", "-KILL", "-P", pid], check=True)
+        assert controller.hosts.wait_for(lambda alive: not alive, 20)
+        assert controller.wait_for_host(60), _logs(container)
+        cmd = controller.compute_velocity_commands(pose(0.5, 0.5), Twist())
+        assert cmd.twist.linear.x == pytest.approx(0.3)  # plan restored: no NoValidControl
+        assert controller.resyncs == 1
+        restarts = podman("inspect", "--format", "{{.RestartCount}}", container).stdout
+        assert restarts.strip() == "1"
+    finally:
+        subprocess.run(
+            ["podman-compose", "-p", project, "-f", str(ROOT / "docker/compose.yaml"), "down"],
+            capture_output=True, timeout=120, env=env,
+        )  # fmt: skip

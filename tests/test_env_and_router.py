@@ -1,0 +1,118 @@
+"""Containers configure planner-host through NAV2_PYIF_* variables, and `nav2-pyif router`
+routes between a host and a plugin that both only connect to it (the compose topology)."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+import pytest
+from geometry_msgs.msg import Twist
+from nav2_pyif.cli import build_parser
+from nav2_pyif.client import ControllerClient
+from nav2_pyif.env_defaults import apply_environment
+from nav2_pyif.zenoh_config import ZenohOptions, open_session
+
+from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.test_host_e2e import GENEROUS, pose
+
+
+def parse(environ: dict[str, str], *argv: str) -> Any:
+    parser = build_parser()
+    apply_environment(parser, environ)
+    return parser.parse_args(list(argv))
+
+
+def test_variables_fill_options_and_flags_win() -> None:
+    env = {
+        "NAV2_PYIF_KEY": "robot1/FollowPath",
+        "NAV2_PYIF_PLANNER": "a.b:C",
+        "NAV2_PYIF_DEADLINE": "0.25",
+        "NAV2_PYIF_CONNECT": "tcp/router:7447, tcp/backup:7447",
+        "NAV2_PYIF_PATH": os.pathsep.join(["/planners", "/more"]),
+        "NAV2_PYIF_MULTICAST_SCOUTING": "yes",
+        "NAV2_PYIF_DELEGATE": "set_plan=sp,compute_velocity_commands=cv",
+    }
+    args = parse(env)
+    assert (args.key, args.planner, args.deadline) == ("robot1/FollowPath", "a.b:C", 0.25)
+    assert args.connect == ["tcp/router:7447", "tcp/backup:7447"]
+    assert args.path == ["/planners", "/more"]
+    assert args.multicast_scouting is True
+    assert args.delegate == ["set_plan=sp,compute_velocity_commands=cv"]
+    args = parse(env, "--deadline", "2", "--planner", "x.y:Z", "--connect", "tcp/other:1")
+    assert (args.deadline, args.planner) == (2.0, "x.y:Z")
+    assert args.connect == ["tcp/router:7447", "tcp/backup:7447", "tcp/other:1"]  # appended
+    assert parse({}).deadline == 1.0 and parse({}).connect == []
+
+
+@pytest.mark.parametrize(
+    ("variable", "value", "words"),
+    [
+        ("NAV2_PYIF_DEADLINE", "soon", "NAV2_PYIF_DEADLINE='soon'"),
+        ("NAV2_PYIF_ISOLATION", "docker", "choose from process, none"),
+        ("NAV2_PYIF_MULTICAST_SCOUTING", "maybe", "expected 1/true/yes/on"),
+    ],
+)
+def test_a_bad_variable_is_a_usage_error_naming_it(variable: str, value: str, words: str) -> None:
+    result = subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.cli"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env=dict(os.environ, **{variable: value}),
+    )
+    assert result.returncode == 2 and words in result.stderr, result.stderr
+
+
+def test_help_names_the_variables() -> None:
+    text = " ".join(build_parser().format_help().split())  # undo the wrapping
+    assert "[env NAV2_PYIF_KEY]" in text and "[env NAV2_PYIF_PLAN_DEADLINE]" in text
+
+
+def test_router_routes_between_a_host_and_a_client(tmp_path: Path) -> None:
+    port = free_port()
+    router = subprocess.Popen(
+        [sys.executable, "-m", "nav2_pyif.tool", "router", "--listen", f"tcp/127.0.0.1:{port}"],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    host_log = open(tmp_path / "host.log", "wb")  # noqa: SIM115 - closed below
+    # The host is configured only through the environment, as in the container.
+    host = subprocess.Popen(
+        [sys.executable, "-m", "nav2_pyif.cli"],
+        stdout=host_log,
+        stderr=subprocess.STDOUT,
+        env=dict(
+            os.environ,
+            NAV2_PYIF_CONNECT=f"tcp/127.0.0.1:{port}",
+            NAV2_PYIF_KEY="nav2_pyif/routed/FollowPath",
+            NAV2_PYIF_PLANNER="echo_planners:EchoController",
+            NAV2_PYIF_PATH=str(FIXTURES),
+            NAV2_PYIF_ISOLATION="none",
+        ),
+    )
+    session = None
+    try:
+        assert router.stdout is not None and "listening on" in router.stdout.readline()
+        # Client mode, as the C++ plugin always is: the router forwards to the peer host.
+        options = ZenohOptions(
+            connect=[f"tcp/127.0.0.1:{port}"], mode="client", use_environment=False
+        )
+        session = open_session(options)
+        client = ControllerClient(
+            session, "nav2_pyif/routed/FollowPath", make_costmap(), timeouts=GENEROUS
+        )
+        assert client.wait_for_host(20), (tmp_path / "host.log").read_text()
+        assert client.configure() == {"gain": 1.5, "label": "echo"}
+        client.activate()
+        assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == -1.0  # no plan
+    finally:
+        if session is not None:
+            session.close()
+        for proc in (host, router):
+            proc.terminate()
+            assert proc.wait(10) == 0
+        host_log.close()
