@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import logging
 import math
+from importlib.util import find_spec
 from typing import Any
 
 import nav2_pyif as api
@@ -87,10 +88,17 @@ def straight_plan(length: float = 4.0) -> Plan:
     return Plan(np.column_stack([x, np.full_like(x, 2.0), np.zeros_like(x)]), "map")
 
 
-@pytest.mark.parametrize("cls", [RegulatedPurePursuit, MPPI])
-def test_controllers_honour_speed_limits(cls: type) -> None:
+def mppi_jax() -> type:
+    pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif[jax])")
+    from nav2_pyif_planners.mppi_jax import MPPIJax
+
+    return MPPIJax
+
+
+@pytest.mark.parametrize("make", [lambda: RegulatedPurePursuit, lambda: MPPI, mppi_jax])
+def test_controllers_honour_speed_limits(make: Any) -> None:
     free = Costmap(np.zeros((80, 120), np.uint8), 0.05)
-    controller = attach(cls(), free)
+    controller = attach(make()(), free)
     controller.set_plan(straight_plan())
     velocity = Twist()
     speeds = []
@@ -124,7 +132,10 @@ def test_pure_pursuit_refuses_to_drive_into_a_wall() -> None:
 def test_controllers_turn_to_the_goal_heading_at_the_goal() -> None:
     free = Costmap(np.zeros((80, 120), np.uint8), 0.05)
     plan = Plan(np.array([[0.5, 2.0, 0.0], [1.0, 2.0, math.pi / 2]]), "map")
-    for cls in (RegulatedPurePursuit, MPPI):
+    classes: list[type] = [RegulatedPurePursuit, MPPI]
+    if find_spec("jax") is not None:
+        classes.append(mppi_jax())
+    for cls in classes:
         controller = attach(cls(), free)
         controller.set_plan(plan)
         cmd = controller.compute_velocity_commands(pose_msg(0.95, 2.0, 0.0), Twist(), None)

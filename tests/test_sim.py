@@ -8,6 +8,7 @@ import math
 import os
 import subprocess
 import sys
+from importlib.util import find_spec
 from pathlib import Path
 
 import numpy as np
@@ -26,7 +27,8 @@ from nav2_pyif.sim.report import format_report, summary
 from nav2_pyif.testing import assert_reaches_goal, drive
 from nav2_pyif_planners.maps import BUNDLED, map_path
 
-CONTROLLERS = ["pure_pursuit", "apf", "mppi"]
+NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
+CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
 
 
 @pytest.mark.parametrize("map_name", BUNDLED)

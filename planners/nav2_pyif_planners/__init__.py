@@ -3,6 +3,7 @@
 astar.AStar                     global planner: cost-aware 8-connected A* on the costmap
 pure_pursuit.RegulatedPurePursuit  controller: Nav2's regulated pure pursuit, in NumPy
 mppi.MPPI                       controller: model predictive path integral, >= 1000 rollouts
+mppi_jax.MPPIJax                controller: the same in JAX (GPU when present; needs jax)
 apf                             controller: the seed paper's artificial potential field, in
                                 its function-delegate style (module functions)
 """
@@ -12,5 +13,6 @@ ALIASES = {
     "astar": "nav2_pyif_planners.astar:AStar",
     "pure_pursuit": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
     "mppi": "nav2_pyif_planners.mppi:MPPI",
+    "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
     "apf": "nav2_pyif_planners.apf",  # function-delegate style: see apf.DELEGATES
 }

@@ -52,8 +52,12 @@ class MPPI(PathFollower):
         self.last_compute_s = 0.0
 
     def reset(self) -> None:
-        self.optimal[:] = 0.0
+        self._clear_optimum()
         self.index = 0
+
+    def _clear_optimum(self) -> None:
+        """Forget the warm start (at the goal, on reset): the next cycle starts from rest."""
+        self.optimal[:] = 0.0
 
     def compute_velocity_commands(
         self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
@@ -62,7 +66,7 @@ class MPPI(PathFollower):
         x, y, yaw, path = self.track(pose)
         cmd = self.command(pose)
         if self.turn_at_goal(cmd, x, y, yaw, path, goal_checker):
-            self.optimal[:] = 0.0
+            self._clear_optimum()
             return cmd
         vx, wz = self._optimise(np.array([x, y, yaw]), path[:, :2])
         if not (math.isfinite(vx) and math.isfinite(wz)):
