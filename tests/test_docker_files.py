@@ -3,6 +3,7 @@ variables planner-host understands (a misspelt NAV2_PYIF_* would be silently ign
 
 from __future__ import annotations
 
+import json
 import shutil
 import subprocess
 from pathlib import Path
@@ -56,3 +57,16 @@ def test_compose_planner_files_name_existing_planners() -> None:
             module = entry["planner"].split(":")[0]
             local = DOCKER / "planners" / f"{module.replace('.', '/')}.py"
             assert local.is_file() or module.startswith("nav2_pyif_planners."), module
+
+
+@pytest.mark.parametrize(
+    "path", sorted((DOCKER.parent / "docs/zenoh").glob("*.json5")), ids=lambda p: p.name
+)
+def test_deployment_guide_zenoh_configs_load(path: Path) -> None:
+    """docs/DEPLOYMENT.md's configurations are valid for eclipse-zenoh as written."""
+    import zenoh
+
+    config = zenoh.Config.from_file(str(path))
+    mode = json.loads(config.get_json("mode"))
+    assert mode in {"peer", "client", "router"}
+    assert (mode == "client") == path.name.startswith("plugin")
