@@ -18,6 +18,7 @@ LOCAL_BASE = "localhost/nav2-pyif-test-base:{codename}"
 #: set to an existing image (e.g. python:3.11-slim-bookworm where a registry is reachable)
 BASE_ENV = "NAV2_PYIF_TEST_BASE_IMAGE"
 IMAGE = "localhost/nav2-pyif-host:test"
+HOST_CA = "/etc/nav2-pyif-test-ca.crt"
 MIRRORS = {"debian": "http://deb.debian.org/debian", "ubuntu": "http://archive.ubuntu.com/ubuntu"}
 
 
@@ -82,14 +83,15 @@ def base_image() -> str:
         if result.returncode != 0:
             raise Unavailable(f"debootstrap {codename} failed: {result.stdout[-2000:]}")
         # This machine's CA bundle: HTTPS may pass through an intercepting proxy here, which
-        # pip inside the build must trust as the machine does.
+        # pip inside the build must trust as the machine does. A path of its own: apt's
+        # ca-certificates would rewrite the standard bundle without the proxy's CA.
         bundle = Path("/etc/ssl/certs/ca-certificates.crt")
         if bundle.is_file():
-            shutil.copy(bundle, rootfs / "etc/ssl/certs/ca-certificates.crt")
+            shutil.copy(bundle, rootfs / HOST_CA.lstrip("/"))
         tar = subprocess.Popen(["tar", "-C", str(rootfs), "-c", "."], stdout=subprocess.PIPE)
         env = dict(os.environ, CONTAINERS_CONF=str(CONTAINERS_CONF))
         imported = subprocess.run(
-            ["podman", "import", "--change", "ENV PIP_CERT=/etc/ssl/certs/ca-certificates.crt",
+            ["podman", "import", "--change", f"ENV PIP_CERT={HOST_CA}",
              "--change", 'CMD ["/bin/bash"]', "-", tag],
             stdin=tar.stdout, capture_output=True, text=True, timeout=600, env=env,
         )  # fmt: skip
