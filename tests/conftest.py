@@ -3,9 +3,6 @@
 from __future__ import annotations
 
 import os
-import signal
-import subprocess
-import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -14,7 +11,7 @@ import numpy as np
 import pytest
 import zenoh
 from nav2_pyif import Costmap
-from nav2_pyif.host_process import free_port
+from nav2_pyif.host_process import PlannerHostProcess, free_port
 from nav2_pyif.zenoh_config import connect_to
 
 __all__ = ["free_port"]  # tests import it from here
@@ -47,69 +44,30 @@ PLANNER_ERRORS = [
 ]
 
 
-class HostProcess:
-    """A ``planner-host`` subprocess listening on a loopback port."""
-
-    def __init__(self, port: int, args: list[str], log_path: Path) -> None:
-        self.port = port
-        self.args = args
-        self.log_path = log_path
-        self.proc: subprocess.Popen[bytes] | None = None
-
-    @property
-    def endpoint(self) -> str:
-        return f"tcp/127.0.0.1:{self.port}"
-
-    def start(self) -> HostProcess:
-        env = dict(
-            os.environ,
-            PYTHONPATH=os.pathsep.join([str(FIXTURES), os.environ.get("PYTHONPATH", "")]),
-        )
-        log = open(self.log_path, "ab")  # noqa: SIM115 - closed with the process
-        self.proc = subprocess.Popen(
-            [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint, *self.args],
-            stdout=log,
-            stderr=subprocess.STDOUT,
-            env=env,
-        )
-        log.close()
-        return self
-
-    def kill(self) -> None:
-        assert self.proc is not None
-        self.proc.kill()
-        self.proc.wait(10)
-
-    def stop(self) -> int:
-        assert self.proc is not None
-        if self.proc.poll() is None:
-            self.proc.send_signal(signal.SIGTERM)
-            try:
-                return self.proc.wait(10)
-            except subprocess.TimeoutExpired:
-                self.proc.kill()
-                self.proc.wait(10)
-                raise
-        return self.proc.returncode
-
-    def log(self) -> str:
-        return self.log_path.read_text(errors="replace")
+def host_process(port: int, args: list[str], log_path: Path) -> PlannerHostProcess:
+    """A ``planner-host`` on a loopback port, the test fixtures importable, logging at INFO."""
+    return PlannerHostProcess(
+        args=args,
+        port=port,
+        log_level="INFO",
+        log_path=log_path,
+        env={"PYTHONPATH": os.pathsep.join([str(FIXTURES), os.environ.get("PYTHONPATH", "")])},
+    )
 
 
 @pytest.fixture
 def start_host(tmp_path: Path) -> Iterator[object]:
-    hosts: list[HostProcess] = []
+    hosts: list[PlannerHostProcess] = []
 
-    def start(*args: str, port: int | None = None) -> HostProcess:
-        host = HostProcess(port or free_port(), list(args), tmp_path / f"host{len(hosts)}.log")
+    def start(*args: str, port: int | None = None) -> PlannerHostProcess:
+        host = host_process(port or free_port(), list(args), tmp_path / f"host{len(hosts)}.log")
         hosts.append(host.start())
         return host
 
     yield start
     for host in hosts:
         if host.proc is not None and host.proc.poll() is None:
-            host.proc.kill()
-            host.proc.wait(10)
+            host.kill()
 
 
 def open_client_session(endpoint: str) -> zenoh.Session:

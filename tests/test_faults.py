@@ -24,8 +24,8 @@ from nav2_pyif.client.admin import request_reload
 from tests.conftest import (
     CONTROLLER_ERRORS,
     PLANNER_ERRORS,
-    HostProcess,
     free_port,
+    host_process,
     make_costmap,
     open_client_session,
 )
@@ -42,7 +42,7 @@ class Rig:
     """A host serving the faulty controller and planner, and a configured client of each."""
 
     def __init__(self, tmp: Path) -> None:
-        self.host = HostProcess(
+        self.host = host_process(
             free_port(),
             [
                 "--serve",
@@ -361,7 +361,7 @@ def test_a_new_version_of_the_module_replaces_the_old_one(tmp_path: Path) -> Non
         "        return cmd\n"
     )
     source.write_text(template.replace("VERSION", "1.0"))
-    host = HostProcess(
+    host = host_process(
         free_port(),
         ["--key", KEY, "--planner", "versioned_ctrl:Versioned", "--path", str(tmp_path)],
         tmp_path / "host.log",

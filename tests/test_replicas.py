@@ -14,7 +14,7 @@ from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.zenoh_config import connect_to
 
-from tests.conftest import HostProcess, free_port, make_costmap
+from tests.conftest import free_port, host_process, make_costmap
 from tests.test_host_e2e import pose
 
 KEY = "nav2_pyif/replicas/FollowPath"
@@ -22,7 +22,7 @@ KEY = "nav2_pyif/replicas/FollowPath"
 
 def test_failover_to_a_replica_loses_no_call(tmp_path: Path) -> None:
     hosts = [
-        HostProcess(
+        host_process(
             free_port(),
             ["--key", KEY, "--planner", "echo_planners:EchoController"],
             tmp_path / f"h{i}.log",

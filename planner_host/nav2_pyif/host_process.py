@@ -23,49 +23,50 @@ def free_port() -> int:
 
 
 class PlannerHostProcess:
-    """``planners``: a list of {key, planner} or {key, module, delegates} entries."""
+    """A ``planner-host`` child process listening on ``endpoint``.
+
+    ``planners``: a list of {key, planner} or {key, module, delegates} entries (written to a
+    YAML file for ``--config``); ``args``: further command-line arguments (e.g. ``--serve``);
+    ``env``: variables added to this process's environment."""
 
     def __init__(
         self,
-        planners: list[dict[str, Any]],
+        planners: list[dict[str, Any]] | None = None,
         *,
+        args: list[str] | None = None,
         port: int | None = None,
         log_level: str = "WARNING",
         extra_path: list[str] | None = None,
+        log_path: Path | None = None,
+        env: dict[str, str] | None = None,
     ) -> None:
-        self.planners = planners
+        self.planners = planners or []
         self.port = port or free_port()
         self.log_level = log_level
         self.extra_path = extra_path or []
         self.proc: subprocess.Popen[bytes] | None = None
-        self.extra_args: list[str] = []
+        self.extra_args: list[str] = list(args or [])
+        self.env = env or {}
         self._dir = tempfile.TemporaryDirectory(prefix="nav2_pyif_host_")
-        self.log_path = Path(self._dir.name) / "host.log"
+        self.log_path = log_path or Path(self._dir.name) / "host.log"
 
     @property
     def endpoint(self) -> str:
         return f"tcp/127.0.0.1:{self.port}"
 
     def start(self) -> PlannerHostProcess:
-        config = Path(self._dir.name) / "planners.yaml"
-        config.write_text(yaml.safe_dump({"planners": self.planners}))
-        command = [
-            sys.executable,
-            "-m",
-            "nav2_pyif.cli",
-            "--listen",
-            self.endpoint,
-            "--config",
-            str(config),
-            "--log-level",
-            self.log_level,
-        ]
+        command = [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint]
+        if self.planners:
+            config = Path(self._dir.name) / "planners.yaml"
+            config.write_text(yaml.safe_dump({"planners": self.planners}))
+            command += ["--config", str(config)]
+        command += ["--log-level", self.log_level]
         for directory in self.extra_path:
             command += ["--path", directory]
         command += self.extra_args
         with open(self.log_path, "ab") as log:
             self.proc = subprocess.Popen(
-                command, stdout=log, stderr=subprocess.STDOUT, env=dict(os.environ)
+                command, stdout=log, stderr=subprocess.STDOUT, env={**os.environ, **self.env}
             )
         return self
 
@@ -79,14 +80,24 @@ class PlannerHostProcess:
     def log(self) -> str:
         return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""
 
-    def stop(self, timeout: float = 10.0) -> None:
-        if self.proc is not None and self.proc.poll() is None:
+    def stop(self, timeout: float = 10.0) -> int | None:
+        """SIGTERM, then SIGKILL after ``timeout``; returns the exit code (0: a clean stop)."""
+        if self.proc is None:
+            return None
+        if self.proc.poll() is None:
             self.proc.send_signal(signal.SIGTERM)
             try:
                 self.proc.wait(timeout)
             except subprocess.TimeoutExpired:
                 self.proc.kill()
                 self.proc.wait()
+        return self.proc.returncode
+
+    def kill(self) -> None:
+        """SIGKILL, as a crash would: nothing is saved."""
+        if self.proc is not None:
+            self.proc.kill()
+            self.proc.wait(10)
 
     def __enter__(self) -> PlannerHostProcess:
         return self.start()
