@@ -3,19 +3,34 @@ asserted: performance is judged from benchmark runs, not unit tests)."""
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def bench(*args: str, timeout: float = 300) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "nav2_pyif_bench.cli", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
+
+
+def assert_prints(result: subprocess.CompletedProcess[str], *lines: str) -> None:
+    assert result.returncode == 0, result.stderr[-3000:]
+    for line in (*lines, "machine:"):
+        assert line in result.stdout
 
 
 def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
-    result = subprocess.run(
-        [sys.executable, "-m", "nav2_pyif_bench.cli", "protocol", "--quick"],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert result.returncode == 0, result.stderr[-3000:]
-    for line in (
+    assert_prints(
+        bench("protocol", "--quick"),
         "bare Zenoh get -> empty reply",
         "nav2_pyif cycle, worker process (default)",
         "nav2_pyif cycle, --isolation none",
@@ -23,6 +38,33 @@ def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
         "1000-pose plan",
         "400 x 400 costmap",
         "calls/s",
-        "machine:",
-    ):
-        assert line in result.stdout
+    )
+
+
+def test_cpp_cycle_without_its_binary_says_how_to_build_it(tmp_path: Path) -> None:
+    result = bench("cpp-cycle", "--binary", str(tmp_path / "absent"), timeout=60)
+    assert result.returncode == 2
+    assert "no C++ bench binary" in result.stderr and "build_cpp_bench.sh" in result.stderr
+
+
+@pytest.mark.timeout(900)
+def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
+    if not os.environ.get("NAV2_PYIF_NAV2_SETUP"):
+        pytest.skip(
+            "C++-client cycle bench skipped: NAV2_PYIF_NAV2_SETUP is unset (the setup script "
+            "of a ROS 2 with Nav2 and zenoh-cpp, e.g. /opt/ros/jazzy/setup.bash)"
+        )
+    build = subprocess.run(
+        [str(ROOT / "scripts" / "build_cpp_bench.sh")], capture_output=True, text=True, timeout=600
+    )
+    assert build.returncode == 0, (build.stdout + build.stderr)[-3000:]
+    binary = build.stdout.strip().splitlines()[-1]
+    assert_prints(
+        bench("cpp-cycle", "--quick", "--binary", binary),
+        "bare Zenoh get -> empty reply",
+        "nav2_pyif cycle, worker process (default)",
+        "nav2_pyif cycle, --isolation none",
+        "of which C++ client",
+        "rclpy node via rclcpp client",
+        "over bare Zenoh",
+    )

@@ -1,6 +1,7 @@
 """nav2-pyif-bench: the project's benchmarks; each prints its figures (see BENCHMARKS.md).
 
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
+nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controller's rate through a host
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
@@ -12,7 +13,13 @@ import argparse
 import json
 import sys
 
-from nav2_pyif_bench import fleet_bench, mppi_bench, protocol_bench, reliability_bench
+from nav2_pyif_bench import (
+    cpp_cycle_bench,
+    fleet_bench,
+    mppi_bench,
+    protocol_bench,
+    reliability_bench,
+)
 from nav2_pyif_bench.stats import machine_description
 
 
@@ -25,6 +32,10 @@ def main(argv: list[str] | None = None) -> int:
     sub = parser.add_subparsers(dest="bench", required=True, metavar="BENCHMARK")
     protocol = sub.add_parser("protocol", help="the protocol beside bare Zenoh and rclpy")
     protocol_bench.add_arguments(protocol)
+    cpp_cycle = sub.add_parser(
+        "cpp-cycle", help="the control cycle with the C++ plugin's client code (built apart)"
+    )
+    cpp_cycle_bench.add_arguments(cpp_cycle)
     mppi = sub.add_parser("mppi", help="the MPPI controller's rate through a planner host")
     mppi.add_argument("--batch-sizes", type=int, nargs="+", default=[1000, 2000])
     mppi.add_argument("--map", default="office")
@@ -36,11 +47,18 @@ def main(argv: list[str] | None = None) -> int:
     reliability.add_argument("--swaps", type=int, default=6)
     reliability.add_argument("--calls", type=int, default=200_000)
     reliability.add_argument("--cycles", type=int, default=100, help="lifecycle cycles")
-    for p in (protocol, mppi, reliability, fleet):
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     print(f"machine: {machine_description()}\n", flush=True)
-    if args.bench == "protocol":
+    if args.bench == "cpp-cycle":
+        try:
+            results = cpp_cycle_bench.run(cpp_cycle_bench.apply_quick(args))
+        except cpp_cycle_bench.BenchSetupError as exc:
+            print(f"nav2-pyif-bench cpp-cycle: {exc}", file=sys.stderr)
+            return 2
+        text = cpp_cycle_bench.report(results)
+    elif args.bench == "protocol":
         results = protocol_bench.run(protocol_bench.apply_quick(args))
         text = protocol_bench.report(results)
     elif args.bench == "mppi":

@@ -119,36 +119,28 @@ def throughput(session: zenoh.Session, threads: int, seconds: float) -> float:
     return sum(counts) / elapsed
 
 
-def run(args: argparse.Namespace) -> dict[str, Any]:
-    host_port, bare_port, inproc_port = free_port(), free_port(), free_port()
-    env = ros_localhost_env()
-    commands = {
-        "host": [
+def peer_commands(host_port: int, inproc_port: int, bare_port: int) -> dict[str, list[str]]:
+    """The cycle's peers, as arguments of the project's Python: the planner host (worker
+    process), the in-process planner host, the bare queryable and the rclpy node."""
+
+    def host(port: int, key: str, *extra: str) -> list[str]:
+        return [
             "-m",
             "nav2_pyif.cli",
             "--listen",
-            f"tcp/127.0.0.1:{host_port}",
+            f"tcp/127.0.0.1:{port}",
             "--key",
-            KEY,
+            key,
             "--planner",
             "nav2_pyif_bench.planners:TrivialController",
             "--log-level",
             "WARNING",
-        ],
-        "inproc": [
-            "-m",
-            "nav2_pyif.cli",
-            "--listen",
-            f"tcp/127.0.0.1:{inproc_port}",
-            "--key",
-            INPROC_KEY,
-            "--planner",
-            "nav2_pyif_bench.planners:TrivialController",
-            "--log-level",
-            "WARNING",
-            "--isolation",
-            "none",
-        ],
+            *extra,
+        ]
+
+    return {
+        "host": host(host_port, KEY),
+        "inproc": host(inproc_port, INPROC_KEY, "--isolation", "none"),
         "bare": [
             "-m",
             "nav2_pyif_bench.bare_zenoh",
@@ -159,6 +151,12 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         ],
         "rclpy": ["-m", "nav2_pyif_bench.rclpy_node"],
     }
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    host_port, bare_port, inproc_port = free_port(), free_port(), free_port()
+    env = ros_localhost_env()
+    commands = peer_commands(host_port, inproc_port, bare_port)
     import os
 
     os.environ.update(env)
