@@ -16,7 +16,9 @@ from __future__ import annotations
 
 import contextlib
 import logging
+import math
 import multiprocessing
+import select
 import signal
 import threading
 import time
@@ -36,6 +38,14 @@ log = logging.getLogger("nav2_pyif.supervisor")
 _SPAWN = multiprocessing.get_context("spawn")  # never fork a process that runs Zenoh threads
 
 
+# Op names as plain strings: Deadlines.of runs on every call, and Enum.value costs an
+# attribute lookup through a descriptor each time.
+_CONFIGURE, _CREATE_PLAN = Op.CONFIGURE.value, Op.CREATE_PLAN.value
+_LIFECYCLE_OPS = frozenset(
+    op.value for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS)
+)
+
+
 @dataclass(frozen=True)
 class Deadlines:
     """Seconds the host lets a planner method run before answering with a timeout."""
@@ -47,16 +57,11 @@ class Deadlines:
     hang_grace: float = 3.0  # then a worker still busy is killed and restarted
 
     def of(self, op: str) -> float:
-        if op == Op.CONFIGURE.value:
+        if op == _CONFIGURE:
             return self.configure
-        if op == Op.CREATE_PLAN.value:
+        if op == _CREATE_PLAN:
             return self.plan
-        if op in (
-            Op.ACTIVATE.value,
-            Op.DEACTIVATE.value,
-            Op.CLEANUP.value,
-            Op.SET_PARAMETERS.value,
-        ):
+        if op in _LIFECYCLE_OPS:
             return self.lifecycle
         return self.call
 
@@ -94,6 +99,10 @@ class Worker:
         child_calls.close()
         child_cancels.close()
         self.cancel_lock = threading.Lock()
+        # Waiting for a reply on a poll object kept for the worker's life: Connection.poll
+        # builds a selector on every call (about 2.5 µs of Python per call, measured hot).
+        self._replies = select.poll()
+        self._replies.register(self.calls.fileno(), select.POLLIN)
 
     @property
     def pid(self) -> int | None:
@@ -123,9 +132,9 @@ class Worker:
         return self._receive(timeout)
 
     def _receive(self, timeout: float) -> bytes | None:
-        # poll() on the pipe alone (not wait() on pipe + process sentinel): one fd, cheaper on
-        # every call; a dead worker's pipe reads EOF, so deaths are still seen at once.
-        if not self.calls.poll(timeout):
+        # The pipe alone (not pipe + process sentinel): one fd, cheaper on every call; a dead
+        # worker's pipe reads EOF (POLLHUP), so deaths are still seen at once.
+        if not self._replies.poll(max(0, math.ceil(timeout * 1000))):
             if not self.process.is_alive():
                 raise WorkerDied(self.exit_description())
             return None
