@@ -2,7 +2,7 @@
 
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
-nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controller's rate through a host
+nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers' rate through a host
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 """
@@ -39,6 +39,12 @@ def main(argv: list[str] | None = None) -> int:
     mppi = sub.add_parser("mppi", help="the MPPI controller's rate through a planner host")
     mppi.add_argument("--batch-sizes", type=int, nargs="+", default=[1000, 2000])
     mppi.add_argument("--map", default="office")
+    mppi.add_argument(
+        "--controllers",
+        nargs="+",
+        default=mppi_bench.default_controllers(),
+        help="default: mppi, and mppi_jax when JAX is installed",
+    )
     fleet = sub.add_parser("fleet", help="N robots at 20 Hz on one planner host")
     fleet.add_argument("--robots", type=int, nargs="+", default=[1, 10, 50])
     fleet.add_argument("--seconds", type=float, default=20.0)

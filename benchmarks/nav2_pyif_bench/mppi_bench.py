@@ -1,9 +1,11 @@
 """The MPPI controller's rate through the real path: a planner host serving it over Zenoh,
-the offline runner driving the office map at 20 Hz; host compute and round trip per cycle."""
+the offline runner driving the office map at 20 Hz; host compute and round trip per cycle.
+The NumPy MPPI and the JAX one (when JAX is installed) side by side."""
 
 from __future__ import annotations
 
 import argparse
+from importlib.util import find_spec
 from typing import Any
 
 import numpy as np
@@ -11,17 +13,24 @@ from nav2_pyif.sim.report import summary
 from nav2_pyif.testing import drive
 
 
+def default_controllers() -> list[str]:
+    return ["mppi", "mppi_jax"] if find_spec("jax") is not None else ["mppi"]
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
     results: dict[str, Any] = {}
-    for batch in args.batch_sizes:
-        print(f"  … MPPI with {batch} rollouts on the {args.map} map", flush=True)
+    runs = [(c, b) for b in args.batch_sizes for c in args.controllers]
+    for controller, batch in runs:
+        print(f"  … {controller} with {batch} rollouts on the {args.map} map", flush=True)
         result = drive(
-            "mppi", map=args.map, controller_params={"batch_size": batch}, call_timeout=1.0
+            controller, map=args.map, controller_params={"batch_size": batch}, call_timeout=1.0
         )
         cycles = [r for r in result.records if r.op == "compute_velocity_commands" and r.ok]
         compute = np.array([r.compute_ns for r in cycles]) / 1e6
         total = np.array([r.total_ns for r in cycles]) / 1e6
-        results[str(batch)] = {
+        results[f"{controller} {batch}"] = {
+            "controller": controller,
+            "rollouts": batch,
             "reached": result.reached,
             "cycles": len(cycles),
             "compute_median_ms": float(np.median(compute)),
@@ -36,13 +45,14 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
 def report(results: dict[str, Any]) -> str:
     lines = [
-        "MPPI controller through the planner host (office map, 20 Hz, time_steps 40)",
-        f"  {'rollouts':>8} {'compute median':>15} {'p99':>8} {'round trip median':>18} "
-        f"{'p99':>8} {'rate at p99':>12}  reached",
+        "MPPI controller through the planner host (20 Hz, time_steps 40)",
+        f"  {'controller':>10} {'rollouts':>8} {'compute median':>15} {'p99':>8} "
+        f"{'round trip median':>18} {'p99':>8} {'rate at p99':>12}  reached",
     ]
-    for batch, r in results.items():
+    for r in results.values():
         lines.append(
-            f"  {batch:>8} {r['compute_median_ms']:>12.1f} ms {r['compute_p99_ms']:>5.1f} ms "
+            f"  {r['controller']:>10} {r['rollouts']:>8} {r['compute_median_ms']:>12.1f} ms "
+            f"{r['compute_p99_ms']:>5.1f} ms "
             f"{r['round_trip_median_ms']:>15.1f} ms {r['round_trip_p99_ms']:>5.1f} ms "
             f"{r['max_rate_hz_at_p99']:>9.0f} Hz  {r['reached']}"
         )
