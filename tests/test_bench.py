@@ -68,3 +68,10 @@ def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
         "rclpy node via rclcpp client",
         "over bare Zenoh",
     )
+
+
+def test_fleet_benchmark_prints_its_table_and_draws_it(tmp_path: Path) -> None:
+    png = tmp_path / "fleet.png"
+    result = bench("fleet", "--robots", "1", "--seconds", "1", "--plot", str(png))
+    assert_prints(result, "fleet: N controllers on one host", "missed:", f"wrote {png}")
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000

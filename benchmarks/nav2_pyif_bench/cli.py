@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+from pathlib import Path
 
 from nav2_pyif_bench import (
     cpp_cycle_bench,
@@ -49,6 +50,7 @@ def main(argv: list[str] | None = None) -> int:
     fleet.add_argument("--robots", type=int, nargs="+", default=[1, 10, 50])
     fleet.add_argument("--seconds", type=float, default=20.0)
     fleet.add_argument("--isolation", choices=["process", "none"], default="process")
+    fleet.add_argument("--plot", metavar="PNG", help="draw latency and misses against robots")
     reliability = sub.add_parser("reliability", help="hot swap gap, memory over a long run")
     reliability.add_argument("--swaps", type=int, default=6)
     reliability.add_argument("--calls", type=int, default=200_000)
@@ -73,6 +75,11 @@ def main(argv: list[str] | None = None) -> int:
     elif args.bench == "fleet":
         results = fleet_bench.run(args)
         text = fleet_bench.report(results)
+        if args.plot:
+            from nav2_pyif_bench.fleet_plot import plot_fleet
+
+            plot_fleet(results, Path(args.plot), machine_description())
+            text += f"\nwrote {args.plot}"
     else:
         results = reliability_bench.run(args)
         text = reliability_bench.report(results)
