@@ -48,6 +48,18 @@ def test_variables_fill_options_and_flags_win() -> None:
     assert parse({}).deadline == 1.0 and parse({}).connect == []
 
 
+def test_empty_variables_count_as_unset() -> None:
+    """compose's ``NAV2_PYIF_CONFIG: ${CONFIG:-}`` leaves an empty value: not a file named ""
+    (Path("") is "."), not an invalid deadline or log level."""
+    names = ["CONFIG", "DEADLINE", "LOG_LEVEL", "KEY", "CONNECT", "MULTICAST_SCOUTING"]
+    parser = build_parser()
+    used = apply_environment(parser, {f"NAV2_PYIF_{name}": " " for name in names})
+    args = parser.parse_args([])
+    assert used == {}
+    assert (args.config, args.deadline, args.log_level, args.key) == (None, 1.0, "INFO", None)
+    assert (args.connect, args.multicast_scouting) == ([], False)
+
+
 @pytest.mark.parametrize(
     ("variable", "value", "words"),
     [

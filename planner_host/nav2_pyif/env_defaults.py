@@ -3,8 +3,10 @@
 Every long option ``--some-flag`` of a parser can be given as ``NAV2_PYIF_SOME_FLAG``; a flag on
 the command line wins over the variable. Repeatable options take a comma-separated list
 (``--path``: ``os.pathsep``-separated, as PATH), and flags given on the command line add to
-that list. Switches (``store_true``) take 1/true/yes/on or 0/false/no/off. A bad value is
-reported as a usage error naming the variable, before anything starts.
+that list. Switches (``store_true``) take 1/true/yes/on or 0/false/no/off. An empty variable
+counts as unset (as compose's ``${VAR:-}`` leaves it), so ``NAV2_PYIF_CONFIG=`` does not
+mean a file named "". A bad value is reported as a usage error naming the variable, before
+anything starts.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from typing import Any
 
 PREFIX = "NAV2_PYIF_"
 _TRUE = {"1", "true", "yes", "on"}
-_FALSE = {"0", "false", "no", "off", ""}
+_FALSE = {"0", "false", "no", "off"}
 
 
 def variable_name(option: str) -> str:
@@ -72,7 +74,7 @@ def apply_environment(
         if option is None:
             continue
         name = variable_name(option)
-        if name in environ:
+        if environ.get(name, "").strip():
             defaults[action.dest] = _convert(parser, action, name, environ[name])
             used[name] = environ[name]
     parser.set_defaults(**defaults)
