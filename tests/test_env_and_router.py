@@ -84,10 +84,18 @@ def test_help_names_the_variables() -> None:
     assert "[env NAV2_PYIF_KEY]" in text and "[env NAV2_PYIF_PLAN_DEADLINE]" in text
 
 
-def test_router_routes_between_a_host_and_a_client(tmp_path: Path) -> None:
+@pytest.mark.parametrize("listen_from", ["flag", "config_file"])
+def test_router_routes_between_a_host_and_a_client(tmp_path: Path, listen_from: str) -> None:
     port = free_port()
+    endpoint = f"tcp/127.0.0.1:{port}"
+    if listen_from == "flag":
+        where = ["--listen", endpoint]
+    else:  # the file's endpoint, not the router's default tcp/0.0.0.0:7447
+        config = tmp_path / "router.json5"
+        config.write_text(f'{{mode: "router", listen: {{endpoints: ["{endpoint}"]}}}}')
+        where = ["--zenoh-config", str(config)]
     router = subprocess.Popen(
-        [sys.executable, "-m", "nav2_pyif.tool", "router", "--listen", f"tcp/127.0.0.1:{port}"],
+        [sys.executable, "-m", "nav2_pyif.tool", "router", *where],
         stdout=subprocess.PIPE,
         text=True,
     )
@@ -126,5 +134,6 @@ def test_router_routes_between_a_host_and_a_client(tmp_path: Path) -> None:
             session.close()
         for proc in (host, router):
             proc.terminate()
-            assert proc.wait(10) == 0
+        codes = [proc.wait(10) for proc in (host, router)]  # both stopped before asserting
         host_log.close()
+        assert codes == [0, 0], (tmp_path / "host.log").read_text()

@@ -24,25 +24,24 @@ def add_router_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
         "router",
         help="run a Zenoh router (when no zenohd is at hand)",
         description="Run a Zenoh router: planner hosts and plugins connect to it and it "
-        f"routes between them. Listens on {DEFAULT_LISTEN} unless --listen is given; "
-        "--connect joins other routers.",
+        f"routes between them. Listens on {DEFAULT_LISTEN} unless --listen or a "
+        "--zenoh-config file says otherwise; --connect joins other routers.",
     )
     add_endpoint_arguments(
         p,
         config_help="Zenoh JSON5 config file instead (its mode is set to router)",
         connect_help="another router to join, repeatable",
-        listen_help=f"endpoint to listen on, repeatable (default {DEFAULT_LISTEN})",
+        listen_help=f"endpoint to listen on, repeatable (default: the config file's, else "
+        f"{DEFAULT_LISTEN})",
     )
     p.set_defaults(func=run_router)
 
 
 def run_router(args: argparse.Namespace) -> int:
+    # The default endpoint only without a file: it would replace the file's listen endpoints.
+    listen = list(args.listen) or ([] if args.zenoh_config else [DEFAULT_LISTEN])
     options = ZenohOptions(
-        args.zenoh_config,
-        list(args.connect),
-        list(args.listen) or [DEFAULT_LISTEN],
-        mode="router",
-        use_environment=False,
+        args.zenoh_config, list(args.connect), listen, mode="router", use_environment=False
     )
     stop = threading.Event()
 
@@ -56,7 +55,7 @@ def run_router(args: argparse.Namespace) -> int:
     except (ConnectionError, FileNotFoundError) as exc:
         print(f"nav2-pyif router: error: {exc}", file=sys.stderr)
         return 3
-    where = ", ".join(options.listen)
+    where = ", ".join(options.listen) or f"the endpoints of {options.config_file}"
     print(f"zenoh router {session.info.zid()} listening on {where}", flush=True)
     try:
         stop.wait()
