@@ -28,7 +28,9 @@ def plot_fleet(results: dict[str, Any], path: Path, machine: str) -> None:
         missed.annotate(f"{r['host_cpu_cores']:.2f} cores", (x, r["missed_pct"]),
                         ha="center", va="bottom", fontsize=8)  # fmt: skip
     missed.set(xlabel="robots", ylabel="missed periods [%]", ylim=(0, 105))
-    missed.set_title("missed 50 ms periods (label: host + workers CPU)")
-    fig.suptitle(f"one planner host, trivial planner, one worker per robot\n{machine}", fontsize=8)
+    missed.set_title("missed 50 ms periods (label: CPU of the host and its workers)")
+    # fleet --isolation none runs every planner in the host process: no workers to name
+    workers = "one worker per robot" if rows[0]["isolation"] == "process" else "no workers"
+    fig.suptitle(f"one planner host, trivial planner, {workers}\n{machine}", fontsize=8)
     fig.savefig(path, dpi=110)
     plt.close(fig)
