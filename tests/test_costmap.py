@@ -81,6 +81,21 @@ def test_footprint_costs_vectorised_over_any_leading_shape() -> None:
     assert costs[1, 1] == 0
 
 
+def test_footprint_costs_at_the_map_edge_with_unknown_as_free() -> None:
+    cm = make_costmap(size=40)  # 4 x 4 m, lethal quadrant x, y >= 2.0 m
+    grid = cm.data.copy()
+    grid[5, 5] = Costmap.NO_INFORMATION
+    cm = Costmap(grid, 0.1, footprint=cm.footprint)
+    # half the footprint beyond x = 4 m (off the map), the other half on lethal cells
+    edge = np.array([[3.95, 3.0, 0.0]])
+    assert cm.footprint_costs(edge)[0] == Costmap.NO_INFORMATION  # off-map counts unknown
+    assert cm.footprint_costs(edge, unknown_as=0)[0] == Costmap.LETHAL  # the lethal half shows
+    # wholly off the map, or on an unknown cell among free ones: free when unknown is free
+    assert cm.footprint_costs(np.array([[9.0, 9.0, 0.0]]), unknown_as=0)[0] == 0
+    assert cm.footprint_costs(np.array([[0.55, 0.55, 0.0]]), unknown_as=0)[0] == 0
+    assert cm.footprint_costs(np.array([[0.55, 0.55, 0.0]]))[0] == Costmap.NO_INFORMATION
+
+
 def test_bad_costmaps_are_refused_with_reasons() -> None:
     with pytest.raises(ValueError, match="2-D uint8"):
         Costmap(np.zeros((3, 3), np.int8), 0.1)

@@ -204,7 +204,9 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    from_environment = apply_environment(parser)
+    given = sys.argv[1:] if argv is None else argv
+    # --help must work whatever the environment holds; otherwise variables fill the options.
+    from_environment = {} if {"-h", "--help"} & set(given) else apply_environment(parser)
     args = parser.parse_args(argv)
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"

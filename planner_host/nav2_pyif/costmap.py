@@ -181,10 +181,18 @@ class Costmap:
         ring = np.stack([radius * np.cos(angles), radius * np.sin(angles)], axis=1)
         return np.concatenate([np.zeros((1, 2)), ring])
 
-    def footprint_costs(self, poses: npt.ArrayLike, outline: FloatArray | None = None) -> ByteArray:
+    def footprint_costs(
+        self,
+        poses: npt.ArrayLike,
+        outline: FloatArray | None = None,
+        unknown_as: int | None = None,
+    ) -> ByteArray:
         """Max cost under the footprint at each pose: (..., 3) x, y, yaw -> (...,) uint8.
 
-        Vectorised over any leading shape (e.g. MPPI's (rollouts, steps, 3))."""
+        Vectorised over any leading shape (e.g. MPPI's (rollouts, steps, 3)). Cells off the
+        map count as NO_INFORMATION; with ``unknown_as`` (e.g. 0 for "unknown is free"), those
+        and NO_INFORMATION cells count as that value instead, point by point, so a lethal
+        cell under the rest of the footprint still shows."""
         p = np.asarray(poses, dtype=np.float64)
         pts = self.footprint_outline() if outline is None else outline
         c, s = np.cos(p[..., 2:3]), np.sin(p[..., 2:3])
@@ -193,6 +201,8 @@ class Costmap:
         flat, inside = self._cells_and_mask(wx, wy)
         costs = self.data.ravel()[flat]
         costs[~inside] = self.NO_INFORMATION
+        if unknown_as is not None:
+            costs[costs == self.NO_INFORMATION] = unknown_as
         worst: ByteArray = costs.max(axis=-1)
         return worst
 

@@ -124,9 +124,10 @@ class MPPI(PathFollower):
         costmap = self.costmap
         if self.outline is None or len(self.outline) == 0:
             self.outline = costmap.footprint_outline(spacing=max(costmap.resolution, 0.2))
-        footprint = costmap.footprint_costs(rollouts[:, ::2], self.outline).astype(np.float64)
-        unknown = footprint == Costmap.NO_INFORMATION
-        footprint[unknown] = 0.0
+        # Unknown and off-map cells count as free, point by point (a lethal cell under the
+        # rest of the footprint still counts near the rolling window's edge).
+        footprint = costmap.footprint_costs(rollouts[:, ::2], self.outline, unknown_as=0)
+        footprint = footprint.astype(np.float64)
         collision = (footprint >= Costmap.INSCRIBED).any(axis=1)
         obstacle = (footprint / 252.0).mean(axis=1)
         total: np.ndarray = (

@@ -72,7 +72,8 @@ def mppi_step(
     path_cost = jnp.sqrt(d2.min(axis=-1)).mean(axis=1)
     progress = jnp.hypot(x[:, -1] - local[-1, 0], y[:, -1] - local[-1, 1])
 
-    # footprint costs at every other step: max over the outline, unknown (off-map) counts 0
+    # footprint costs at every other step: max over the outline; unknown and off-map cells
+    # count as free point by point, as MPPI's footprint_costs(..., unknown_as=0)
     px, py, pyaw = x[:, ::2, None], y[:, ::2, None], yaw[:, ::2, None]
     c, s = jnp.cos(pyaw), jnp.sin(pyaw)
     wx = px + c * outline[:, 0] - s * outline[:, 1]
@@ -81,9 +82,9 @@ def mppi_step(
     my = jnp.floor((wy - origin[1]) / resolution).astype(jnp.int32)
     rows, cols = grid.shape
     inside = (mx >= 0) & (my >= 0) & (mx < cols) & (my < rows)
-    costs = jnp.where(inside, grid[jnp.clip(my, 0, rows - 1), jnp.clip(mx, 0, cols - 1)], 255)
+    costs = grid[jnp.clip(my, 0, rows - 1), jnp.clip(mx, 0, cols - 1)]
+    costs = jnp.where(inside & (costs != Costmap.NO_INFORMATION), costs, 0)
     worst = costs.max(axis=-1).astype(jnp.float32)
-    worst = jnp.where(worst == Costmap.NO_INFORMATION, 0.0, worst)
     collision = (worst >= Costmap.INSCRIBED).any(axis=1)
     obstacle = (worst / 252.0).mean(axis=1)
 
