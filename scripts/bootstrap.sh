@@ -63,6 +63,7 @@ fi
 EXTRAS="${NAV2_PYIF_EXTRAS-dev}"
 [ -z "$SYSTEM_ROS" ] && EXTRAS="${EXTRAS:+$EXTRAS,}ros"
 EDITABLE="${NAV2_PYIF_EDITABLE:-1}"
+case "$EDITABLE" in 0 | 1) ;; *) log "NAV2_PYIF_EDITABLE must be 0 or 1, not '$EDITABLE'"; exit 2 ;; esac
 STAMP_INPUT="$(cat "$ROOT/pyproject.toml" "$ROOT/scripts/bootstrap.sh"; echo "$PY $SYSTEM_ROS $EXTRAS $EDITABLE")"
 STAMP="$(printf '%s' "$STAMP_INPUT" | sha256sum | cut -d' ' -f1)"
 if [ -f "$VENV/.nav2_pyif_stamp" ] && [ "$(cat "$VENV/.nav2_pyif_stamp")" = "$STAMP" ]; then
