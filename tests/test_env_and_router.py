@@ -84,6 +84,17 @@ def test_help_names_the_variables() -> None:
     assert "[env NAV2_PYIF_KEY]" in text and "[env NAV2_PYIF_PLAN_DEADLINE]" in text
 
 
+def test_help_works_whatever_the_environment_holds() -> None:
+    result = subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.cli", "--help"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env=dict(os.environ, NAV2_PYIF_DEADLINE="soon"),
+    )
+    assert result.returncode == 0 and "NAV2_PYIF_DEADLINE" in result.stdout
+
+
 @pytest.mark.parametrize("listen_from", ["flag", "config_file"])
 def test_router_routes_between_a_host_and_a_client(tmp_path: Path, listen_from: str) -> None:
     port = free_port()
