@@ -4,6 +4,7 @@ planner-host image built from docker/Dockerfile on it."""
 
 from __future__ import annotations
 
+import hashlib
 import os
 import shutil
 import subprocess
@@ -17,7 +18,8 @@ CONTAINERS_CONF = Path(__file__).with_name("containers.conf")
 LOCAL_BASE = "localhost/nav2-pyif-test-base:{codename}"
 #: set to an existing image (e.g. python:3.11-slim-bookworm where a registry is reachable)
 BASE_ENV = "NAV2_PYIF_TEST_BASE_IMAGE"
-IMAGE = "localhost/nav2-pyif-host:test"
+#: one tag per checkout: two checkouts testing at once must not run each other's image
+IMAGE = "localhost/nav2-pyif-host:test-" + hashlib.sha1(str(ROOT).encode()).hexdigest()[:10]
 HOST_CA = "/etc/nav2-pyif-test-ca.crt"
 MIRRORS = {"debian": "http://deb.debian.org/debian", "ubuntu": "http://archive.ubuntu.com/ubuntu"}
 
