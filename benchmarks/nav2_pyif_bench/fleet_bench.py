@@ -145,8 +145,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def report(results: dict[str, Any]) -> str:
+    isolation = next(iter(results.values()))["isolation"] if results else "process"
+    workers = "one worker each" if isolation == "process" else "no workers: --isolation none"
     lines = [
-        "fleet: N controllers on one host (one worker each), clients at 20 Hz",
+        f"fleet: N controllers on one host ({workers}), clients at 20 Hz",
         f"  {'robots':>6} {'calls/s':>8} {'median':>9} {'p99':>9} {'missed':>12} {'host CPU':>9}",
     ]
     for r in results.values():

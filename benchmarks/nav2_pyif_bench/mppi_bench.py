@@ -30,6 +30,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         total = np.array([r.total_ns for r in cycles]) / 1e6
         results[f"{controller} {batch}"] = {
             "controller": controller,
+            "map": args.map,
             "rollouts": batch,
             "reached": result.reached,
             "cycles": len(cycles),
@@ -43,9 +44,13 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     return results
 
 
+def _map_of(results: dict[str, Any]) -> str:
+    return str(next(iter(results.values()))["map"]) if results else "?"
+
+
 def report(results: dict[str, Any]) -> str:
     lines = [
-        "MPPI controller through the planner host (20 Hz, time_steps 40)",
+        f"MPPI controllers through the planner host ({_map_of(results)} map, 20 Hz, time_steps 40)",
         f"  {'controller':>10} {'rollouts':>8} {'compute median':>15} {'p99':>8} "
         f"{'round trip median':>18} {'p99':>8} {'rate at p99':>12}  reached",
     ]
