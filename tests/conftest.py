@@ -70,16 +70,16 @@ def start_host(tmp_path: Path) -> Iterator[object]:
             host.kill()
 
 
-def open_client_session(endpoint: str) -> zenoh.Session:
-    return connect_to([endpoint])
+def open_client_session(endpoint: str, mode: str = "peer") -> zenoh.Session:
+    return connect_to([endpoint], mode)
 
 
 @pytest.fixture
 def zsession_factory() -> Iterator[object]:
     sessions: list[zenoh.Session] = []
 
-    def make(endpoint: str) -> zenoh.Session:
-        sessions.append(open_client_session(endpoint))
+    def make(endpoint: str, mode: str = "peer") -> zenoh.Session:
+        sessions.append(open_client_session(endpoint, mode))
         return sessions[-1]
 
     yield make

@@ -14,7 +14,6 @@ from geometry_msgs.msg import Twist
 from nav2_pyif.cli import build_parser
 from nav2_pyif.client import ControllerClient
 from nav2_pyif.env_defaults import apply_environment
-from nav2_pyif.zenoh_config import ZenohOptions, open_session
 
 from tests.conftest import FIXTURES, free_port, make_costmap
 from tests.test_host_e2e import GENEROUS, pose
@@ -96,7 +95,9 @@ def test_help_works_whatever_the_environment_holds() -> None:
 
 
 @pytest.mark.parametrize("listen_from", ["flag", "config_file"])
-def test_router_routes_between_a_host_and_a_client(tmp_path: Path, listen_from: str) -> None:
+def test_router_routes_between_a_host_and_a_client(
+    tmp_path: Path, listen_from: str, zsession_factory: Any
+) -> None:
     port = free_port()
     endpoint = f"tcp/127.0.0.1:{port}"
     if listen_from == "flag":
@@ -125,14 +126,10 @@ def test_router_routes_between_a_host_and_a_client(tmp_path: Path, listen_from: 
             NAV2_PYIF_ISOLATION="none",
         ),
     )
-    session = None
     try:
         assert router.stdout is not None and "listening on" in router.stdout.readline()
         # Client mode, as the C++ plugin always is: the router forwards to the peer host.
-        options = ZenohOptions(
-            connect=[f"tcp/127.0.0.1:{port}"], mode="client", use_environment=False
-        )
-        session = open_session(options)
+        session = zsession_factory(endpoint, mode="client")
         client = ControllerClient(
             session, "nav2_pyif/routed/FollowPath", make_costmap(), timeouts=GENEROUS
         )
@@ -141,8 +138,6 @@ def test_router_routes_between_a_host_and_a_client(tmp_path: Path, listen_from: 
         client.activate()
         assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == -1.0  # no plan
     finally:
-        if session is not None:
-            session.close()
         for proc in (host, router):
             proc.terminate()
         codes = [proc.wait(10) for proc in (host, router)]  # both stopped before asserting

@@ -81,17 +81,6 @@ def _config(path: Path, mode: str, listen: list[str], connect: list[str]) -> Pat
     return path
 
 
-ROUTER = """
-import signal, sys, threading, zenoh
-session = zenoh.open(zenoh.Config.from_file(sys.argv[1]))
-stop = threading.Event()
-signal.signal(signal.SIGTERM, lambda *_: stop.set())
-print("ready", flush=True)
-stop.wait()
-session.close()
-"""
-
-
 @pytest.fixture
 def remote(tmp_path: Path) -> Iterator[dict[str, Any]]:
     if shutil.which("ip") is None:
@@ -113,10 +102,11 @@ def remote(tmp_path: Path) -> Iterator[dict[str, Any]]:
             [],
         )
         router = subprocess.Popen(
-            [sys.executable, "-c", ROUTER, str(router_cfg)], stdout=subprocess.PIPE
+            [sys.executable, "-m", "nav2_pyif.tool", "router", "--zenoh-config", str(router_cfg)],
+            stdout=subprocess.PIPE,
         )
         procs.append(router)
-        assert router.stdout is not None and router.stdout.readline().strip() == b"ready"
+        assert router.stdout is not None and b"listening on" in router.stdout.readline()
         host_cfg = _config(tmp_path / "host.json5", "peer", [], [f"tcp/{SUBNET}.1:{router_port}"])
         log = open(tmp_path / "host.log", "wb")  # noqa: SIM115 - closed below
         env = dict(

@@ -96,9 +96,7 @@ def run_one(robots: int, seconds: float, isolation: str) -> dict[str, Any]:
     from nav2_pyif.host_process import PlannerHostProcess
 
     entries = [{"key": key(i), "planner": PLANNER} for i in range(robots)]
-    host = PlannerHostProcess(entries)
-    if isolation == "none":
-        host.extra_args = ["--isolation", "none"]
+    host = PlannerHostProcess(entries, args=["--isolation", isolation])
     with host:
         assert host.proc is not None
         ctx = multiprocessing.get_context("spawn")

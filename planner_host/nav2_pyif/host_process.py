@@ -45,7 +45,7 @@ class PlannerHostProcess:
         self.log_level = log_level
         self.extra_path = extra_path or []
         self.proc: subprocess.Popen[bytes] | None = None
-        self.extra_args: list[str] = list(args or [])
+        self.args: list[str] = list(args or [])
         self.env = env or {}
         self._dir = tempfile.TemporaryDirectory(prefix="nav2_pyif_host_")
         self.log_path = log_path or Path(self._dir.name) / "host.log"
@@ -63,7 +63,7 @@ class PlannerHostProcess:
         command += ["--log-level", self.log_level]
         for directory in self.extra_path:
             command += ["--path", directory]
-        command += self.extra_args
+        command += self.args
         with open(self.log_path, "ab") as log:
             self.proc = subprocess.Popen(
                 command, stdout=log, stderr=subprocess.STDOUT, env={**os.environ, **self.env}

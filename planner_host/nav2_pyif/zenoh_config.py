@@ -98,7 +98,9 @@ def open_session(options: ZenohOptions) -> zenoh.Session:
         raise ConnectionError(f"cannot open a Zenoh session ({where}): {exc}") from exc
 
 
-def connect_to(endpoints: list[str]) -> zenoh.Session:
-    """A peer session that connects to ``endpoints`` only, whatever the environment says:
-    what the offline runner, the benchmarks and the tests use on loopback."""
-    return open_session(ZenohOptions(connect=list(endpoints), use_environment=False))
+def connect_to(endpoints: list[str], mode: str = "peer") -> zenoh.Session:
+    """A session (a peer unless ``mode`` says otherwise, e.g. "client" as the C++ plugin is)
+    that connects to ``endpoints`` only, whatever the environment says: what the offline
+    runner, the benchmarks and the tests use."""
+    options = ZenohOptions(connect=list(endpoints), mode=mode, use_environment=False)
+    return open_session(options)

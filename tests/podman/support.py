@@ -11,6 +11,7 @@ import subprocess
 import sys
 import tempfile
 from pathlib import Path
+from typing import IO
 
 ROOT = Path(__file__).resolve().parents[2]
 CONTAINERS_CONF = Path(__file__).with_name("containers.conf")
@@ -32,12 +33,21 @@ def _say(message: str) -> None:
     print(f"[container tests] {message}", file=sys.stderr, flush=True)
 
 
+def podman_env(**extra: str) -> dict[str, str]:
+    """This environment with the tests' podman settings (and ``extra`` variables)."""
+    return dict(os.environ, CONTAINERS_CONF=str(CONTAINERS_CONF), **extra)
+
+
 def podman(
-    *args: str, timeout: float = 120, check: bool = True
+    *args: str, timeout: float = 120, check: bool = True, stdin: IO[bytes] | None = None
 ) -> subprocess.CompletedProcess[str]:
-    env = dict(os.environ, CONTAINERS_CONF=str(CONTAINERS_CONF))
     result = subprocess.run(
-        ["podman", *args], capture_output=True, text=True, timeout=timeout, env=env
+        ["podman", *args],
+        stdin=stdin,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        env=podman_env(),
     )
     if check and result.returncode != 0:
         raise RuntimeError(
@@ -91,11 +101,9 @@ def base_image() -> str:
         if bundle.is_file():
             shutil.copy(bundle, rootfs / HOST_CA.lstrip("/"))
         tar = subprocess.Popen(["tar", "-C", str(rootfs), "-c", "."], stdout=subprocess.PIPE)
-        env = dict(os.environ, CONTAINERS_CONF=str(CONTAINERS_CONF))
-        imported = subprocess.run(
-            ["podman", "import", "--change", f"ENV PIP_CERT={HOST_CA}",
-             "--change", 'CMD ["/bin/bash"]', "-", tag],
-            stdin=tar.stdout, capture_output=True, text=True, timeout=600, env=env,
+        imported = podman(
+            "import", "--change", f"ENV PIP_CERT={HOST_CA}", "--change", 'CMD ["/bin/bash"]',
+            "-", tag, stdin=tar.stdout, timeout=600, check=False,
         )  # fmt: skip
         tar.wait()
         if imported.returncode != 0:
