@@ -25,6 +25,8 @@ from nav2_pyif import Costmap, GoalChecker, NoValidControl
 from nav2_pyif_planners.follower import PathFollower
 from nav2_pyif_planners.geometry import limit_speed
 
+LOCAL_POINTS = 24  # local plan points the path cost compares rollouts with, at most
+
 
 class MPPI(PathFollower):
     def configure(self) -> None:
@@ -86,7 +88,7 @@ class MPPI(PathFollower):
         noise = controls - self.optimal[None]
 
         rollouts = self._rollout(state, controls, dt)  # (k, t, 3)
-        costs = self._score(rollouts, path_xy, vx_top, t * dt)
+        costs = self._score(rollouts, path_xy, vx_top)
         costs += (
             self.temperature * self.gamma * np.einsum("tc,ktc->k", self.optimal / sigma**2, noise)
         )
@@ -107,11 +109,8 @@ class MPPI(PathFollower):
         y = state[1] + np.cumsum(controls[..., 0] * np.sin(heading) * dt, axis=1)
         return np.stack([x, y, yaw], axis=-1)
 
-    def _score(
-        self, rollouts: np.ndarray, path_xy: np.ndarray, vx_top: float, horizon_s: float
-    ) -> np.ndarray:
-        reach = vx_top * horizon_s + 0.5
-        local = self._local_path(path_xy, reach)
+    def _score(self, rollouts: np.ndarray, path_xy: np.ndarray, vx_top: float) -> np.ndarray:
+        local = self._local_path(path_xy, vx_top)
         sub = rollouts[:, 3::4, :2].reshape(-1, 2)  # every 4th step: enough for the path
         # squared distances to every local plan point as one matrix product (BLAS), not a
         # (rollouts, steps, points, 2) difference array
@@ -138,13 +137,15 @@ class MPPI(PathFollower):
         )
         return total
 
-    def _local_path(self, path_xy: np.ndarray, reach: float) -> np.ndarray:
-        """Plan points from the closest one to ``reach`` metres ahead, at most 24 of them."""
+    def _local_path(self, path_xy: np.ndarray, vx_top: float) -> np.ndarray:
+        """Plan points from the closest one to as far as the horizon reaches at ``vx_top``
+        (plus 0.5 m), at most LOCAL_POINTS of them."""
+        reach = vx_top * self.time_steps * self.model_dt + 0.5
         ahead = path_xy[self.index :]
         seg = np.hypot(*np.diff(ahead, axis=0).T) if len(ahead) > 1 else np.zeros(0)
         cumulative = np.concatenate([[0.0], np.cumsum(seg)])
         end = int(np.searchsorted(cumulative, reach)) + 1
         local = ahead[: max(end, 1)]
-        if len(local) > 24:
-            local = local[np.linspace(0, len(local) - 1, 24).round().astype(int)]
+        if len(local) > LOCAL_POINTS:
+            local = local[np.linspace(0, len(local) - 1, LOCAL_POINTS).round().astype(int)]
         return local

@@ -27,9 +27,7 @@ except ImportError as exc:  # a clear reason at load time, not a NameError mid-r
 from nav2_pyif import Costmap
 
 from nav2_pyif_planners.geometry import limit_speed
-from nav2_pyif_planners.mppi import MPPI
-
-LOCAL_POINTS = 24  # the local plan is padded to this many points: one compiled shape
+from nav2_pyif_planners.mppi import LOCAL_POINTS, MPPI
 
 
 @partial(jax.jit, static_argnames=("batch_size",))
@@ -135,7 +133,8 @@ class MPPIJax(MPPI):
     def _optimise(self, state: np.ndarray, path_xy: np.ndarray) -> tuple[float, float]:
         self._upload_costmap()
         vx_top = limit_speed(self.vx_max, self.speed_limit)
-        local = self._local_path(path_xy, vx_top * self.time_steps * self.model_dt + 0.5)
+        local = self._local_path(path_xy, vx_top)
+        # padded to LOCAL_POINTS with its last point: one compiled shape whatever its length
         padded = np.concatenate([local, np.repeat(local[-1:], LOCAL_POINTS - len(local), 0)])
         settings = jnp.asarray(
             [
