@@ -28,7 +28,7 @@ from typing import Any
 
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
 from nav2_pyif_bench.protocol_bench import BARE_KEY, INPROC_KEY, KEY, peer_commands, progress
-from nav2_pyif_bench.stats import Summary, header_row
+from nav2_pyif_bench.stats import Summary, cycle_target_lines, header_row
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_BINARY = ROOT / "build" / "cpp_bench" / "nav2_pyif_cycle_bench"
@@ -136,19 +136,11 @@ def report(results: dict[str, Any]) -> str:
             c[f"{name}.handler"].row("    of which planner call (compute_ns)"),
         ]
     lines.append(c["rclcpp"].row("rclpy node via rclcpp client (workaround)"))
-    bare, ros = c["bare"].median_us, c["rclcpp"].median_us
-    for name, label in (("pyif_inproc", "--isolation none"), ("pyif", "worker process")):
-        overhead = c[name].median_us - bare
-        lines.append(
-            f"  nav2_pyif ({label}) over bare Zenoh: {overhead:+.1f} µs median "
-            f"(target <= 50 µs): {'MET' if overhead <= 50 else 'NOT MET'}"
-        )
-    for name, label in (("pyif", "worker process"), ("pyif_inproc", "--isolation none")):
-        ratio = ros / c[name].median_us
-        lines.append(
-            f"  rclpy node / nav2_pyif ({label}): {ratio:.2f}x median (target >= 2x): "
-            f"{'MET' if ratio >= 2 else 'NOT MET'}"
-        )
+    lines += cycle_target_lines(
+        c["bare"].median_us,
+        c["rclcpp"].median_us,
+        {"--isolation none": c["pyif_inproc"].median_us, "worker process": c["pyif"].median_us},
+    )
     return "\n".join(lines)
 
 

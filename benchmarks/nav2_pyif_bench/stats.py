@@ -30,6 +30,25 @@ def header_row(width: int = 40) -> str:
     return f"  {'':<{width}} {'median µs':>10} {'p99 µs':>10} {'n':>7}"
 
 
+def cycle_target_lines(bare_us: float, workaround_us: float, cycles: dict[str, float]) -> list[str]:
+    """Issue 2's two control-cycle targets, for each nav2_pyif row (label -> median µs):
+    within 50 µs of the bare Zenoh round trip, and at least 2x below the rclpy workaround."""
+    lines = []
+    for label, median in cycles.items():
+        overhead = median - bare_us
+        lines.append(
+            f"  nav2_pyif ({label}) over bare Zenoh: {overhead:+.1f} µs median "
+            f"(target <= 50 µs): {'MET' if overhead <= 50 else 'NOT MET'}"
+        )
+    for label, median in cycles.items():
+        ratio = workaround_us / median
+        lines.append(
+            f"  rclpy node / nav2_pyif ({label}): {ratio:.2f}x median (target >= 2x): "
+            f"{'MET' if ratio >= 2 else 'NOT MET'}"
+        )
+    return lines
+
+
 def _version(package: str) -> str:
     try:
         return metadata.version(package)
