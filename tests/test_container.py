@@ -133,7 +133,8 @@ def test_compose_router_and_host_serve_the_mounted_planners(
         assert controller.wait_for_host(60) and planner.wait_for_host(60), _logs(
             f"{project}_planner-host_1"
         )
-        assert controller.configure() == {"speed": 0.3}  # docker/planners/go_to.py
+        declared = controller.configure()  # docker/planners/go_to.py
+        assert declared == {"speed": 0.3, "lookahead": 0.4}
         planner.configure()
         controller.activate()
         planner.activate()

@@ -60,6 +60,14 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     )
     p.add_argument("--planner-param", action="append", default=[], metavar="NAME=VALUE")
     p.add_argument(
+        "--path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="directory to import planners from, repeatable (the current directory is "
+        "always searched)",
+    )
+    p.add_argument(
         "--connect",
         metavar="ENDPOINT",
         help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
@@ -103,6 +111,7 @@ def run_command(args: argparse.Namespace) -> int:
             controller_params=_params(args.param),  # type: ignore[arg-type]
             planner_params=_params(args.planner_param),  # type: ignore[arg-type]
             endpoint=args.connect,
+            path=args.path,
             progress=not args.no_progress and sys.stderr.isatty(),
         )
         if not (math.isfinite(config.rate) and config.rate > 0):

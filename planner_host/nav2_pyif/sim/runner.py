@@ -5,6 +5,7 @@ reference client: the very protocol and path the Nav2 plugins use."""
 from __future__ import annotations
 
 import math
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -56,6 +57,7 @@ class SimConfig:
     controller_params: dict[str, ParamValue] = field(default_factory=dict)
     planner_params: dict[str, ParamValue] = field(default_factory=dict)
     call_timeout: float = 0.25  # [s] per control cycle
+    path: list[str] = field(default_factory=list)  # directories to import planners from
     endpoint: str | None = None  # connect to a running host instead of starting one
     controller_key: str = CONTROLLER_KEY
     planner_key: str = PLANNER_KEY
@@ -112,6 +114,23 @@ def planner_entry(key: str, spec: str) -> dict[str, Any]:
     return {"key": key, "planner": resolved}
 
 
+def import_path(config: SimConfig) -> list[str]:
+    """Where the host must look for the run's planners so that it imports them as this process
+    would: ``config.path``, then the entry of this process's ``sys.path`` (the caller's
+    directory, pytest's rootdir, ...) that holds each planner's top-level package. The host
+    is a child process that sees neither on its own."""
+    roots = [str(Path(d).resolve()) for d in config.path]
+    for spec in (config.controller, config.planner):
+        top = spec.partition(":")[0].split(".")[0]
+        for entry in sys.path:
+            base = Path(entry or ".").resolve()
+            if (base / top).is_dir() or (base / f"{top}.py").is_file():
+                if str(base) not in roots:
+                    roots.append(str(base))
+                break
+    return roots
+
+
 def pose_msg(x: float, y: float, yaw: float, frame: str = "map", stamp_s: float = 0.0) -> Any:
     msg = PoseStamped()
     msg.header.frame_id = frame
@@ -157,7 +176,11 @@ def run_sim(config: SimConfig) -> SimResult:
         planner_entry(config.controller_key, config.controller),
         planner_entry(config.planner_key, config.planner),
     ]
-    host = None if config.endpoint else PlannerHostProcess(entries).start()
+    host = (
+        None
+        if config.endpoint
+        else PlannerHostProcess(entries, extra_path=import_path(config)).start()
+    )
     endpoint = config.endpoint or (host.endpoint if host else "")
     session = connect_to([endpoint])
     started = time.perf_counter()
