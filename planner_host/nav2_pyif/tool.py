@@ -22,7 +22,7 @@ def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
     p.add_argument("--planner", metavar="MODULE:CLASS", help="default: re-import the current")
     p.add_argument("--module", metavar="MODULE", help="function-delegate style")
     p.add_argument("--delegate", action="append", default=[], metavar="ROLE=FUNCTION")
-    add_zenoh_arguments(p)
+    add_zenoh_arguments(p, default_mode="client")
     p.set_defaults(func=run_reload)
 
 

@@ -1,8 +1,11 @@
 """Zenoh session configuration from a JSON5 file or command-line flags (rmw_zenoh-style).
 
 Precedence: ``--zenoh-config FILE`` > ``$NAV2_PYIF_ZENOH_CONFIG`` > defaults; then
-``--connect`` / ``--listen`` / ``--mode`` override. Default: a peer that connects to a Zenoh
-router on tcp/localhost:7447 (as rmw_zenoh's nodes do), multicast scouting off. With
+``--connect`` / ``--listen`` / ``--mode`` override. Defaults, chosen as rmw_zenoh chooses
+them: the planner host is a peer that connects to a Zenoh router on tcp/localhost:7447 and
+listens on a free local port (rmw_zenoh's nodes do both: a peer that only connects cannot be
+reached by another peer through a router); the tools (``nav2-pyif reload``, ...) are clients
+of that router, as ros2cli's are, and as the C++ plugin is. Multicast scouting is off. With
 ``--listen`` and no ``--connect``, the host connects nowhere and waits for plugins to dial it.
 """
 
@@ -16,6 +19,7 @@ from dataclasses import dataclass, field
 import zenoh
 
 DEFAULT_ROUTER = "tcp/localhost:7447"
+LOCAL_LISTEN = "tcp/localhost:0"  # a peer's own port, found by other peers through the router
 CONFIG_ENV = "NAV2_PYIF_ZENOH_CONFIG"
 
 
@@ -27,6 +31,7 @@ class ZenohOptions:
     mode: str | None = None
     multicast_scouting: bool = False
     use_environment: bool = True  # read $NAV2_PYIF_ZENOH_CONFIG when no file is given
+    default_mode: str = "peer"  # the mode when neither --mode nor a config file gives one
 
 
 def add_endpoint_arguments(
@@ -42,7 +47,10 @@ def add_endpoint_arguments(
         group.add_argument(flag, action="append", default=[], metavar="ENDPOINT", help=text)
 
 
-def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
+def add_zenoh_arguments(parser: argparse.ArgumentParser, default_mode: str = "peer") -> None:
+    """The Zenoh options of a command; ``default_mode``: "peer" for a planner host (it also
+    listens on a free local port), "client" for a tool that only asks."""
+    parser.set_defaults(zenoh_default_mode=default_mode)
     group = parser.add_argument_group("zenoh")
     add_endpoint_arguments(
         group,
@@ -52,7 +60,9 @@ def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
         "(use when no Zenoh router runs)",
     )
     group.add_argument(
-        "--mode", choices=["peer", "client", "router"], help="Zenoh session mode (default: peer)"
+        "--mode",
+        choices=["peer", "client", "router"],
+        help=f"Zenoh session mode (default: {default_mode})",
     )
     group.add_argument(
         "--multicast-scouting",
@@ -63,7 +73,12 @@ def add_zenoh_arguments(parser: argparse.ArgumentParser) -> None:
 
 def options_from_args(args: argparse.Namespace) -> ZenohOptions:
     return ZenohOptions(
-        args.zenoh_config, list(args.connect), list(args.listen), args.mode, args.multicast_scouting
+        args.zenoh_config,
+        list(args.connect),
+        list(args.listen),
+        args.mode,
+        args.multicast_scouting,
+        default_mode=getattr(args, "zenoh_default_mode", "peer"),
     )
 
 
@@ -75,10 +90,13 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
         config: zenoh.Config = zenoh.Config.from_file(path)
     else:
         config = zenoh.Config()
-        config.insert_json5("mode", json.dumps(options.mode or "peer"))
+        mode = options.mode or options.default_mode
+        config.insert_json5("mode", json.dumps(mode))
         config.insert_json5("scouting/multicast/enabled", json.dumps(options.multicast_scouting))
         if not options.connect and not options.listen:
             config.insert_json5("connect/endpoints", json.dumps([DEFAULT_ROUTER]))
+            if mode == "peer":
+                config.insert_json5("listen/endpoints", json.dumps([LOCAL_LISTEN]))
     if path and options.mode:
         config.insert_json5("mode", json.dumps(options.mode))
     if options.connect:

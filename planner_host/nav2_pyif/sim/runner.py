@@ -182,7 +182,8 @@ def run_sim(config: SimConfig) -> SimResult:
         else PlannerHostProcess(entries, extra_path=import_path(config)).start()
     )
     endpoint = config.endpoint or (host.endpoint if host else "")
-    session = connect_to([endpoint])
+    # A host already running may be behind a router: be a client, as the C++ plugin is.
+    session = connect_to([endpoint], "client" if config.endpoint else "peer")
     started = time.perf_counter()
     try:
         _drive(config, result, session, host)

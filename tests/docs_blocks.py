@@ -1,0 +1,86 @@
+"""The code blocks of the project's Markdown documents, as tests run them.
+
+A block runs as written. A comment on the line before its fence says how, when it needs more
+than "run it in the user's directory and expect exit code 0":
+
+    <!-- doc-test: skip="needs Docker" -->          skipped visibly, with that reason
+    <!-- doc-test: cwd=repo -->                      run from the repository root
+    <!-- doc-test: background="ready" -->            start it, wait until its output matches
+                                                      the regex, leave it running until the
+                                                      document's last block has run, then
+                                                      SIGINT it: it must end by itself
+    <!-- doc-test: expect="now serving" -->          its output must match the regex
+    <!-- doc-test: file=docs/zenoh/x.json5 -->       the block is that file of the repository
+
+Python blocks whose first line is ``# some/path.py`` are files a user writes (they go into the
+user's directory); a Python block with ``def test_`` runs under pytest there; any other Python
+block runs with ``python -c``. Shell blocks run with bash, the project's environment sourced
+(``.venv/nav2_pyif_env.sh``), as after README's "To use the tools by hand".
+"""
+
+from __future__ import annotations
+
+import re
+import shlex
+from dataclasses import dataclass, field
+from pathlib import Path
+
+RUNNABLE = {"bash", "sh", "python"}
+_FENCE = re.compile(r"^```(\w*)\s*$")
+_MARKER = re.compile(r"^<!--\s*doc-test:(.*?)-->\s*$")
+_FILE_HEADER = re.compile(r"^# ([\w./-]+\.py)\s*$")
+
+
+@dataclass(frozen=True)
+class Block:
+    doc: Path
+    label: str  # the document as the tests name it, e.g. docs/DEPLOYMENT.md
+    line: int  # of the opening fence, 1-based
+    lang: str
+    text: str
+    options: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def name(self) -> str:
+        return f"{self.label}:{self.line}"
+
+    @property
+    def user_file(self) -> str | None:
+        """The path a Python block says it is (its first line), if any."""
+        match = _FILE_HEADER.match(self.text.splitlines()[0]) if self.text else None
+        return match.group(1) if match and self.lang == "python" else None
+
+    @property
+    def is_test(self) -> bool:
+        return self.lang == "python" and re.search(r"^def test_", self.text, re.M) is not None
+
+
+def parse_options(marker: str) -> dict[str, str]:
+    options = {}
+    for word in shlex.split(marker):
+        name, sep, value = word.partition("=")
+        options[name] = value if sep else "1"
+    return options
+
+
+def blocks(doc: Path, root: Path) -> list[Block]:
+    """Every fenced block of ``doc`` that runs (shell, Python) or names a file it shows."""
+    label = str(doc.relative_to(root))
+    out: list[Block] = []
+    lines = doc.read_text().splitlines()
+    i = 0
+    while i < len(lines):
+        fence = _FENCE.match(lines[i])
+        if not fence:
+            i += 1
+            continue
+        start, lang = i, fence.group(1)
+        end = next(j for j in range(i + 1, len(lines)) if lines[j].startswith("```"))
+        previous = next((lines[j] for j in range(start - 1, -1, -1) if lines[j].strip()), "")
+        marker = _MARKER.match(previous)
+        options = parse_options(marker.group(1)) if marker else {}
+        text = "\n".join(lines[start + 1 : end]) + "\n"
+        if lang in RUNNABLE or "file" in options:
+            out.append(Block(doc, label, start + 1, lang, text, options))
+        i = end + 1
+    return out
