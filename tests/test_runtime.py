@@ -96,6 +96,9 @@ def test_nav2_named_exceptions_keep_their_type(
     assert reply.error.type == name
     assert f"{name} raised on purpose" in reply.error.message
     assert "compute_velocity_commands" in reply.error.traceback
+    # the planner's own frames first: none of the host's call path into it
+    frames = [line for line in reply.error.traceback.splitlines() if line.startswith("  File")]
+    assert "echo_planners.py" in frames[0] and "runtime.py" not in reply.error.traceback
     assert reply.error.python_type == f"nav2_pyif.exceptions.{name}"
     assert len([r for r in caplog.records if name in r.getMessage()]) == 1  # logged once
     set_fault(driver, "none")

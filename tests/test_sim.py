@@ -27,6 +27,8 @@ from nav2_pyif.sim.report import format_report, summary
 from nav2_pyif.testing import assert_reaches_goal, drive
 from nav2_pyif_planners.maps import BUNDLED, map_path
 
+from tests.conftest import FIXTURES
+
 NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
 
@@ -163,3 +165,27 @@ def test_bundled_maps_have_their_tasks() -> None:
     for name in BUNDLED:
         world = load_map(map_path(name))
         assert world.start is not None and world.goal is not None
+
+
+def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: Path) -> None:
+    sim = [sys.executable, "-m", "nav2_pyif.tool", "sim", "--no-progress", "--out", str(tmp_path)]
+    result = subprocess.run(
+        [*sim, "--controller", "broken_configure:BrokenConfigure", "--path", str(FIXTURES)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode == 1
+    report = result.stdout.splitlines()
+    assert report[0] == "Traceback (most recent call last):", result.stdout
+    tb = report[: report.index("")]
+    assert 'broken_configure.py", line 12, in configure' in tb[1]
+    assert 'broken_configure.py", line 15, in load_model' in tb[3]
+    assert tb[-1] == "RuntimeError: my configure is broken"
+    assert not [line for line in tb if "nav2_pyif" in line]  # none of the host's frames
+    assert report[len(tb) + 1].startswith(
+        "NOT REACHED: broken_configure:BrokenConfigure could not start, so the run stopped: "
+        "InvalidController"
+    )
+    record = json.loads((tmp_path / "office_broken_configure.BrokenConfigure.json").read_text())
+    assert "line 15, in load_model" in record["traceback"]

@@ -13,6 +13,8 @@ import time
 import traceback
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from pathlib import Path
+from types import TracebackType
 from typing import Any
 
 import msgpack
@@ -62,8 +64,21 @@ def _qualname(exc: BaseException) -> str:
     return f"{type(exc).__module__}.{type(exc).__qualname__}"
 
 
+_INTERNAL_DIR = str(Path(__file__).resolve().parent)
+
+
+def _user_frames(tb: TracebackType | None) -> TracebackType | None:
+    """The traceback from the first frame outside nav2_pyif on: the planner author's own code
+    first, not the host's call path into it. All of it when every frame is nav2_pyif's (an
+    error the host itself raised about what the planner returned)."""
+    first = tb
+    while first is not None and first.tb_frame.f_code.co_filename.startswith(_INTERNAL_DIR):
+        first = first.tb_next
+    return first or tb
+
+
 def _short_traceback(exc: BaseException) -> str:
-    text = "".join(traceback.format_exception(type(exc), exc, exc.__traceback__))
+    text = "".join(traceback.format_exception(type(exc), exc, _user_frames(exc.__traceback__)))
     if len(text) <= MAX_TRACEBACK_CHARS:
         return text
     half = MAX_TRACEBACK_CHARS // 2

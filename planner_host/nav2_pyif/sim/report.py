@@ -70,7 +70,9 @@ def summary(result: SimResult) -> dict[str, Any]:
 
 def format_report(result: SimResult) -> str:
     s = summary(result)
-    lines = [
+    # The planner's own traceback first (the error that ended the run), then what happened.
+    lines = [result.traceback.rstrip(), ""] if result.traceback else []
+    lines += [
         f"{'REACHED' if s['reached'] else 'NOT REACHED'}: {s['outcome']}",
         f"  map {s['map']}, controller {s['controller']}, planner {s['planner']}",
         f"  simulated time {s['sim_time_s']:.1f} s in {s['cycles']} cycles at "
@@ -105,5 +107,6 @@ def write_json(result: SimResult, path: Path) -> None:
         "trajectory": [[round(v, 4) for v in p] for p in result.trajectory],
         "trajectory_columns": ["t", "x", "y", "yaw", "v", "w"],
         "controller_errors": result.controller_errors,
+        "traceback": result.traceback,
     }
     path.write_text(json.dumps(record, indent=1))

@@ -80,6 +80,7 @@ class SimResult:
     collisions: int = 0
     min_clearance: float = math.inf
     controller_errors: list[str] = field(default_factory=list)
+    traceback: str = ""  # the planner's own traceback of the error that ended the run
     records: list[CallRecord] = field(default_factory=list)
 
     @property
@@ -218,17 +219,22 @@ def _drive(
         record_calls=True,
     )
     try:
-        for client in (planner, controller):
+        for client, spec in ((planner, config.planner), (controller, config.controller)):
             if host is not None:
                 wait_alive(host, client.wait_for_host)
             elif not client.wait_for_host(10.0):
                 raise SimError(f"no planner host on {client.keys.prefix} at {config.endpoint}")
-            client.configure()
-            client.activate()
+            try:
+                client.configure()
+                client.activate()
+            except Nav2Error as exc:
+                # As Nav2's server would: the plugin fails to start, so the run stops here.
+                _ended_by(result, f"{spec} could not start, so the run stopped", exc)
+                return
         try:
             plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
         except Nav2Error as exc:
-            result.outcome = f"no plan: {type(exc).__name__}: {exc}"
+            _ended_by(result, "no plan", exc)
             return
         result.plan = plan.xy_yaw.copy()
         controller.set_plan(plan)
@@ -240,6 +246,11 @@ def _drive(
         result.records = (planner.records or []) + (controller.records or [])
         planner.close()
         controller.close()
+
+
+def _ended_by(result: SimResult, what: str, exc: Nav2Error) -> None:
+    result.outcome = f"{what}: {type(exc).__name__}: {exc}"
+    result.traceback = exc.remote_traceback
 
 
 def _control_loop(
@@ -288,7 +299,7 @@ def _control_loop(
                 cmd_v = cmd_w = 0.0  # as Nav2's controller server: stop, then retry
                 failing_since = result.sim_time if failing_since is None else failing_since
                 if result.sim_time - failing_since > config.failure_tolerance:
-                    result.outcome = f"controller failed: {type(exc).__name__}: {exc}"
+                    _ended_by(result, "controller failed", exc)
                     return
             robot.step(cmd_v, cmd_w, dt)
             result.sim_time += dt
