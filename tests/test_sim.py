@@ -167,25 +167,45 @@ def test_bundled_maps_have_their_tasks() -> None:
         assert world.start is not None and world.goal is not None
 
 
-def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: Path) -> None:
-    sim = [sys.executable, "-m", "nav2_pyif.tool", "sim", "--no-progress", "--out", str(tmp_path)]
-    result = subprocess.run(
-        [*sim, "--controller", "broken_configure:BrokenConfigure", "--path", str(FIXTURES)],
-        capture_output=True,
-        text=True,
-        timeout=120,
+def run_sim_command(out: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    """``nav2-pyif sim`` on the office map, planners from the test fixtures, output in ``out``."""
+    sim = [sys.executable, "-m", "nav2_pyif.tool", "sim", "--no-progress", "--out", str(out)]
+    return subprocess.run(
+        [*sim, "--path", str(FIXTURES), *args], capture_output=True, text=True, timeout=120
     )
+
+
+def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: Path) -> None:
+    result = run_sim_command(tmp_path, "--controller", "user_faults:BrokenConfigure")
     assert result.returncode == 1
     report = result.stdout.splitlines()
     assert report[0] == "Traceback (most recent call last):", result.stdout
     tb = report[: report.index("")]
-    assert 'broken_configure.py", line 12, in configure' in tb[1]
-    assert 'broken_configure.py", line 15, in load_model' in tb[3]
+    assert 'user_faults.py", line 13, in configure' in tb[1]
+    assert 'user_faults.py", line 16, in load_model' in tb[3]
     assert tb[-1] == "RuntimeError: my configure is broken"
     assert not [line for line in tb if "nav2_pyif" in line]  # none of the host's frames
     assert report[len(tb) + 1].startswith(
-        "NOT REACHED: broken_configure:BrokenConfigure could not start, so the run stopped: "
+        "NOT REACHED: user_faults:BrokenConfigure could not start, so the run stopped: "
         "InvalidController"
     )
-    record = json.loads((tmp_path / "office_broken_configure.BrokenConfigure.json").read_text())
-    assert "line 15, in load_model" in record["traceback"]
+    record = json.loads((tmp_path / "office_user_faults.BrokenConfigure.json").read_text())
+    assert "line 16, in load_model" in record["traceback"]
+
+
+def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
+    result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan")
+    assert result.returncode == 1, result.stderr  # not reached; no traceback of the runner
+    assert "Traceback" not in result.stderr
+    assert "NOT REACHED: set_plan failed: ControllerTimedOut" in result.stdout
+    record = json.loads((tmp_path / "office_user_faults.SlowSetPlan.json").read_text())
+    assert record["summary"]["outcome"].startswith("set_plan failed: ControllerTimedOut")
+
+
+def test_built_in_zenoh_configs_make_no_shared_memory_pool_on_the_first_large_message() -> None:
+    # eclipse-zenoh's default made the first message above 3 kB (the first plan) cost 10-20 ms
+    from nav2_pyif.zenoh_config import ZenohOptions, build_config
+
+    for options in (ZenohOptions(use_environment=False), ZenohOptions(listen=["tcp/[::1]:0"])):
+        config = build_config(options)
+        assert json.loads(config.get_json("transport/shared_memory/enabled")) is False

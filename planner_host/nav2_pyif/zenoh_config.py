@@ -93,6 +93,11 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
         mode = options.mode or options.default_mode
         config.insert_json5("mode", json.dumps(mode))
         config.insert_json5("scouting/multicast/enabled", json.dumps(options.multicast_scouting))
+        # Zenoh's shared-memory transport (on by default in eclipse-zenoh, off in rmw_zenoh)
+        # creates its 16 MiB pool lazily, on the first message above 3 kB: that message (in
+        # practice the first plan) took 10-20 ms instead of 1 ms. Payloads here are at most a
+        # few MB and the C++ plugin's backends do not use it: off, unless a config file says.
+        config.insert_json5("transport/shared_memory/enabled", "false")
         if not options.connect and not options.listen:
             config.insert_json5("connect/endpoints", json.dumps([DEFAULT_ROUTER]))
             if mode == "peer":

@@ -7,6 +7,7 @@ import math
 import sys
 from pathlib import Path
 
+from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.sim.runner import SimConfig, SimError, run_sim
 
 EPILOG = """\
@@ -117,7 +118,7 @@ def run_command(args: argparse.Namespace) -> int:
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")
         result = run_sim(config)
-    except (SimError, RuntimeError, TimeoutError, ConnectionError) as exc:
+    except (SimError, RuntimeError, TimeoutError, ConnectionError, Nav2Error) as exc:
         print(f"nav2-pyif sim: error: {exc}", file=sys.stderr)
         return 2
     args.out.mkdir(parents=True, exist_ok=True)

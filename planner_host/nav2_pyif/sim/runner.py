@@ -237,7 +237,11 @@ def _drive(
             _ended_by(result, "no plan", exc)
             return
         result.plan = plan.xy_yaw.copy()
-        controller.set_plan(plan)
+        try:
+            controller.set_plan(plan)
+        except Nav2Error as exc:  # Nav2's controller server aborts the goal: a result too
+            _ended_by(result, "set_plan failed", exc)
+            return
         _control_loop(config, result, controller, local_version)
         for client in (controller, planner):
             client.deactivate()
