@@ -1,0 +1,125 @@
+"""The documented launch file, run as the README says: ``ros2 launch nav2_pyif_bridge
+nav2_pyif.launch.py`` (with this test's params and endpoint) brings up the planner host,
+controller_server, planner_server and the lifecycle manager; a goal is reached; Ctrl-C (SIGINT
+to the launch's process group, as a terminal sends it) ends every process it started.
+
+Needs what test_nav2_pyif.py needs, plus `ros2 launch` (ros2cli, launch, launch_ros). Skipped,
+saying what is missing, otherwise.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import random
+import shutil
+import signal
+import time
+from pathlib import Path
+
+import nav2_testing
+import pytest
+
+HERE = Path(__file__).resolve().parent
+PREFIX = "nav2_pyif/launch_test"  # the keys nav2_params.yaml names
+GOAL = (2.0, 0.5)
+
+
+def _launch_missing() -> list[str]:
+    absent = []
+    if shutil.which("ros2") is None:
+        absent.append("the ros2 command (ros2cli)")
+    try:
+        import launch  # noqa: F401
+        import launch_ros  # noqa: F401
+    except ImportError:
+        absent.append("launch and launch_ros")
+    host = nav2_testing.host_command()
+    if host is not None and len(host) != 1:
+        absent.append("$NAV2_PYIF_PLANNER_HOST as one executable (the launch file's argument)")
+    return absent
+
+
+def _descendants(pid: int) -> set[int]:
+    """Every process below ``pid``, from /proc."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                ppid = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(entry.name))
+    found, stack = set(), [pid]
+    while stack:
+        for child in children.get(stack.pop(), []):
+            found.add(child)
+            stack.append(child)
+    return found
+
+
+def _running(pid: int) -> bool:
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != "Z"
+
+
+def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Path) -> None:
+    missing = nav2_testing.missing() + _launch_missing()
+    if missing:
+        pytest.skip("the launch-file test needs: " + ", ".join(missing))
+    endpoint = f"tcp/127.0.0.1:{nav2_testing.free_port()}"
+    params = tmp_path / "nav2_params.yaml"
+    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
+    domain = str(random.randint(100, 200))
+    os.environ["ROS_DOMAIN_ID"] = domain  # this process's rclpy too
+    procs = nav2_testing.Processes(tmp_path, dict(os.environ, PYTHONUNBUFFERED="1"))
+    (host,) = nav2_testing.host_command() or []
+    procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py")])
+    procs.start(
+        "launch",
+        [
+            "ros2",
+            "launch",
+            "nav2_pyif_bridge",
+            "nav2_pyif.launch.py",
+            f"params_file:={params}",
+            f"listen:={endpoint}",
+            f"key_prefix:={PREFIX}",
+            f"planner_host:={host}",
+        ],
+    )
+    launch = procs.procs["launch"]
+    import rclpy
+
+    rclpy.init()
+    client = nav2_testing.Nav2Client()
+    try:
+        states = client.wait_active(nav2_testing.SERVERS, 120.0)
+        assert all(s == "active" for s in states.values()), f"{states}\n{procs.log('launch')}"
+        planned = client.plan(*GOAL)
+        assert planned is not None and planned.status == nav2_testing.SUCCEEDED, procs.log("launch")
+        handle = client.follow(planned.result.path)
+        result = client.wait(handle.get_result_async(), 90.0)
+        assert result is not None and result.status == nav2_testing.SUCCEEDED, procs.log("launch")
+        assert client.spin_until(lambda: client.pose is not None, 5.0)
+        x, y = client.pose
+        assert math.hypot(x - GOAL[0], y - GOAL[1]) < 0.35, f"robot at {(x, y)}, goal {GOAL}"
+
+        started = _descendants(launch.pid)
+        names = {Path(f"/proc/{p}/comm").read_text().strip() for p in started if _running(p)}
+        assert {"controller_serve", "planner_server"} <= names, names  # comm: 15 characters
+        os.killpg(launch.pid, signal.SIGINT)  # Ctrl-C in the launch's terminal
+        code = launch.wait(60)
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and any(_running(p) for p in started):
+            time.sleep(0.2)
+        left = {p: Path(f"/proc/{p}/comm").read_text().strip() for p in started if _running(p)}
+        assert not left, f"still running after Ctrl-C: {left}\n{procs.log('launch')}"
+        assert code == 0, f"ros2 launch exited {code}\n{procs.log('launch')}"
+    finally:
+        client.destroy_node()
+        rclpy.try_shutdown()
+        procs.stop_all()
