@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import logging
 import math
 import sys
 from pathlib import Path
 
-from nav2_pyif.sim.runner import SimConfig, SimError, run_sim
+from nav2_pyif.sim.runner import RunInterrupted, SimConfig, SimError, SimResult, run_sim
 
 EPILOG = """\
 planners: the reference ones by name (controllers: pure_pursuit, mppi, apf; global
@@ -92,10 +93,10 @@ def _params(items: list[str]) -> dict[str, object]:
 
 
 def run_command(args: argparse.Namespace) -> int:
+    logging.getLogger("nav2_pyif.sim").setLevel(logging.INFO)  # what runs, on stderr
     from nav2_pyif_planners.maps import map_path
 
-    from nav2_pyif.sim.plot import draw
-    from nav2_pyif.sim.report import format_report, write_json
+    from nav2_pyif.sim.report import format_report
 
     try:
         config = SimConfig(
@@ -117,14 +118,31 @@ def run_command(args: argparse.Namespace) -> int:
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")
         result = run_sim(config)
+    except RunInterrupted as exc:
+        png, record = _write(exc.result, args)
+        print(
+            f"nav2-pyif sim: {exc.result.outcome}; wrote the run so far to {png} and {record}",
+            file=sys.stderr,
+        )
+        return exc.exit_code
     except (SimError, RuntimeError, TimeoutError, ConnectionError) as exc:
         print(f"nav2-pyif sim: error: {exc}", file=sys.stderr)
         return 2
-    args.out.mkdir(parents=True, exist_ok=True)
-    stem = args.name or f"{Path(str(config.map)).stem}_{args.controller.replace(':', '.')}"
-    png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
-    draw(result, png)
-    write_json(result, record)
+    png, record = _write(result, args)
     print(format_report(result))
     print(f"\nwrote {png} and {record}")
     return 0 if result.reached else 1
+
+
+def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
+    """The run's PNG and JSON record under --out."""
+    from nav2_pyif.sim.plot import draw
+    from nav2_pyif.sim.report import write_json
+
+    args.out.mkdir(parents=True, exist_ok=True)
+    controller = result.config.controller
+    stem = args.name or f"{Path(str(result.config.map)).stem}_{controller.replace(':', '.')}"
+    png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
+    draw(result, png)
+    write_json(result, record)
+    return png, record

@@ -4,6 +4,8 @@ reference client: the very protocol and path the Nav2 plugins use."""
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import sys
 import time
@@ -23,11 +25,13 @@ from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.host_process import PlannerHostProcess, wait_alive
 from nav2_pyif.params import ParamValue
+from nav2_pyif.signals import Interrupted
 from nav2_pyif.sim.inflation import inflate, window
 from nav2_pyif.sim.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.sim.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.zenoh_config import connect_to
 
+log = logging.getLogger("nav2_pyif.sim")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
 Pose3 = tuple[float, float, float]
@@ -35,6 +39,14 @@ Pose3 = tuple[float, float, float]
 
 class SimError(Exception):
     """Bad input for a run (map, poses, planner spec), with the reason."""
+
+
+class RunInterrupted(Interrupted):
+    """A signal ended the run; ``result`` holds what was driven until then."""
+
+    def __init__(self, signum: int, result: SimResult) -> None:
+        super().__init__(signum)
+        self.result = result
 
 
 @dataclass
@@ -73,6 +85,7 @@ class SimResult:
     goal: Pose3
     reached: bool = False
     outcome: str = "not started"
+    interrupted: str | None = None  # the signal that ended the run early
     sim_time: float = 0.0
     wall_time: float = 0.0
     plan: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
@@ -171,28 +184,33 @@ def prepare(config: SimConfig) -> SimResult:
 
 
 def run_sim(config: SimConfig) -> SimResult:
-    """Run one navigation task; raises SimError for bad input, returns the outcome."""
+    """Run one navigation task; raises SimError for bad input, returns the outcome. A
+    terminating signal (``nav2_pyif.signals``) stops the run: the host is stopped and
+    RunInterrupted carries the result so far."""
     result = prepare(config)
     entries = [
         planner_entry(config.controller_key, config.controller),
         planner_entry(config.planner_key, config.planner),
     ]
-    host = (
-        None
-        if config.endpoint
-        else PlannerHostProcess(entries, extra_path=import_path(config)).start()
-    )
-    endpoint = config.endpoint or (host.endpoint if host else "")
-    # A host already running may be behind a router: be a client, as the C++ plugin is.
-    session = connect_to([endpoint], "client" if config.endpoint else "peer")
     started = time.perf_counter()
     try:
-        _drive(config, result, session, host)
+        with contextlib.ExitStack() as cleanup:
+            host = None
+            if not config.endpoint:
+                host = PlannerHostProcess(entries, extra_path=import_path(config))
+                cleanup.callback(host.close)
+                host.start()
+            endpoint = config.endpoint or (host.endpoint if host else "")
+            # A host already running may be behind a router: be a client, as the C++ plugin is.
+            session = connect_to([endpoint], "client" if config.endpoint else "peer")
+            cleanup.callback(session.close)
+            _drive(config, result, session, host)
+    except Interrupted as exc:
+        result.interrupted = exc.name
+        result.outcome = f"interrupted by {exc.name}"
+        raise RunInterrupted(exc.signum, result) from None
     finally:
         result.wall_time = time.perf_counter() - started
-        session.close()
-        if host is not None:
-            host.stop()
     return result
 
 
@@ -238,6 +256,13 @@ def _drive(
             return
         result.plan = plan.xy_yaw.copy()
         controller.set_plan(plan)
+        log.info(
+            "plan of %.2f m by %s; driving with %s at %g Hz",
+            result.path_length,
+            config.planner,
+            config.controller,
+            config.rate,
+        )
         _control_loop(config, result, controller, local_version)
         for client in (controller, planner):
             client.deactivate()
