@@ -8,11 +8,32 @@ import math
 import sys
 from pathlib import Path
 
-from nav2_pyif.sim.runner import RunInterrupted, SimConfig, SimError, SimResult, run_sim
+from nav2_pyif_planners.maps import BUNDLED
 
-EPILOG = """\
-planners: the reference ones by name (controllers: pure_pursuit, mppi, apf; global
-planner: astar) or your own as package.module:ClassName.
+from nav2_pyif.sim.runner import (
+    DEFAULTS,
+    RunInterrupted,
+    SimConfig,
+    SimError,
+    SimResult,
+    run_sim,
+)
+
+
+def _reference_planners() -> str:
+    from nav2_pyif_planners import ALIASES
+
+    width = max(map(len, ALIASES)) + 2
+    return "\n".join(
+        f"  {name:<{width}}{target}{'' if ':' in target else ' (function delegates)'}"
+        for name, target in ALIASES.items()
+    )
+
+
+EPILOG = f"""\
+planners (--controller, --planner): a reference one by name, or your own as
+package.module:ClassName. The reference planners:
+{_reference_planners()}
 
 examples:
   nav2-pyif sim                                     # office map, pure_pursuit + astar
@@ -35,10 +56,15 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     p.add_argument(
         "--map",
         default="office",
-        help="bundled map name (office, cluttered) or a map_server YAML path",
+        help=f"bundled map name ({', '.join(BUNDLED)}) or a map_server YAML path",
     )
-    p.add_argument("--controller", default="pure_pursuit")
-    p.add_argument("--planner", default="astar")
+    p.add_argument(
+        "--controller",
+        help=f"default: {DEFAULTS['controller']}; with --connect, what the host serves",
+    )
+    p.add_argument(
+        "--planner", help=f"default: {DEFAULTS['planner']}; with --connect, what the host serves"
+    )
     p.add_argument(
         "--start", nargs=3, type=float, metavar=("X", "Y", "YAW"), help="default: the map's task"
     )
@@ -72,7 +98,8 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "--connect",
         metavar="ENDPOINT",
         help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
-        "nav2_pyif/sim/GridBased) instead of starting one",
+        "nav2_pyif/sim/GridBased) instead of starting one; the run is named after what "
+        "it serves",
     )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
     p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
@@ -140,7 +167,7 @@ def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
     from nav2_pyif.sim.report import write_json
 
     args.out.mkdir(parents=True, exist_ok=True)
-    controller = result.config.controller
+    controller = result.name_of("controller")  # what the host served, with --connect too
     stem = args.name or f"{Path(str(result.config.map)).stem}_{controller.replace(':', '.')}"
     png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
     draw(result, png)

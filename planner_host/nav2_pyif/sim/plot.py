@@ -72,7 +72,7 @@ def figure(result: SimResult) -> Figure:
             "-",
             color="tab:blue",
             lw=1.5,
-            label="plan (A*)" if result.config.planner == "astar" else "plan",
+            label="plan (A*)" if result.name_of("planner") == "astar" else "plan",
         )
     if result.trajectory:
         t = np.array(result.trajectory)
@@ -115,8 +115,8 @@ def figure(result: SimResult) -> Figure:
         t = np.array(result.trajectory)
         speed.plot(t[:, 0], t[:, 4], label="v [m/s]")
         speed.plot(t[:, 0], t[:, 5], label="ω [rad/s]", alpha=0.7)
+        speed.legend(fontsize=8)
     speed.set_xlabel("simulated time [s]")
-    speed.legend(fontsize=8)
     speed.set_title(_wrapped("commanded motion", 45), fontsize=10)
 
     latency = fig.add_subplot(grid[1, 2])
@@ -130,9 +130,9 @@ def figure(result: SimResult) -> Figure:
             1000.0 / result.config.rate, color="red", ls="--", lw=0.8, label="control period"
         )
         latency.set_yscale("log")
+        latency.legend(fontsize=8)
     latency.set_xlabel("control cycle")
     latency.set_ylabel("ms")
-    latency.legend(fontsize=8)
     latency.set_title(_wrapped("compute_velocity_commands latency", 45), fontsize=10)
     return fig
 

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
+from nav2_pyif_planners.maps import BUNDLED
 from tqdm import tqdm
 
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
@@ -49,11 +50,15 @@ class RunInterrupted(Interrupted):
         self.result = result
 
 
+DEFAULTS = {"controller": "pure_pursuit", "planner": "astar"}
+
+
 @dataclass
 class SimConfig:
     map: Path
-    controller: str = "pure_pursuit"
-    planner: str = "astar"
+    # None: the default (DEFAULTS) on a host of our own, whatever a running host serves
+    controller: str | None = None
+    planner: str | None = None
     start: Pose3 | None = None
     goal: Pose3 | None = None
     rate: float = 20.0  # [Hz] control rate (simulated time)
@@ -75,6 +80,11 @@ class SimConfig:
     planner_key: str = PLANNER_KEY
     progress: bool = False
 
+    def spec(self, role: str) -> str:
+        """The planner asked for as ``role`` ("controller", "planner"), else the default."""
+        asked: str | None = getattr(self, role)
+        return asked or DEFAULTS[role]
+
 
 @dataclass
 class SimResult:
@@ -86,6 +96,7 @@ class SimResult:
     reached: bool = False
     outcome: str = "not started"
     interrupted: str | None = None  # the signal that ended the run early
+    served: dict[str, str] = field(default_factory=dict)  # role -> what the host said it serves
     sim_time: float = 0.0
     wall_time: float = 0.0
     plan: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
@@ -111,6 +122,22 @@ class SimResult:
     def cycles(self) -> int:
         return len(self.trajectory)
 
+    def name_of(self, role: str) -> str:
+        """What drove as ``role`` ("controller", "planner"), by its short name: what the host
+        said it serves, else what was asked for."""
+        if role in self.served:
+            return short_name(self.served[role])
+        asked: str | None = getattr(self.config, role)
+        return asked or ("unknown" if self.config.endpoint else DEFAULTS[role])
+
+
+def short_name(spec: str) -> str:
+    """A reference planner's alias for its spec or host label, else the spec itself."""
+    from nav2_pyif_planners import ALIASES
+
+    target = spec.split(" ")[0]  # a host labels a delegates module "module (delegates)"
+    return next((alias for alias, t in ALIASES.items() if t == target), target)
+
 
 def planner_entry(key: str, spec: str) -> dict[str, Any]:
     """A host config entry for a planner name: a reference alias, ``module:Class``, or the
@@ -134,7 +161,7 @@ def import_path(config: SimConfig) -> list[str]:
     directory, pytest's rootdir, ...) that holds each planner's top-level package. The host
     is a child process that sees neither on its own."""
     roots = [str(Path(d).resolve()) for d in config.path]
-    for spec in (config.controller, config.planner):
+    for spec in (config.spec("controller"), config.spec("planner")):
         top = spec.partition(":")[0].split(".")[0]
         for entry in sys.path:
             base = Path(entry or ".").resolve()
@@ -160,7 +187,9 @@ def prepare(config: SimConfig) -> SimResult:
     try:
         world = load_map(config.map)
     except MapError as exc:
-        raise SimError(str(exc)) from exc
+        if config.map.exists():
+            raise SimError(str(exc)) from exc
+        raise SimError(f"{exc}; the bundled maps: {', '.join(BUNDLED)}") from exc
     start, goal = config.start or world.start, config.goal or world.goal
     if start is None or goal is None:
         raise SimError(f"no start/goal given and {config.map} has no default task")
@@ -189,8 +218,8 @@ def run_sim(config: SimConfig) -> SimResult:
     RunInterrupted carries the result so far."""
     result = prepare(config)
     entries = [
-        planner_entry(config.controller_key, config.controller),
-        planner_entry(config.planner_key, config.planner),
+        planner_entry(config.controller_key, config.spec("controller")),
+        planner_entry(config.planner_key, config.spec("planner")),
     ]
     started = time.perf_counter()
     try:
@@ -237,7 +266,7 @@ def _drive(
         record_calls=True,
     )
     try:
-        for client, spec in ((planner, config.planner), (controller, config.controller)):
+        for client, role in ((planner, "planner"), (controller, "controller")):
             if host is not None:
                 wait_alive(host, client.wait_for_host)
             elif not client.wait_for_host(10.0):
@@ -247,8 +276,10 @@ def _drive(
                 client.activate()
             except Nav2Error as exc:
                 # As Nav2's server would: the plugin fails to start, so the run stops here.
-                _ended_by(result, f"{spec} could not start, so the run stopped", exc)
+                what = result.name_of(role)
+                _ended_by(result, f"{what} could not start, so the run stopped", exc)
                 return
+        _note_served(config, result, {"planner": planner.served, "controller": controller.served})
         try:
             plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
         except Nav2Error as exc:
@@ -259,8 +290,8 @@ def _drive(
         log.info(
             "plan of %.2f m by %s; driving with %s at %g Hz",
             result.path_length,
-            config.planner,
-            config.controller,
+            result.name_of("planner"),
+            result.name_of("controller"),
             config.rate,
         )
         _control_loop(config, result, controller, local_version)
@@ -276,6 +307,25 @@ def _drive(
 def _ended_by(result: SimResult, what: str, exc: Nav2Error) -> None:
     result.outcome = f"{what}: {type(exc).__name__}: {exc}"
     result.traceback = exc.remote_traceback
+
+
+def _note_served(config: SimConfig, result: SimResult, served: dict[str, str | None]) -> None:
+    """Record what the host serves; a running host may serve another planner than asked."""
+    for role, label in served.items():
+        if label is None:
+            continue  # a host older than the configure reply's 'planner' field
+        result.served[role] = label
+        asked: str | None = getattr(config, role)
+        if config.endpoint and asked and short_name(asked) != short_name(label):
+            log.warning(
+                "--%s %s was given, but the host at %s serves %s on %s: the run and its "
+                "files are named after what the host serves",
+                role,
+                asked,
+                config.endpoint,
+                label,
+                getattr(config, f"{role}_key"),
+            )
 
 
 def _control_loop(
