@@ -126,11 +126,11 @@ def figure(result: SimResult) -> Figure:
         compute = np.array([r.compute_ns for r in cycles]) / 1e6
         latency.plot(total, lw=0.8, label="round trip")
         latency.plot(compute, lw=0.8, label="host compute")
-        latency.axhline(
-            1000.0 / result.config.rate, color="red", ls="--", lw=0.8, label="control period"
-        )
+        period = 1000.0 / result.config.rate
+        latency.axhline(period, color="red", ls="--", lw=0.8, label="control period")
         latency.set_yscale("log")
-        latency.legend(fontsize=8)
+        latency.set_ylim(top=max(12 * period, 2 * float(total.max())))  # room for the legend
+        latency.legend(fontsize=8, loc="upper right", ncols=3)
     latency.set_xlabel("control cycle")
     latency.set_ylabel("ms")
     latency.set_title(_wrapped("compute_velocity_commands latency", 45), fontsize=10)
