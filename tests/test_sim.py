@@ -34,6 +34,7 @@ from nav2_pyif_planners import ALIASES
 from nav2_pyif_planners.maps import BUNDLED, map_path
 
 from tests.conftest import FIXTURES
+from tests.test_host_e2e import controller
 
 NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
@@ -96,11 +97,14 @@ def run_cli(*args: str, env: dict[str, str] | None = None) -> subprocess.Complet
     )
 
 
-def test_connect_names_the_run_after_what_the_host_serves(start_host: Any, tmp_path: Path) -> None:
+def test_connect_names_the_run_after_what_the_host_serves(
+    start_host: Any, zsession_factory: Any, tmp_path: Path
+) -> None:
     host = start_host(
         *("--serve", "nav2_pyif/sim/FollowPath=nav2_pyif_planners.mppi:MPPI"),
         *("--serve", "nav2_pyif/sim/GridBased=nav2_pyif_planners.astar:AStar"),
     )
+    controller(zsession_factory, host, key="nav2_pyif/sim/FollowPath")  # waits until it serves
     short = ("--connect", host.endpoint, "--timeout", "1", "--out", str(tmp_path))
     result = run_cli(*short)
     assert result.returncode == 1, result.stderr  # 1 s: not there yet
