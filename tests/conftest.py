@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import time
 from collections.abc import Iterator
@@ -99,6 +100,40 @@ def make_costmap(size: int = 40, version: int = 1, frame: str = "odom") -> Costm
         version=version,
         footprint=[[0.2, 0.1], [0.2, -0.1], [-0.2, -0.1], [-0.2, 0.1]],
     )
+
+
+def _stat(pid: int | str) -> list[str]:
+    """/proc/PID/stat's fields after the command name: state, ppid, ..., start time [19]."""
+    return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+
+
+def process_tree(root: int) -> dict[int, tuple[str, str]]:
+    """``root``'s descendants now: pid -> (start time, command line), from /proc."""
+    parents: dict[int, int] = {}
+    for entry in Path("/proc").iterdir():
+        with contextlib.suppress(OSError, ValueError):
+            parents[int(entry.name)] = int(_stat(entry.name)[1])
+    found: dict[int, tuple[str, str]] = {}
+    frontier = [root]
+    while frontier:
+        parent = frontier.pop()
+        for pid in [p for p, pp in parents.items() if pp == parent]:
+            with contextlib.suppress(OSError):
+                command = Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ")
+                found[pid] = (_stat(pid)[19], command.decode(errors="replace"))
+                frontier.append(pid)
+    return found
+
+
+def survivors(tree: dict[int, tuple[str, str]]) -> dict[int, str]:
+    """The processes of a ``process_tree`` still running (same pid and start time)."""
+    alive = {}
+    for pid, (started, command) in tree.items():
+        with contextlib.suppress(OSError):
+            fields = _stat(pid)
+            if fields[19] == started and fields[0] != "Z":
+                alive[pid] = command
+    return alive
 
 
 def wait_until(predicate: object, timeout: float = 10.0) -> bool:

@@ -2,13 +2,17 @@
 
 from __future__ import annotations
 
+import re
+import shlex
 import subprocess
 import sys
 from pathlib import Path
 
 import pytest
+from nav2_pyif.cli import build_parser
 
 from tests.conftest import FIXTURES
+from tests.test_env_and_router import parse
 
 PYTHONPATH = {"PYTHONPATH": str(FIXTURES)}
 
@@ -30,6 +34,26 @@ def test_help_lists_the_ways_to_serve() -> None:
     assert result.returncode == 0
     for words in ("--planner MODULE:CLASS", "--delegate ROLE=FUNCTION", "--listen", "examples:"):
         assert words in result.stdout
+
+
+def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
+    help_text = build_parser().format_help()
+    examples = help_text.split("\nexamples:\n", 1)[1].split("\n\n")
+    commands = [
+        "".join(line.strip().removesuffix("\\") for line in block.splitlines()[1:])
+        for block in examples
+        if block.lstrip().startswith("# ")
+    ]
+    assert len(commands) == 5
+    for command in commands:
+        words = shlex.split(command)
+        assert "\\" not in command and all(w for w in words), command
+        variables = [w for w in words if re.match(r"[A-Z][A-Z0-9_]*=", w)]
+        assert words[len(variables)] == "planner-host", command
+        environ = dict(v.split("=", 1) for v in variables)
+        args = parse(environ, *words[len(variables) + 1 :])
+        assert args.key or args.serve or args.config, command
+    assert max(len(line) for line in help_text.splitlines()) <= 100
 
 
 @pytest.mark.parametrize(

@@ -6,11 +6,14 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 from importlib.util import find_spec
 from pathlib import Path
+from typing import Any
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 from nav2_pyif.sim.inflation import inflate, window
@@ -23,11 +26,15 @@ from nav2_pyif.sim.mapfile import (
     load_map,
     read_pgm,
 )
+from nav2_pyif.sim.plot import figure
 from nav2_pyif.sim.report import format_report, summary
+from nav2_pyif.sim.runner import SimConfig, prepare
 from nav2_pyif.testing import assert_reaches_goal, drive
+from nav2_pyif_planners import ALIASES
 from nav2_pyif_planners.maps import BUNDLED, map_path
 
 from tests.conftest import FIXTURES
+from tests.test_host_e2e import controller
 
 NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
@@ -80,14 +87,84 @@ def test_the_main_command_writes_png_and_json(tmp_path: Path) -> None:
     assert len(record["trajectory"]) == record["summary"]["cycles"]
 
 
-def run_cli(*args: str) -> subprocess.CompletedProcess[str]:
+def run_cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
         [sys.executable, "-m", "nav2_pyif.tool", "sim", "--no-progress", *args],
         capture_output=True,
         text=True,
         timeout=120,
-        env=dict(os.environ),
+        env=dict(os.environ, **(env or {})),
     )
+
+
+def test_connect_names_the_run_after_what_the_host_serves(
+    start_host: Any, zsession_factory: Any, tmp_path: Path
+) -> None:
+    host = start_host(
+        *("--serve", "nav2_pyif/sim/FollowPath=nav2_pyif_planners.mppi:MPPI"),
+        *("--serve", "nav2_pyif/sim/GridBased=nav2_pyif_planners.astar:AStar"),
+    )
+    controller(zsession_factory, host, key="nav2_pyif/sim/FollowPath")  # waits until it serves
+    short = ("--connect", host.endpoint, "--timeout", "1", "--out", str(tmp_path))
+    result = run_cli(*short)
+    assert result.returncode == 1, result.stderr  # 1 s: not there yet
+    record = json.loads((tmp_path / "office_mppi.json").read_text())
+    assert (record["summary"]["controller"], record["summary"]["planner"]) == ("mppi", "astar")
+    assert record["summary"]["served"]["controller"] == "nav2_pyif_planners.mppi:MPPI"
+    assert "controller mppi, planner astar" in result.stdout
+    assert (tmp_path / "office_mppi.png").exists()
+    assert not (tmp_path / "office_pure_pursuit.png").exists()
+    assert "--controller" not in result.stderr  # nothing asked, nothing to contradict
+
+    result = run_cli(*short, "--controller", "pure_pursuit", "--name", "asked")
+    assert "--controller pure_pursuit was given, but the host at" in result.stderr
+    assert "serves nav2_pyif_planners.mppi:MPPI on nav2_pyif/sim/FollowPath" in result.stderr
+    assert json.loads((tmp_path / "asked.json").read_text())["summary"]["controller"] == "mppi"
+
+
+def test_help_lists_every_reference_planner_and_bundled_map() -> None:
+    result = run_cli("--help")
+    assert result.returncode == 0
+    for name, target in ALIASES.items():
+        assert re.search(rf"^  {name} +{re.escape(target)}", result.stdout, re.M), name
+    for name in BUNDLED:
+        assert name in result.stdout
+
+
+def test_an_unknown_map_name_lists_the_bundled_maps() -> None:
+    result = run_cli("--map", "offfice")
+    assert result.returncode == 2
+    assert f"the bundled maps: {', '.join(BUNDLED)}" in result.stderr
+
+
+def test_missing_jax_names_a_command_that_installs_it(tmp_path: Path) -> None:
+    (tmp_path / "jax").mkdir()  # a jax that fails to import, as a missing one does
+    (tmp_path / "jax/__init__.py").write_text("raise ImportError(\"No module named 'jax'\")\n")
+    path = os.pathsep.join([str(tmp_path), os.environ.get("PYTHONPATH", "")])
+    result = run_cli("--controller", "mppi_jax", env={"PYTHONPATH": path})
+    assert result.returncode == 2
+    assert f"{sys.executable} -m pip install 'jax>=0.4.30'" in result.stderr
+    assert "NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh" in result.stderr
+
+
+def test_the_picture_has_a_cost_scale_a_heading_legend_and_wrapped_titles() -> None:
+    long_name = "my_robot_planners.controllers.go_to:GoToTheGoalController"
+    result = prepare(SimConfig(map=map_path("office"), controller=long_name))
+    result.trajectory = [(0.05 * i, 2.0 + 0.02 * i, 2.5, 0.0, 0.4, 0.0) for i in range(40)]
+    result.outcome, result.interrupted = "interrupted by SIGTERM", "SIGTERM"
+    fig = figure(result)
+    try:
+        bars = [ax for ax in fig.axes if ax.get_label() == "<colorbar>"]
+        assert len(bars) == 1 and "cost" in bars[0].get_ylabel()
+        world = fig.axes[0]
+        legend = world.get_legend()
+        assert legend is not None
+        assert "heading" in [t.get_text() for t in legend.get_texts()]
+        title = world.get_title()
+        assert "interrupted by SIGTERM" in " ".join(title.split()) and "\n" in title
+        assert max(map(len, title.splitlines())) <= 90
+    finally:
+        plt.close(fig)
 
 
 @pytest.mark.parametrize(

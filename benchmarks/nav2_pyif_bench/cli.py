@@ -14,6 +14,8 @@ import json
 import sys
 from pathlib import Path
 
+from nav2_pyif.signals import Interrupted, raise_on_signals
+
 from nav2_pyif_bench import (
     cpp_cycle_bench,
     fleet_bench,
@@ -58,6 +60,15 @@ def main(argv: list[str] | None = None) -> int:
     for p in (protocol, cpp_cycle, mppi, reliability, fleet):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
+    raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
+    try:
+        return run(args)
+    except Interrupted as exc:
+        print(f"nav2-pyif-bench {args.bench}: stopped by {exc.name}", file=sys.stderr)
+        return exc.exit_code
+
+
+def run(args: argparse.Namespace) -> int:
     print(f"machine: {machine_description()}\n", flush=True)
     if args.bench == "cpp-cycle":
         try:

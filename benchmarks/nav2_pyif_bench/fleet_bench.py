@@ -108,17 +108,23 @@ def run_one(robots: int, seconds: float, isolation: str) -> dict[str, Any]:
             ctx.Process(target=_client_process, args=(host.endpoint, g, seconds, start_at, queue))
             for g in groups
         ]
-        for c in clients:
-            c.start()
-        time.sleep(max(0.0, start_at - time.monotonic()))
-        cpu_before, wall_before = _cpu_seconds(host.proc.pid), time.monotonic()
-        samples: list[tuple[float, bool]] = []
-        for _ in clients:
-            samples += queue.get(timeout=seconds + 300)
-        cpu = _cpu_seconds(host.proc.pid) - cpu_before
-        wall = time.monotonic() - wall_before
-        for c in clients:
-            c.join(30)
+        try:
+            for c in clients:
+                c.start()
+            time.sleep(max(0.0, start_at - time.monotonic()))
+            cpu_before, wall_before = _cpu_seconds(host.proc.pid), time.monotonic()
+            samples: list[tuple[float, bool]] = []
+            for _ in clients:
+                samples += queue.get(timeout=seconds + 300)
+            cpu = _cpu_seconds(host.proc.pid) - cpu_before
+            wall = time.monotonic() - wall_before
+            for c in clients:
+                c.join(30)
+        finally:  # also on a signal or an error: no client process is left behind
+            for c in clients:
+                if c.pid is not None and c.is_alive():
+                    c.terminate()
+                    c.join(5)
     latency = np.array([s[0] for s in samples if s[1]]) * 1000
     missed = sum(1 for s in samples if not s[1] or s[0] > PERIOD)
     return {

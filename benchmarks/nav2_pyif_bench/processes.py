@@ -12,6 +12,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 from nav2_pyif.host_process import free_port
+from nav2_pyif.signals import deferred
 
 __all__ = ["free_port", "peer_processes", "ros_localhost_env"]
 
@@ -30,14 +31,15 @@ def peer_processes(commands: dict[str, list[str]], env: dict[str, str]) -> Itera
     procs: list[subprocess.Popen[bytes]] = []
     try:
         for command in commands.values():
-            procs.append(
-                subprocess.Popen(
-                    [sys.executable, *command],
-                    env=dict(os.environ, **env),
-                    stdout=subprocess.DEVNULL,
-                    stderr=subprocess.DEVNULL,
+            with deferred():  # a signal must not come between starting and recording it
+                procs.append(
+                    subprocess.Popen(
+                        [sys.executable, *command],
+                        env=dict(os.environ, **env),
+                        stdout=subprocess.DEVNULL,
+                        stderr=subprocess.DEVNULL,
+                    )
                 )
-            )
         yield
     finally:
         for proc in procs:

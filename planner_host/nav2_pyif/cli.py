@@ -21,6 +21,7 @@ from nav2_pyif.env_defaults import apply_environment, document_environment
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.host import PlannerHost, new_host_id
 from nav2_pyif.service import InProcessPlanner, PlannerService
+from nav2_pyif.signals import TERMINATING, exit_code
 from nav2_pyif.spec import PlannerSpec
 from nav2_pyif.supervisor import Deadlines, SupervisedPlanner
 from nav2_pyif.zenoh_config import add_zenoh_arguments, open_session, options_from_args
@@ -43,8 +44,13 @@ examples:
   planner-host --config planners.yaml
 
   # every option also reads NAV2_PYIF_<OPTION> (containers); command-line flags win
-  NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \
+  NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
       NAV2_PYIF_CONNECT=tcp/router:7447 planner-host
+
+signals:
+  SIGHUP          re-import every planner (fresh workers; sessions carry over)
+  SIGINT, SIGTERM stop: workers and the Zenoh session are closed, exit code 130 / 143
+                  (SIGHUP before the host serves stops it too: 129)
 """
 
 
@@ -218,22 +224,27 @@ def main(argv: list[str] | None = None) -> int:
         if directory not in sys.path:
             sys.path.insert(0, directory)
     host_id = new_host_id()
+    # Signals from the start: a SIGTERM while the workers load still stops them. SIGHUP
+    # reloads every planner once serving; before that it stops the host like the others.
+    stop, serving, reload_requested = threading.Event(), threading.Event(), threading.Event()
+    stopped_by: list[int] = []
+
+    def on_signal(signum: int, _frame: FrameType | None) -> None:
+        if signum == signal.SIGHUP and serving.is_set():
+            reload_requested.set()
+        elif not stopped_by:
+            log.info("received %s, shutting down", signal.Signals(signum).name)
+            stopped_by.append(signum)
+        stop.set()
+
+    for signum in TERMINATING:
+        signal.signal(signum, on_signal)
     try:
         specs = collect_specs(args, parser)
         services = start_services(specs, host_id, args)
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
-        return 2
-
-    stop = threading.Event()
-
-    def on_signal(signum: int, _frame: FrameType | None) -> None:
-        log.info("received %s, shutting down", signal.Signals(signum).name)
-        stop.set()
-
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
-
+        return exit_code(stopped_by[0]) if stopped_by else 2
     try:
         session = open_session(options_from_args(args))
     except (ConnectionError, FileNotFoundError) as exc:
@@ -242,36 +253,33 @@ def main(argv: list[str] | None = None) -> int:
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 3
     host = PlannerHost(session, host_id)
-    reload_requested = threading.Event()
-
-    def on_hangup(_signum: int, _frame: FrameType | None) -> None:
-        reload_requested.set()
-        stop.set()
-
-    signal.signal(signal.SIGHUP, on_hangup)
     try:
-        for spec, service in zip(specs, services, strict=True):
-            host.serve(spec.key, service)
-        log.info(
-            "host %s ready (%d planner%s, isolation: %s)",
-            host_id,
-            len(services),
-            "s"[: len(services) > 1],
-            args.isolation,
-        )
-        while True:
+        if not stopped_by:
+            for spec, service in zip(specs, services, strict=True):
+                host.serve(spec.key, service)
+            serving.set()
+            log.info(
+                "host %s ready (%d planner%s, isolation: %s)",
+                host_id,
+                len(services),
+                "s"[: len(services) > 1],
+                args.isolation,
+            )
+        while not stopped_by:
             stop.wait()
-            if not reload_requested.is_set():
-                break
-            reload_requested.clear()
             stop.clear()
-            log.info("SIGHUP: reloading every planner")
-            host.reload_all()
+            if reload_requested.is_set() and not stopped_by:
+                reload_requested.clear()
+                log.info("SIGHUP: reloading every planner")
+                host.reload_all()
     finally:
-        # Close explicitly on every path: an open session keeps the process alive.
+        # Close explicitly on every path: an open session keeps the process alive. Services
+        # not yet served (a signal during start-up) are closed too: no worker outlives us.
         host.close()
+        for service in services:
+            service.close()
         session.close()
-    return 0
+    return exit_code(stopped_by[0]) if stopped_by else 0
 
 
 def start_services(

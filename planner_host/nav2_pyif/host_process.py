@@ -15,6 +15,8 @@ from typing import Any
 
 import yaml
 
+from nav2_pyif.signals import deferred
+
 
 def free_port() -> int:
     with socket.socket() as s:
@@ -64,7 +66,8 @@ class PlannerHostProcess:
         for directory in self.extra_path:
             command += ["--path", directory]
         command += self.args
-        with open(self.log_path, "ab") as log:
+        # A signal between the fork and the assignment would leave a host no one stops.
+        with open(self.log_path, "ab") as log, deferred():
             self.proc = subprocess.Popen(
                 command, stdout=log, stderr=subprocess.STDOUT, env={**os.environ, **self.env}
             )
@@ -81,7 +84,8 @@ class PlannerHostProcess:
         return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""
 
     def stop(self, timeout: float = 10.0) -> int | None:
-        """SIGTERM, then SIGKILL after ``timeout``; returns the exit code (0: a clean stop)."""
+        """SIGTERM, then SIGKILL after ``timeout``; returns the exit code (143: a clean stop
+        on SIGTERM, as ``planner-host`` ends on a signal)."""
         if self.proc is None:
             return None
         if self.proc.poll() is None:
@@ -99,12 +103,16 @@ class PlannerHostProcess:
             self.proc.kill()
             self.proc.wait(10)
 
+    def close(self) -> None:
+        """Stop the host and remove its temporary directory (config, log)."""
+        self.stop()
+        self._dir.cleanup()
+
     def __enter__(self) -> PlannerHostProcess:
         return self.start()
 
     def __exit__(self, *exc: object) -> None:
-        self.stop()
-        self._dir.cleanup()
+        self.close()
 
 
 def wait_alive(host: PlannerHostProcess, ready: Any, timeout: float = 30.0) -> None:

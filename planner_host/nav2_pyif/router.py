@@ -3,16 +3,15 @@
 On a robot the router is usually rmw_zenoh's ``zenohd``; this one is for a GPU box or a
 container compose file that should route between planner hosts and robots with nothing else
 installed. It is an ordinary Zenoh session in router mode (eclipse-zenoh, the same version as
-the host), running until SIGINT or SIGTERM.
+the host), running until SIGINT, SIGTERM or SIGHUP (then it exits with 128 + the signal's
+number, as every nav2-pyif command: ``nav2_pyif.tool`` turns signals into Interrupted).
 """
 
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 import threading
-from types import FrameType
 
 from nav2_pyif.zenoh_config import ZenohOptions, add_endpoint_arguments, open_session
 
@@ -43,13 +42,6 @@ def run_router(args: argparse.Namespace) -> int:
     options = ZenohOptions(
         args.zenoh_config, list(args.connect), listen, mode="router", use_environment=False
     )
-    stop = threading.Event()
-
-    def on_signal(_signum: int, _frame: FrameType | None) -> None:
-        stop.set()
-
-    signal.signal(signal.SIGINT, on_signal)
-    signal.signal(signal.SIGTERM, on_signal)
     try:
         session = open_session(options)
     except (ConnectionError, FileNotFoundError) as exc:
@@ -58,7 +50,7 @@ def run_router(args: argparse.Namespace) -> int:
     where = ", ".join(options.listen) or f"the endpoints of {options.config_file}"
     print(f"zenoh router {session.info.zid()} listening on {where}", flush=True)
     try:
-        stop.wait()
+        threading.Event().wait()  # until a signal raises Interrupted
     finally:
         session.close()
     return 0

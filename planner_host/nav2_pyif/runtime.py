@@ -259,7 +259,7 @@ class PlannerRuntime:
             body["node"],
             body["name"],
         )
-        return {"declared": context.params.declared()}
+        return {"declared": context.params.declared(), "planner": self.label}
 
     def _safe_cleanup(self, session: Session) -> None:
         try:

@@ -7,6 +7,7 @@ import logging
 import sys
 
 from nav2_pyif.router import add_router_parser
+from nav2_pyif.signals import Interrupted, raise_on_signals
 from nav2_pyif.sim.cli import add_sim_parser
 from nav2_pyif.zenoh_config import add_zenoh_arguments
 
@@ -56,7 +57,12 @@ def main(argv: list[str] | None = None) -> int:
     add_router_parser(subparsers)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
-    code: int = args.func(args)
+    raise_on_signals()  # every command cleans up and exits 128 + signum on a signal
+    try:
+        code: int = args.func(args)
+    except Interrupted as exc:
+        print(f"nav2-pyif: stopped by {exc.name}", file=sys.stderr)
+        return exc.exit_code
     return code
 
 

@@ -31,13 +31,15 @@ def _limit_memory(limit_bytes: int | None) -> None:
         resource.setrlimit(resource.RLIMIT_AS, (limit_bytes, limit_bytes))
 
 
-def _serve_cancels(cancels: Connection, runtime: PlannerRuntime) -> None:
+def _serve_cancels(cancels: Connection, runtime: list[PlannerRuntime]) -> None:
+    """Answer cancellations; when the host's end closes (it stopped us, or died, even by
+    SIGKILL), exit at once, whatever the planner is doing: no worker outlives its host."""
     while True:
         try:
             payload = cancels.recv_bytes()
         except (EOFError, OSError):
-            return
-        cancels.send_bytes(runtime.handle_cancel(payload))
+            os._exit(0)
+        cancels.send_bytes(runtime[0].handle_cancel(payload))
 
 
 def worker_main(
@@ -52,16 +54,20 @@ def worker_main(
         level=log_level,
         format=f"[%(asctime)s] [%(levelname)s] [worker {os.getpid()}] [%(name)s] %(message)s",
     )
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the host's: it stops us
+    # Ctrl-C and a terminal's hangup reach the whole process group; they are the host's to
+    # act on (stop, reload), and it stops its workers itself.
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    runtime: list[PlannerRuntime] = []  # set once loaded; cancels only come after that
+    threading.Thread(target=_serve_cancels, args=(cancels, runtime), daemon=True).start()
     _limit_memory(memory_limit)
     try:
         planner_class = spec.load()
     except BaseException as exc:  # import errors, syntax errors, SystemExit at import...
         calls.send_bytes(msgpack.packb([LOAD_ERROR, str(exc)]))
         return
-    runtime = PlannerRuntime(planner_class, host_id, label=spec.describe())
-    calls.send_bytes(msgpack.packb([LOADED, runtime.plugin_type.value]))
-    threading.Thread(target=_serve_cancels, args=(cancels, runtime), daemon=True).start()
+    runtime.append(PlannerRuntime(planner_class, host_id, label=spec.describe()))
+    calls.send_bytes(msgpack.packb([LOADED, runtime[0].plugin_type.value]))
     while True:
         try:
             message = calls.recv_bytes()
@@ -70,5 +76,5 @@ def worker_main(
         if not message:
             break
         op, _, payload = message.partition(b"\0")
-        calls.send_bytes(runtime.handle(payload, key_op=op.decode()))
-    runtime.close()
+        calls.send_bytes(runtime[0].handle(payload, key_op=op.decode()))
+    runtime[0].close()

@@ -5,7 +5,8 @@ Same parameters, cost terms and warm start as ``nav2_pyif_planners.mppi.MPPI``; 
 sampling uses JAX's counter-based PRNG, arithmetic is float32, and the costmap is copied to the
 device once per costmap version. The function is compiled in ``configure`` for the costmap's
 shape, so the first control cycle does not pay for compilation (a costmap of a new shape
-recompiles once). Needs ``pip install nav2-pyif[jax]`` (CPU) or ``jax[cuda12]``.
+recompiles once). Needs JAX: ``python -m pip install 'jax>=0.4.30'`` (CPU) or ``jax[cuda12]``;
+the bootstrap's default extras (dev) include it.
 """
 
 from __future__ import annotations
@@ -19,9 +20,12 @@ try:
     import jax
     import jax.numpy as jnp
 except ImportError as exc:  # a clear reason at load time, not a NameError mid-run
+    import sys
+
     raise ImportError(
-        "nav2_pyif_planners.mppi_jax needs JAX: pip install 'nav2-pyif[jax]' "
-        "(or jax[cuda12] for NVIDIA GPUs)"
+        f"nav2_pyif_planners.mppi_jax needs JAX, which {sys.executable} lacks: "
+        f"{sys.executable} -m pip install 'jax>=0.4.30' (CPU; 'jax[cuda12]' for NVIDIA GPUs); "
+        "in a checkout, NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh"
     ) from exc
 
 from nav2_pyif import Costmap

@@ -110,7 +110,16 @@ _CONFIGURE_REQUEST = (
 BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     Op.CONFIGURE: (
         _CONFIGURE_REQUEST,
-        (_f("declared", PARAMS, "parameters the planner declared, with current values"),),
+        (
+            _f("declared", PARAMS, "parameters the planner declared, with current values"),
+            _f(
+                "planner",
+                STR,
+                "what the host serves on this key, e.g. pkg.module:Class (for logs and "
+                "reports; older hosts leave it out)",
+                False,
+            ),
+        ),
     ),
     Op.ACTIVATE: ((), ()),
     Op.DEACTIVATE: ((), ()),

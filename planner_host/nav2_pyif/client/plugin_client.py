@@ -100,6 +100,7 @@ class PluginClient:
         self.configured = False
         self.active = False
         self.last_host: str | None = None
+        self.served: str | None = None  # what the host serves, from its configure reply
         self.host: str | None = None  # the pinned host among replicas
         self.resyncs = 0
         self.failovers = 0
@@ -117,6 +118,7 @@ class PluginClient:
         self._delivered_costmap = None
         body = self._call(Op.CONFIGURE, self._configure_body(), allow_resync=False)
         self.configured = True
+        self.served = body.get("planner")
         declared: dict[str, ParamValue] = body["declared"]
         for name, value in declared.items():
             self.params.setdefault(name, value)

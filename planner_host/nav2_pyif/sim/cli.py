@@ -3,16 +3,38 @@
 from __future__ import annotations
 
 import argparse
+import logging
 import math
 import sys
 from pathlib import Path
 
-from nav2_pyif.exceptions import Nav2Error
-from nav2_pyif.sim.runner import SimConfig, SimError, run_sim
+from nav2_pyif_planners.maps import BUNDLED
 
-EPILOG = """\
-planners: the reference ones by name (controllers: pure_pursuit, mppi, apf; global
-planner: astar) or your own as package.module:ClassName.
+from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.sim.runner import (
+    DEFAULTS,
+    RunInterrupted,
+    SimConfig,
+    SimError,
+    SimResult,
+    run_sim,
+)
+
+
+def _reference_planners() -> str:
+    from nav2_pyif_planners import ALIASES
+
+    width = max(map(len, ALIASES)) + 2
+    return "\n".join(
+        f"  {name:<{width}}{target}{'' if ':' in target else ' (function delegates)'}"
+        for name, target in ALIASES.items()
+    )
+
+
+EPILOG = f"""\
+planners (--controller, --planner): a reference one by name, or your own as
+package.module:ClassName. The reference planners:
+{_reference_planners()}
 
 examples:
   nav2-pyif sim                                     # office map, pure_pursuit + astar
@@ -35,10 +57,15 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     p.add_argument(
         "--map",
         default="office",
-        help="bundled map name (office, cluttered) or a map_server YAML path",
+        help=f"bundled map name ({', '.join(BUNDLED)}) or a map_server YAML path",
     )
-    p.add_argument("--controller", default="pure_pursuit")
-    p.add_argument("--planner", default="astar")
+    p.add_argument(
+        "--controller",
+        help=f"default: {DEFAULTS['controller']}; with --connect, what the host serves",
+    )
+    p.add_argument(
+        "--planner", help=f"default: {DEFAULTS['planner']}; with --connect, what the host serves"
+    )
     p.add_argument(
         "--start", nargs=3, type=float, metavar=("X", "Y", "YAW"), help="default: the map's task"
     )
@@ -72,7 +99,8 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "--connect",
         metavar="ENDPOINT",
         help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
-        "nav2_pyif/sim/GridBased) instead of starting one",
+        "nav2_pyif/sim/GridBased) instead of starting one; the run is named after what "
+        "it serves",
     )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
     p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
@@ -93,10 +121,10 @@ def _params(items: list[str]) -> dict[str, object]:
 
 
 def run_command(args: argparse.Namespace) -> int:
+    logging.getLogger("nav2_pyif.sim").setLevel(logging.INFO)  # what runs, on stderr
     from nav2_pyif_planners.maps import map_path
 
-    from nav2_pyif.sim.plot import draw
-    from nav2_pyif.sim.report import format_report, write_json
+    from nav2_pyif.sim.report import format_report
 
     try:
         config = SimConfig(
@@ -118,14 +146,31 @@ def run_command(args: argparse.Namespace) -> int:
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")
         result = run_sim(config)
+    except RunInterrupted as exc:
+        png, record = _write(exc.result, args)
+        print(
+            f"nav2-pyif sim: {exc.result.outcome}; wrote the run so far to {png} and {record}",
+            file=sys.stderr,
+        )
+        return exc.exit_code
     except (SimError, RuntimeError, TimeoutError, ConnectionError, Nav2Error) as exc:
         print(f"nav2-pyif sim: error: {exc}", file=sys.stderr)
         return 2
-    args.out.mkdir(parents=True, exist_ok=True)
-    stem = args.name or f"{Path(str(config.map)).stem}_{args.controller.replace(':', '.')}"
-    png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
-    draw(result, png)
-    write_json(result, record)
+    png, record = _write(result, args)
     print(format_report(result))
     print(f"\nwrote {png} and {record}")
     return 0 if result.reached else 1
+
+
+def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
+    """The run's PNG and JSON record under --out."""
+    from nav2_pyif.sim.plot import draw
+    from nav2_pyif.sim.report import write_json
+
+    args.out.mkdir(parents=True, exist_ok=True)
+    controller = result.name_of("controller")  # what the host served, with --connect too
+    stem = args.name or f"{Path(str(result.config.map)).stem}_{controller.replace(':', '.')}"
+    png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
+    draw(result, png)
+    write_json(result, record)
+    return png, record

@@ -3,6 +3,7 @@ controller compute time over the run."""
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import matplotlib
@@ -12,6 +13,7 @@ matplotlib.use("Agg")  # files only, no display needed
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.colors import ListedColormap
+from matplotlib.figure import Figure
 
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN
@@ -20,6 +22,23 @@ from nav2_pyif.sim.runner import SimResult
 
 
 def draw(result: SimResult, path: Path) -> None:
+    """Write the run's picture to ``path`` (PNG); its Title metadata is the map's title."""
+    fig = figure(result)
+    fig.savefig(path, dpi=110, metadata={"Title": title(result)})
+    plt.close(fig)
+
+
+def title(result: SimResult) -> str:
+    s = summary(result)
+    return (
+        f"{Path(s['map']).stem}: {s['controller']} + {s['planner']} — "
+        f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
+        f"{s['driven_distance_m']:.1f} m, clearance ≥ {s['min_clearance_m']:.2f} m"
+    )
+
+
+def figure(result: SimResult) -> Figure:
+    """The run drawn: the map with costs, plan and trajectory; speeds; latency per cycle."""
     world, costmap = result.world, result.global_costmap
     extent = (
         world.origin_x,
@@ -37,7 +56,7 @@ def draw(result: SimResult, path: Path) -> None:
     inflated = np.ma.masked_where(
         (costmap.data == 0) | (costmap.data >= Costmap.LETHAL), costmap.data.astype(float)
     )
-    ax.imshow(
+    shading = ax.imshow(
         inflated,
         cmap=ListedColormap(plt.cm.magma_r(np.linspace(0.05, 0.7, 64))),
         origin="lower",
@@ -53,7 +72,7 @@ def draw(result: SimResult, path: Path) -> None:
             "-",
             color="tab:blue",
             lw=1.5,
-            label="plan (A*)" if result.config.planner == "astar" else "plan",
+            label="plan (A*)" if result.name_of("planner") == "astar" else "plan",
         )
     if result.trajectory:
         t = np.array(result.trajectory)
@@ -71,6 +90,8 @@ def draw(result: SimResult, path: Path) -> None:
     )
     ax.plot([sx], [sy], "o", color="tab:orange", label="start")
     ax.plot([gx], [gy], "*", color="tab:red", ms=14, label="goal")
+    # quiver draws no legend entry of its own: an arrow marker stands for the two arrows
+    ax.plot([], [], ls="none", marker=r"$\rightarrow$", ms=14, color="0.3", label="heading")
     if result.collisions and result.trajectory:
         ax.plot(
             [result.trajectory[-1][1]],
@@ -84,22 +105,19 @@ def draw(result: SimResult, path: Path) -> None:
     ax.set_ylabel("y [m]")
     ax.set_aspect("equal")
     ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
-    s = summary(result)
-    ax.set_title(
-        f"{Path(s['map']).stem}: {s['controller']} + {s['planner']} — "
-        f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
-        f"{s['driven_distance_m']:.1f} m, clearance ≥ {s['min_clearance_m']:.2f} m",
-        fontsize=10,
-    )
+    bar = fig.colorbar(shading, ax=ax, shrink=0.75, pad=0.01)
+    bar.set_label("costmap cost (inflation; black: lethal)", fontsize=8)
+    bar.ax.tick_params(labelsize=8)
+    ax.set_title(_wrapped(title(result), 90), fontsize=10)
 
     speed = fig.add_subplot(grid[0, 2])
     if result.trajectory:
         t = np.array(result.trajectory)
         speed.plot(t[:, 0], t[:, 4], label="v [m/s]")
         speed.plot(t[:, 0], t[:, 5], label="ω [rad/s]", alpha=0.7)
+        speed.legend(fontsize=8)
     speed.set_xlabel("simulated time [s]")
-    speed.legend(fontsize=8)
-    speed.set_title("commanded motion", fontsize=10)
+    speed.set_title(_wrapped("commanded motion", 45), fontsize=10)
 
     latency = fig.add_subplot(grid[1, 2])
     cycles = [r for r in result.records if r.op == "compute_velocity_commands" and r.ok]
@@ -108,13 +126,17 @@ def draw(result: SimResult, path: Path) -> None:
         compute = np.array([r.compute_ns for r in cycles]) / 1e6
         latency.plot(total, lw=0.8, label="round trip")
         latency.plot(compute, lw=0.8, label="host compute")
-        latency.axhline(
-            1000.0 / result.config.rate, color="red", ls="--", lw=0.8, label="control period"
-        )
+        period = 1000.0 / result.config.rate
+        latency.axhline(period, color="red", ls="--", lw=0.8, label="control period")
         latency.set_yscale("log")
+        latency.set_ylim(top=max(12 * period, 2 * float(total.max())))  # room for the legend
+        latency.legend(fontsize=8, loc="upper right", ncols=3)
     latency.set_xlabel("control cycle")
     latency.set_ylabel("ms")
-    latency.legend(fontsize=8)
-    latency.set_title("compute_velocity_commands latency", fontsize=10)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
+    latency.set_title(_wrapped("compute_velocity_commands latency", 45), fontsize=10)
+    return fig
+
+
+def _wrapped(text: str, width: int) -> str:
+    """Titles wrap instead of running into the next panel."""
+    return "\n".join(textwrap.wrap(text, width))

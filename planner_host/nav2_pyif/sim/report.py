@@ -50,12 +50,14 @@ def summary(result: SimResult) -> dict[str, Any]:
     c = result.config
     return {
         "map": str(c.map),
-        "controller": c.controller,
-        "planner": c.planner,
+        "controller": result.name_of("controller"),
+        "planner": result.name_of("planner"),
+        "served": result.served,
         "start": list(result.start),
         "goal": list(result.goal),
         "reached": result.reached,
         "outcome": result.outcome,
+        "interrupted": result.interrupted,
         "sim_time_s": round(result.sim_time, 3),
         "wall_time_s": round(result.wall_time, 3),
         "cycles": result.cycles,

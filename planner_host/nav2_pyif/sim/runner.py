@@ -4,6 +4,8 @@ reference client: the very protocol and path the Nav2 plugins use."""
 
 from __future__ import annotations
 
+import contextlib
+import logging
 import math
 import sys
 import time
@@ -14,6 +16,7 @@ from typing import Any
 import numpy as np
 import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
+from nav2_pyif_planners.maps import BUNDLED
 from tqdm import tqdm
 
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
@@ -23,11 +26,13 @@ from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.host_process import PlannerHostProcess, wait_alive
 from nav2_pyif.params import ParamValue
+from nav2_pyif.signals import Interrupted
 from nav2_pyif.sim.inflation import inflate, window
 from nav2_pyif.sim.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.sim.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.zenoh_config import connect_to
 
+log = logging.getLogger("nav2_pyif.sim")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
 Pose3 = tuple[float, float, float]
@@ -37,11 +42,23 @@ class SimError(Exception):
     """Bad input for a run (map, poses, planner spec), with the reason."""
 
 
+class RunInterrupted(Interrupted):
+    """A signal ended the run; ``result`` holds what was driven until then."""
+
+    def __init__(self, signum: int, result: SimResult) -> None:
+        super().__init__(signum)
+        self.result = result
+
+
+DEFAULTS = {"controller": "pure_pursuit", "planner": "astar"}
+
+
 @dataclass
 class SimConfig:
     map: Path
-    controller: str = "pure_pursuit"
-    planner: str = "astar"
+    # None: the default (DEFAULTS) on a host of our own, whatever a running host serves
+    controller: str | None = None
+    planner: str | None = None
     start: Pose3 | None = None
     goal: Pose3 | None = None
     rate: float = 20.0  # [Hz] control rate (simulated time)
@@ -63,6 +80,11 @@ class SimConfig:
     planner_key: str = PLANNER_KEY
     progress: bool = False
 
+    def spec(self, role: str) -> str:
+        """The planner asked for as ``role`` ("controller", "planner"), else the default."""
+        asked: str | None = getattr(self, role)
+        return asked or DEFAULTS[role]
+
 
 @dataclass
 class SimResult:
@@ -73,6 +95,8 @@ class SimResult:
     goal: Pose3
     reached: bool = False
     outcome: str = "not started"
+    interrupted: str | None = None  # the signal that ended the run early
+    served: dict[str, str] = field(default_factory=dict)  # role -> what the host said it serves
     sim_time: float = 0.0
     wall_time: float = 0.0
     plan: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
@@ -98,6 +122,22 @@ class SimResult:
     def cycles(self) -> int:
         return len(self.trajectory)
 
+    def name_of(self, role: str) -> str:
+        """What drove as ``role`` ("controller", "planner"), by its short name: what the host
+        said it serves, else what was asked for."""
+        if role in self.served:
+            return short_name(self.served[role])
+        asked: str | None = getattr(self.config, role)
+        return asked or ("unknown" if self.config.endpoint else DEFAULTS[role])
+
+
+def short_name(spec: str) -> str:
+    """A reference planner's alias for its spec or host label, else the spec itself."""
+    from nav2_pyif_planners import ALIASES
+
+    target = spec.split(" ")[0]  # a host labels a delegates module "module (delegates)"
+    return next((alias for alias, t in ALIASES.items() if t == target), target)
+
 
 def planner_entry(key: str, spec: str) -> dict[str, Any]:
     """A host config entry for a planner name: a reference alias, ``module:Class``, or the
@@ -121,7 +161,7 @@ def import_path(config: SimConfig) -> list[str]:
     directory, pytest's rootdir, ...) that holds each planner's top-level package. The host
     is a child process that sees neither on its own."""
     roots = [str(Path(d).resolve()) for d in config.path]
-    for spec in (config.controller, config.planner):
+    for spec in (config.spec("controller"), config.spec("planner")):
         top = spec.partition(":")[0].split(".")[0]
         for entry in sys.path:
             base = Path(entry or ".").resolve()
@@ -147,7 +187,9 @@ def prepare(config: SimConfig) -> SimResult:
     try:
         world = load_map(config.map)
     except MapError as exc:
-        raise SimError(str(exc)) from exc
+        if config.map.exists():
+            raise SimError(str(exc)) from exc
+        raise SimError(f"{exc}; the bundled maps: {', '.join(BUNDLED)}") from exc
     start, goal = config.start or world.start, config.goal or world.goal
     if start is None or goal is None:
         raise SimError(f"no start/goal given and {config.map} has no default task")
@@ -171,28 +213,33 @@ def prepare(config: SimConfig) -> SimResult:
 
 
 def run_sim(config: SimConfig) -> SimResult:
-    """Run one navigation task; raises SimError for bad input, returns the outcome."""
+    """Run one navigation task; raises SimError for bad input, returns the outcome. A
+    terminating signal (``nav2_pyif.signals``) stops the run: the host is stopped and
+    RunInterrupted carries the result so far."""
     result = prepare(config)
     entries = [
-        planner_entry(config.controller_key, config.controller),
-        planner_entry(config.planner_key, config.planner),
+        planner_entry(config.controller_key, config.spec("controller")),
+        planner_entry(config.planner_key, config.spec("planner")),
     ]
-    host = (
-        None
-        if config.endpoint
-        else PlannerHostProcess(entries, extra_path=import_path(config)).start()
-    )
-    endpoint = config.endpoint or (host.endpoint if host else "")
-    # A host already running may be behind a router: be a client, as the C++ plugin is.
-    session = connect_to([endpoint], "client" if config.endpoint else "peer")
     started = time.perf_counter()
     try:
-        _drive(config, result, session, host)
+        with contextlib.ExitStack() as cleanup:
+            host = None
+            if not config.endpoint:
+                host = PlannerHostProcess(entries, extra_path=import_path(config))
+                cleanup.callback(host.close)
+                host.start()
+            endpoint = config.endpoint or (host.endpoint if host else "")
+            # A host already running may be behind a router: be a client, as the C++ plugin is.
+            session = connect_to([endpoint], "client" if config.endpoint else "peer")
+            cleanup.callback(session.close)
+            _drive(config, result, session, host)
+    except Interrupted as exc:
+        result.interrupted = exc.name
+        result.outcome = f"interrupted by {exc.name}"
+        raise RunInterrupted(exc.signum, result) from None
     finally:
         result.wall_time = time.perf_counter() - started
-        session.close()
-        if host is not None:
-            host.stop()
     return result
 
 
@@ -219,7 +266,7 @@ def _drive(
         record_calls=True,
     )
     try:
-        for client, spec in ((planner, config.planner), (controller, config.controller)):
+        for client, role in ((planner, "planner"), (controller, "controller")):
             if host is not None:
                 wait_alive(host, client.wait_for_host)
             elif not client.wait_for_host(10.0):
@@ -229,8 +276,10 @@ def _drive(
                 client.activate()
             except Nav2Error as exc:
                 # As Nav2's server would: the plugin fails to start, so the run stops here.
-                _ended_by(result, f"{spec} could not start, so the run stopped", exc)
+                what = result.name_of(role)
+                _ended_by(result, f"{what} could not start, so the run stopped", exc)
                 return
+        _note_served(config, result, {"planner": planner.served, "controller": controller.served})
         try:
             plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
         except Nav2Error as exc:
@@ -242,6 +291,13 @@ def _drive(
         except Nav2Error as exc:  # Nav2's controller server aborts the goal: a result too
             _ended_by(result, "set_plan failed", exc)
             return
+        log.info(
+            "plan of %.2f m by %s; driving with %s at %g Hz",
+            result.path_length,
+            result.name_of("planner"),
+            result.name_of("controller"),
+            config.rate,
+        )
         _control_loop(config, result, controller, local_version)
         for client in (controller, planner):
             client.deactivate()
@@ -255,6 +311,25 @@ def _drive(
 def _ended_by(result: SimResult, what: str, exc: Nav2Error) -> None:
     result.outcome = f"{what}: {type(exc).__name__}: {exc}"
     result.traceback = exc.remote_traceback
+
+
+def _note_served(config: SimConfig, result: SimResult, served: dict[str, str | None]) -> None:
+    """Record what the host serves; a running host may serve another planner than asked."""
+    for role, label in served.items():
+        if label is None:
+            continue  # a host older than the configure reply's 'planner' field
+        result.served[role] = label
+        asked: str | None = getattr(config, role)
+        if config.endpoint and asked and short_name(asked) != short_name(label):
+            log.warning(
+                "--%s %s was given, but the host at %s serves %s on %s: the run and its "
+                "files are named after what the host serves",
+                role,
+                asked,
+                config.endpoint,
+                label,
+                getattr(config, f"{role}_key"),
+            )
 
 
 def _control_loop(
