@@ -110,7 +110,7 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
 
         started = _descendants(launch.pid)
         names = {Path(f"/proc/{p}/comm").read_text().strip() for p in started if _running(p)}
-        assert {"controller_serve", "planner_server"} <= names, names  # comm: 15 characters
+        assert {"controller_serv", "planner_server"} <= names, names  # comm: 15 characters
         os.killpg(launch.pid, signal.SIGINT)  # Ctrl-C in the launch's terminal
         code = launch.wait(60)
         deadline = time.monotonic() + 10
