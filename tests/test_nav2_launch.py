@@ -5,10 +5,12 @@ while the servers stay active, a restarted host serves the next goal; and the se
 YAML starts its own hosts.
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
-colcon and zenoh-cpp: set NAV2_PYIF_NAV2_SETUP to its setup script, or have one under
-/opt/ros/<distro>/setup.bash. This test builds nav2_pyif_bridge with colcon into
-build/nav2_ws, then runs the launch tests with that environment. Skipped, saying what is
-missing, where that environment is absent.
+colcon and zenoh-cpp, once per zenoh-cpp backend: NAV2_PYIF_NAV2_SETUP_ZENOHC and
+NAV2_PYIF_NAV2_SETUP_ZENOHPICO name the setup script of each; NAV2_PYIF_NAV2_SETUP (or
+/opt/ros/<distro>/setup.bash, whose zenoh_cpp_vendor is zenoh-c) serves for the backend its
+zenoh-cpp has. The test builds nav2_pyif_bridge with colcon into build/nav2_ws_<backend>,
+checks which Zenoh library the plugin links, then runs the launch tests with that
+environment. Each backend is skipped, saying what is missing, where its environment is absent.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-WORKSPACE = ROOT / "build" / "nav2_ws"
+BACKENDS = {"zenoh-c": "libzenohc", "zenoh-pico": "libzenohpico"}
 # The PyPI ROS wheels name Python-only libraries as dependencies of C++ ones: link only what
 # is used. Harmless on a system ROS install.
 CMAKE_ARGS = [
@@ -32,8 +34,9 @@ CMAKE_ARGS = [
 ]
 
 
-def _setup_script() -> str | None:
-    given = os.environ.get("NAV2_PYIF_NAV2_SETUP")
+def _setup_script(backend: str) -> str | None:
+    own = os.environ.get("NAV2_PYIF_NAV2_SETUP_" + backend.replace("-", "").upper())
+    given = own or os.environ.get("NAV2_PYIF_NAV2_SETUP")
     if given:
         return given
     for distro in ("jazzy", "kilted", "humble"):
@@ -69,14 +72,16 @@ def _tail(result: subprocess.CompletedProcess[str], lines: int = 80) -> str:
 
 
 @pytest.mark.timeout(1800)
-def test_nav2_launch_tests_pass_against_a_real_nav2() -> None:
-    setup = _setup_script()
+@pytest.mark.parametrize("backend", BACKENDS)
+def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
+    setup = _setup_script(backend)
+    variable = "NAV2_PYIF_NAV2_SETUP_" + backend.replace("-", "").upper()
     if setup is None:
         pytest.skip(
-            "Nav2 launch tests skipped: no ROS 2 with Nav2 here (set "
-            "NAV2_PYIF_NAV2_SETUP to a setup script of one, e.g. "
-            "/opt/ros/jazzy/setup.bash)"
+            f"Nav2 launch tests on {backend} skipped: no ROS 2 with Nav2 here (set {variable} "
+            "or NAV2_PYIF_NAV2_SETUP to a setup script of one, e.g. /opt/ros/jazzy/setup.bash)"
         )
+    workspace = ROOT / "build" / f"nav2_ws_{backend}"
     source = f"set -e; source {shlex.quote(setup)} >/dev/null"
     probe = _bash(
         f"{source}; command -v colcon >/dev/null || echo missing: colcon; "
@@ -93,18 +98,23 @@ def test_nav2_launch_tests_pass_against_a_real_nav2() -> None:
             f"Nav2 launch tests skipped: {setup} lacks {', '.join(missing) or _tail(probe, 5)}"
         )
 
-    (WORKSPACE / "src").mkdir(parents=True, exist_ok=True)
-    link = WORKSPACE / "src" / "nav2_pyif_bridge"
+    (workspace / "src").mkdir(parents=True, exist_ok=True)
+    link = workspace / "src" / "nav2_pyif_bridge"
     if not link.is_symlink():
         link.symlink_to(ROOT / "bridge_plugin")
     build = _bash(
-        f"{source}; cd {shlex.quote(str(WORKSPACE))}; colcon build --merge-install "
+        f"{source}; cd {shlex.quote(str(workspace))}; colcon build --merge-install "
         f"--packages-select nav2_pyif_bridge --cmake-args {' '.join(map(shlex.quote, CMAKE_ARGS))}",
         timeout=1200,
     )
     assert build.returncode == 0, "colcon build of nav2_pyif_bridge failed:\n" + _tail(build)
+    plugin = workspace / "install" / "lib" / "libnav2_pyif_bridge.so"
+    linked = _bash(f"{source}; ldd {shlex.quote(str(plugin))}", timeout=60).stdout
+    found = [name for name, lib in BACKENDS.items() if lib in linked]
+    if backend not in found:
+        pytest.skip(f"Nav2 launch tests on {backend} skipped: {setup} gives {found or linked}")
 
-    host = WORKSPACE / "planner-host.sh"  # the project's own environment for the host
+    host = workspace / "planner-host.sh"  # the project's own environment for the host
     host.write_text(
         "#!/bin/bash\nunset PYTHONPATH; export LD_LIBRARY_PATH=\n"
         f"source {shlex.quote(str(ROOT / '.venv' / 'nav2_pyif_env.sh'))}\n"
@@ -112,7 +122,7 @@ def test_nav2_launch_tests_pass_against_a_real_nav2() -> None:
     )
     host.chmod(0o755)
     run = _bash(
-        f"{source}; source {shlex.quote(str(WORKSPACE / 'install' / 'local_setup.bash'))}; "
+        f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
         f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} python -m pytest "
         "-p no:cacheprovider -q -rs bridge_plugin/test/nav2",
         timeout=900,
