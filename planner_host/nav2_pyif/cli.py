@@ -16,7 +16,7 @@ from typing import Any
 import yaml
 from nav2_pyif_protocol.keys import validate_prefix
 
-from nav2_pyif.delegates import parse_delegates
+from nav2_pyif.delegates import check_roles, parse_delegates
 from nav2_pyif.env_defaults import apply_environment, document_environment
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.host import PlannerHost, new_host_id
@@ -30,9 +30,12 @@ examples:
   # a controller class, on the key the Nav2 params YAML names
   planner-host --key nav2_pyif/robot1/FollowPath --planner my_pkg.ctrl:MyController
 
-  # the seed paper's function-delegate style
+  # the seed paper's function-delegate style: a module and a role -> function map
   planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
       --delegate compute_velocity_commands=compute,set_plan=set_plan
+
+  # ... or functions named after the roles (compute_velocity_commands, set_plan, ...)
+  planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf
 
   # several planners on one host, no Zenoh router: plugins connect to this host
   planner-host --listen tcp/127.0.0.1:7447 \\
@@ -73,7 +76,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=[],
         metavar="ROLE=FUNCTION",
         help="role -> function of --module (the seed's python_delegates), repeatable "
-        "or comma-separated",
+        "or comma-separated; without it, the functions named after the roles",
     )
     what.add_argument(
         "--serve",
@@ -153,10 +156,6 @@ def collect_specs(args: argparse.Namespace, parser: argparse.ArgumentParser) -> 
         if args.planner and args.module:
             parser.error("give either --planner or --module, not both")
         delegates = parse_delegates(args.delegate) if args.module else None
-        if args.module and not delegates:
-            parser.error(
-                "--module needs --delegate ROLE=FUNCTION (e.g. compute_velocity_commands=f)"
-            )
         specs.append(PlannerSpec(args.key, args.planner, args.module, delegates or {}))
     elif args.key:
         parser.error("--key needs --planner MODULE:CLASS or --module MODULE")
@@ -191,12 +190,22 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
             raise PlannerLoadError(f"{path}: planners[{i}] needs a 'key'")
         if ("planner" in entry) == ("module" in entry):
             raise PlannerLoadError(f"{path}: planners[{i}] needs exactly one of planner / module")
+        delegates = entry.get("delegates") or {}
+        if not isinstance(delegates, dict):
+            raise PlannerLoadError(
+                f"{path}: planners[{i}].delegates must map roles to functions, e.g. "
+                "{compute_velocity_commands: compute}"
+            )
+        try:
+            check_roles(delegates)
+        except PlannerLoadError as exc:
+            raise PlannerLoadError(f"{path}: planners[{i}]: {exc}") from None
         specs.append(
             PlannerSpec(
                 str(entry["key"]),
                 entry.get("planner"),
                 entry.get("module"),
-                {str(k): str(v) for k, v in (entry.get("delegates") or {}).items()},
+                {str(k): str(v) for k, v in delegates.items()},
             )
         )
     return specs

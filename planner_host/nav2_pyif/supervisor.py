@@ -86,7 +86,12 @@ class Worker:
     """One worker process and its two pipes."""
 
     def __init__(
-        self, spec: PlannerSpec, host_id: str, memory_limit: int | None, log_level: str
+        self,
+        spec: PlannerSpec,
+        host_id: str,
+        memory_limit: int | None,
+        log_level: str,
+        quiet: bool = False,
     ) -> None:
         self.calls, child_calls = _SPAWN.Pipe()
         self.cancels, child_cancels = _SPAWN.Pipe()
@@ -94,7 +99,7 @@ class Worker:
             target=worker_main,
             name=f"planner-worker:{spec.key}",
             daemon=True,
-            args=(child_calls, child_cancels, spec, host_id, memory_limit, log_level),
+            args=(child_calls, child_cancels, spec, host_id, memory_limit, log_level, quiet),
         )
         self.process.start()
         child_calls.close()
@@ -242,8 +247,8 @@ class SupervisedPlanner:
                 self.worker.stop()
                 self.worker = None
 
-    def _new_worker(self, spec: PlannerSpec) -> Worker:
-        return Worker(spec, self.host_id, self.memory_limit, self.log_level)
+    def _new_worker(self, spec: PlannerSpec, *, quiet: bool = False) -> Worker:
+        return Worker(spec, self.host_id, self.memory_limit, self.log_level, quiet)
 
     # --- calls -------------------------------------------------------------------------
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
@@ -355,7 +360,7 @@ class SupervisedPlanner:
             if self._sleep(delay):
                 return
         try:
-            worker = self._new_worker(self.spec)
+            worker = self._new_worker(self.spec, quiet=True)  # its warnings were logged at start
             worker.wait_loaded(self.deadlines.configure)
             self._replay(worker, self.journal.snapshot())
         except (PlannerLoadError, WorkerDied) as exc:

@@ -47,6 +47,7 @@ def worker_main(
     host_id: str,
     memory_limit: int | None,
     log_level: str,
+    quiet: bool = False,
 ) -> None:
     logging.basicConfig(
         level=log_level,
@@ -55,7 +56,7 @@ def worker_main(
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the host's: it stops us
     _limit_memory(memory_limit)
     try:
-        planner_class = spec.load()
+        planner_class = spec.load(quiet=quiet)
     except BaseException as exc:  # import errors, syntax errors, SystemExit at import...
         calls.send_bytes(msgpack.packb([LOAD_ERROR, str(exc)]))
         return
