@@ -285,7 +285,7 @@ def test_crash_loop_is_backed_off_and_reported(fresh_rig: Rig) -> None:
         ("no_compute:Incomplete", "does not implement compute_velocity_commands"),
         ("no_such_module_xyz:Ctl", "No module named 'no_such_module_xyz'"),
         ("broken_at_import:X", "fails at import on purpose"),
-        ("syntax_broken:X", "SyntaxError"),
+        ("syntax_broken:X", r"SyntaxError in \S+/fixtures/syntax_broken\.py, line 1: "),
         ("echo_planners:LinePlanner", "is a global_planner; this key serves a controller"),
         # loads, but cannot take over the live session: all or nothing
         (
@@ -305,6 +305,8 @@ def test_a_broken_new_version_is_refused_and_the_old_one_keeps_serving(
     with pytest.raises(api.PlannerLoadError, match=words) as info:
         request_reload(rig.session, KEY, planner=spec, timeout=30)
     assert "still serving" in str(info.value)
+    # the installation hint only where the module itself was not found
+    assert ("PYTHONPATH" in str(info.value)) == spec.startswith("no_such_module")
     assert_recovered(rig)
 
 
