@@ -22,7 +22,7 @@ import zenoh
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
-from nav2_pyif.client.admin import request_reload
+from nav2_pyif.client.admin import NoPlannerHost, request_reload
 from nav2_pyif.host_process import PlannerHostProcess
 
 from tests.conftest import (
@@ -308,6 +308,22 @@ def test_a_broken_new_version_is_refused_and_the_old_one_keeps_serving(
     # the installation hint only where the module itself was not found
     assert ("PYTHONPATH" in str(info.value)) == spec.startswith("no_such_module")
     assert_recovered(rig)
+
+
+def test_a_reload_nobody_serves_says_so_and_lists_the_visible_hosts(rig: Rig) -> None:
+    typo = "nav2_pyif/faults/FolowPath"
+    started = time.monotonic()
+    with pytest.raises(NoPlannerHost, match=f"no planner host serves {typo} ") as info:
+        request_reload(rig.session, typo, timeout=30)
+    assert time.monotonic() - started < 10  # not the 30 s timeout
+    assert "planner hosts visible from here: " in str(info.value)
+    assert f"{KEY} (host " in str(info.value) and f"{PLANNER_KEY} (host " in str(info.value)
+    alone = open_client_session(f"tcp/127.0.0.1:{free_port()}")  # on no Zenoh network
+    try:
+        with pytest.raises(NoPlannerHost, match="no planner host is visible at all from here"):
+            request_reload(alone, KEY, timeout=30)
+    finally:
+        alone.close()
 
 
 @pytest.fixture(scope="module", autouse=True)
