@@ -289,13 +289,16 @@ def test_crash_loop_is_backed_off_and_reported(fresh_rig: Rig) -> None:
         ("echo_planners:LinePlanner", "is a global_planner; this key serves a controller"),
         # loads, but cannot take over the live session: all or nothing
         (
-            "echo_planners:ConfigureFails",
+            "refuse_sessions:ConfigureFails",
             r"its configure failed: \[InvalidController\] .*"
             "configure fails on purpose",
         ),
-        ("echo_planners:ActivateFails", r"its activate failed: .*activate fails on purpose"),
-        ("echo_planners:SetPlanFails", r"its set_plan failed: \[InvalidPath\] .*on purpose"),
-        ("echo_planners:FaultIsAFloat", r"its configure failed: .*fault: expected float, got str"),
+        ("refuse_sessions:ActivateFails", r"its activate failed: .*activate fails on purpose"),
+        ("refuse_sessions:SetPlanFails", r"its set_plan failed: \[InvalidPath\] .*on purpose"),
+        (
+            "refuse_sessions:FaultIsAFloat",
+            r"its configure failed: .*fault: expected float, got str",
+        ),
     ],
 )
 def test_a_broken_new_version_is_refused_and_the_old_one_keeps_serving(

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import logging
 import math
 import threading
 import time
@@ -303,3 +304,24 @@ def test_delegate_modules_bind_by_name_and_say_what_a_missing_role_means(
         ("cancel", "a cancel is answered at once as done"),
     ]:
         assert warned(log, f"seed_delegates: {role} has no delegate: {meaning}"), log
+
+
+def test_a_misspelt_parameter_is_reported_and_an_undeclared_update_refused(
+    start_host: Any, zsession_factory: Any, caplog: pytest.LogCaptureFixture
+) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host, params={"gain": 2.0, "gian": 3.0})
+    with caplog.at_level(logging.WARNING, logger="nav2_pyif.client"):
+        assert client.configure() == {"gain": 2.0, "label": "echo"}
+    reason = (
+        "gian is not a parameter of this planner (did you mean gain?); it declares: gain, label"
+    )
+    assert client.undeclared == {"gian": reason}  # in the configure reply
+    assert f"FollowPath: the planner ignores parameter(s) gian: {reason}" in caplog.text
+    assert warned(host.log(), f"parameters given but never declared, ignored: {reason}")
+    # as ROS 2 does: an update to a parameter the planner does not declare is refused
+    assert client.set_parameters({"gain": 4.0, "lable": "x"}) == {
+        "lable": "lable is not a parameter of this planner (did you mean label?); "
+        "it declares: gain, label"
+    }
+    assert client.compute_velocity_commands(pose(), Twist()).twist.linear.y == 4.0

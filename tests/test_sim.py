@@ -163,3 +163,21 @@ def test_bundled_maps_have_their_tasks() -> None:
     for name in BUNDLED:
         world = load_map(map_path(name))
         assert world.start is not None and world.goal is not None
+
+
+def test_a_misspelt_controller_parameter_is_a_warning(tmp_path: Path) -> None:
+    result = subprocess.run(
+        [
+            *(sys.executable, "-m", "nav2_pyif.tool", "sim", "--timeout", "1", "--no-progress"),
+            *("--param", "desired_linear_velocity=0.4", "--out", str(tmp_path)),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert result.returncode in (0, 1), result.stderr
+    assert (
+        "[WARNING] [nav2_pyif.client] FollowPath: the planner ignores parameter(s) "
+        "desired_linear_velocity: desired_linear_velocity is not a parameter of this planner "
+        "(did you mean desired_linear_vel?); it declares: approach_velocity_scaling_dist, "
+    ) in result.stderr

@@ -110,7 +110,16 @@ _CONFIGURE_REQUEST = (
 BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     Op.CONFIGURE: (
         _CONFIGURE_REQUEST,
-        (_f("declared", PARAMS, "parameters the planner declared, with current values"),),
+        (
+            _f("declared", PARAMS, "parameters the planner declared, with current values"),
+            _f(
+                "undeclared",
+                STR_MAP,
+                "given parameters the planner does not declare (ignored), name -> reason; "
+                "absent when none",
+                required=False,
+            ),
+        ),
     ),
     Op.ACTIVATE: ((), ()),
     Op.DEACTIVATE: ((), ()),
