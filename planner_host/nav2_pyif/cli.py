@@ -19,11 +19,16 @@ from nav2_pyif_protocol.keys import validate_prefix
 from nav2_pyif.delegates import check_roles, parse_delegates
 from nav2_pyif.env_defaults import apply_environment, document_environment
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.host import PlannerHost, new_host_id
+from nav2_pyif.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.service import InProcessPlanner, PlannerService
 from nav2_pyif.spec import PlannerSpec
 from nav2_pyif.supervisor import Deadlines, SupervisedPlanner
-from nav2_pyif.zenoh_config import add_zenoh_arguments, open_session, options_from_args
+from nav2_pyif.zenoh_config import (
+    add_zenoh_arguments,
+    configured_endpoints,
+    open_session,
+    options_from_args,
+)
 
 EPILOG = """\
 examples:
@@ -243,8 +248,9 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGINT, on_signal)
     signal.signal(signal.SIGTERM, on_signal)
 
+    options = options_from_args(args)
     try:
-        session = open_session(options_from_args(args))
+        session = open_session(options)
     except (ConnectionError, FileNotFoundError) as exc:
         for service in services:
             service.close()
@@ -268,8 +274,11 @@ def main(argv: list[str] | None = None) -> int:
             "s"[: len(services) > 1],
             args.isolation,
         )
+        reach = ReachWatch(session, *configured_endpoints(options))
         while True:
-            stop.wait()
+            if not stop.wait(1.0):
+                reach.check()
+                continue
             if not reload_requested.is_set():
                 break
             reload_requested.clear()
