@@ -68,6 +68,9 @@ class InProcessPlanner:
         except PlannerLoadError as exc:
             raise self._refused(exc) from exc
         old = self.runtime
+        # Delegates keep their state in their module, re-imported in place and so shared by
+        # both versions: a discarded version's cleanup would reset the other's state.
+        shared = self.spec.module is not None and self.spec.module == new_spec.module
 
         def swap() -> None:  # called with the lock held, between two calls
             self.runtime, self.spec, self.plugin_type = runtime, new_spec, runtime.plugin_type
@@ -81,9 +84,9 @@ class InProcessPlanner:
                 swap,
             )
         except PlannerLoadError as exc:
-            runtime.close()
+            _discard(runtime, shared)
             raise self._refused(exc) from exc
-        old.close()
+        _discard(old, shared)
         return (
             f"{new_spec.key}: now serving {new_spec.describe()} in process "
             f"({carried} session(s) carried over)"
@@ -94,3 +97,11 @@ class InProcessPlanner:
 
     def close(self) -> None:
         self.runtime.close()
+
+
+def _discard(runtime: PlannerRuntime, shared_module: bool) -> None:
+    """Close a runtime a swap left behind; without cleaning its sessions up when its planner
+    shares module state with the one that stays."""
+    if shared_module:
+        runtime.sessions.clear()
+    runtime.close()
