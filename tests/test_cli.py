@@ -65,7 +65,19 @@ def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
         (["--key", "k/*", "--planner", "echo_planners:LinePlanner"], 2, "wildcard"),
         (["--planner", "echo_planners:LinePlanner"], 2, "need --key"),
         ([], 2, "nothing to serve"),
-        (["--key", "k/a", "--module", "seed_delegates"], 2, "--module needs --delegate"),
+        (
+            ["--key", "k/a", "--module", "seed_delegates"],  # no function named after a role
+            2,
+            "module 'seed_delegates' defines neither compute_velocity_commands (a controller) "
+            "nor create_plan",
+        ),
+        (
+            ["--key", "k/a", "--module", "seed_delegates", "--delegate", "compute_velocity=c"],
+            2,
+            "unknown delegate role 'compute_velocity' (did you mean compute_velocity_commands?)"
+            "; roles: activate, cancel, cleanup, compute_velocity_commands, configure, "
+            "create_plan, deactivate, reset, set_plan, set_speed_limit",
+        ),
         (
             [
                 "--key",
@@ -86,8 +98,22 @@ def test_bad_input_gets_a_clear_error(args: list[str], code: int, words: str) ->
     assert words in result.stderr
 
 
-def test_yaml_config(tmp_path: Path) -> None:
+@pytest.mark.parametrize(
+    ("entry", "words"),
+    [
+        ("{key: a/b}", "exactly one of planner / module"),
+        (
+            "{key: a/b, module: seed_delegates, delegates: {set_pln: on_plan}}",
+            "planners[0]: unknown delegate role 'set_pln' (did you mean set_plan?); roles: ",
+        ),
+        (
+            "{key: a/b, module: seed_delegates, delegates: [compute_velocity_commands=compute]}",
+            "planners[0].delegates must map roles to functions",
+        ),
+    ],
+)
+def test_yaml_config(tmp_path: Path, entry: str, words: str) -> None:
     bad = tmp_path / "bad.yaml"
-    bad.write_text("planners:\n  - key: a/b\n")
+    bad.write_text(f"planners:\n  - {entry}\n")
     result = run("--config", str(bad))
-    assert result.returncode == 2 and "exactly one of planner / module" in result.stderr
+    assert result.returncode == 2 and words in result.stderr

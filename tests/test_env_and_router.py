@@ -15,7 +15,7 @@ from nav2_pyif.cli import build_parser
 from nav2_pyif.client import ControllerClient
 from nav2_pyif.env_defaults import apply_environment
 
-from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.conftest import FIXTURES, free_port, make_costmap, wait_until
 from tests.test_host_e2e import GENEROUS, pose
 
 
@@ -94,6 +94,17 @@ def test_help_works_whatever_the_environment_holds() -> None:
     assert result.returncode == 0 and "NAV2_PYIF_DEADLINE" in result.stdout
 
 
+def start_router(*where: str) -> subprocess.Popen[str]:
+    """``nav2-pyif router`` (``where``: --listen or --zenoh-config), once it listens."""
+    router = subprocess.Popen(
+        [sys.executable, "-m", "nav2_pyif.tool", "router", *where],
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    assert router.stdout is not None and "listening on" in router.stdout.readline()
+    return router
+
+
 @pytest.mark.parametrize("listen_from", ["flag", "config_file"])
 def test_router_routes_between_a_host_and_a_client(
     tmp_path: Path, listen_from: str, zsession_factory: Any
@@ -106,11 +117,7 @@ def test_router_routes_between_a_host_and_a_client(
         config = tmp_path / "router.json5"
         config.write_text(f'{{mode: "router", listen: {{endpoints: ["{endpoint}"]}}}}')
         where = ["--zenoh-config", str(config)]
-    router = subprocess.Popen(
-        [sys.executable, "-m", "nav2_pyif.tool", "router", *where],
-        stdout=subprocess.PIPE,
-        text=True,
-    )
+    router = start_router(*where)
     host_log = open(tmp_path / "host.log", "wb")  # noqa: SIM115 - closed below
     # The host is configured only through the environment, as in the container.
     host = subprocess.Popen(
@@ -127,7 +134,6 @@ def test_router_routes_between_a_host_and_a_client(
         ),
     )
     try:
-        assert router.stdout is not None and "listening on" in router.stdout.readline()
         # Client mode, as the C++ plugin always is: the router forwards to the peer host.
         session = zsession_factory(endpoint, mode="client")
         client = ControllerClient(
@@ -143,3 +149,32 @@ def test_router_routes_between_a_host_and_a_client(
         codes = [proc.wait(10) for proc in (host, router)]  # both stopped before asserting
         host_log.close()
         assert codes == [143, 143], (tmp_path / "host.log").read_text()  # SIGTERM
+
+
+def test_a_host_that_reaches_nothing_keeps_saying_so_until_it_reaches_a_router(
+    start_host: Any,
+) -> None:
+    router_at = f"tcp/127.0.0.1:{free_port()}"  # nothing there yet
+    key, planner = "nav2_pyif/lonely/FollowPath", "echo_planners:EchoController"
+    host = start_host("--key", key, "--planner", planner, "--connect", router_at)
+    warning = "[WARNING] [nav2_pyif.host] Zenoh: nothing reached yet; "
+    assert wait_until(
+        lambda: (
+            (
+                f"{warning}no Zenoh router or peer answers at {router_at} and none connected "
+                f"(listening on {host.endpoint}), so no Nav2 plugin can reach this host. Start "
+                "a router there (zenohd, or nav2-pyif router)"
+            )
+            in host.log()
+        ),
+        20,
+    ), host.log()
+    assert wait_until(lambda: host.log().count(warning) >= 2, 15), host.log()  # repeated
+    router = start_router("--listen", router_at)
+    try:
+        reached = "[INFO] [nav2_pyif.host] Zenoh: reached router "
+        assert wait_until(lambda: reached in host.log(), 20), host.log()
+    finally:
+        router.terminate()
+        router.wait(10)
+    assert host.log().count("Zenoh: reached") == 1  # said once

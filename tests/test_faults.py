@@ -4,8 +4,10 @@ that works — with the session's plan still in place (restored by the host, not
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import os
+import shutil
 import signal
 import threading
 import time
@@ -16,10 +18,12 @@ from typing import Any
 import nav2_pyif as api
 import numpy as np
 import pytest
+import zenoh
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
-from nav2_pyif.client.admin import request_reload
+from nav2_pyif.client.admin import NoPlannerHost, request_reload
+from nav2_pyif.host_process import PlannerHostProcess
 
 from tests.conftest import (
     CONTROLLER_ERRORS,
@@ -235,6 +239,10 @@ def test_a_worker_stuck_in_native_code_is_killed_and_restarted(fresh_rig: Rig) -
 
 
 def test_kill_9_of_the_worker_from_outside(fresh_rig: Rig) -> None:
+    # a change the planner refused is not part of the restored state (replayed, it would
+    # fail the new worker's configure and drop the session)
+    refused = fresh_rig.ctrl.set_parameters({"gain": "fast"})
+    assert refused == {"gain": "gain: expected float, got str"}
     worker = worker_pid(fresh_rig)
     assert worker is not None, fresh_rig.host.log()
     os.kill(worker, signal.SIGKILL)
@@ -277,17 +285,48 @@ def test_crash_loop_is_backed_off_and_reported(fresh_rig: Rig) -> None:
         ("no_compute:Incomplete", "does not implement compute_velocity_commands"),
         ("no_such_module_xyz:Ctl", "No module named 'no_such_module_xyz'"),
         ("broken_at_import:X", "fails at import on purpose"),
-        ("syntax_broken:X", "SyntaxError"),
+        ("syntax_broken:X", r"SyntaxError in \S+/fixtures/syntax_broken\.py, line 1: "),
         ("echo_planners:LinePlanner", "is a global_planner; this key serves a controller"),
+        # loads, but cannot take over the live session: all or nothing
+        (
+            "refuse_sessions:ConfigureFails",
+            r"its configure failed: \[InvalidController\] .*"
+            "configure fails on purpose",
+        ),
+        ("refuse_sessions:ActivateFails", r"its activate failed: .*activate fails on purpose"),
+        ("refuse_sessions:SetPlanFails", r"its set_plan failed: \[InvalidPath\] .*on purpose"),
+        (
+            "refuse_sessions:FaultIsAFloat",
+            r"its configure failed: .*fault: expected float, got str",
+        ),
     ],
 )
 def test_a_broken_new_version_is_refused_and_the_old_one_keeps_serving(
-    rig: Rig, spec: str, words: str, tmp_path: Path
+    rig: Rig, spec: str, words: str
 ) -> None:
+    inject(rig, "none")  # the live session has a string ``fault`` parameter
     with pytest.raises(api.PlannerLoadError, match=words) as info:
         request_reload(rig.session, KEY, planner=spec, timeout=30)
     assert "still serving" in str(info.value)
+    # the installation hint only where the module itself was not found
+    assert ("PYTHONPATH" in str(info.value)) == spec.startswith("no_such_module")
     assert_recovered(rig)
+
+
+def test_a_reload_nobody_serves_says_so_and_lists_the_visible_hosts(rig: Rig) -> None:
+    typo = "nav2_pyif/faults/FolowPath"
+    started = time.monotonic()
+    with pytest.raises(NoPlannerHost, match=f"no planner host serves {typo} ") as info:
+        request_reload(rig.session, typo, timeout=30)
+    assert time.monotonic() - started < 10  # not the 30 s timeout
+    assert "planner hosts visible from here: " in str(info.value)
+    assert f"{KEY} (host " in str(info.value) and f"{PLANNER_KEY} (host " in str(info.value)
+    alone = open_client_session(f"tcp/127.0.0.1:{free_port()}")  # on no Zenoh network
+    try:
+        with pytest.raises(NoPlannerHost, match="no planner host is visible at all from here"):
+            request_reload(alone, KEY, timeout=30)
+    finally:
+        alone.close()
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -348,22 +387,38 @@ def test_host_survives_a_session_of_zenoh_clients_leaving(rig: Rig) -> None:
     assert_recovered(rig)
 
 
-def test_a_new_version_of_the_module_replaces_the_old_one(tmp_path: Path) -> None:
+VERSIONED = (
+    "from geometry_msgs.msg import TwistStamped\n"
+    "from nav2_pyif import Controller\n\n\n"
+    "class Versioned(Controller):\n"
+    "    def configure(self):\n"
+    "        CONFIGURE\n\n"
+    "    def compute_velocity_commands(self, pose, velocity, goal_checker):\n"
+    "        cmd = TwistStamped(header=pose.header)\n"
+    "        cmd.twist.linear.x = float(len(self.plan)) if self.plan else 0.0\n"
+    "        cmd.twist.angular.z = VERSION\n"
+    "        return cmd\n"
+)
+
+
+def write_version(source: Path, version: float, configure: str = "pass") -> None:
+    """The researcher edits the planner's file (no stale bytecode: a rewrite within the same
+    second and of the same size would look unchanged to the .pyc check)."""
+    shutil.rmtree(source.parent / "__pycache__", ignore_errors=True)
+    source.write_text(VERSIONED.replace("VERSION", str(version)).replace("CONFIGURE", configure))
+
+
+@contextlib.contextmanager
+def versioned_host(
+    tmp_path: Path, *flags: str
+) -> Iterator[tuple[Path, PlannerHostProcess, ControllerClient]]:
+    """A host serving version 1.0 of ``versioned_ctrl:Versioned`` from ``tmp_path``, and a
+    client with a live session (configured, active, with a plan)."""
     source = tmp_path / "versioned_ctrl.py"
-    template = (
-        "from geometry_msgs.msg import TwistStamped\n"
-        "from nav2_pyif import Controller\n\n\n"
-        "class Versioned(Controller):\n"
-        "    def compute_velocity_commands(self, pose, velocity, goal_checker):\n"
-        "        cmd = TwistStamped(header=pose.header)\n"
-        "        cmd.twist.linear.x = float(len(self.plan)) if self.plan else 0.0\n"
-        "        cmd.twist.angular.z = VERSION\n"
-        "        return cmd\n"
-    )
-    source.write_text(template.replace("VERSION", "1.0"))
+    write_version(source, 1.0)
     host = host_process(
         free_port(),
-        ["--key", KEY, "--planner", "versioned_ctrl:Versioned", "--path", str(tmp_path)],
+        ["--key", KEY, "--planner", "versioned_ctrl:Versioned", "--path", str(tmp_path), *flags],
         tmp_path / "host.log",
     ).start()
     session = open_client_session(host.endpoint)
@@ -374,15 +429,62 @@ def test_a_new_version_of_the_module_replaces_the_old_one(tmp_path: Path) -> Non
         client.activate()
         client.set_plan(Plan(np.zeros((PLAN_LENGTH, 3)), "odom"))
         assert client.compute_velocity_commands(pose(), Twist()).twist.angular.z == 1.0
-        source.write_text(template.replace("VERSION", "2.0"))  # the researcher edits the file
-        assert "now serving versioned_ctrl:Versioned" in request_reload(session, KEY)
-        cmd = client.compute_velocity_commands(pose(), Twist())
-        assert (cmd.twist.angular.z, cmd.twist.linear.x) == (2.0, PLAN_LENGTH)
-        assert client.resyncs == 0
+        yield source, host, client
     finally:
         client.close()
         session.close()
         host.stop()
+
+
+def served_version(client: ControllerClient) -> float:
+    cmd = client.compute_velocity_commands(pose(), Twist())
+    assert cmd.twist.linear.x == PLAN_LENGTH  # the plan carried over
+    assert client.resyncs == 0  # by the host, not re-sent by the plugin
+    return float(cmd.twist.angular.z)
+
+
+def test_a_new_version_of_the_module_replaces_the_old_one(tmp_path: Path) -> None:
+    with versioned_host(tmp_path) as (source, _, client):
+        write_version(source, 2.0)
+        assert "now serving versioned_ctrl:Versioned" in request_reload(client.session, KEY)
+        assert served_version(client) == 2.0
+
+
+def sighup_reload(host: PlannerHostProcess, session: zenoh.Session) -> str:
+    """SIGHUP the host; what it logged from then until its reload was refused or done."""
+    mark = len(host.log())
+    assert host.proc is not None
+    os.kill(host.proc.pid, signal.SIGHUP)
+    deadline = time.monotonic() + 30
+    while not any(w in host.log()[mark:] for w in ("reload refused", "now serving")):
+        assert time.monotonic() < deadline, host.log()[-3000:]
+        time.sleep(0.1)
+    return host.log()[mark:]
+
+
+def admin_reload(host: PlannerHostProcess, session: zenoh.Session) -> str:
+    try:
+        return request_reload(session, KEY, timeout=30)
+    except api.PlannerLoadError as exc:
+        return str(exc)
+
+
+@pytest.mark.parametrize(
+    ("isolation", "reload"), [("process", sighup_reload), ("none", admin_reload)]
+)
+def test_a_version_that_fails_to_configure_is_refused_all_or_nothing(
+    tmp_path: Path, isolation: str, reload: Any
+) -> None:
+    with versioned_host(tmp_path, "--isolation", isolation) as (source, host, client):
+        write_version(source, 2.0, configure='raise RuntimeError("v2 cannot configure")')
+        refused = reload(host, client.session)
+        assert "reload refused, still serving versioned_ctrl:Versioned" in refused
+        assert "its configure failed: [InvalidController]" in refused
+        assert "RuntimeError: v2 cannot configure" in refused
+        assert served_version(client) == 1.0  # the old version kept the session
+        write_version(source, 3.0)
+        assert "1 session(s) carried over" in reload(host, client.session)
+        assert served_version(client) == 3.0
 
 
 def _rss_mib(pid: int) -> float:

@@ -2,9 +2,11 @@
 
 from __future__ import annotations
 
+import logging
 import math
 import threading
 import time
+from pathlib import Path
 from typing import Any
 
 import nav2_pyif as api
@@ -264,3 +266,62 @@ def test_a_speed_limit_set_while_no_host_is_up_survives(
     client.cleanup()
     client.configure()
     assert client.compute_velocity_commands(pose(), Twist()).twist.linear.z == -1.0  # forgotten
+
+
+def warned(log: str, words: str) -> bool:
+    return any("[WARNING]" in line and words in line for line in log.splitlines())
+
+
+def test_delegate_modules_bind_by_name_and_say_what_a_missing_role_means(
+    start_host: Any, zsession_factory: Any, tmp_path: Path
+) -> None:
+    """The seed's examples: ``--module m`` alone binds m's functions named after the roles;
+    a role left without a function is a warning at start, saying what Nav2's call then does."""
+    by_name, one_liner = "nav2_pyif/apf/FollowPath", "nav2_pyif/seed/FollowPath"
+    config = tmp_path / "planners.yaml"
+    config.write_text(
+        f"planners:\n  - {{key: {by_name}, module: nav2_pyif_planners.apf}}\n"
+        f"  - {{key: {one_liner}, module: seed_delegates, "
+        "delegates: {compute_velocity_commands: compute}}\n"
+    )
+    host = start_host("--config", str(config))
+    apf = controller(zsession_factory, host, key=by_name)
+    assert "lookahead" in apf.configure()  # the module's configure(params) was bound
+    apf.set_plan(Plan(np.column_stack([np.linspace(0, 1, 20), np.zeros(20)]), "odom"))
+    # the APF raises NoValidControl unless its set_plan was bound
+    assert apf.compute_velocity_commands(pose(0.1, 0.0), Twist()).twist.linear.x > 0.0
+    log = host.log()
+    assert (
+        "nav2_pyif_planners.apf: functions bound by name: compute_velocity_commands, "
+        "configure, set_plan, set_speed_limit" in log
+    )
+    assert not warned(log, "nav2_pyif_planners.apf: set_plan has no delegate")
+    assert warned(log, "nav2_pyif_planners.apf: activate has no delegate")
+    for role, meaning in [
+        ("set_plan", "Nav2's global plan is kept in the controller's self.plan, but no function "),
+        ("set_speed_limit", "Nav2's speed limits (speed filter zones) never reach your functions"),
+        ("configure", "your functions get no Parameters"),
+        ("cancel", "a cancel is answered at once as done"),
+    ]:
+        assert warned(log, f"seed_delegates: {role} has no delegate: {meaning}"), log
+
+
+def test_a_misspelt_parameter_is_reported_and_an_undeclared_update_refused(
+    start_host: Any, zsession_factory: Any, caplog: pytest.LogCaptureFixture
+) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host, params={"gain": 2.0, "gian": 3.0})
+    with caplog.at_level(logging.WARNING, logger="nav2_pyif.client"):
+        assert client.configure() == {"gain": 2.0, "label": "echo"}
+    reason = (
+        "gian is not a parameter of this planner (did you mean gain?); it declares: gain, label"
+    )
+    assert client.undeclared == {"gian": reason}  # in the configure reply
+    assert f"FollowPath: the planner ignores parameter(s) gian: {reason}" in caplog.text
+    assert warned(host.log(), f"parameters given but never declared, ignored: {reason}")
+    # as ROS 2 does: an update to a parameter the planner does not declare is refused
+    assert client.set_parameters({"gain": 4.0, "lable": "x"}) == {
+        "lable": "lable is not a parameter of this planner (did you mean label?); "
+        "it declares: gain, label"
+    }
+    assert client.compute_velocity_commands(pose(), Twist()).twist.linear.y == 4.0

@@ -43,6 +43,19 @@ def test_parameters_declare_given_values_and_defaults() -> None:
         params["nope"]
 
 
+def test_given_parameters_the_planner_neither_declares_nor_reads_are_reported() -> None:
+    params = Parameters({"max_speed": 1.0, "max_sped": 2.0, "name": "x", "mode": "fast"})
+    params.declare("max_speed", 0.5)
+    assert params["name"] == "x" and "mode" in params  # read without declaring: used
+    assert params.undeclared() == {
+        "max_sped": "max_sped is not a parameter of this planner (did you mean max_speed?); "
+        "it declares: max_speed"
+    }
+    assert Parameters({"k": 1}).undeclared() == {
+        "k": "k is not a parameter of this planner; it declares: none"
+    }
+
+
 def test_parameters_wrong_type_at_declare_raises() -> None:
     with pytest.raises(TypeError, match="use_x: expected bool, got int"):
         Parameters({"use_x": 1}).declare("use_x", True)
@@ -56,9 +69,14 @@ def test_parameter_updates_reject_bad_types_and_keep_old_values() -> None:
     params.declare("weights", [1.0, 2.0])
     seen: list[dict[str, Any]] = []
     params.on_change(seen.append)
-    applied, rejected = params.update({"gain": "fast", "weights": [3, 4], "free": True})
-    assert rejected == {"gain": "gain: expected float, got str"}
-    assert applied == {"weights": [3.0, 4.0], "free": True}
+    applied, rejected = params.update({"gain": "fast", "weights": [3, 4], "gian": 2.0})
+    assert rejected == {
+        "gain": "gain: expected float, got str",
+        # as in ROS 2: not one of the planner's parameters
+        "gian": "gian is not a parameter of this planner (did you mean gain?); "
+        "it declares: gain, weights",
+    }
+    assert applied == {"weights": [3.0, 4.0]}
     assert params["gain"] == 1.0 and params["weights"] == [3.0, 4.0]
     assert seen == [applied]
 

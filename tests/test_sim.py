@@ -286,3 +286,21 @@ def test_built_in_zenoh_configs_make_no_shared_memory_pool_on_the_first_large_me
     for options in (ZenohOptions(use_environment=False), ZenohOptions(listen=["tcp/[::1]:0"])):
         config = build_config(options)
         assert json.loads(config.get_json("transport/shared_memory/enabled")) is False
+
+
+def test_a_misspelt_controller_parameter_is_a_warning(tmp_path: Path) -> None:
+    result = subprocess.run(
+        [
+            *(sys.executable, "-m", "nav2_pyif.tool", "sim", "--timeout", "1", "--no-progress"),
+            *("--param", "desired_linear_velocity=0.4", "--out", str(tmp_path)),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert result.returncode in (0, 1), result.stderr
+    assert (
+        "[WARNING] [nav2_pyif.client] FollowPath: the planner ignores parameter(s) "
+        "desired_linear_velocity: desired_linear_velocity is not a parameter of this planner "
+        "(did you mean desired_linear_vel?); it declares: approach_velocity_scaling_dist, "
+    ) in result.stderr

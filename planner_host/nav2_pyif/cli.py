@@ -16,24 +16,32 @@ from typing import Any
 import yaml
 from nav2_pyif_protocol.keys import validate_prefix
 
-from nav2_pyif.delegates import parse_delegates
+from nav2_pyif.delegates import check_roles, parse_delegates
 from nav2_pyif.env_defaults import apply_environment, document_environment
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.host import PlannerHost, new_host_id
+from nav2_pyif.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.service import InProcessPlanner, PlannerService
 from nav2_pyif.signals import TERMINATING, exit_code
 from nav2_pyif.spec import PlannerSpec
 from nav2_pyif.supervisor import Deadlines, SupervisedPlanner
-from nav2_pyif.zenoh_config import add_zenoh_arguments, open_session, options_from_args
+from nav2_pyif.zenoh_config import (
+    add_zenoh_arguments,
+    configured_endpoints,
+    open_session,
+    options_from_args,
+)
 
 EPILOG = """\
 examples:
   # a controller class, on the key the Nav2 params YAML names
   planner-host --key nav2_pyif/robot1/FollowPath --planner my_pkg.ctrl:MyController
 
-  # the seed paper's function-delegate style
+  # the seed paper's function-delegate style: a module and a role -> function map
   planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
       --delegate compute_velocity_commands=compute,set_plan=set_plan
+
+  # ... or functions named after the roles (compute_velocity_commands, set_plan, ...)
+  planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf
 
   # several planners on one host, no Zenoh router: plugins connect to this host
   planner-host --listen tcp/127.0.0.1:7447 \\
@@ -79,7 +87,7 @@ def build_parser() -> argparse.ArgumentParser:
         default=[],
         metavar="ROLE=FUNCTION",
         help="role -> function of --module (the seed's python_delegates), repeatable "
-        "or comma-separated",
+        "or comma-separated; without it, the functions named after the roles",
     )
     what.add_argument(
         "--serve",
@@ -159,10 +167,6 @@ def collect_specs(args: argparse.Namespace, parser: argparse.ArgumentParser) -> 
         if args.planner and args.module:
             parser.error("give either --planner or --module, not both")
         delegates = parse_delegates(args.delegate) if args.module else None
-        if args.module and not delegates:
-            parser.error(
-                "--module needs --delegate ROLE=FUNCTION (e.g. compute_velocity_commands=f)"
-            )
         specs.append(PlannerSpec(args.key, args.planner, args.module, delegates or {}))
     elif args.key:
         parser.error("--key needs --planner MODULE:CLASS or --module MODULE")
@@ -197,12 +201,22 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
             raise PlannerLoadError(f"{path}: planners[{i}] needs a 'key'")
         if ("planner" in entry) == ("module" in entry):
             raise PlannerLoadError(f"{path}: planners[{i}] needs exactly one of planner / module")
+        delegates = entry.get("delegates") or {}
+        if not isinstance(delegates, dict):
+            raise PlannerLoadError(
+                f"{path}: planners[{i}].delegates must map roles to functions, e.g. "
+                "{compute_velocity_commands: compute}"
+            )
+        try:
+            check_roles(delegates)
+        except PlannerLoadError as exc:
+            raise PlannerLoadError(f"{path}: planners[{i}]: {exc}") from None
         specs.append(
             PlannerSpec(
                 str(entry["key"]),
                 entry.get("planner"),
                 entry.get("module"),
-                {str(k): str(v) for k, v in (entry.get("delegates") or {}).items()},
+                {str(k): str(v) for k, v in delegates.items()},
             )
         )
     return specs
@@ -245,8 +259,9 @@ def main(argv: list[str] | None = None) -> int:
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return exit_code(stopped_by[0]) if stopped_by else 2
+    options = options_from_args(args)
     try:
-        session = open_session(options_from_args(args))
+        session = open_session(options)
     except (ConnectionError, FileNotFoundError) as exc:
         for service in services:
             service.close()
@@ -265,8 +280,11 @@ def main(argv: list[str] | None = None) -> int:
                 "s"[: len(services) > 1],
                 args.isolation,
             )
+        reach = ReachWatch(session, *configured_endpoints(options))
         while not stopped_by:
-            stop.wait()
+            if not stop.wait(1.0):
+                reach.check()
+                continue
             stop.clear()
             if reload_requested.is_set() and not stopped_by:
                 reload_requested.clear()

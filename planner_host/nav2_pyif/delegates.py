@@ -3,6 +3,10 @@
     planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
         --delegate compute_velocity_commands=compute --delegate set_plan=set_plan
 
+Without ``--delegate``, the module's functions named after the roles are bound (a module
+defining ``compute_velocity_commands`` and ``set_plan`` needs no map). Each role left without a
+function is logged as a warning saying what Nav2's call then does.
+
 Signatures (the seed's, with the costmap first where the seed passed the occupancy grid):
     compute_velocity_commands(costmap: Costmap, pose: PoseStamped, twist: Twist) -> TwistStamped
     set_plan(plan: Plan)                      # reads like nav_msgs/Path
@@ -13,6 +17,8 @@ Signatures (the seed's, with the costmap first where the seed passed the occupan
 
 from __future__ import annotations
 
+import difflib
+import logging
 from collections.abc import Callable, Mapping
 from typing import Any
 
@@ -31,9 +37,37 @@ PLANNER_ROLES = frozenset({"create_plan"})
 LIFECYCLE_ROLES = frozenset({"configure", "activate", "deactivate", "cleanup"})
 ALL_ROLES = CONTROLLER_ROLES | PLANNER_ROLES | LIFECYCLE_ROLES
 
+#: What Nav2's call does when a role has no function (logged as a warning at load).
+WITHOUT_DELEGATE = {
+    "set_plan": "Nav2's global plan is kept in the controller's self.plan, but no function of "
+    "yours receives it: compute_velocity_commands(costmap, pose, twist) has no plan to follow "
+    "(delegate set_plan=FUNCTION(plan) and keep it, as nav2_pyif_planners.apf does)",
+    "set_speed_limit": "Nav2's speed limits (speed filter zones) never reach your functions",
+    "cancel": "a cancel is answered at once as done",
+    "reset": "Nav2's reset between goals does nothing",
+    "configure": "your functions get no Parameters: the plugin's parameters in the Nav2 YAML "
+    "are not read",
+    "activate": "Nav2's activate does nothing",
+    "deactivate": "Nav2's deactivate does nothing",
+    "cleanup": "Nav2's cleanup does nothing",
+}
+
+log = logging.getLogger("nav2_pyif.delegates")
+
+
+def check_roles(delegates: Mapping[str, str]) -> None:
+    """Refuse unknown roles, naming the closest known one and every valid role."""
+    for role in sorted(set(delegates) - ALL_ROLES):
+        close = difflib.get_close_matches(role, ALL_ROLES, n=1)
+        raise PlannerLoadError(
+            f"unknown delegate role {role!r}"
+            + (f" (did you mean {close[0]}?)" if close else "")
+            + f"; roles: {', '.join(sorted(ALL_ROLES))}"
+        )
+
 
 def parse_delegates(items: list[str]) -> dict[str, str]:
-    """["role=function", "role2=function2,role3=f3"] -> {role: function}."""
+    """["role=function", "role2=function2,role3=f3"] -> {role: function}, roles checked."""
     out: dict[str, str] = {}
     for item in items:
         for pair in filter(None, (p.strip() for p in item.split(","))):
@@ -41,26 +75,34 @@ def parse_delegates(items: list[str]) -> dict[str, str]:
             if not sep or not role or not func:
                 raise PlannerLoadError(f"delegate {pair!r} is not of the form role=function")
             out[role.strip()] = func.strip()
+    check_roles(out)
     return out
 
 
 def delegate_class(
-    module_name: str, delegates: Mapping[str, str], *, reload: bool = False
+    module_name: str, delegates: Mapping[str, str], *, reload: bool = False, quiet: bool = False
 ) -> type[PlannerPlugin]:
-    """Build a Controller or GlobalPlanner class whose methods call the module's functions."""
-    unknown = set(delegates) - ALL_ROLES
-    if unknown:
-        raise PlannerLoadError(
-            f"unknown delegate role(s) {', '.join(sorted(unknown))}; "
-            f"roles: {', '.join(sorted(ALL_ROLES))}"
-        )
+    """Build a Controller or GlobalPlanner class whose methods call the module's functions:
+    those ``delegates`` maps roles to, or (no map) those named after the roles. Logs a
+    warning for each role left without a function, unless ``quiet`` (a worker restart)."""
+    check_roles(delegates)
+    module = import_module(module_name, reload=reload)
+    if not delegates:
+        delegates = {r: r for r in sorted(ALL_ROLES) if callable(getattr(module, r, None))}
+        if not {"compute_velocity_commands", "create_plan"} & set(delegates):
+            raise PlannerLoadError(
+                f"module {module_name!r} defines neither compute_velocity_commands (a "
+                "controller) nor create_plan (a global planner); name your functions after "
+                "the roles or map them with --delegate ROLE=FUNCTION"
+            )
+        if not quiet:
+            log.info("%s: functions bound by name: %s", module_name, ", ".join(delegates))
     is_controller = "compute_velocity_commands" in delegates
     if is_controller == ("create_plan" in delegates):
         raise PlannerLoadError(
             "delegates need exactly one of compute_velocity_commands (a controller) "
             "or create_plan (a global planner)"
         )
-    module = import_module(module_name, reload=reload)
     funcs: dict[str, Callable[..., Any]] = {}
     for role, func_name in delegates.items():
         func = getattr(module, func_name, None)
@@ -69,6 +111,9 @@ def delegate_class(
                 f"module {module_name!r} has no function {func_name!r} (delegate for {role})"
             )
         funcs[role] = func
+    roles = (CONTROLLER_ROLES if is_controller else frozenset()) | LIFECYCLE_ROLES
+    for role in [] if quiet else sorted(roles - set(funcs)):
+        log.warning("%s: %s has no delegate: %s", module_name, role, WITHOUT_DELEGATE[role])
     if is_controller:
         return _controller_class(module_name, funcs)
     return _planner_class(module_name, funcs)

@@ -10,6 +10,7 @@ import os
 import secrets
 import socket
 import threading
+import time
 from typing import Any
 
 import msgpack
@@ -119,6 +120,59 @@ class ServedPlanner:
                 entity.undeclare()
         self._thread.join(timeout=5.0)
         self.runtime.close()
+
+
+class ReachWatch:
+    """Says in the log whether this host reaches anything over Zenoh: a warning, repeated
+    every ``every`` seconds, while no router, peer or plugin is connected (a host that
+    reaches nothing cannot be reached by Nav2), and once what it reached."""
+
+    def __init__(
+        self,
+        session: zenoh.Session,
+        connect: list[str],
+        listen: list[str],
+        *,
+        grace: float = 3.0,
+        every: float = 10.0,
+    ) -> None:
+        self.session = session
+        self.connect, self.listen = connect, listen
+        self.every = every
+        self.reached = False
+        self._next_warning = time.monotonic() + grace
+
+    def check(self) -> None:
+        transports = list(self.session.info.transports())
+        now = time.monotonic()
+        if transports and not self.reached:
+            self.reached = True
+            log.info("Zenoh: reached %s", _describe(transports))
+        elif not transports and self.reached:
+            self.reached = False
+            log.warning("Zenoh: every connection is gone; %s", self._advice())
+            self._next_warning = now + self.every
+        elif not transports and now >= self._next_warning:
+            log.warning("Zenoh: nothing reached yet; %s", self._advice())
+            self._next_warning = now + self.every
+
+    def _advice(self) -> str:
+        listening = f"listening on {', '.join(self.listen)}" if self.listen else ""
+        if not self.connect:
+            return f"no Nav2 plugin has connected ({listening}): point the plugin's Zenoh at it"
+        return (
+            f"no Zenoh router or peer answers at {', '.join(self.connect)}"
+            + (f" and none connected ({listening})" if listening else "")
+            + ", so no Nav2 plugin can reach this host. Start a router there (zenohd, or "
+            "nav2-pyif router), or let this host listen (--listen ENDPOINT) and point the "
+            "plugin at it."
+        )
+
+
+def _describe(transports: list[Any]) -> str:
+    named = [f"{t.whatami} {str(t.zid)[:8]}" for t in transports]
+    more = f" and {len(named) - 4} more" if len(named) > 4 else ""
+    return ", ".join(named[:4]) + more
 
 
 class PlannerHost:

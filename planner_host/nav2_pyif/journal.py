@@ -1,19 +1,24 @@
 """What each session has told its planner, so a new worker can be told the same.
 
 Recorded from requests whose replies were ok: the configure body (with the latest costmap
-substituted in), whether the session is active, merged parameter changes, the latest plan and
-speed limit. Replayed, in that order, on a restarted or hot-swapped worker under the same
+substituted in), whether the session is active, the parameter changes it accepted, the latest
+plan and speed limit. Replayed, in that order, on a restarted or hot-swapped worker under the same
 session id and epoch, so the plugin never notices.
 """
 
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable, Iterator
+from contextlib import AbstractContextManager
 from dataclasses import dataclass, field
 from typing import Any
 
+import msgpack
 from nav2_pyif_protocol.codec import Request, decode_request, encode_request
-from nav2_pyif_protocol.constants import Op
+from nav2_pyif_protocol.constants import Op, PluginType
+
+from nav2_pyif.exceptions import PlannerLoadError
 
 STATE_OPS = frozenset(
     {
@@ -74,16 +79,23 @@ class Journal:
             return False
         return op in STATE_OPS or b"costmap" in payload
 
-    def record(self, payload: bytes) -> None:
-        """Note a request that the planner accepted (its reply was ok)."""
+    def note(self, key_op: str, payload: bytes, reply: bytes) -> None:
+        """Record a request the planner accepted (its reply was ok), leaving out parameter
+        changes it rejected: replayed, those would fail the new planner's configure."""
+        if not self.worth_recording(key_op, payload):
+            return
+        answer = _unpacked(reply)
+        if not answer.get("ok"):
+            return
         try:
             request = decode_request(payload)
         except Exception:
             return
+        rejected = (answer.get("body") or {}).get("rejected") or {}
         with self._lock:
-            self._apply(request)
+            self._apply(request, rejected)
 
-    def _apply(self, request: Request) -> None:
+    def _apply(self, request: Request, rejected: dict[str, str]) -> None:
         op, body = request.op, request.body
         if op is Op.CONFIGURE:
             self._sessions[request.sid] = SessionRecord(request.sid, request.epoch, dict(body))
@@ -97,7 +109,7 @@ class Journal:
         elif op in (Op.ACTIVATE, Op.DEACTIVATE):
             record.active = op is Op.ACTIVATE
         elif op is Op.SET_PARAMETERS:
-            record.params.update(body["params"])
+            record.params.update((k, v) for k, v in body["params"].items() if k not in rejected)
         elif op is Op.SET_PLAN:
             record.plan = body
         elif op is Op.SET_SPEED_LIMIT:
@@ -119,6 +131,29 @@ class Journal:
                 if sid not in snapshot or snapshot[sid][0] != r.version
             }
 
+    def hand_over(
+        self,
+        call: Callable[[str, bytes], bytes | None],
+        new: tuple[str, PluginType],
+        serving: PluginType,
+        lock: AbstractContextManager[Any],
+        swap: Callable[[], None],
+    ) -> int:
+        """Hot swap, all or nothing: replay every session on the new planner (``new``: its
+        label and kind) through ``call``, then, holding ``lock`` so that no call changes them
+        meanwhile, the sessions changed since, and ``swap()``. Raises PlannerLoadError naming
+        the first session and step that failed (nothing swapped). Returns the number of
+        sessions carried over."""
+        label, kind = new
+        if len(self) and kind is not serving:
+            raise PlannerLoadError(f"{label} is a {kind.value}; this key serves a {serving.value}")
+        snapshot = self.snapshot()
+        _replay_all_or_refuse(snapshot, call, label)
+        with lock:
+            _replay_all_or_refuse(self.changed_since(snapshot), call, label)
+            swap()
+            return len(self)
+
     def forget(self, sid: str) -> None:
         with self._lock:
             self._sessions.pop(sid, None)
@@ -126,3 +161,47 @@ class Journal:
     def __len__(self) -> int:
         with self._lock:
             return len(self._sessions)
+
+
+def _unpacked(reply: bytes | None) -> dict[str, Any]:
+    try:
+        answer = msgpack.unpackb(reply) if reply is not None else {}
+    except Exception:
+        return {}
+    return answer if isinstance(answer, dict) else {}
+
+
+def failure_of(reply: bytes | None) -> str:
+    """Why a replayed request failed ("" when its reply was ok)."""
+    if reply is None:
+        return "no answer within its deadline"
+    answer = _unpacked(reply)
+    if answer.get("ok"):
+        return ""
+    error = answer.get("error") or {}
+    return f"[{error.get('type', '?')}] {error.get('message', 'undecodable reply')}"
+
+
+def replay(
+    snapshot: Snapshot, call: Callable[[str, bytes], bytes | None]
+) -> Iterator[tuple[str, str, str]]:
+    """Send each session's requests to a new planner through ``call`` (op, request -> reply,
+    None when it did not answer in time). Yields ``(sid, op, reason)`` for each session whose
+    replay failed, at its first failing request (the rest of that session is skipped)."""
+    for sid, (_, requests) in snapshot.items():
+        for op, payload in requests:
+            reason = failure_of(call(op, payload))
+            if reason:
+                yield sid, op, reason
+                break
+
+
+def _replay_all_or_refuse(
+    snapshot: Snapshot, call: Callable[[str, bytes], bytes | None], label: str
+) -> None:
+    """A hot swap is all or nothing: every live session must be restored on the new planner
+    ``label``. Raises PlannerLoadError naming the first session and step that failed."""
+    for sid, op, reason in replay(snapshot, call):
+        raise PlannerLoadError(
+            f"{label} could not take over live session {sid[:8]}: its {op} failed: {reason}"
+        )

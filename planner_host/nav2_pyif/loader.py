@@ -20,11 +20,35 @@ def import_module(name: str, *, reload: bool = False) -> ModuleType:
             return importlib.reload(sys.modules[name])
         return importlib.import_module(name)
     except BaseException as exc:  # a module may raise anything, even SystemExit, at import
-        detail = "".join(traceback.format_exception_only(type(exc), exc)).strip()
-        raise PlannerLoadError(
+        raise PlannerLoadError(_import_failure(name, exc)) from exc
+
+
+def _import_failure(name: str, exc: BaseException) -> str:
+    """What went wrong importing ``name``, with a hint only where one is true."""
+    detail = "".join(traceback.format_exception_only(type(exc), exc)).strip()
+    if isinstance(exc, SyntaxError):  # the file was found: no path hint, and no traceback
+        return (
+            f"cannot import planner module {name!r}: SyntaxError in {exc.filename}, line "
+            f"{exc.lineno}: {exc.msg}\n    {(exc.text or '').strip()}"
+        )
+    if (
+        isinstance(exc, ModuleNotFoundError)
+        and exc.name
+        and (name + ".").startswith(exc.name + ".")
+    ):
+        return (
             f"cannot import planner module {name!r}: {detail}\n"
-            f"(is it installed in this environment or on PYTHONPATH?)\n{traceback.format_exc()}"
-        ) from exc
+            f"(is it installed in this environment, or its directory on PYTHONPATH or given "
+            f"with --path?)"
+        )
+    if isinstance(exc, ModuleNotFoundError):
+        return (
+            f"cannot import planner module {name!r}: it imports {exc.name!r}, which is not "
+            f"installed in this environment: {detail}\n{traceback.format_exc()}"
+        )
+    return (
+        f"planner module {name!r} raised while being imported: {detail}\n{traceback.format_exc()}"
+    )
 
 
 def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:

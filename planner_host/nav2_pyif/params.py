@@ -6,11 +6,14 @@ changes follow via set_parameters). A planner declares what it reads::
     self.max_speed = self.params.declare("max_speed", 0.5, "top linear speed [m/s]")
 
 A given value must have the default's type (an int is accepted for a float); a bad update is
-rejected with a reason and the old value stays.
+rejected with a reason and the old value stays. As in ROS 2, a parameter the planner never
+declared (nor read) is not one of its parameters: given at configure it is reported back as
+ignored (a misspelt name in the Nav2 YAML), and an update to it is rejected.
 """
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any, TypeVar
@@ -49,6 +52,7 @@ class Parameters:
     def __init__(self, given: dict[str, ParamValue] | None = None) -> None:
         self._values: dict[str, ParamValue] = dict(given or {})
         self._declared: dict[str, Declared] = {}
+        self._read: set[str] = set()  # looked up without declaring: used all the same
         self._listeners: list[Callable[[dict[str, ParamValue]], None]] = []
 
     def declare(self, name: str, default: T, description: str = "") -> T:
@@ -62,15 +66,19 @@ class Parameters:
         return value
 
     def __getitem__(self, name: str) -> Any:
+        self._read.add(name)
         try:
             return self._values[name]
         except KeyError:
             raise KeyError(f"parameter {name!r} was neither given nor declared") from None
 
     def get(self, name: str, default: Any = None) -> Any:
+        self._read.add(name)
         return self._values.get(name, default)
 
     def __contains__(self, name: object) -> bool:
+        if isinstance(name, str):
+            self._read.add(name)
         return name in self._values
 
     def as_dict(self) -> dict[str, ParamValue]:
@@ -79,6 +87,23 @@ class Parameters:
     def declared(self) -> dict[str, ParamValue]:
         """Declared parameters with their current values (reported back to the plugin)."""
         return {name: self._values[name] for name in self._declared}
+
+    def undeclared(self) -> dict[str, str]:
+        """Given parameters the planner neither declared nor read (call after configure):
+        name -> why it is ignored."""
+        return {name: self._not_a_parameter(name) for name in self._values if not self._known(name)}
+
+    def _known(self, name: str) -> bool:
+        return name in self._declared or name in self._read
+
+    def _not_a_parameter(self, name: str) -> str:
+        declared = sorted(self._declared)
+        close = difflib.get_close_matches(name, declared, n=1)
+        return (
+            f"{name} is not a parameter of this planner"
+            + (f" (did you mean {close[0]}?)" if close else "")
+            + f"; it declares: {', '.join(declared) or 'none'}"
+        )
 
     def description(self, name: str) -> str:
         return self._declared[name].description if name in self._declared else ""
@@ -90,10 +115,14 @@ class Parameters:
     def update(
         self, changes: dict[str, ParamValue]
     ) -> tuple[dict[str, ParamValue], dict[str, str]]:
-        """Apply changes; returns (applied, rejected name -> reason). Used by the host."""
+        """Apply changes; returns (applied, rejected name -> reason). Used by the host, after
+        configure: a name the planner neither declared nor read is rejected, as in ROS 2."""
         applied: dict[str, ParamValue] = {}
         rejected: dict[str, str] = {}
         for name, value in changes.items():
+            if not self._known(name):
+                rejected[name] = self._not_a_parameter(name)
+                continue
             try:
                 if name in self._declared:
                     value = _coerce(name, value, self._declared[name].default)

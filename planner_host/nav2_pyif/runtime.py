@@ -259,7 +259,17 @@ class PlannerRuntime:
             body["node"],
             body["name"],
         )
-        return {"declared": context.params.declared(), "planner": self.label}
+        reply: Body = {"declared": context.params.declared(), "planner": self.label}
+        undeclared = context.params.undeclared()
+        if undeclared:
+            self.log.warning(
+                "%s: session %s: parameters given but never declared, ignored: %s",
+                self.label,
+                request.sid[:8],
+                "; ".join(undeclared.values()),
+            )
+            reply["undeclared"] = undeclared
+        return reply
 
     def _safe_cleanup(self, session: Session) -> None:
         try:

@@ -4,10 +4,13 @@
 from __future__ import annotations
 
 import logging
+import threading
 from typing import Protocol
 
 from nav2_pyif_protocol.constants import PluginType
 
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.journal import Journal
 from nav2_pyif.runtime import PlannerRuntime
 from nav2_pyif.spec import PlannerSpec
 
@@ -30,34 +33,75 @@ class PlannerService(Protocol):
 
 
 class InProcessPlanner:
-    """A PlannerRuntime in the host process. Reload re-imports the module in place and drops
-    the sessions: each plugin then gets SessionUnknown once and re-sends its state."""
+    """A PlannerRuntime in the host process. Reload re-imports the module in place and, as
+    the supervised variant does, replays every live session (from a journal) on the new
+    planner before swapping: all or nothing."""
 
     def __init__(self, spec: PlannerSpec, host_id: str) -> None:
         self.spec = spec
         self.host_id = host_id
         self.runtime = PlannerRuntime(spec.load(), host_id, label=spec.describe())
         self.plugin_type = self.runtime.plugin_type
+        self.journal = Journal()
+        self._lock = threading.Lock()  # calls vs. the swap
 
     @property
     def label(self) -> str:
         return self.runtime.label
 
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
-        return self.runtime.handle(payload, key_op)
+        with self._lock:
+            reply = self.runtime.handle(payload, key_op)
+            if key_op is not None:
+                self.journal.note(key_op, payload, reply)
+            return reply
 
     def handle_cancel(self, payload: bytes) -> bytes:
         return self.runtime.handle_cancel(payload)
 
     def reload(self, spec: PlannerSpec | None = None) -> str:
         new_spec = spec or self.spec
-        runtime = PlannerRuntime(
-            new_spec.load(reload=True), self.host_id, label=new_spec.describe()
+        try:
+            runtime = PlannerRuntime(
+                new_spec.load(reload=True), self.host_id, label=new_spec.describe()
+            )
+        except PlannerLoadError as exc:
+            raise self._refused(exc) from exc
+        old = self.runtime
+        # Delegates keep their state in their module, re-imported in place and so shared by
+        # both versions: a discarded version's cleanup would reset the other's state.
+        shared = self.spec.module is not None and self.spec.module == new_spec.module
+
+        def swap() -> None:  # called with the lock held, between two calls
+            self.runtime, self.spec, self.plugin_type = runtime, new_spec, runtime.plugin_type
+
+        try:
+            carried = self.journal.hand_over(
+                lambda op, payload: runtime.handle(payload, op),
+                (new_spec.describe(), runtime.plugin_type),
+                self.plugin_type,
+                self._lock,
+                swap,
+            )
+        except PlannerLoadError as exc:
+            _discard(runtime, shared)
+            raise self._refused(exc) from exc
+        _discard(old, shared)
+        return (
+            f"{new_spec.key}: now serving {new_spec.describe()} in process "
+            f"({carried} session(s) carried over)"
         )
-        old, self.runtime, self.spec = self.runtime, runtime, new_spec
-        self.plugin_type = runtime.plugin_type
-        old.close()
-        return f"{new_spec.key}: now serving {new_spec.describe()} in process (sessions reset)"
+
+    def _refused(self, exc: PlannerLoadError) -> PlannerLoadError:
+        return PlannerLoadError(f"reload refused, still serving {self.label}: {exc}")
 
     def close(self) -> None:
         self.runtime.close()
+
+
+def _discard(runtime: PlannerRuntime, shared_module: bool) -> None:
+    """Close a runtime a swap left behind; without cleaning its sessions up when its planner
+    shares module state with the one that stays."""
+    if shared_module:
+        runtime.sessions.clear()
+    runtime.close()

@@ -15,14 +15,15 @@ class PlannerSpec:
     module: str | None = None  # function-delegate style
     delegates: dict[str, str] = field(default_factory=dict)
 
-    def load(self, *, reload: bool = False) -> type[PlannerPlugin]:
+    def load(self, *, reload: bool = False, quiet: bool = False) -> type[PlannerPlugin]:
+        """The planner class; ``quiet``: no load-time warnings (a worker restart)."""
         from nav2_pyif.delegates import delegate_class
         from nav2_pyif.loader import load_class
 
         if self.planner:
             return load_class(self.planner, reload=reload)
         assert self.module is not None
-        return delegate_class(self.module, self.delegates, reload=reload)
+        return delegate_class(self.module, self.delegates, reload=reload, quiet=quiet)
 
     def describe(self) -> str:
         return self.planner or f"{self.module} (delegates)"

@@ -23,13 +23,14 @@ import signal
 import threading
 import time
 from collections import deque
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import msgpack
 from nav2_pyif_protocol.constants import ErrorType, Op, PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.journal import Journal, Snapshot
+from nav2_pyif.journal import Journal, Snapshot, replay
 from nav2_pyif.runtime import error_reply, peek_seq
 from nav2_pyif.spec import PlannerSpec
 from nav2_pyif.worker import LOAD_ERROR, worker_main
@@ -85,7 +86,12 @@ class Worker:
     """One worker process and its two pipes."""
 
     def __init__(
-        self, spec: PlannerSpec, host_id: str, memory_limit: int | None, log_level: str
+        self,
+        spec: PlannerSpec,
+        host_id: str,
+        memory_limit: int | None,
+        log_level: str,
+        quiet: bool = False,
     ) -> None:
         self.calls, child_calls = _SPAWN.Pipe()
         self.cancels, child_cancels = _SPAWN.Pipe()
@@ -93,7 +99,7 @@ class Worker:
             target=worker_main,
             name=f"planner-worker:{spec.key}",
             daemon=True,
-            args=(child_calls, child_cancels, spec, host_id, memory_limit, log_level),
+            args=(child_calls, child_cancels, spec, host_id, memory_limit, log_level, quiet),
         )
         self.process.start()
         child_calls.close()
@@ -183,13 +189,6 @@ class Worker:
         self.process.join(5)
 
 
-def _reply_ok(reply: bytes) -> bool:
-    try:
-        return bool(msgpack.unpackb(reply).get("ok"))
-    except Exception:
-        return False
-
-
 class SupervisedPlanner:
     """The interface of PlannerRuntime (handle, handle_cancel, close), backed by a worker."""
 
@@ -248,8 +247,8 @@ class SupervisedPlanner:
                 self.worker.stop()
                 self.worker = None
 
-    def _new_worker(self, spec: PlannerSpec) -> Worker:
-        return Worker(spec, self.host_id, self.memory_limit, self.log_level)
+    def _new_worker(self, spec: PlannerSpec, *, quiet: bool = False) -> Worker:
+        return Worker(spec, self.host_id, self.memory_limit, self.log_level, quiet)
 
     # --- calls -------------------------------------------------------------------------
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
@@ -290,8 +289,7 @@ class SupervisedPlanner:
                 return self._error(
                     payload, timed_out, f"{self.label}.{op} overran its {deadline:g} s deadline"
                 )
-            if Journal.worth_recording(op, payload) and _reply_ok(reply):
-                self.journal.record(payload)
+            self.journal.note(op, payload, reply)
             return reply
 
     def handle_cancel(self, payload: bytes) -> bytes:
@@ -362,7 +360,7 @@ class SupervisedPlanner:
             if self._sleep(delay):
                 return
         try:
-            worker = self._new_worker(self.spec)
+            worker = self._new_worker(self.spec, quiet=True)  # its warnings were logged at start
             worker.wait_loaded(self.deadlines.configure)
             self._replay(worker, self.journal.snapshot())
         except (PlannerLoadError, WorkerDied) as exc:
@@ -390,38 +388,47 @@ class SupervisedPlanner:
         return False
 
     def _replay(self, worker: Worker, snapshot: Snapshot) -> None:
-        """Tell ``worker`` what each session told the planner. A session whose replay fails
-        is dropped from the journal: its plugin gets SessionUnknown and re-sends its state."""
-        for sid, (_, requests) in snapshot.items():
-            for op, payload in requests:
-                reply = worker.call(op, payload, self.deadlines.of(op))
-                if reply is None or not _reply_ok(reply):
-                    log.warning(
-                        "%s: could not restore session %s (%s failed)", self.spec.key, sid[:8], op
-                    )
-                    self.journal.forget(sid)
-                    break
+        """Tell a restarted ``worker`` what each session told the planner. A session whose
+        replay fails is dropped from the journal: its plugin gets SessionUnknown and re-sends
+        its state."""
+        for sid, op, reason in replay(snapshot, self._caller(worker)):
+            log.warning(
+                "%s: could not restore session %s (%s failed: %s)",
+                self.spec.key,
+                sid[:8],
+                op,
+                reason,
+            )
+            self.journal.forget(sid)
+
+    def _caller(self, worker: Worker) -> Callable[[str, bytes], bytes | None]:
+        return lambda op, payload: worker.call(op, payload, self.deadlines.of(op))
 
     # --- hot swap ----------------------------------------------------------------------
     def reload(self, spec: PlannerSpec | None = None) -> str:
         """Swap in ``spec`` (default: a fresh import of the current planner) on this live
-        key. Raises PlannerLoadError (the old planner keeps serving) when it cannot."""
+        key. All or nothing: the new worker must load and take every live session (configure,
+        activate, parameters, plan, speed limit); otherwise PlannerLoadError says why and the
+        old worker keeps serving every session."""
         new_spec = spec or self.spec
         worker = self._new_worker(new_spec)
+        old = self.worker
+
+        def swap() -> None:  # called with the lock held, between two calls
+            nonlocal old
+            old, self.worker = self.worker, worker
+            self.spec, self.plugin_type = new_spec, plugin_type
+            self.reason, self.overrun_since = "", None
+
         try:
             plugin_type = worker.wait_loaded(self.deadlines.configure)
-            if len(self.journal) and plugin_type is not self.plugin_type:
-                raise PlannerLoadError(
-                    f"{new_spec.describe()} is a {plugin_type.value}; this "
-                    f"key serves a {self.plugin_type.value}"
-                )
-            snapshot = self.journal.snapshot()
-            self._replay(worker, snapshot)
-            with self._lock:
-                self._replay(worker, self.journal.changed_since(snapshot))
-                old, self.worker = self.worker, worker
-                self.spec, self.plugin_type = new_spec, plugin_type
-                self.reason, self.overrun_since = "", None
+            carried = self.journal.hand_over(
+                self._caller(worker),
+                (new_spec.describe(), plugin_type),
+                self.plugin_type,
+                self._lock,
+                swap,
+            )
         except (PlannerLoadError, WorkerDied) as exc:
             worker.kill()
             raise PlannerLoadError(f"reload refused, still serving {self.label}: {exc}") from exc
@@ -429,7 +436,7 @@ class SupervisedPlanner:
             old.stop()
         message = (
             f"{self.spec.key}: now serving {new_spec.describe()} "
-            f"(worker {worker.pid}, {len(self.journal)} session(s) carried over)"
+            f"(worker {worker.pid}, {carried} session(s) carried over)"
         )
         log.info("%s", message)
         return message

@@ -23,12 +23,19 @@ def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
     p.add_argument("--planner", metavar="MODULE:CLASS", help="default: re-import the current")
     p.add_argument("--module", metavar="MODULE", help="function-delegate style")
     p.add_argument("--delegate", action="append", default=[], metavar="ROLE=FUNCTION")
+    p.add_argument(
+        "--timeout",
+        type=float,
+        default=60.0,
+        metavar="SECONDS",
+        help="how long the host may take to load the new version (default 60)",
+    )
     add_zenoh_arguments(p, default_mode="client")
     p.set_defaults(func=run_reload)
 
 
 def run_reload(args: argparse.Namespace) -> int:
-    from nav2_pyif.client.admin import request_reload
+    from nav2_pyif.client.admin import NoPlannerHost, request_reload
     from nav2_pyif.delegates import parse_delegates
     from nav2_pyif.exceptions import PlannerLoadError
     from nav2_pyif.zenoh_config import open_session, options_from_args
@@ -38,11 +45,16 @@ def run_reload(args: argparse.Namespace) -> int:
         delegates = parse_delegates(args.delegate) if args.delegate else None
         print(
             request_reload(
-                session, args.key, planner=args.planner, module=args.module, delegates=delegates
+                session,
+                args.key,
+                planner=args.planner,
+                module=args.module,
+                delegates=delegates,
+                timeout=args.timeout,
             )
         )
         return 0
-    except (PlannerLoadError, TimeoutError) as exc:
+    except (PlannerLoadError, NoPlannerHost, TimeoutError) as exc:
         print(f"nav2-pyif reload: {exc}", file=sys.stderr)
         return 1
     finally:

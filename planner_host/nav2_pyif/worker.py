@@ -49,6 +49,7 @@ def worker_main(
     host_id: str,
     memory_limit: int | None,
     log_level: str,
+    quiet: bool = False,
 ) -> None:
     logging.basicConfig(
         level=log_level,
@@ -62,7 +63,7 @@ def worker_main(
     threading.Thread(target=_serve_cancels, args=(cancels, runtime), daemon=True).start()
     _limit_memory(memory_limit)
     try:
-        planner_class = spec.load()
+        planner_class = spec.load(quiet=quiet)
     except BaseException as exc:  # import errors, syntax errors, SystemExit at import...
         calls.send_bytes(msgpack.packb([LOAD_ERROR, str(exc)]))
         return

@@ -111,6 +111,21 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
     return config
 
 
+def configured_endpoints(options: ZenohOptions) -> tuple[list[str], list[str]]:
+    """(connect, listen) endpoints the session is configured with (flags, file or default);
+    listen endpoints on port 0 (any free port: nobody can be pointed at them) left out."""
+    config = build_config(options)
+    mode = json.loads(config.get_json("mode") or '"peer"')
+
+    def listed(key: str) -> list[str]:
+        value = json.loads(config.get_json(key) or "null")
+        if isinstance(value, dict):  # per-mode lists: {router: [...], peer: [...]}
+            value = value.get(mode)
+        return [str(e) for e in value or [] if not str(e).endswith(":0")]
+
+    return listed("connect/endpoints"), listed("listen/endpoints")
+
+
 def open_session(options: ZenohOptions) -> zenoh.Session:
     """Open a session; errors name the endpoints involved."""
     config = build_config(options)

@@ -119,6 +119,13 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
                 "reports; older hosts leave it out)",
                 False,
             ),
+            _f(
+                "undeclared",
+                STR_MAP,
+                "given parameters the planner does not declare (ignored), name -> reason; "
+                "absent when none",
+                required=False,
+            ),
         ),
     ),
     Op.ACTIVATE: ((), ()),

@@ -103,6 +103,7 @@ class PluginClient:
         self.served: str | None = None  # what the host serves, from its configure reply
         self.host: str | None = None  # the pinned host among replicas
         self.resyncs = 0
+        self.undeclared: dict[str, str] = {}  # given parameters the planner ignores
         self.failovers = 0
         self.records: list[CallRecord] | None = [] if record_calls else None
         self.hosts = HostWatcher(session, self.keys)
@@ -119,6 +120,14 @@ class PluginClient:
         body = self._call(Op.CONFIGURE, self._configure_body(), allow_resync=False)
         self.configured = True
         self.served = body.get("planner")
+        self.undeclared = body.get("undeclared") or {}
+        if self.undeclared:
+            log.warning(
+                "%s: the planner ignores parameter(s) %s: %s",
+                self.name,
+                ", ".join(self.undeclared),
+                "; ".join(self.undeclared.values()),
+            )
         declared: dict[str, ParamValue] = body["declared"]
         for name, value in declared.items():
             self.params.setdefault(name, value)
