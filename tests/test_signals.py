@@ -188,6 +188,7 @@ def test_reload_waiting_for_an_answer_exits_on_signals(tmp_path: Path, signum: i
     session = open_session(ZenohOptions(listen=[endpoint], use_environment=False))
     held: list[zenoh.Query] = []  # a host that never answers
     queryable = session.declare_queryable("nav2_pyif/sig/FollowPath/admin/reload", held.append)
+    token = session.liveliness().declare_token("nav2_pyif/sig/FollowPath/host/mute")
     try:
         reload = Command(
             tmp_path,
@@ -197,6 +198,7 @@ def test_reload_waiting_for_an_answer_exits_on_signals(tmp_path: Path, signum: i
         assert wait_until(lambda: held, 20), reload.text()
         reload.assert_ended_cleanly(reload.signal_and_wait(signum), signum)
     finally:
+        token.undeclare()
         queryable.undeclare()
         held.clear()
         session.close()
