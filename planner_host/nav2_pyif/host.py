@@ -1,6 +1,7 @@
 """The planner host's Zenoh side: per served key, a queryable for calls (answered in order on
 one thread per planner, so planners need not be thread-safe), a queryable for out-of-band
-cancellation, a queryable for hot swap, and a liveliness token the plugin watches."""
+cancellation, queryables for hot swap and for ``nav2-pyif hosts``, and a liveliness token
+the plugin watches."""
 
 from __future__ import annotations
 
@@ -38,16 +39,23 @@ class ServedPlanner:
     """One planner answering under one key prefix."""
 
     def __init__(
-        self, session: zenoh.Session, keys: KeySpace, runtime: PlannerService, host_id: str
+        self,
+        session: zenoh.Session,
+        keys: KeySpace,
+        runtime: PlannerService,
+        host_id: str,
+        started: float | None = None,
     ) -> None:
         self.keys = keys
         self.runtime = runtime
         self.host_id = host_id
+        self.started = time.time() if started is None else started  # unix time
         self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
         # Reading the channel (not the queryable) lets close() undeclare from another thread.
         self._receiver = self._calls.handler
         self._cancel = session.declare_queryable(keys.cancel, self._on_cancel)
         self._admin = session.declare_queryable(keys.admin_reload, self._on_reload)
+        self._info = session.declare_queryable(keys.admin_info, self._on_info)
         self._thread = threading.Thread(
             target=self._serve, name=f"planner:{keys.prefix}", daemon=True
         )
@@ -89,6 +97,29 @@ class ServedPlanner:
         finally:
             query.drop()
 
+    def info(self) -> dict[str, Any]:
+        """What ``nav2-pyif hosts`` shows about this key (PROTOCOL.md section 1)."""
+        return {
+            "host_id": self.host_id,
+            "key": self.keys.prefix,
+            "planner": self.runtime.label,
+            "plugin_type": self.runtime.plugin_type.value,
+            "isolation": self.runtime.isolation,
+            "sessions": len(self.runtime.journal),
+            "started": self.started,
+            "pid": os.getpid(),
+            "hostname": socket.gethostname(),
+        }
+
+    def _on_info(self, query: Any) -> None:
+        try:
+            if not self._addressed_elsewhere(query):
+                query.reply(query.key_expr, msgpack.packb(self.info()))
+        except Exception:
+            log.exception("%s: could not answer an info query", self.keys.prefix)
+        finally:
+            query.drop()
+
     def _on_reload(self, query: Any) -> None:
         """Hot swap request: {planner?, module?, delegates?} -> {ok, message}. Loading takes
         a while: done on a thread so Zenoh's callback thread is not held."""
@@ -115,7 +146,7 @@ class ServedPlanner:
             query.drop()
 
     def close(self) -> None:
-        for entity in (self._token, self._admin, self._cancel, self._calls):
+        for entity in (self._token, self._info, self._admin, self._cancel, self._calls):
             with contextlib.suppress(Exception):  # already gone with the session
                 entity.undeclare()
         self._thread.join(timeout=5.0)
@@ -181,13 +212,14 @@ class PlannerHost:
     def __init__(self, session: zenoh.Session, host_id: str | None = None) -> None:
         self.session = session
         self.host_id = host_id or new_host_id()
+        self.started = time.time()
         self.served: dict[str, ServedPlanner] = {}
 
     def serve(self, key_prefix: str, runtime: PlannerService) -> ServedPlanner:
         keys = KeySpace(key_prefix)
         if key_prefix in self.served:
             raise ValueError(f"key {key_prefix!r} is already served by this host")
-        served = ServedPlanner(self.session, keys, runtime, self.host_id)
+        served = ServedPlanner(self.session, keys, runtime, self.host_id, self.started)
         self.served[key_prefix] = served
         log.info("serving %s on %s/** (%s)", runtime.label, key_prefix, runtime.plugin_type.value)
         return served

@@ -19,6 +19,8 @@ log = logging.getLogger("nav2_pyif.host")
 
 class PlannerService(Protocol):
     plugin_type: PluginType
+    isolation: str  # "process" or "none", as planner-host --isolation says
+    journal: Journal  # every live session, len() of it their number
 
     @property
     def label(self) -> str: ...
@@ -36,6 +38,8 @@ class InProcessPlanner:
     """A PlannerRuntime in the host process. Reload re-imports the module in place and, as
     the supervised variant does, replays every live session (from a journal) on the new
     planner before swapping: all or nothing."""
+
+    isolation = "none"
 
     def __init__(self, spec: PlannerSpec, host_id: str) -> None:
         self.spec = spec

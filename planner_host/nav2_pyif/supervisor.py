@@ -192,6 +192,8 @@ class Worker:
 class SupervisedPlanner:
     """The interface of PlannerRuntime (handle, handle_cancel, close), backed by a worker."""
 
+    isolation = "process"
+
     def __init__(
         self,
         spec: PlannerSpec,

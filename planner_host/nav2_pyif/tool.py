@@ -6,6 +6,7 @@ import argparse
 import logging
 import sys
 
+from nav2_pyif.host_list import add_hosts_parser
 from nav2_pyif.router import add_router_parser
 from nav2_pyif.signals import Interrupted, raise_on_signals
 from nav2_pyif.sim.cli import add_sim_parser
@@ -67,6 +68,7 @@ def main(argv: list[str] | None = None) -> int:
     add_sim_parser(subparsers)
     add_reload_parser(subparsers)
     add_router_parser(subparsers)
+    add_hosts_parser(subparsers)
     args = parser.parse_args(argv)
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
     raise_on_signals()  # every command cleans up and exits 128 + signum on a signal

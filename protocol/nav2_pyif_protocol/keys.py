@@ -54,6 +54,11 @@ class KeySpace:
         return f"{self.prefix}/admin/reload"
 
     @property
+    def admin_info(self) -> str:
+        """What ``nav2-pyif hosts`` asks each host about the planner it serves here."""
+        return f"{self.prefix}/admin/info"
+
+    @property
     def hosts(self) -> str:
         return f"{self.prefix}/host/*"
 

@@ -1,0 +1,253 @@
+"""``nav2-pyif hosts``: every live planner host this tool can see (the ``ros2 node list`` of
+nav2_pyif), with the keys it serves, their planners, isolation, sessions and uptime.
+
+Discovery as the plugin does it: a liveliness subscriber with history on ``**/host/*`` (the
+token each host declares under every key prefix it serves), then a get on each prefix's
+``admin/info`` (PROTOCOL.md section 1), answered by every host serving it."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import msgpack
+import zenoh
+from nav2_pyif_protocol.keys import KeySpace
+
+from nav2_pyif.zenoh_config import (
+    ZenohOptions,
+    add_zenoh_arguments,
+    configured_endpoints,
+    open_session,
+    options_from_args,
+)
+
+TOKENS = "**/host/*"
+
+
+@dataclass
+class HostView:
+    """One planner host: its tokens (key prefixes) and what each key's admin/info said."""
+
+    host_id: str
+    prefixes: set[str] = field(default_factory=set)
+    info: dict[str, dict[str, Any]] = field(default_factory=dict)  # prefix -> admin/info
+
+    def as_json(self, now: float) -> dict[str, Any]:
+        first = next(iter(self.info.values()), {})
+        started = first.get("started")
+        return {
+            "host_id": self.host_id,
+            "hostname": first.get("hostname"),
+            "pid": first.get("pid"),
+            "started": started,
+            "uptime": None if started is None else max(0.0, now - float(started)),
+            "keys": [
+                {
+                    "key": prefix,
+                    "planner": self.info.get(prefix, {}).get("planner"),
+                    "plugin_type": self.info.get(prefix, {}).get("plugin_type"),
+                    "isolation": self.info.get(prefix, {}).get("isolation"),
+                    "sessions": self.info.get(prefix, {}).get("sessions"),
+                    "answered": prefix in self.info,
+                }
+                for prefix in sorted(self.prefixes)
+            ],
+        }
+
+
+@dataclass
+class Survey:
+    hosts: dict[str, HostView]
+    routers: list[str]
+    peers: list[str]
+
+    def as_json(self) -> dict[str, Any]:
+        now = time.time()
+        return {
+            "via": {"routers": self.routers, "peers": self.peers},
+            "hosts": [self.hosts[h].as_json(now) for h in sorted(self.hosts)],
+        }
+
+
+def collect_tokens(session: zenoh.Session, wait: float) -> dict[str, set[str]]:
+    """host id -> key prefixes, from the liveliness tokens alive after ``wait`` seconds."""
+    alive: set[tuple[str, str]] = set()
+    lock = threading.Lock()
+
+    def on_sample(sample: Any) -> None:
+        prefix, _, host = str(sample.key_expr).rpartition("/host/")
+        with lock:
+            if sample.kind == zenoh.SampleKind.PUT:
+                alive.add((prefix, host))
+            else:
+                alive.discard((prefix, host))
+
+    subscriber = session.liveliness().declare_subscriber(TOKENS, on_sample, history=True)
+    try:
+        time.sleep(wait)
+    finally:
+        subscriber.undeclare()
+    hosts: dict[str, set[str]] = {}
+    with lock:
+        for prefix, host in alive:
+            hosts.setdefault(host, set()).add(prefix)
+    return hosts
+
+
+def ask_info(
+    session: zenoh.Session, prefixes: set[str], timeout: float
+) -> dict[tuple[str, str], dict[str, Any]]:
+    """(prefix, host id) -> admin/info reply, from every host answering on each prefix (all
+    gets in flight at once)."""
+    pending = [
+        session.get(
+            KeySpace(prefix).admin_info,
+            target=zenoh.QueryTarget.ALL,
+            consolidation=zenoh.ConsolidationMode.NONE,  # replicas answer on the same key
+            timeout=timeout,
+        )
+        for prefix in sorted(prefixes)
+    ]
+    answers: dict[tuple[str, str], dict[str, Any]] = {}
+    for replies in pending:
+        for reply in replies:
+            if reply.ok is None:
+                continue
+            try:
+                info = msgpack.unpackb(reply.ok.payload.to_bytes())
+                answers[(str(info["key"]), str(info["host_id"]))] = info
+            except Exception:
+                continue  # not a planner host's answer
+    return answers
+
+
+def survey(session: zenoh.Session, wait: float = 1.0, timeout: float = 2.0) -> Survey:
+    tokens = collect_tokens(session, wait)
+    hosts = {h: HostView(h, prefixes) for h, prefixes in tokens.items()}
+    prefixes = {p for view in hosts.values() for p in view.prefixes}
+    for (prefix, host), info in ask_info(session, prefixes, timeout).items():
+        if host in hosts and prefix in hosts[host].prefixes:
+            hosts[host].info[prefix] = info
+    return Survey(
+        hosts,
+        routers=[str(z) for z in session.info.routers_zid()],
+        peers=[str(z) for z in session.info.peers_zid()],
+    )
+
+
+def via(found: Survey) -> str:
+    parts = [f"router {z}" for z in found.routers] + [f"peer {z}" for z in found.peers]
+    return ", ".join(parts)
+
+
+def _uptime(seconds: float | None) -> str:
+    if seconds is None:
+        return "?"
+    whole = int(seconds)
+    if whole < 60:
+        return f"{seconds:.1f} s"
+    hours, rest = divmod(whole, 3600)
+    return f"{hours}:{rest // 60:02d}:{rest % 60:02d}" if hours else f"{rest // 60}:{rest % 60:02d}"
+
+
+def render(found: Survey) -> str:
+    """The table, grouped by host."""
+    header = ("KEY", "PLANNER", "TYPE", "ISOLATION", "SESSIONS")
+    lines = [f"via {via(found)}" if via(found) else "via nothing"]
+    for item in found.as_json()["hosts"]:
+        where = f"pid {item['pid']} on {item['hostname']}" if item["pid"] is not None else "?"
+        lines += ["", f"host {item['host_id']}  ({where}, up {_uptime(item['uptime'])})"]
+        rows = [header] + [
+            (
+                k["key"],
+                k["planner"] or "? (no answer on admin/info: an older planner-host?)",
+                k["plugin_type"] or "",
+                k["isolation"] or "",
+                "" if k["sessions"] is None else str(k["sessions"]),
+            )
+            for k in item["keys"]
+        ]
+        widths = [max(len(r[i]) for r in rows) for i in range(len(header))]
+        lines += [
+            "  " + "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip()
+            for r in rows
+        ]
+    return "\n".join(lines)
+
+
+def unreachable(options: ZenohOptions) -> str:
+    connect, listen = configured_endpoints(options)
+    tried = ", ".join(connect) or "no connect endpoint"
+    return (
+        f"reached no Zenoh router or peer at all (tried {tried}"
+        + (f"; listening on {', '.join(listen)}" if listen else "")
+        + "): start a router there (zenohd, or nav2-pyif router), or --connect to where "
+        "the planner hosts are"
+    )
+
+
+def nothing_found(found: Survey, options: ZenohOptions, wait: float) -> str:
+    if not found.routers and not found.peers:
+        return unreachable(options)
+    return (
+        f"reached {via(found)}, but no planner host is visible there (no liveliness token on "
+        f"{TOKENS} within {wait:g} s)"
+    )
+
+
+def add_hosts_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    p = subparsers.add_parser(
+        "hosts",
+        help="list the live planner hosts: keys, planners, sessions, uptime",
+        description="List every live planner host this tool can see through its Zenoh "
+        "router or peers: the keys each serves, the planner, plugin type, isolation and "
+        "number of live sessions per key, its uptime, and the router or peer the tool went "
+        "through. Exit code 0 when it found a host, 1 when none.",
+    )
+    p.add_argument(
+        "--wait",
+        type=float,
+        default=1.0,
+        metavar="SECONDS",
+        help="how long to collect the hosts' liveliness tokens (default 1)",
+    )
+    p.add_argument(
+        "--timeout",
+        type=float,
+        default=2.0,
+        metavar="SECONDS",
+        help="how long the hosts may take to answer (default 2)",
+    )
+    p.add_argument("--json", action="store_true", help="print JSON instead of a table")
+    add_zenoh_arguments(p, default_mode="client")
+    p.set_defaults(func=run_hosts)
+
+
+def run_hosts(args: argparse.Namespace) -> int:
+    options = options_from_args(args)
+    try:
+        session = open_session(options)
+    except FileNotFoundError as exc:
+        print(f"nav2-pyif hosts: {exc}", file=sys.stderr)
+        return 1
+    except ConnectionError:  # a client that reaches no router fails to open
+        print(f"nav2-pyif hosts: {unreachable(options)}", file=sys.stderr)
+        return 1
+    try:
+        found = survey(session, args.wait, args.timeout)
+    finally:
+        session.close()
+    if args.json:
+        print(json.dumps(found.as_json(), indent=2))
+    elif found.hosts:
+        print(render(found))
+    if not found.hosts:
+        print(f"nav2-pyif hosts: {nothing_found(found, options, args.wait)}", file=sys.stderr)
+        return 1
+    return 0
