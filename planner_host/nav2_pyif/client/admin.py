@@ -68,10 +68,12 @@ def request_reload(
 
 def visible_hosts(session: zenoh.Session, timeout: float = 1.0) -> str:
     """The planner hosts this session sees, by key prefix, as a sentence."""
+    # A liveliness subscriber with history, not a liveliness get (see HostWatcher).
+    from nav2_pyif.host_list import collect_tokens
+
     served: dict[str, set[str]] = {}
-    for reply in session.liveliness().get("**/host/*", timeout=timeout):
-        if reply.ok is not None:
-            prefix, _, host = str(reply.ok.key_expr).rpartition("/host/")
+    for host, prefixes in collect_tokens(session, timeout).items():
+        for prefix in prefixes:
             served.setdefault(prefix, set()).add(host)
     if not served:
         return (
