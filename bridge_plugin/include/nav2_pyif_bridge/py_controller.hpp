@@ -17,6 +17,7 @@
 #include "tf2_ros/buffer.h"
 
 #include "nav2_pyif_bridge/client/controller_session.hpp"
+#include "nav2_pyif_bridge/fresh_plan.hpp"
 #include "nav2_pyif_bridge/plugin_bridge.hpp"
 
 namespace nav2_pyif_bridge
@@ -36,7 +37,8 @@ public:
   void activate() override;
   void deactivate() override;
 
-  // The plan, transformed into the costmap's global frame (ControllerTFError when it cannot be).
+  // The plan, transformed into the costmap's global frame (ControllerTFError when it cannot be);
+  // re-sent, transformed anew, before a cycle in which that transform has moved.
   void setPlan(const nav_msgs::msg::Path & path) override;
   // The host's command, every component finite; else the nav2_core exception it named, or
   // ControllerTimedOut / ControllerException (Humble: PlannerException). Never a made-up twist.
@@ -58,6 +60,7 @@ private:
   std::string name_;
   std::shared_ptr<tf2_ros::Buffer> tf_;
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
+  FreshPlan plan_;
   // Destroyed in this order: the session uses the bridge's transport and costmap source.
   std::unique_ptr<PluginBridge> bridge_;
   std::unique_ptr<client::ControllerSession> session_;

@@ -42,13 +42,11 @@ nav_msgs::msg::Path to_ros(
 std::optional<protocol::ParamValue> to_wire(const rclcpp::ParameterValue & value);
 rclcpp::ParameterValue to_ros(const protocol::ParamValue & value);
 
-// `pose` / `path` in `frame`, with the latest transform (unchanged when already in it).
+// `pose` in `frame`, with the latest transform (unchanged when already in it). The plan's own
+// frame change is FreshPlan's.
 // Throw client::CallError of `tf_error` (ControllerTFError / PlannerTFError) naming the frames.
 geometry_msgs::msg::PoseStamped in_frame(
   const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
   tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error);
-nav_msgs::msg::Path in_frame(
-  const nav_msgs::msg::Path & path, const std::string & frame, tf2_ros::Buffer & tf,
-  double timeout_s, client::ErrorKind tf_error);
 
 }  // namespace nav2_pyif_bridge::ros

@@ -66,6 +66,7 @@ void PyController::cleanup()
   }
   session_.reset();
   bridge_.reset();
+  plan_.clear();
 }
 
 void PyController::activate()
@@ -82,10 +83,8 @@ void PyController::setPlan(const nav_msgs::msg::Path & path)
 {
   bridge_->forward(
     [&]() {
-      const nav_msgs::msg::Path global = ros::in_frame(
-        path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
-        client::ErrorKind::ControllerTFError);
-      session_->set_plan(ros::to_wire(global));
+      session_->set_plan(ros::to_wire(plan_.set(
+        path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
     });
 }
 
@@ -98,6 +97,11 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
       const geometry_msgs::msg::PoseStamped global = ros::in_frame(
         pose, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
         client::ErrorKind::ControllerTFError);
+      if (auto fresh = plan_.refreshed(
+          costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance()))
+      {
+        session_->set_plan(ros::to_wire(*fresh));  // localisation moved the plan's frame
+      }
       const protocol::TwistStamped cmd = session_->compute_velocity_commands(
         ros::to_wire(global), ros::to_wire(velocity), tolerances(goal_checker));
       return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);

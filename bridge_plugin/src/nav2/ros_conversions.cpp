@@ -166,32 +166,4 @@ geometry_msgs::msg::PoseStamped in_frame(
   }
 }
 
-nav_msgs::msg::Path in_frame(
-  const nav_msgs::msg::Path & path, const std::string & frame, tf2_ros::Buffer & tf,
-  double timeout_s, client::ErrorKind tf_error)
-{
-  if (path.header.frame_id == frame || path.header.frame_id.empty()) {
-    return path;
-  }
-  geometry_msgs::msg::TransformStamped transform;
-  try {
-    transform = tf.lookupTransform(
-      frame, path.header.frame_id, tf2::TimePointZero, tf2::durationFromSec(timeout_s));
-  } catch (const tf2::TransformException & error) {
-    throw client::CallError(
-            tf_error, client::Cause::Local,
-            "cannot transform the plan from " + path.header.frame_id + " to " + frame + ": " +
-            error.what());
-  }
-  nav_msgs::msg::Path out;
-  out.header.frame_id = frame;
-  out.header.stamp = path.header.stamp;
-  out.poses.resize(path.poses.size());
-  for (std::size_t i = 0; i < path.poses.size(); ++i) {
-    tf2::doTransform(path.poses[i].pose, out.poses[i].pose, transform);
-    out.poses[i].header = out.header;
-  }
-  return out;
-}
-
 }  // namespace nav2_pyif_bridge::ros

@@ -4,16 +4,19 @@ process group, stopped by pid), and an rclpy client of Nav2's lifecycle and acti
 from __future__ import annotations
 
 import os
+import random
 import shlex
 import shutil
 import signal
 import socket
 import subprocess
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 HERE = Path(__file__).resolve().parent
+PREFIX = "nav2_pyif/launch_test"  # the keys nav2_params.yaml names
 
 
 def prefixes() -> list[Path]:
@@ -128,6 +131,47 @@ def start_nav2(procs: Processes, params: Path) -> None:
             str(params),
         ],
     )
+
+
+def bring_up(logs: Path, robot_args: tuple[str, ...] = ()) -> Iterator[dict[str, Any]]:
+    """What a launch test drives (a fixture's body): a planner host serving the reference
+    pure pursuit and A* on nav2_pyif/launch_test, the simulated robot (``robot_args``),
+    controller_server, planner_server, a lifecycle manager and an rclpy client. Skips,
+    naming what is missing, without Nav2."""
+    import pytest
+
+    absent = missing()
+    if absent:
+        pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    params = logs / "nav2_params.yaml"
+    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
+    domain = str(random.randint(100, 200))
+    os.environ["ROS_DOMAIN_ID"] = domain  # this process's rclpy too
+    procs = Processes(logs, dict(os.environ, ROS_DOMAIN_ID=domain, PYTHONUNBUFFERED="1"))
+    host = [
+        *(host_command() or []),
+        *("--listen", endpoint),
+        *("--serve", f"{PREFIX}/FollowPath=nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"),
+        *("--serve", f"{PREFIX}/GridBased=nav2_pyif_planners.astar:AStar"),
+    ]
+
+    def start_host() -> None:
+        procs.start("planner_host", host)
+
+    start_host()
+    procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py"), *robot_args])
+    start_nav2(procs, params)
+    import rclpy
+
+    rclpy.init()
+    client = Nav2Client()
+    try:
+        yield {"client": client, "procs": procs, "start_host": start_host, "logs": logs}
+    finally:
+        client.destroy_node()
+        rclpy.try_shutdown()
+        procs.stop_all()
 
 
 def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when present)

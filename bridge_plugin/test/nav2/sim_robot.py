@@ -4,7 +4,11 @@ map, TF and odometry, as Nav2's servers expect them.
 - /map (nav_msgs/OccupancyGrid, transient local): 8 m x 8 m at 5 cm, centred on the origin,
   with a wall x = 1 m, y in [-0.6, 2.5] m between the start and the test's goals;
 - TF map -> odom (static, identity) and odom -> base_link (the integrated pose, 50 Hz);
-- /odom (nav_msgs/Odometry) with the commanded velocity as the measured one.
+- /odom (nav_msgs/Odometry) with the commanded velocity as the measured one;
+- /ground_truth (geometry_msgs/PoseStamped): the robot's true pose in the map.
+With --drift-step DY, odometry drifts as a real robot's does: every --drift-period seconds of
+driving, until --drift-max, the odom frame moves DY metres along the map's y axis against the
+true pose, and map -> odom (now published at 50 Hz) jumps by as much, as AMCL's corrections do.
 /cmd_vel is read as geometry_msgs/Twist (Jazzy's controller_server default); a command older
 than 0.5 s stops the robot.
 
@@ -19,7 +23,7 @@ import signal
 from typing import Any
 
 import rclpy
-from geometry_msgs.msg import TransformStamped, Twist
+from geometry_msgs.msg import PoseStamped, TransformStamped, Twist
 from nav_msgs.msg import OccupancyGrid, Odometry
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -59,9 +63,13 @@ def transform(parent: str, child: str, stamp: object, x: float, y: float, yaw: f
 
 
 class SimRobot(Node):
-    def __init__(self, x: float, y: float, yaw: float) -> None:
+    def __init__(
+        self, x: float, y: float, yaw: float, drift: tuple[float, float, float] = (0, 1, 0)
+    ) -> None:
         super().__init__("sim_robot")
-        self.x, self.y, self.yaw = x, y, yaw
+        self.x, self.y, self.yaw = x, y, yaw  # the true pose, in the map
+        self.drift_step, self.drift_period, self.drift_max = drift
+        self.drift_y, self.driving_s = 0.0, 0.0
         self.cmd = Twist()
         self.cmd_time = self.get_clock().now()
         latched = QoSProfile(
@@ -72,10 +80,12 @@ class SimRobot(Node):
         self.map_pub = self.create_publisher(OccupancyGrid, "map", latched)
         self.map_pub.publish(make_map(self.get_clock().now().to_msg()))
         self.static_tf = StaticTransformBroadcaster(self)
-        self.static_tf.sendTransform(
-            transform("map", "odom", self.get_clock().now().to_msg(), 0.0, 0.0, 0.0)
-        )
+        if not self.drift_step:
+            self.static_tf.sendTransform(
+                transform("map", "odom", self.get_clock().now().to_msg(), 0.0, 0.0, 0.0)
+            )
         self.tf = TransformBroadcaster(self)
+        self.truth_pub = self.create_publisher(PoseStamped, "ground_truth", 10)
         self.odom_pub = self.create_publisher(Odometry, "odom", 10)
         self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
         self.create_timer(1.0 / RATE_HZ, self.step)
@@ -93,11 +103,23 @@ class SimRobot(Node):
         self.x += v * math.cos(self.yaw) * dt
         self.y += v * math.sin(self.yaw) * dt
         self.yaw = math.atan2(math.sin(self.yaw + w * dt), math.cos(self.yaw + w * dt))
+        if self.drift_step and abs(v) + abs(w) > 1e-3:
+            self.driving_s += dt
+            if self.driving_s >= self.drift_period and abs(self.drift_y) < self.drift_max:
+                self.driving_s = 0.0
+                self.drift_y += self.drift_step
         stamp = now.to_msg()
-        self.tf.sendTransform(transform("odom", "base_link", stamp, self.x, self.y, self.yaw))
+        odom_y = self.y - self.drift_y  # odometry's idea of the pose
+        if self.drift_step:
+            self.tf.sendTransform(transform("map", "odom", stamp, 0.0, self.drift_y, 0.0))
+        self.tf.sendTransform(transform("odom", "base_link", stamp, self.x, odom_y, self.yaw))
+        truth = PoseStamped()
+        truth.header.frame_id, truth.header.stamp = "map", stamp
+        truth.pose.position.x, truth.pose.position.y = self.x, self.y
+        self.truth_pub.publish(truth)
         odom = Odometry()
         odom.header.frame_id, odom.child_frame_id, odom.header.stamp = "odom", "base_link", stamp
-        odom.pose.pose.position.x, odom.pose.pose.position.y = self.x, self.y
+        odom.pose.pose.position.x, odom.pose.pose.position.y = self.x, odom_y
         odom.pose.pose.orientation.z = math.sin(self.yaw / 2)
         odom.pose.pose.orientation.w = math.cos(self.yaw / 2)
         odom.twist.twist = self.cmd
@@ -109,9 +131,13 @@ def main() -> None:
     parser.add_argument("--x", type=float, default=0.0)
     parser.add_argument("--y", type=float, default=0.0)
     parser.add_argument("--yaw", type=float, default=0.0)
+    parser.add_argument("--drift-step", type=float, default=0.0, help="[m] (default 0: none)")
+    parser.add_argument("--drift-period", type=float, default=1.5, help="[s] of driving")
+    parser.add_argument("--drift-max", type=float, default=0.4, help="[m] in all")
     args = parser.parse_args()
     rclpy.init()
-    node = SimRobot(args.x, args.y, args.yaw)
+    drift = (args.drift_step, args.drift_period, args.drift_max)
+    node = SimRobot(args.x, args.y, args.yaw, drift)
     signal.signal(signal.SIGTERM, lambda *_: rclpy.try_shutdown())
     try:
         rclpy.spin(node)

@@ -21,7 +21,7 @@ import nav2_testing
 import pytest
 
 HERE = Path(__file__).resolve().parent
-PREFIX = "nav2_pyif/launch_test"  # the keys nav2_params.yaml names
+PREFIX = nav2_testing.PREFIX
 GOAL = (2.0, 0.5)
 
 

@@ -19,62 +19,21 @@ the nav2_pyif venv). Skipped, saying what is missing, otherwise:
 from __future__ import annotations
 
 import math
-import os
-import random
 import signal
 import time
 from collections.abc import Iterator
-from pathlib import Path
 from typing import Any
 
 import nav2_testing
 import pytest
 
-HERE = Path(__file__).resolve().parent
-PREFIX = "nav2_pyif/launch_test"
 GOAL_A = (2.0, 0.5)  # behind the wall: the plan goes around it
 GOAL_B = (0.0, 0.0)
 
 
 @pytest.fixture(scope="module")
 def nav2(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, Any]]:
-    missing = nav2_testing.missing()
-    if missing:
-        pytest.skip("the Nav2 launch test needs: " + ", ".join(missing))
-    logs = tmp_path_factory.mktemp("nav2_launch_test")
-    endpoint = f"tcp/127.0.0.1:{nav2_testing.free_port()}"
-    params = logs / "nav2_params.yaml"
-    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
-    domain = str(random.randint(100, 200))
-    os.environ["ROS_DOMAIN_ID"] = domain  # this process's rclpy too
-    env = dict(os.environ, ROS_DOMAIN_ID=domain, PYTHONUNBUFFERED="1")
-    procs = nav2_testing.Processes(logs, env)
-    host = [
-        *(nav2_testing.host_command() or []),
-        "--listen",
-        endpoint,
-        "--serve",
-        f"{PREFIX}/FollowPath=nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
-        "--serve",
-        f"{PREFIX}/GridBased=nav2_pyif_planners.astar:AStar",
-    ]
-
-    def start_host() -> None:
-        procs.start("planner_host", host)
-
-    start_host()
-    procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py")])
-    nav2_testing.start_nav2(procs, params)
-    import rclpy
-
-    rclpy.init()
-    client = nav2_testing.Nav2Client()
-    try:
-        yield {"client": client, "procs": procs, "start_host": start_host, "logs": logs}
-    finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        procs.stop_all()
+    yield from nav2_testing.bring_up(tmp_path_factory.mktemp("nav2_launch_test"))
 
 
 SUCCEEDED, ABORTED = nav2_testing.SUCCEEDED, nav2_testing.ABORTED
