@@ -38,6 +38,8 @@ from tests.test_host_e2e import pose
 KEY = "nav2_pyif/faults/FollowPath"
 PLANNER_KEY = "nav2_pyif/faults/GridBased"
 HOST_FLAGS = ("--deadline", "0.5", "--hang-grace", "1.0", "--memory-limit", "2048")
+#: These tests swap in broken versions on purpose: any planner may be reloaded.
+RELOADS = ("--allow-remote-reload", "--reload-allow", "*")
 TIMEOUTS = Timeouts(call=2.0, lifecycle=5.0, configure=20.0, plan=5.0)
 PLAN_LENGTH = 23
 
@@ -54,6 +56,7 @@ class Rig:
                 "--serve",
                 f"{PLANNER_KEY}=echo_planners:LinePlanner",
                 *HOST_FLAGS,
+                *RELOADS,
             ],
             tmp / "host.log",
         ).start()
@@ -418,7 +421,10 @@ def versioned_host(
     write_version(source, 1.0)
     host = host_process(
         free_port(),
-        ["--key", KEY, "--planner", "versioned_ctrl:Versioned", "--path", str(tmp_path), *flags],
+        [
+            *("--key", KEY, "--planner", "versioned_ctrl:Versioned", "--path", str(tmp_path)),
+            *(*RELOADS, *flags),
+        ],
         tmp_path / "host.log",
     ).start()
     session = open_client_session(host.endpoint)

@@ -23,6 +23,7 @@ from nav2_pyif_bench.protocol_bench import open_session
 KEY = "nav2_pyif/bench/FollowPath"
 V1 = "nav2_pyif_bench.planners:TrivialController"
 V2 = "nav2_pyif_bench.planners:TrivialControllerV2"
+SWAPPABLE = ["--allow-remote-reload", "--reload-allow", "nav2_pyif_bench.planners:*"]
 
 
 def _client(session: Any, host: PlannerHostProcess) -> ControllerClient:
@@ -36,7 +37,7 @@ def _client(session: Any, host: PlannerHostProcess) -> ControllerClient:
 
 def hot_swap(swaps: int, period: float = 0.05) -> dict[str, Any]:
     """Swap V1 <-> V2 ``swaps`` times, 2 s apart, while calling at 1/period Hz."""
-    with PlannerHostProcess([{"key": KEY, "planner": V1}]) as host:
+    with PlannerHostProcess([{"key": KEY, "planner": V1}], args=SWAPPABLE) as host:
         session = open_session([host.endpoint])
         client = _client(session, host)
         client.configure()

@@ -14,12 +14,14 @@ from types import FrameType
 from typing import Any
 
 import yaml
+import zenoh
 from nav2_pyif_protocol.keys import validate_prefix
 
 from nav2_pyif.delegates import check_roles, parse_delegates
 from nav2_pyif.env_defaults import apply_environment, document_environment
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.host import PlannerHost, ReachWatch, new_host_id
+from nav2_pyif.reload_policy import ReloadPolicy
 from nav2_pyif.service import InProcessPlanner, PlannerService
 from nav2_pyif.signals import TERMINATING, exit_code
 from nav2_pyif.spec import PlannerSpec
@@ -50,6 +52,10 @@ examples:
 
   # from a YAML file: planners: [{key: K, planner: M:C}, {key: K, module: M, delegates: {..}}]
   planner-host --config planners.yaml
+
+  # accept nav2-pyif reload from the network, to the served planners or my_planners.*
+  planner-host --key nav2_pyif/robot1/FollowPath --planner my_planners.a:A \\
+      --allow-remote-reload --reload-allow 'my_planners.*'
 
   # every option also reads NAV2_PYIF_<OPTION> (containers); command-line flags win
   NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
@@ -147,6 +153,21 @@ def build_parser() -> argparse.ArgumentParser:
         metavar="MB",
         help="address-space limit of each worker process; a planner exceeding it gets "
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
+    )
+    swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")
+    swap.add_argument(
+        "--allow-remote-reload",
+        action="store_true",
+        help="accept reload requests over Zenoh (default: refused; SIGHUP always reloads); "
+        "without --reload-allow only a fresh import of the planner a key serves",
+    )
+    swap.add_argument(
+        "--reload-allow",
+        action="append",
+        default=[],
+        metavar="PATTERN",
+        help="another planner a reload may load: fnmatch pattern on MODULE:CLASS or MODULE, "
+        "e.g. 'my_planners.*', repeatable",
     )
     add_zenoh_arguments(parser)
     parser.add_argument(
@@ -253,6 +274,8 @@ def main(argv: list[str] | None = None) -> int:
 
     for signum in TERMINATING:
         signal.signal(signum, on_signal)
+    if args.reload_allow and not args.allow_remote_reload:
+        parser.error("--reload-allow needs --allow-remote-reload")
     try:
         specs = collect_specs(args, parser)
         services = start_services(specs, host_id, args)
@@ -260,6 +283,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return exit_code(stopped_by[0]) if stopped_by else 2
     options = options_from_args(args)
+    zenoh.try_init_log_from_env()  # Zenoh's own log (e.g. why a TLS link failed) on $RUST_LOG
     try:
         session = open_session(options)
     except (ConnectionError, FileNotFoundError) as exc:
@@ -267,7 +291,9 @@ def main(argv: list[str] | None = None) -> int:
             service.close()
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 3
-    host = PlannerHost(session, host_id)
+    host = PlannerHost(
+        session, host_id, ReloadPolicy(args.allow_remote_reload, tuple(args.reload_allow))
+    )
     try:
         if not stopped_by:
             for spec, service in zip(specs, services, strict=True):

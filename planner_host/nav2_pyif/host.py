@@ -19,6 +19,7 @@ import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.reload_policy import ReloadPolicy
 from nav2_pyif.service import PlannerService
 from nav2_pyif.spec import PlannerSpec
 
@@ -45,10 +46,12 @@ class ServedPlanner:
         runtime: PlannerService,
         host_id: str,
         started: float | None = None,
+        reload_policy: ReloadPolicy | None = None,
     ) -> None:
         self.keys = keys
         self.runtime = runtime
         self.host_id = host_id
+        self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
         self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
         # Reading the channel (not the queryable) lets close() undeclare from another thread.
@@ -134,7 +137,15 @@ class ServedPlanner:
                 spec = current.with_planner(
                     request.get("planner"), request.get("module"), request.get("delegates")
                 )
-            answer = {"ok": True, "message": self.runtime.reload(spec)}
+            refusal = self.reload_policy.refusal(spec if spec != current else None)
+            if refusal:
+                wanted = spec.describe() if spec is not None else "a fresh import"
+                log.warning(
+                    "%s: refused a remote reload (%s): %s", self.keys.prefix, wanted, refusal
+                )
+                answer = {"ok": False, "message": f"reload refused by the host: {refusal}"}
+            else:
+                answer = {"ok": True, "message": self.runtime.reload(spec)}
         except PlannerLoadError as exc:
             answer = {"ok": False, "message": str(exc)}
         except Exception as exc:
@@ -209,9 +220,15 @@ def _describe(transports: list[Any]) -> str:
 class PlannerHost:
     """Serves any number of planners (keys) over one Zenoh session."""
 
-    def __init__(self, session: zenoh.Session, host_id: str | None = None) -> None:
+    def __init__(
+        self,
+        session: zenoh.Session,
+        host_id: str | None = None,
+        reload_policy: ReloadPolicy | None = None,
+    ) -> None:
         self.session = session
         self.host_id = host_id or new_host_id()
+        self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time()
         self.served: dict[str, ServedPlanner] = {}
 
@@ -219,7 +236,9 @@ class PlannerHost:
         keys = KeySpace(key_prefix)
         if key_prefix in self.served:
             raise ValueError(f"key {key_prefix!r} is already served by this host")
-        served = ServedPlanner(self.session, keys, runtime, self.host_id, self.started)
+        served = ServedPlanner(
+            self.session, keys, runtime, self.host_id, self.started, self.reload_policy
+        )
         self.served[key_prefix] = served
         log.info("serving %s on %s/** (%s)", runtime.label, key_prefix, runtime.plugin_type.value)
         return served

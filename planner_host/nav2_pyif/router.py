@@ -5,6 +5,11 @@ container compose file that should route between planner hosts and robots with n
 installed. It is an ordinary Zenoh session in router mode (eclipse-zenoh, the same version as
 the host), running until SIGINT, SIGTERM or SIGHUP (then it exits with 128 + the signal's
 number, as every nav2-pyif command: ``nav2_pyif.tool`` turns signals into Interrupted).
+
+Zenoh's own warnings are logged (to stdout, after the "listening on" line): with TLS, every
+refused link (no client certificate, one from another CA, plain TCP on a TLS port) says so.
+``RUST_LOG`` chooses more, e.g. access control's decisions:
+``RUST_LOG=zenoh=warn,zenoh::net::routing::interceptor::access_control=trace``.
 """
 
 from __future__ import annotations
@@ -12,6 +17,8 @@ from __future__ import annotations
 import argparse
 import sys
 import threading
+
+import zenoh
 
 from nav2_pyif.zenoh_config import ZenohOptions, add_endpoint_arguments, open_session
 
@@ -49,6 +56,7 @@ def run_router(args: argparse.Namespace) -> int:
         return 3
     where = ", ".join(options.listen) or f"the endpoints of {options.config_file}"
     print(f"zenoh router {session.info.zid()} listening on {where}", flush=True)
+    zenoh.init_log_from_env_or("warn")  # $RUST_LOG, else Zenoh's warnings
     try:
         threading.Event().wait()  # until a signal raises Interrupted
     finally:

@@ -57,8 +57,9 @@ def request_reload(
     if waited < 0.9 * timeout:
         raise NoPlannerHost(
             f"host {hosts} is alive on {key_prefix} but nothing answered a reload on "
-            f"{keys.admin_reload} (after {waited:.1f} s; a planner-host too old to reload, or "
-            "it stopped meanwhile)"
+            f"{keys.admin_reload} (after {waited:.1f} s; a router's access control that does "
+            "not let this identity reload, a planner-host too old to reload, or it stopped "
+            "meanwhile)"
         )
     raise TimeoutError(
         f"host {hosts} on {key_prefix} did not answer the reload within {timeout:g} s "
