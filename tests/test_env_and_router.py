@@ -94,14 +94,23 @@ def test_help_works_whatever_the_environment_holds() -> None:
     assert result.returncode == 0 and "NAV2_PYIF_DEADLINE" in result.stdout
 
 
-def start_router(*where: str) -> subprocess.Popen[str]:
-    """``nav2-pyif router`` (``where``: --listen or --zenoh-config), once it listens."""
-    router = subprocess.Popen(
-        [sys.executable, "-m", "nav2_pyif.tool", "router", *where],
-        stdout=subprocess.PIPE,
-        text=True,
-    )
-    assert router.stdout is not None and "listening on" in router.stdout.readline()
+def start_router(
+    *where: str, log: Path | None = None, env: dict[str, str] | None = None
+) -> subprocess.Popen[str]:
+    """``nav2-pyif router`` (``where``: --listen or --zenoh-config), once it listens; its
+    output (Zenoh's log after the first line) in ``log`` if given."""
+    command = [sys.executable, "-m", "nav2_pyif.tool", "router", *where]
+    environ = {**os.environ, **(env or {})}
+    if log is None:
+        router = subprocess.Popen(command, stdout=subprocess.PIPE, text=True, env=environ)
+        assert router.stdout is not None and "listening on" in router.stdout.readline()
+        return router
+    with open(log, "w") as out:
+        router = subprocess.Popen(
+            command, stdout=out, stderr=subprocess.STDOUT, text=True, env=environ
+        )
+    assert wait_until(lambda: "listening on" in log.read_text() or router.poll() is not None, 30)
+    assert router.poll() is None, log.read_text()
     return router
 
 

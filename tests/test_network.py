@@ -5,6 +5,7 @@ machine does not allow network namespaces (they need root)."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
@@ -24,6 +25,7 @@ from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
 
 from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.test_env_and_router import start_router
 from tests.test_host_e2e import pose
 
 KEY = "nav2_pyif/remote/FollowPath"
@@ -81,8 +83,10 @@ def _config(path: Path, mode: str, listen: list[str], connect: list[str]) -> Pat
     return path
 
 
-@pytest.fixture
-def remote(tmp_path: Path) -> Iterator[dict[str, Any]]:
+@contextlib.contextmanager
+def namespace_link() -> Iterator[Link]:
+    """A Link, up; removed afterwards. Skips the test, saying why, where namespaces cannot be
+    made (no iproute2, not root)."""
     if shutil.which("ip") is None:
         pytest.skip("network-namespace test skipped: the `ip` command (iproute2) is missing")
     link = Link()
@@ -92,66 +96,70 @@ def remote(tmp_path: Path) -> Iterator[dict[str, Any]]:
         link.down()
         detail = getattr(exc, "stderr", "") or str(exc)
         pytest.skip(f"network-namespace test skipped: cannot create namespaces here ({detail})")
-    router_port, local_port = free_port(), free_port()
-    procs: list[subprocess.Popen[bytes]] = []
     try:
-        router_cfg = _config(
-            tmp_path / "router.json5",
-            "router",
-            [f"tcp/{SUBNET}.1:{router_port}", f"tcp/127.0.0.1:{local_port}"],
-            [],
-        )
-        router = subprocess.Popen(
-            [sys.executable, "-m", "nav2_pyif.tool", "router", "--zenoh-config", str(router_cfg)],
-            stdout=subprocess.PIPE,
-        )
-        procs.append(router)
-        assert router.stdout is not None and b"listening on" in router.stdout.readline()
-        host_cfg = _config(tmp_path / "host.json5", "peer", [], [f"tcp/{SUBNET}.1:{router_port}"])
-        log = open(tmp_path / "host.log", "wb")  # noqa: SIM115 - closed below
-        env = dict(
-            os.environ,
-            PYTHONPATH=os.pathsep.join([str(FIXTURES), os.environ.get("PYTHONPATH", "")]),
-        )
-        procs.append(
-            subprocess.Popen(
-                [
-                    "ip",
-                    "netns",
-                    "exec",
-                    link.ns,
-                    sys.executable,
-                    "-m",
-                    "nav2_pyif.cli",
-                    "--zenoh-config",
-                    str(host_cfg),
-                    "--key",
-                    KEY,
-                    "--planner",
-                    "echo_planners:EchoController",
-                ],
-                stdout=log,
-                stderr=subprocess.STDOUT,
-                env=env,
-            )
-        )
-        # client mode, as the C++ plugin (zenoh-pico) always is: the router routes between
-        # clients and peers; two peers without listen endpoints would need a direct link
-        client_cfg = _config(
-            tmp_path / "client.json5", "client", [], [f"tcp/127.0.0.1:{local_port}"]
-        )
-        session = zenoh.open(zenoh.Config.from_file(str(client_cfg)))
-        yield {"link": link, "session": session, "log": tmp_path / "host.log"}
-        session.close()
-        log.close()
+        yield link
     finally:
-        for proc in procs:
-            proc.terminate()
-            try:
-                proc.wait(10)
-            except subprocess.TimeoutExpired:
-                proc.kill()
         link.down()
+
+
+def start_remote_host(link: Link, log_path: Path, *args: str) -> subprocess.Popen[bytes]:
+    """``planner-host ARGS`` inside the link's namespace (the remote machine), the test
+    fixtures importable, its output in ``log_path``."""
+    env = dict(
+        os.environ, PYTHONPATH=os.pathsep.join([str(FIXTURES), os.environ.get("PYTHONPATH", "")])
+    )
+    with open(log_path, "wb") as log:
+        return subprocess.Popen(
+            ["ip", "netns", "exec", link.ns, sys.executable, "-m", "nav2_pyif.cli", *args],
+            stdout=log,
+            stderr=subprocess.STDOUT,
+            env=env,
+        )
+
+
+def stop(procs: list[subprocess.Popen[Any]]) -> None:
+    for proc in procs:
+        proc.terminate()
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+
+
+@pytest.fixture
+def remote(tmp_path: Path) -> Iterator[dict[str, Any]]:
+    with namespace_link() as link:
+        router_port, local_port = free_port(), free_port()
+        procs: list[subprocess.Popen[Any]] = []
+        try:
+            router_cfg = _config(
+                tmp_path / "router.json5",
+                "router",
+                [f"tcp/{SUBNET}.1:{router_port}", f"tcp/127.0.0.1:{local_port}"],
+                [],
+            )
+            procs.append(start_router("--zenoh-config", str(router_cfg)))
+            host_cfg = _config(
+                tmp_path / "host.json5", "peer", [], [f"tcp/{SUBNET}.1:{router_port}"]
+            )
+            procs.append(
+                start_remote_host(
+                    link,
+                    tmp_path / "host.log",
+                    *("--zenoh-config", str(host_cfg)),
+                    *("--key", KEY, "--planner", "echo_planners:EchoController"),
+                )
+            )
+            # client mode, as the C++ plugin (zenoh-pico) always is: the router routes between
+            # clients and peers; two peers without listen endpoints would need a direct link
+            client_cfg = _config(
+                tmp_path / "client.json5", "client", [], [f"tcp/127.0.0.1:{local_port}"]
+            )
+            session = zenoh.open(zenoh.Config.from_file(str(client_cfg)))
+            yield {"link": link, "session": session, "log": tmp_path / "host.log"}
+            session.close()
+        finally:
+            stop(procs)
 
 
 def test_link_cut_fails_fast_and_recovers_by_itself(remote: dict[str, Any]) -> None:
