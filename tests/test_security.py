@@ -22,6 +22,7 @@ import sys
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -30,6 +31,9 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient
 from nav2_pyif.client.admin import NoPlannerHost, request_reload
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.reload_policy import ReloadPolicy
+from nav2_pyif.spec import PlannerSpec
 from nav2_pyif_bench.pki import CertificateAuthority
 
 from tests.conftest import free_port, make_costmap, wait_until
@@ -283,3 +287,49 @@ def test_passwords_the_lighter_option(fleet: Fleet) -> None:
     finally:
         client.close()
         robot1.close()
+
+
+@pytest.mark.parametrize(
+    ("policy", "requested", "refused"),
+    [
+        (ReloadPolicy(), None, "remote reloads are off on this host"),
+        (ReloadPolicy(True), None, None),  # a fresh import of what the key serves
+        (ReloadPolicy(True), PlannerSpec(KEY, "other:Other"), "not in this host's reload"),
+        (ReloadPolicy(True, ("my_planners.*",)), PlannerSpec(KEY, "my_planners.a:A"), None),
+        (ReloadPolicy(True, ("my_planners.a",)), PlannerSpec(KEY, "my_planners.a:A"), None),
+        (ReloadPolicy(True, ("my_planners.a:B*",)), PlannerSpec(KEY, "my_planners.a:A"), "not in"),
+        (ReloadPolicy(True, ("seed_*",)), PlannerSpec(KEY, module="seed_apf"), None),
+        (ReloadPolicy(True, ("my_planners.*",)), PlannerSpec(KEY, "os:system"), "not in"),
+    ],
+)
+def test_reload_policy(
+    policy: ReloadPolicy, requested: PlannerSpec | None, refused: str | None
+) -> None:
+    reason = policy.refusal(requested)
+    assert (reason is None) == (refused is None) and (refused or "") in (reason or "")
+
+
+def test_a_host_refuses_remote_reloads_by_default(start_host: Any, zsession_factory: Any) -> None:
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    session = zsession_factory(host.endpoint)
+    client = ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS)
+    assert client.wait_for_host(30), host.log()
+    with pytest.raises(
+        PlannerLoadError, match="reload refused by the host: remote reloads are off"
+    ):
+        request_reload(session, KEY, timeout=30)
+    assert (
+        "refused a remote reload (a fresh import of echo_planners:EchoController): remote"
+        in host.log()
+    )
+    client.close()
+
+
+def test_reload_allow_needs_allow_remote_reload() -> None:
+    result = subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.cli", "--reload-allow", "x.*", "--key", "a/b"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
+    assert result.returncode == 2 and "--reload-allow needs --allow-remote-reload" in result.stderr

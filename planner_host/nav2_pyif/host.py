@@ -137,11 +137,16 @@ class ServedPlanner:
                 spec = current.with_planner(
                     request.get("planner"), request.get("module"), request.get("delegates")
                 )
-            refusal = self.reload_policy.refusal(spec if spec != current else None)
+            requested = spec if spec != current else None  # None: a fresh import
+            refusal = self.reload_policy.refusal(requested)
             if refusal:
-                wanted = spec.describe() if spec is not None else "a fresh import"
+                wanted = requested or current
                 log.warning(
-                    "%s: refused a remote reload (%s): %s", self.keys.prefix, wanted, refusal
+                    "%s: refused a remote reload (%s%s): %s",
+                    self.keys.prefix,
+                    "" if requested else "a fresh import of ",
+                    wanted.describe() if isinstance(wanted, PlannerSpec) else "?",
+                    refusal,
                 )
                 answer = {"ok": False, "message": f"reload refused by the host: {refusal}"}
             else:
