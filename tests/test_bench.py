@@ -41,6 +41,17 @@ def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
     )
 
 
+def test_tls_benchmark_quick_run_prints_tcp_and_tls_side_by_side() -> None:
+    assert_prints(
+        bench("tls", "--quick"),
+        "control cycle through a router on loopback",
+        "plain TCP",
+        "TLS, client certificates (mTLS)",
+        "mTLS + router access control",
+        "1000-pose set_plan",
+    )
+
+
 def test_cpp_cycle_without_its_binary_says_how_to_build_it(tmp_path: Path) -> None:
     result = bench("cpp-cycle", "--binary", str(tmp_path / "absent"), timeout=60)
     assert result.returncode == 2

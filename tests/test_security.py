@@ -37,6 +37,7 @@ from nav2_pyif.spec import PlannerSpec
 from nav2_pyif_bench.pki import CertificateAuthority
 
 from tests.conftest import free_port, make_costmap, wait_until
+from tests.docs_blocks import blocks
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS, pose
 from tests.test_network import SUBNET, Link, namespace_link, start_remote_host, stop
@@ -93,19 +94,39 @@ def open_with(config: Path, endpoint: str) -> zenoh.Session:
     return zenoh.open(loaded)
 
 
-def make_certificates(tmp_path: Path, router_address: str) -> tuple[Path, Path]:
-    """The fleet's certificates (the names DEPLOYMENT.md's openssl commands make) and a
-    stranger's: the fleet's CA certificate (public) with robot1's name signed by another CA."""
-    fleet = CertificateAuthority(tmp_path / "fleet" / "tls")
-    fleet.issue("router", (router_address, "127.0.0.1", "localhost"))
-    for name in ("robot1", "robot2", "planner-host", "operator"):
-        fleet.issue(name)
+def guide_certificates(directory: Path, router_address: str) -> None:
+    """Run DEPLOYMENT.md's openssl commands in ``directory`` (they make ``tls/``), the
+    router's address in place of the guide's example address."""
+    (block,) = [b for b in blocks(ROOT / "docs" / "DEPLOYMENT.md", ROOT) if "openssl req" in b.text]
+    script = block.text.replace("IP:192.168.1.20", f"IP:{router_address}")
+    result = subprocess.run(
+        ["bash", "-c", f"set -eo pipefail\n{script}"],
+        cwd=directory,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert result.returncode == 0, result.stderr
+
+
+def make_certificates(tmp_path: Path, router_address: str, maker: str) -> tuple[Path, Path]:
+    """The fleet's certificates, made by the guide's openssl commands (``maker`` "openssl")
+    or in Python with the same names, and a stranger's: the fleet's CA certificate (public)
+    with robot1's name signed by another CA."""
+    (tmp_path / "fleet").mkdir()
+    if maker == "openssl":
+        guide_certificates(tmp_path / "fleet", router_address)
+    else:
+        fleet = CertificateAuthority(tmp_path / "fleet" / "tls")
+        fleet.issue("router", (router_address, "127.0.0.1", "localhost"))
+        for name in ("robot1", "robot2", "planner-host", "operator"):
+            fleet.issue(name)
     (tmp_path / "fleet" / "passwords.txt").write_text(
         "".join(f"{user}:{password}\n" for user, password in PASSWORDS.items())
     )
     stranger = tmp_path / "stranger"
     CertificateAuthority(stranger / "tls", "other-ca").issue("robot1")
-    shutil.copy(fleet.certificate, stranger / "tls" / "ca.pem")
+    shutil.copy(tmp_path / "fleet" / "tls" / "ca.pem", stranger / "tls" / "ca.pem")
     return tmp_path / "fleet", stranger
 
 
@@ -158,11 +179,12 @@ class Fleet:
 @pytest.fixture
 def fleet(tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[Fleet]:
     """Router and remote host configured with the guide's files of one variant: "secure"
-    (mutual TLS, the default) or "password"."""
-    variant = getattr(request, "param", "secure")
+    (mutual TLS, the default) or "password"; "+openssl": the guide's openssl commands make
+    the certificates."""
+    variant, _, maker = getattr(request, "param", "secure").partition("+")
     with namespace_link() as link:
         endpoint = f"tls/{SUBNET}.1:{free_port()}"
-        certs, stranger_certs = make_certificates(tmp_path, f"{SUBNET}.1")
+        certs, stranger_certs = make_certificates(tmp_path, f"{SUBNET}.1", maker)
         fleet = Fleet(
             link,
             endpoint,
@@ -199,6 +221,7 @@ def sessions_served(fleet: Fleet) -> int:
     return sum(int(k["sessions"]) for k in keys if k["key"] == KEY)
 
 
+@pytest.mark.parametrize("fleet", ["secure", "secure+openssl"], indirect=True)
 def test_strangers_are_refused_and_robot1_is_served(fleet: Fleet) -> None:
     plain = guide_config("plugin-client.json5", fleet.certs, fleet.tmp)
     assert "refused" in fleet.probe(plain, fleet.endpoint.replace("tls/", "tcp/"))

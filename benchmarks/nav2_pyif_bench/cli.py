@@ -5,6 +5,7 @@ nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ pl
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers' rate through a host
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
+nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from nav2_pyif_bench import (
     mppi_bench,
     protocol_bench,
     reliability_bench,
+    tls_bench,
 )
 from nav2_pyif_bench.stats import machine_description
 
@@ -57,7 +59,9 @@ def main(argv: list[str] | None = None) -> int:
     reliability.add_argument("--swaps", type=int, default=6)
     reliability.add_argument("--calls", type=int, default=200_000)
     reliability.add_argument("--cycles", type=int, default=100, help="lifecycle cycles")
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet):
+    tls = sub.add_parser("tls", help="TLS's cost: the control cycle over TCP and mutual TLS")
+    protocol_bench.add_round_arguments(tls)
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -80,6 +84,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "protocol":
         results = protocol_bench.run(protocol_bench.apply_quick(args))
         text = protocol_bench.report(results)
+    elif args.bench == "tls":
+        results = tls_bench.run(protocol_bench.apply_quick_rounds(args))
+        text = tls_bench.report(results)
     elif args.bench == "mppi":
         results = mppi_bench.run(args)
         text = mppi_bench.report(results)

@@ -323,18 +323,28 @@ def report(results: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
-def add_arguments(parser: argparse.ArgumentParser) -> None:
+def add_round_arguments(parser: argparse.ArgumentParser) -> None:
+    """Rounds of control cycles and plans, and --quick: this benchmark's and the TLS one's."""
     parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
     parser.add_argument("--calls", type=int, default=300, help="control cycles per round")
     parser.add_argument("--plan-calls", type=int, default=40, help="plans per round")
+    parser.add_argument("--quick", action="store_true", help="a short smoke run")
+
+
+def apply_quick_rounds(args: argparse.Namespace) -> argparse.Namespace:
+    if args.quick:
+        args.rounds, args.calls, args.plan_calls = 2, 50, 5
+    return args
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_round_arguments(parser)
     parser.add_argument("--costmap-calls", type=int, default=100, help="cycles per round")
     parser.add_argument("--threads", type=int, nargs="+", default=[1, 4])
     parser.add_argument("--seconds", type=float, default=3.0, help="per throughput run")
-    parser.add_argument("--quick", action="store_true", help="a short smoke run")
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:
     if args.quick:
-        args.rounds, args.calls, args.plan_calls, args.costmap_calls = 2, 50, 5, 10
-        args.seconds = 0.5
-    return args
+        args.costmap_calls, args.seconds = 10, 0.5
+    return apply_quick_rounds(args)
