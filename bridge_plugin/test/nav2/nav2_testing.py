@@ -133,6 +133,16 @@ def start_nav2(procs: Processes, params: Path) -> None:
     )
 
 
+def prepare(logs: Path) -> tuple[str, Path, Processes]:
+    """A free endpoint for the host, the test's Nav2 params naming it (in ``logs``), and the
+    process set, in a ROS domain of its own (this process's rclpy too)."""
+    endpoint = f"tcp/127.0.0.1:{free_port()}"
+    params = logs / "nav2_params.yaml"
+    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
+    os.environ["ROS_DOMAIN_ID"] = str(random.randint(100, 200))
+    return endpoint, params, Processes(logs, dict(os.environ, PYTHONUNBUFFERED="1"))
+
+
 def bring_up(logs: Path, robot_args: tuple[str, ...] = ()) -> Iterator[dict[str, Any]]:
     """What a launch test drives (a fixture's body): a planner host serving the reference
     pure pursuit and A* on nav2_pyif/launch_test, the simulated robot (``robot_args``),
@@ -143,12 +153,7 @@ def bring_up(logs: Path, robot_args: tuple[str, ...] = ()) -> Iterator[dict[str,
     absent = missing()
     if absent:
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
-    params = logs / "nav2_params.yaml"
-    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
-    domain = str(random.randint(100, 200))
-    os.environ["ROS_DOMAIN_ID"] = domain  # this process's rclpy too
-    procs = Processes(logs, dict(os.environ, ROS_DOMAIN_ID=domain, PYTHONUNBUFFERED="1"))
+    endpoint, params, procs = prepare(logs)
     host = [
         *(host_command() or []),
         *("--listen", endpoint),

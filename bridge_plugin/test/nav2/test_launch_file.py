@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import math
 import os
-import random
 import shutil
 import signal
 import time
@@ -70,12 +69,7 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
     missing = nav2_testing.missing() + _launch_missing()
     if missing:
         pytest.skip("the launch-file test needs: " + ", ".join(missing))
-    endpoint = f"tcp/127.0.0.1:{nav2_testing.free_port()}"
-    params = tmp_path / "nav2_params.yaml"
-    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
-    domain = str(random.randint(100, 200))
-    os.environ["ROS_DOMAIN_ID"] = domain  # this process's rclpy too
-    procs = nav2_testing.Processes(tmp_path, dict(os.environ, PYTHONUNBUFFERED="1"))
+    endpoint, params, procs = nav2_testing.prepare(tmp_path)
     (host,) = nav2_testing.host_command() or []
     procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py")])
     procs.start(
