@@ -220,11 +220,8 @@ PluginParameters split_parameters(const proto::Params & params)
   if (!local.planner.empty() && !local.module.empty()) {
     bad("python_planner", "give either python_planner (module:Class) or python_module, not both");
   }
-  if (!local.module.empty() && local.delegates.empty()) {
-    bad(
-      "python_delegates",
-      "python_module needs python_delegates, e.g. [\"compute_velocity_commands=compute\"]");
-  }
+  // python_module alone: the host binds the module's functions named after the roles, as
+  // the seed paper's examples are written (planner-host --module m).
   if (local.module.empty() && !local.delegates.empty()) {
     bad("python_delegates", "given without python_module");
   }
@@ -243,7 +240,7 @@ PluginParameters split_parameters(const proto::Params & params)
     }
   } else if (s.key.empty()) {
     bad("key", "missing: the Zenoh key prefix a planner host serves (e.g. "
-      "nav2_pyif/robot1/FollowPath), or python_module + python_delegates for a local host");
+      "nav2_pyif/robot1/FollowPath), or python_module (+ python_delegates) for a local host");
   }
   if (!s.key.empty()) {
     try {

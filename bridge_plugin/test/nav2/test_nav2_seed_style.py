@@ -1,6 +1,7 @@
 """The seed paper's configuration in Nav2: no planner host started by hand. The controller's
-YAML names `python_module` + `python_delegates` (the APF controller of
-nav2_pyif_planners.apf, plain functions) and the planner's `python_planner`; each plugin starts
+YAML names only `python_module` (the APF controller of nav2_pyif_planners.apf: plain functions
+named after the roles, so no `python_delegates` is needed) and the planner's
+`python_planner`; each plugin starts
 and supervises its own `planner-host`, the robot reaches the goal, and the hosts end with Nav2.
 
 Needs what test_nav2_pyif.py needs; the planner host command must be one executable here
@@ -21,10 +22,6 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 GOAL = (2.0, 0.5)
-DELEGATES = (
-    '["configure=configure", "set_plan=set_plan", "set_speed_limit=set_speed_limit", '
-    '"compute_velocity_commands=compute_velocity_commands"]'
-)
 
 
 def seed_params(host: str) -> str:
@@ -38,7 +35,6 @@ def seed_params(host: str) -> str:
         if stripped.startswith('key: "nav2_pyif/launch_test/FollowPath"'):
             out += [
                 f'{indent}python_module: "nav2_pyif_planners.apf"',
-                f"{indent}python_delegates: {DELEGATES}",
                 f'{indent}planner_host_command: "{host}"',
             ]
         elif stripped.startswith('key: "nav2_pyif/launch_test/GridBased"'):
