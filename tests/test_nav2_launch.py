@@ -123,6 +123,7 @@ def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
     host.chmod(0o755)
     run = _bash(
         f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
+        f"NAV2_PYIF_ZENOH_BACKEND={backend} "
         f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} python -m pytest "
         "-p no:cacheprovider -q -rs bridge_plugin/test/nav2",
         timeout=900,

@@ -135,10 +135,19 @@ def start_nav2(procs: Processes, params: Path) -> None:
 
 def prepare(logs: Path) -> tuple[str, Path, Processes]:
     """A free endpoint for the host, the test's Nav2 params naming it (in ``logs``), and the
-    process set, in a ROS domain of its own (this process's rclpy too)."""
+    process set, in a ROS domain of its own (this process's rclpy too). On zenoh-c
+    ($NAV2_PYIF_ZENOH_BACKEND, set by tests/test_nav2_launch.py) the plugins read the
+    deployment guide's JSON5 file (docs/zenoh/plugin-client.json5, its endpoint replaced)
+    through `zenoh_config`, as a ROS install would; zenoh-pico takes `zenoh_connect`."""
     endpoint = f"tcp/127.0.0.1:{free_port()}"
+    text = (HERE / "nav2_params.yaml").read_text()
+    if os.environ.get("NAV2_PYIF_ZENOH_BACKEND") == "zenoh-c":
+        guide = HERE.parents[2] / "docs" / "zenoh" / "plugin-client.json5"
+        config = logs / "plugin-client.json5"
+        config.write_text(guide.read_text().replace("tcp/127.0.0.1:7447", endpoint))
+        text = text.replace('zenoh_connect: ["@ENDPOINT@"]', f'zenoh_config: "{config}"')
     params = logs / "nav2_params.yaml"
-    params.write_text((HERE / "nav2_params.yaml").read_text().replace("@ENDPOINT@", endpoint))
+    params.write_text(text.replace("@ENDPOINT@", endpoint))
     os.environ["ROS_DOMAIN_ID"] = str(random.randint(100, 200))
     return endpoint, params, Processes(logs, dict(os.environ, PYTHONUNBUFFERED="1"))
 
