@@ -10,7 +10,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-import threading
 import time
 from dataclasses import dataclass, field
 from typing import Any
@@ -19,6 +18,7 @@ import msgpack
 import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
+from nav2_pyif.client.hosts import ALL_HOSTS, collect_tokens
 from nav2_pyif.zenoh_config import (
     ZenohOptions,
     add_zenoh_arguments,
@@ -26,8 +26,6 @@ from nav2_pyif.zenoh_config import (
     open_session,
     options_from_args,
 )
-
-TOKENS = "**/host/*"
 
 
 @dataclass
@@ -73,31 +71,6 @@ class Survey:
             "via": {"routers": self.routers, "peers": self.peers},
             "hosts": [self.hosts[h].as_json(now) for h in sorted(self.hosts)],
         }
-
-
-def collect_tokens(session: zenoh.Session, wait: float) -> dict[str, set[str]]:
-    """host id -> key prefixes, from the liveliness tokens alive after ``wait`` seconds."""
-    alive: set[tuple[str, str]] = set()
-    lock = threading.Lock()
-
-    def on_sample(sample: Any) -> None:
-        prefix, _, host = str(sample.key_expr).rpartition("/host/")
-        with lock:
-            if sample.kind == zenoh.SampleKind.PUT:
-                alive.add((prefix, host))
-            else:
-                alive.discard((prefix, host))
-
-    subscriber = session.liveliness().declare_subscriber(TOKENS, on_sample, history=True)
-    try:
-        time.sleep(wait)
-    finally:
-        subscriber.undeclare()
-    hosts: dict[str, set[str]] = {}
-    with lock:
-        for prefix, host in alive:
-            hosts.setdefault(host, set()).add(prefix)
-    return hosts
 
 
 def ask_info(
@@ -197,7 +170,7 @@ def nothing_found(found: Survey, options: ZenohOptions, wait: float) -> str:
         return unreachable(options)
     return (
         f"reached {via(found)}, but no planner host is visible there (no liveliness token on "
-        f"{TOKENS} within {wait:g} s)"
+        f"{ALL_HOSTS} within {wait:g} s)"
     )
 
 

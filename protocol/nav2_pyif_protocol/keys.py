@@ -61,7 +61,3 @@ class KeySpace:
     @property
     def hosts(self) -> str:
         return f"{self.prefix}/host/*"
-
-    @staticmethod
-    def host_id_of(token_key: str) -> str:
-        return token_key.rsplit("/", 1)[-1]

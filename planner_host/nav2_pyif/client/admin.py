@@ -9,7 +9,7 @@ import msgpack
 import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
-from nav2_pyif.client.hosts import HostWatcher
+from nav2_pyif.client.hosts import HostWatcher, collect_tokens
 from nav2_pyif.exceptions import PlannerLoadError
 
 #: How long to wait for a host's liveliness token to reach a freshly opened session.
@@ -69,9 +69,6 @@ def request_reload(
 
 def visible_hosts(session: zenoh.Session, timeout: float = 1.0) -> str:
     """The planner hosts this session sees, by key prefix, as a sentence."""
-    # A liveliness subscriber with history, not a liveliness get (see HostWatcher).
-    from nav2_pyif.host_list import collect_tokens
-
     served: dict[str, set[str]] = {}
     for host, prefixes in collect_tokens(session, timeout).items():
         for prefix in prefixes:

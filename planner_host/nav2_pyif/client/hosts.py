@@ -1,60 +1,88 @@
-"""Which planner hosts are alive on a key prefix, from their liveliness tokens."""
+"""Which planner hosts are alive on a key prefix (or on every prefix), from their liveliness
+tokens."""
 
 from __future__ import annotations
 
 import contextlib
 import threading
+import time
 from collections.abc import Callable
 from typing import Any
 
 import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
+#: Every planner host's token, whatever key prefix it serves.
+ALL_HOSTS = "**/host/*"
+
 
 class HostWatcher:
     """A liveliness subscriber with history (not a liveliness get: zenoh-pico's plugin side
-    cannot use one across several tokens, and the reference client behaves as it does)."""
+    cannot use one across several tokens, and the reference client behaves as it does), on
+    one key prefix's host tokens or on a key expression over several (``ALL_HOSTS``)."""
 
     def __init__(
         self,
         session: zenoh.Session,
-        keys: KeySpace,
+        keys: KeySpace | str,
         on_change: Callable[[str, bool], None] | None = None,
     ) -> None:
-        self._alive: set[str] = set()
+        self._tokens: set[tuple[str, str]] = set()  # (key prefix, host id)
         self._lock = threading.Lock()
         self._changed = threading.Condition(self._lock)
         self._on_change = on_change
         self._subscriber = session.liveliness().declare_subscriber(
-            keys.hosts, self._on_sample, history=True
+            keys.hosts if isinstance(keys, KeySpace) else keys, self._on_sample, history=True
         )
 
     def _on_sample(self, sample: Any) -> None:
-        host = KeySpace.host_id_of(str(sample.key_expr))
+        prefix, _, host = str(sample.key_expr).rpartition("/host/")
         alive = sample.kind == zenoh.SampleKind.PUT
         with self._changed:
             if alive:
-                self._alive.add(host)
+                self._tokens.add((prefix, host))
             else:
-                self._alive.discard(host)
+                self._tokens.discard((prefix, host))
             self._changed.notify_all()
         if self._on_change is not None:
             self._on_change(host, alive)
 
+    def _hosts(self) -> frozenset[str]:  # with the lock held
+        return frozenset(host for _, host in self._tokens)
+
     @property
     def alive(self) -> frozenset[str]:
         with self._lock:
-            return frozenset(self._alive)
+            return self._hosts()
+
+    @property
+    def tokens(self) -> frozenset[tuple[str, str]]:
+        """Every live token as (key prefix, host id)."""
+        with self._lock:
+            return frozenset(self._tokens)
 
     def wait(self, timeout: float) -> bool:
         """Wait until at least one host is alive; False on timeout."""
         with self._changed:
-            return self._changed.wait_for(lambda: bool(self._alive), timeout)
+            return self._changed.wait_for(lambda: bool(self._tokens), timeout)
 
     def wait_for(self, predicate: Callable[[frozenset[str]], bool], timeout: float) -> bool:
         with self._changed:
-            return self._changed.wait_for(lambda: predicate(frozenset(self._alive)), timeout)
+            return self._changed.wait_for(lambda: predicate(self._hosts()), timeout)
 
     def close(self) -> None:
         with contextlib.suppress(Exception):  # the session may be closed already
             self._subscriber.undeclare()
+
+
+def collect_tokens(session: zenoh.Session, wait: float) -> dict[str, set[str]]:
+    """host id -> key prefixes, from every host token alive after ``wait`` seconds."""
+    watcher = HostWatcher(session, ALL_HOSTS)
+    try:
+        time.sleep(wait)
+    finally:
+        watcher.close()
+    hosts: dict[str, set[str]] = {}
+    for prefix, host in watcher.tokens:
+        hosts.setdefault(host, set()).add(prefix)
+    return hosts
