@@ -18,6 +18,15 @@ from nav2_pyif.zenoh_config import connect_to
 __all__ = ["free_port"]  # tests import it from here
 
 FIXTURES = Path(__file__).parent / "fixtures"
+ROOT = Path(__file__).resolve().parents[1]
+#: What README's "To use the tools by hand" sources: the project's venv and ROS environment.
+ENV_SCRIPT = Path(os.environ.get("NAV2_PYIF_VENV", ROOT / ".venv")) / "nav2_pyif_env.sh"
+
+
+def in_project_env(command: str) -> list[str]:
+    """argv running the shell ``command`` as a user would, with ENV_SCRIPT sourced."""
+    return ["bash", "-c", f"source {ENV_SCRIPT}\n{command}"]
+
 
 #: nav2_core exception names (Jazzy+), as the planner API must offer them
 CONTROLLER_ERRORS = [

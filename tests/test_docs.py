@@ -15,11 +15,10 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import Block, blocks
 
-ROOT = Path(__file__).resolve().parents[1]
 DOCS = [ROOT / "README.md", ROOT / "docs" / "DEPLOYMENT.md", ROOT / "bridge_plugin" / "README.md"]
-ENV_SCRIPT = Path(os.environ.get("NAV2_PYIF_VENV", ROOT / ".venv")) / "nav2_pyif_env.sh"
 ALL_BLOCKS = [block for doc in DOCS for block in blocks(doc, ROOT)]
 
 
@@ -75,7 +74,7 @@ class DocRun:
             self._start(block, command)
             return
         result = subprocess.run(
-            ["bash", "-c", f"set -eo pipefail; source {ENV_SCRIPT}\n{command}"],
+            in_project_env(f"set -eo pipefail\n{command}"),
             cwd=self.cwd(block),
             capture_output=True,
             text=True,
@@ -90,7 +89,7 @@ class DocRun:
         log = self.user_dir / f"background_{block.line}.log"
         with open(log, "wb") as out:
             proc = subprocess.Popen(
-                ["bash", "-c", f"source {ENV_SCRIPT}\n{command}"],
+                in_project_env(command),
                 cwd=self.cwd(block),
                 stdout=out,
                 stderr=subprocess.STDOUT,

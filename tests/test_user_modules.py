@@ -12,10 +12,9 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import blocks
 
-ROOT = Path(__file__).resolve().parents[1]
-ENV_SCRIPT = Path(os.environ.get("NAV2_PYIF_VENV", ROOT / ".venv")) / "nav2_pyif_env.sh"
 SPEC = "my_planners.go_to:GoTo"
 
 
@@ -33,7 +32,7 @@ def user_dir(tmp_path: Path) -> Path:
 def bash(command: str, cwd: Path, timeout: float = 300) -> subprocess.CompletedProcess[str]:
     env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     return subprocess.run(
-        ["bash", "-c", f"source {ENV_SCRIPT}\n{command}"],
+        in_project_env(command),
         cwd=cwd,
         capture_output=True,
         text=True,
