@@ -9,6 +9,7 @@
 
 #include "builtin_interfaces/msg/time.hpp"
 #include "geometry_msgs/msg/pose_stamped.hpp"
+#include "geometry_msgs/msg/transform_stamped.hpp"
 #include "geometry_msgs/msg/twist.hpp"
 #include "geometry_msgs/msg/twist_stamped.hpp"
 #include "nav_msgs/msg/path.hpp"
@@ -42,9 +43,14 @@ nav_msgs::msg::Path to_ros(
 std::optional<protocol::ParamValue> to_wire(const rclcpp::ParameterValue & value);
 rclcpp::ParameterValue to_ros(const protocol::ParamValue & value);
 
+// The latest transform `from` -> `frame`. Throws client::CallError of `tf_error`
+// (ControllerTFError / PlannerTFError) naming `what` and the frames.
+geometry_msgs::msg::TransformStamped latest_transform(
+  const std::string & frame, const std::string & from, tf2_ros::Buffer & tf, double timeout_s,
+  client::ErrorKind tf_error, const std::string & what);
+
 // `pose` in `frame`, with the latest transform (unchanged when already in it). The plan's own
 // frame change is FreshPlan's.
-// Throw client::CallError of `tf_error` (ControllerTFError / PlannerTFError) naming the frames.
 geometry_msgs::msg::PoseStamped in_frame(
   const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
   tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error);

@@ -7,6 +7,7 @@
 #include "tf2_geometry_msgs/tf2_geometry_msgs.hpp"
 
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
+#include "nav2_pyif_bridge/ros_conversions.hpp"
 
 namespace nav2_pyif_bridge
 {
@@ -17,14 +18,8 @@ namespace
 geometry_msgs::msg::Transform lookup(
   const std::string & frame, const std::string & from, tf2_ros::Buffer & tf, double timeout_s)
 {
-  try {
-    return tf.lookupTransform(frame, from, tf2::TimePointZero, tf2::durationFromSec(timeout_s))
-           .transform;
-  } catch (const tf2::TransformException & error) {
-    throw client::CallError(
-            client::ErrorKind::ControllerTFError, client::Cause::Local,
-            "cannot transform the plan from " + from + " to " + frame + ": " + error.what());
-  }
+  return ros::latest_transform(
+    frame, from, tf, timeout_s, client::ErrorKind::ControllerTFError, "the plan").transform;
 }
 
 bool in_frame_already(const nav_msgs::msg::Path & path, const std::string & frame)

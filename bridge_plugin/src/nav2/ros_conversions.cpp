@@ -145,6 +145,19 @@ rclcpp::ParameterValue to_ros(const proto::ParamValue & value)
   return std::visit([](const auto & v) {return rclcpp::ParameterValue(v);}, value);
 }
 
+geometry_msgs::msg::TransformStamped latest_transform(
+  const std::string & frame, const std::string & from, tf2_ros::Buffer & tf, double timeout_s,
+  client::ErrorKind tf_error, const std::string & what)
+{
+  try {
+    return tf.lookupTransform(frame, from, tf2::TimePointZero, tf2::durationFromSec(timeout_s));
+  } catch (const tf2::TransformException & error) {
+    throw client::CallError(
+            tf_error, client::Cause::Local,
+            "cannot transform " + what + " from " + from + " to " + frame + ": " + error.what());
+  }
+}
+
 geometry_msgs::msg::PoseStamped in_frame(
   const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
   tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error)
@@ -152,18 +165,11 @@ geometry_msgs::msg::PoseStamped in_frame(
   if (pose.header.frame_id == frame || pose.header.frame_id.empty()) {
     return pose;
   }
-  try {
-    const auto transform = tf.lookupTransform(
-      frame, pose.header.frame_id, tf2::TimePointZero, tf2::durationFromSec(timeout_s));
-    geometry_msgs::msg::PoseStamped out;
-    tf2::doTransform(pose, out, transform);
-    return out;
-  } catch (const tf2::TransformException & error) {
-    throw client::CallError(
-            tf_error, client::Cause::Local,
-            "cannot transform a pose from " + pose.header.frame_id + " to " + frame + ": " +
-            error.what());
-  }
+  geometry_msgs::msg::PoseStamped out;
+  tf2::doTransform(
+    pose, out,
+    latest_transform(frame, pose.header.frame_id, tf, timeout_s, tf_error, "a pose"));
+  return out;
 }
 
 }  // namespace nav2_pyif_bridge::ros
