@@ -1,8 +1,10 @@
 """The Nav2 launch tests (bridge_plugin/test/nav2): controller_server, planner_server and a
 lifecycle manager with the nav2_pyif plugins, a real planner host and a simulated robot;
 FollowPath reaches the goal, a host killed mid-goal aborts it with the matching error code
-while the servers stay active, a restarted host serves the next goal; and the seed paper's
-YAML starts its own hosts.
+while the servers stay active, a restarted host serves the next goal; through a router, a host
+whose machine vanishes is noticed within a lease and comes back by itself, with the recovery
+figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans cross whole;
+map -> odom moving while driving; and the seed paper's YAML starts its own hosts.
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per zenoh-cpp backend: NAV2_PYIF_NAV2_SETUP_ZENOHC and
@@ -114,19 +116,27 @@ def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
     if backend not in found:
         pytest.skip(f"Nav2 launch tests on {backend} skipped: {setup} gives {found or linked}")
 
-    host = workspace / "planner-host.sh"  # the project's own environment for the host
-    host.write_text(
+    wrapper = workspace / "in-project-env.sh"  # the project's own environment for its tools
+    wrapper.write_text(
         "#!/bin/bash\nunset PYTHONPATH; export LD_LIBRARY_PATH=\n"
         f"source {shlex.quote(str(ROOT / '.venv' / 'nav2_pyif_env.sh'))}\n"
-        'exec planner-host "$@"\n'
+        'exec "$@"\n'
     )
+    wrapper.chmod(0o755)
+    host = workspace / "planner-host.sh"  # one executable: the seed YAML's planner_host_command
+    host.write_text(f'#!/bin/bash\nexec {shlex.quote(str(wrapper))} planner-host "$@"\n')
     host.chmod(0o755)
+    figures = workspace / "recovery_figures.json"
+    figures.unlink(missing_ok=True)
     run = _bash(
         f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
-        f"NAV2_PYIF_ZENOH_BACKEND={backend} "
-        f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} python -m pytest "
+        f"NAV2_PYIF_ZENOH_BACKEND={backend} NAV2_PYIF_RUN={shlex.quote(str(wrapper))} "
+        f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} "
+        f"NAV2_PYIF_FIGURES={shlex.quote(str(figures))} python -m pytest "
         "-p no:cacheprovider -q -rs bridge_plugin/test/nav2",
         timeout=900,
     )
     assert run.returncode == 0, "Nav2 launch tests failed:\n" + _tail(run, 120)
     assert " passed" in run.stdout and "skipped" not in run.stdout, _tail(run)
+    # The recovery figures of RELIABILITY.md (bridge_plugin/test/nav2/test_host_recovery.py)
+    print(f"{backend} recovery figures: {figures.read_text()}")

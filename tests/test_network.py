@@ -5,10 +5,8 @@ machine does not allow network namespaces (they need root)."""
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
-import shutil
 import subprocess
 import sys
 import time
@@ -25,47 +23,12 @@ from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
 
 from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.netns import SUBNET, Link, namespace_link
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import pose
 
 KEY = "nav2_pyif/remote/FollowPath"
-SUBNET = "10.231.7"  # only inside this test's own namespace pair
 LEASE_MS = 1000  # short Zenoh lease: a dead link is noticed in ~1 s, not the default 10 s
-
-
-def _ip(*args: str) -> None:
-    subprocess.run(["ip", *args], check=True, capture_output=True, text=True, timeout=20)
-
-
-class Link:
-    """Namespace ``ns`` (the planner host's machine) joined to this one by a veth pair."""
-
-    def __init__(self) -> None:
-        tag = f"{os.getpid() % 100000}"
-        self.ns, self.outer, self.inner = f"pyif{tag}", f"pyif{tag}r", f"pyif{tag}h"
-
-    def up(self) -> None:
-        _ip("netns", "add", self.ns)
-        _ip("link", "add", self.outer, "type", "veth", "peer", "name", self.inner)
-        _ip("link", "set", self.inner, "netns", self.ns)
-        _ip("addr", "add", f"{SUBNET}.1/30", "dev", self.outer)
-        _ip("link", "set", self.outer, "up")
-        for args in (
-            ("addr", "add", f"{SUBNET}.2/30", "dev", self.inner),
-            ("link", "set", self.inner, "up"),
-            ("link", "set", "lo", "up"),
-        ):
-            _ip("netns", "exec", self.ns, "ip", *args)
-
-    def cut(self) -> None:
-        _ip("link", "set", self.outer, "down")
-
-    def restore(self) -> None:
-        _ip("link", "set", self.outer, "up")
-
-    def down(self) -> None:
-        subprocess.run(["ip", "netns", "del", self.ns], capture_output=True, timeout=20)
-        subprocess.run(["ip", "link", "del", self.outer], capture_output=True, timeout=20)
 
 
 def _config(path: Path, mode: str, listen: list[str], connect: list[str]) -> Path:
@@ -81,25 +44,6 @@ def _config(path: Path, mode: str, listen: list[str], connect: list[str]) -> Pat
         )
     )
     return path
-
-
-@contextlib.contextmanager
-def namespace_link() -> Iterator[Link]:
-    """A Link, up; removed afterwards. Skips the test, saying why, where namespaces cannot be
-    made (no iproute2, not root)."""
-    if shutil.which("ip") is None:
-        pytest.skip("network-namespace test skipped: the `ip` command (iproute2) is missing")
-    link = Link()
-    try:
-        link.up()
-    except (subprocess.CalledProcessError, OSError) as exc:
-        link.down()
-        detail = getattr(exc, "stderr", "") or str(exc)
-        pytest.skip(f"network-namespace test skipped: cannot create namespaces here ({detail})")
-    try:
-        yield link
-    finally:
-        link.down()
 
 
 def start_remote_host(link: Link, log_path: Path, *args: str) -> subprocess.Popen[bytes]:

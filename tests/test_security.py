@@ -38,9 +38,10 @@ from nav2_pyif_bench.pki import CertificateAuthority
 
 from tests.conftest import free_port, make_costmap, wait_until
 from tests.docs_blocks import blocks
+from tests.netns import SUBNET, Link, namespace_link
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS, pose
-from tests.test_network import SUBNET, Link, namespace_link, start_remote_host, stop
+from tests.test_network import start_remote_host, stop
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS_ZENOH = ROOT / "docs" / "zenoh"

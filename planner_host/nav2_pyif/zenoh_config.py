@@ -21,6 +21,17 @@ import zenoh
 DEFAULT_ROUTER = "tcp/localhost:7447"
 LOCAL_LISTEN = "tcp/localhost:0"  # a peer's own port, found by other peers through the router
 CONFIG_ENV = "NAV2_PYIF_ZENOH_CONFIG"
+# A host whose machine vanishes (power, Wi-Fi, a cut cable) closes no connection: the other
+# end notices only when nothing has arrived for one lease. Zenoh's default of 10 s left a
+# plugin calling a dead host for 10 s; with 1 s, and keep-alives 4 times per lease, the
+# router (or a plugin connected directly) withdraws the host's token within about a second.
+# Each end expires the other after the lease the other announced (zenoh-pico: the shorter
+# of the two), so the host's own lease decides, whatever the router or plugin configure.
+LEASE_MS = 1000
+KEEP_ALIVES_PER_LEASE = 4
+# A router that restarts (or a link that comes back) is re-joined within half a second, not
+# after Zenoh's back-off of up to 4 s: the robot waits for its planner meanwhile.
+CONNECT_RETRY = {"period_init_ms": 100, "period_max_ms": 500, "period_increase_factor": 2}
 
 
 @dataclass
@@ -98,6 +109,9 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
         # practice the first plan) took 10-20 ms instead of 1 ms. Payloads here are at most a
         # few MB and the C++ plugin's backends do not use it: off, unless a config file says.
         config.insert_json5("transport/shared_memory/enabled", "false")
+        config.insert_json5("transport/link/tx/lease", str(LEASE_MS))
+        config.insert_json5("transport/link/tx/keep_alive", str(KEEP_ALIVES_PER_LEASE))
+        config.insert_json5("connect/retry", json.dumps(CONNECT_RETRY))
         if not options.connect and not options.listen:
             config.insert_json5("connect/endpoints", json.dumps([DEFAULT_ROUTER]))
             if mode == "peer":

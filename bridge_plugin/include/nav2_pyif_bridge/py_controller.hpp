@@ -57,6 +57,8 @@ public:
 #endif
 
 private:
+  void send_reset();  // the session's reset; a failure is only logged (debug)
+
   std::string name_;
   std::shared_ptr<tf2_ros::Buffer> tf_;
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
@@ -64,6 +66,11 @@ private:
   // Destroyed in this order: the session uses the bridge's transport and costmap source.
   std::unique_ptr<PluginBridge> bridge_;
   std::unique_ptr<client::ControllerSession> session_;
+  // The last compute_velocity_commands got no reply in time: the host is likely gone, and
+  // Nav2's reset() right after (while it aborts the goal) must not wait on it again. The reset
+  // is then owed and sent before the next plan.
+  bool host_silent_{false};
+  bool reset_owed_{false};
 };
 
 }  // namespace nav2_pyif_bridge

@@ -83,6 +83,10 @@ void PyController::setPlan(const nav_msgs::msg::Path & path)
 {
   bridge_->forward(
     [&]() {
+      if (reset_owed_) {
+        reset_owed_ = false;
+        send_reset();
+      }
       session_->set_plan(ros::to_wire(plan_.set(
         path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
     });
@@ -102,9 +106,15 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
       {
         session_->set_plan(ros::to_wire(*fresh));  // localisation moved the plan's frame
       }
-      const protocol::TwistStamped cmd = session_->compute_velocity_commands(
-        ros::to_wire(global), ros::to_wire(velocity), tolerances(goal_checker));
-      return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
+      try {
+        const protocol::TwistStamped cmd = session_->compute_velocity_commands(
+          ros::to_wire(global), ros::to_wire(velocity), tolerances(goal_checker));
+        host_silent_ = false;
+        return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
+      } catch (const client::CallError & error) {
+        host_silent_ = error.cause() == client::Cause::TimedOut;
+        throw;
+      }
     });
 }
 
@@ -132,13 +142,22 @@ bool PyController::cancel()
 
 void PyController::reset()
 {
+  if (host_silent_) {
+    reset_owed_ = true;  // Nav2 reports the abort only after this returns: do not wait again
+    return;
+  }
+  send_reset();
+}
+#endif
+
+void PyController::send_reset()
+{
   try {
     session_->reset(session_->timeouts().call);
   } catch (const client::CallError & error) {
     RCLCPP_DEBUG(bridge_->ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
   }
 }
-#endif
 
 }  // namespace nav2_pyif_bridge
 

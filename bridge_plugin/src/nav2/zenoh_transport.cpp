@@ -17,6 +17,8 @@ namespace
 using client::LogLevel;
 constexpr const char * kConfigEnv = "NAV2_PYIF_ZENOH_CONFIG";
 constexpr const char * kDefaultRouter = "tcp/localhost:7447";
+constexpr const char * kFastRetry =
+  "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}";
 
 std::string json_string_list(const std::vector<std::string> & items)
 {
@@ -58,6 +60,12 @@ zenoh::Config make_config(const ZenohOptions & options)
   if (file.empty()) {
     config.insert_json5("mode", "\"client\"");
     config.insert_json5("scouting/multicast/enabled", "false");
+    // As the planner host's built-in config: a vanished router noticed within a second, and
+    // one that comes back (or a restarted host the plugin connects to directly) re-joined
+    // within half a second, not after Zenoh's back-off of up to 4 s.
+    config.insert_json5("transport/link/tx/lease", "1000");
+    config.insert_json5("transport/link/tx/keep_alive", "4");
+    config.insert_json5("connect/retry", kFastRetry);
     if (options.connect.empty()) {
       config.insert_json5("connect/endpoints", json_string_list({kDefaultRouter}));
     }
@@ -105,6 +113,18 @@ std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options
   return session;
 }
 
+// A host appearing or going is worth a line in Nav2's log: it dates a crash, a lost link (its
+// token withdrawn one Zenoh lease after the last packet) and the moment service came back.
+client::HostWatcher::OnChange host_change_logger(client::Logger logger, std::string prefix)
+{
+  return [logger = std::move(logger), prefix = std::move(prefix)](
+    const std::string & host, bool alive) {
+           client::log(
+             logger, alive ? LogLevel::Info : LogLevel::Warn,
+             "planner host " + host + (alive ? " is alive on " : " is gone from ") + prefix);
+         };
+}
+
 }  // namespace
 
 const char * zenoh_backend() noexcept
@@ -130,7 +150,9 @@ struct ZenohTransport::Link
 ZenohTransport::ZenohTransport(
   ZenohOptions options, const client::KeySpace & keys, client::Logger logger)
 : options_(std::move(options)), hosts_key_(keys.hosts()), logger_(std::move(logger)),
-  where_(describe(options_)), watcher_(std::make_shared<client::HostWatcher>())
+  where_(describe(options_)),
+  watcher_(std::make_shared<client::HostWatcher>(
+      client::SteadyClock::instance(), host_change_logger(logger_, keys.prefix())))
 {
   (void)make_config(options_);  // refuse what this backend cannot do, now
   if (!try_open(false)) {

@@ -3,20 +3,25 @@ process group, stopped by pid), and an rclpy client of Nav2's lifecycle and acti
 
 from __future__ import annotations
 
+import math
 import os
 import random
+import re
 import shlex
 import shutil
 import signal
 import socket
 import subprocess
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
+from datetime import datetime
 from pathlib import Path
 from typing import Any
 
 HERE = Path(__file__).resolve().parent
 PREFIX = "nav2_pyif/launch_test"  # the keys nav2_params.yaml names
+ROS_TIME = re.compile(r"^\[\w+\] \[(\d+\.\d+)\]")  # [WARN] [1763862000.123456789] [node]: ...
+HOST_TIME = re.compile(r"^\[(\d{4}-\d\d-\d\d \d\d:\d\d:\d\d,\d{3})\]")  # Python logging
 
 
 def prefixes() -> list[Path]:
@@ -30,12 +35,19 @@ def find(relative: str) -> Path | None:
     return None
 
 
+def project_command(name: str) -> list[str] | None:
+    """A command of the nav2_pyif package (planner-host, nav2-pyif): through $NAV2_PYIF_RUN
+    (a wrapper that runs its arguments in the project's environment), else from PATH."""
+    wrapper = os.environ.get("NAV2_PYIF_RUN")
+    if wrapper:
+        return [*shlex.split(wrapper), name]
+    found = shutil.which(name)
+    return [found] if found else None
+
+
 def host_command() -> list[str] | None:
     command = os.environ.get("NAV2_PYIF_PLANNER_HOST")
-    if command:
-        return shlex.split(command)
-    found = shutil.which("planner-host")
-    return [found] if found else None
+    return shlex.split(command) if command else project_command("planner-host")
 
 
 def missing() -> list[str]:
@@ -106,6 +118,24 @@ class Processes:
         text = path.read_text(errors="replace").splitlines() if path.exists() else []
         return f"--- {name} ---\n" + "\n".join(text[-lines:])
 
+    def logged_at(self, name: str, words: str, after: float) -> float | None:
+        """Wall time of the first line of `name`'s log containing `words`, stamped at or after
+        `after` (ROS log stamps for Nav2's servers, Python logging's for the planner host)."""
+        path = self.logs / f"{name}.log"
+        for line in path.read_text(errors="replace").splitlines() if path.exists() else []:
+            if words not in line:
+                continue
+            ros, host = ROS_TIME.match(line), HOST_TIME.match(line)
+            if ros:
+                stamp = float(ros.group(1))
+            elif host:
+                stamp = datetime.strptime(host.group(1), "%Y-%m-%d %H:%M:%S,%f").timestamp()
+            else:
+                continue
+            if stamp >= after:
+                return stamp
+        return None
+
     def stop_all(self) -> None:
         for name in list(self.procs):
             self.kill(name, signal.SIGINT)
@@ -152,10 +182,31 @@ def prepare(logs: Path) -> tuple[str, Path, Processes]:
     return endpoint, params, Processes(logs, dict(os.environ, PYTHONUNBUFFERED="1"))
 
 
-def bring_up(logs: Path, robot_args: tuple[str, ...] = ()) -> Iterator[dict[str, Any]]:
-    """What a launch test drives (a fixture's body): a planner host serving the reference
-    pure pursuit and A* on nav2_pyif/launch_test, the simulated robot (``robot_args``),
-    controller_server, planner_server, a lifecycle manager and an rclpy client. Skips,
+REFERENCE_PLANNERS = (
+    *("--serve", f"{PREFIX}/FollowPath=nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"),
+    *("--serve", f"{PREFIX}/GridBased=nav2_pyif_planners.astar:AStar"),
+)
+# Where the planner host runs and how it meets the plugins: given the process set and the
+# plugins' endpoint, (a command prefix for the host, its Zenoh arguments). By default the
+# host listens on the endpoint the plugins dial.
+Topology = Callable[["Processes", str], tuple[list[str], list[str]]]
+
+
+def direct(procs: Processes, endpoint: str) -> tuple[list[str], list[str]]:
+    return [], ["--listen", endpoint]
+
+
+def bring_up(
+    logs: Path,
+    robot_args: tuple[str, ...] = (),
+    planners: tuple[str, ...] = REFERENCE_PLANNERS,
+    edit_params: Callable[[str], str] = lambda text: text,
+    topology: Topology = direct,
+) -> Iterator[dict[str, Any]]:
+    """What a launch test drives (a fixture's body): a planner host with ``planners`` (its
+    arguments: by default the reference pure pursuit and A* on nav2_pyif/launch_test), the
+    simulated robot (``robot_args``), controller_server, planner_server and a lifecycle
+    manager with the test's params (through ``edit_params``), and an rclpy client. Skips,
     naming what is missing, without Nav2."""
     import pytest
 
@@ -163,15 +214,15 @@ def bring_up(logs: Path, robot_args: tuple[str, ...] = ()) -> Iterator[dict[str,
     if absent:
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
     endpoint, params, procs = prepare(logs)
-    host = [
-        *(host_command() or []),
-        *("--listen", endpoint),
-        *("--serve", f"{PREFIX}/FollowPath=nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"),
-        *("--serve", f"{PREFIX}/GridBased=nav2_pyif_planners.astar:AStar"),
-    ]
+    params.write_text(edit_params(params.read_text()))
+    prefix, zenoh_args = topology(procs, endpoint)
+    host = [*prefix, *(host_command() or []), *zenoh_args, *planners]
 
-    def start_host() -> None:
+    def start_host() -> float:
+        """Start the host; the wall time it was started at."""
+        started = time.time()
         procs.start("planner_host", host)
+        return started
 
     start_host()
     procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py"), *robot_args])
@@ -203,10 +254,12 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             self.plan_client = ActionClient(self, ComputePathToPose, "compute_path_to_pose")
             self.follow_client = ActionClient(self, FollowPath, "follow_path")
             self.pose: tuple[float, float] | None = None
+            self.speed = 0.0  # the commanded speed, as the simulated robot reports it
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
 
         def _on_odom(self, msg: Any) -> None:
             self.pose = (msg.pose.pose.position.x, msg.pose.pose.position.y)
+            self.speed = math.hypot(msg.twist.twist.linear.x, msg.twist.twist.angular.z)
 
         def spin_until(self, done: Any, timeout: float) -> bool:
             end = time.monotonic() + timeout

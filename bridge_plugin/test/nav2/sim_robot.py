@@ -1,8 +1,9 @@
 """A small simulated robot for the Nav2 launch test: a unicycle that follows /cmd_vel, with a
 map, TF and odometry, as Nav2's servers expect them.
 
-- /map (nav_msgs/OccupancyGrid, transient local): 8 m x 8 m at 5 cm, centred on the origin,
-  with a wall x = 1 m, y in [-0.6, 2.5] m between the start and the test's goals;
+- /map (nav_msgs/OccupancyGrid, transient local): 8 m x 8 m at 5 cm (--map-size: 50 m gives
+  1000 x 1000 cells), centred on the origin, with a wall x = 1 m, y in [-0.6, 2.5] m between
+  the start and the test's goals;
 - TF map -> odom (static, identity) and odom -> base_link (the integrated pose, 50 Hz);
 - /odom (nav_msgs/Odometry) with the commanded velocity as the measured one;
 - /ground_truth (geometry_msgs/PoseStamped): the robot's true pose in the map.
@@ -36,18 +37,19 @@ WALL_X = 1.0
 WALL_Y = (-0.6, 2.5)
 
 
-def make_map(stamp: object) -> OccupancyGrid:
-    cells = int(MAP_SIZE_M / RESOLUTION)
+def make_map(stamp: object, size_m: float = MAP_SIZE_M) -> OccupancyGrid:
+    cells = round(size_m / RESOLUTION)
     grid = OccupancyGrid()
     grid.header.frame_id = "map"
     grid.header.stamp = stamp
     grid.info.resolution = RESOLUTION
     grid.info.width = grid.info.height = cells
-    grid.info.origin.position.x = grid.info.origin.position.y = -MAP_SIZE_M / 2
+    grid.info.origin.position.x = grid.info.origin.position.y = -size_m / 2
     grid.info.origin.orientation.w = 1.0
     data = [0] * (cells * cells)
-    mx = int((WALL_X + MAP_SIZE_M / 2) / RESOLUTION)
-    for my in range(int((WALL_Y[0] + 4) / RESOLUTION), int((WALL_Y[1] + 4) / RESOLUTION)):
+    half = size_m / 2
+    mx = int((WALL_X + half) / RESOLUTION)
+    for my in range(int((WALL_Y[0] + half) / RESOLUTION), int((WALL_Y[1] + half) / RESOLUTION)):
         for dx in range(2):
             data[my * cells + mx + dx] = 100
     grid.data = data
@@ -64,7 +66,12 @@ def transform(parent: str, child: str, stamp: object, x: float, y: float, yaw: f
 
 class SimRobot(Node):
     def __init__(
-        self, x: float, y: float, yaw: float, drift: tuple[float, float, float] = (0, 1, 0)
+        self,
+        x: float,
+        y: float,
+        yaw: float,
+        drift: tuple[float, float, float] = (0, 1, 0),
+        map_size_m: float = MAP_SIZE_M,
     ) -> None:
         super().__init__("sim_robot")
         self.x, self.y, self.yaw = x, y, yaw  # the true pose, in the map
@@ -78,7 +85,7 @@ class SimRobot(Node):
             reliability=ReliabilityPolicy.RELIABLE,
         )
         self.map_pub = self.create_publisher(OccupancyGrid, "map", latched)
-        self.map_pub.publish(make_map(self.get_clock().now().to_msg()))
+        self.map_pub.publish(make_map(self.get_clock().now().to_msg(), map_size_m))
         self.static_tf = StaticTransformBroadcaster(self)
         if not self.drift_step:
             self.static_tf.sendTransform(
@@ -134,10 +141,11 @@ def main() -> None:
     parser.add_argument("--drift-step", type=float, default=0.0, help="[m] (default 0: none)")
     parser.add_argument("--drift-period", type=float, default=1.5, help="[s] of driving")
     parser.add_argument("--drift-max", type=float, default=0.4, help="[m] in all")
+    parser.add_argument("--map-size", type=float, default=MAP_SIZE_M, help="[m] square")
     args = parser.parse_args()
     rclpy.init()
     drift = (args.drift_step, args.drift_period, args.drift_max)
-    node = SimRobot(args.x, args.y, args.yaw, drift)
+    node = SimRobot(args.x, args.y, args.yaw, drift, args.map_size)
     signal.signal(signal.SIGTERM, lambda *_: rclpy.try_shutdown())
     try:
         rclpy.spin(node)

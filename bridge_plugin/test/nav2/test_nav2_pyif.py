@@ -100,8 +100,13 @@ def test_reaches_the_goal_survives_a_host_crash_and_recovers(nav2: dict[str, Any
     assert client.wait_active(servers, 10.0) == dict.fromkeys(servers, "active")
     assert procs.alive("controller_server") and procs.alive("planner_server")
 
-    # 3. a new host: the next goal succeeds
-    nav2["start_host"]()
+    # 3. a new host: the next goal succeeds, once the controller's plugin sees it (zenoh-pico
+    # re-joins a host it dials directly once a second)
+    started = nav2["start_host"]()
+    alive = f"is alive on {nav2_testing.PREFIX}/FollowPath"
+    assert client.spin_until(lambda: procs.logged_at("controller_server", alive, started), 30.0), (
+        procs.log("controller_server")
+    )
     deadline = time.monotonic() + 60.0
     planned = None
     while time.monotonic() < deadline:  # until the plugin sees the new host
