@@ -135,9 +135,17 @@ def test_keys() -> None:
     assert keys.call(Op.SET_PLAN) == "nav2_pyif/robot1/FollowPath/rpc/set_plan"
     assert keys.call(Op.CANCEL_PLAN) == "nav2_pyif/robot1/FollowPath/cancel"
     assert keys.host_token("h1") == "nav2_pyif/robot1/FollowPath/host/h1"
-    for bad in ["", "/a", "a/", "a//b", "a/*/b", "a/$b"]:
+    for bad in ["", "/a", "a/", "a//b", "a/*/b", "a/$b", "0/chatter", "42/a/b", "@ros2_lv/0"]:
         with pytest.raises(ValueError):
             KeySpace(bad)
+    KeySpace("robot7/0/FollowPath")  # a number after the first chunk is no rmw_zenoh key
+
+
+def test_prefixes_that_could_meet_rmw_zenoh_keys_are_refused_saying_why() -> None:
+    with pytest.raises(ValueError, match="ROS domain id"):
+        KeySpace("0/chatter")
+    with pytest.raises(ValueError, match="rmw_zenoh"):
+        KeySpace("robot/@ros2_lv")
 
 
 def test_the_hot_path_fast_encoding_gives_the_canonical_bytes() -> None:

@@ -14,6 +14,17 @@ def validate_prefix(prefix: str) -> str:
     for chunk in prefix.split("/"):
         if not chunk or any(c in chunk for c in "*$?#"):
             raise ValueError(f"key prefix {prefix!r} has an empty or wildcard chunk {chunk!r}")
+        if chunk.startswith("@"):
+            raise ValueError(
+                f"key prefix {prefix!r}: chunk {chunk!r} starts with '@', reserved by Zenoh "
+                "('@/' admin space) and rmw_zenoh ('@ros2_lv/' liveliness)"
+            )
+    if prefix.split("/", 1)[0].isdigit():
+        raise ValueError(
+            f"key prefix {prefix!r} starts with a number: rmw_zenoh's topics and services are "
+            "keyed <ROS domain id>/..., so a prefix like that could meet ROS traffic on a shared "
+            "router; start it with a name (e.g. nav2_pyif/...)"
+        )
     return prefix
 
 

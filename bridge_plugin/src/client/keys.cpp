@@ -22,7 +22,21 @@ void validate_prefix(std::string_view prefix)
       throw std::invalid_argument(
               quoted + " has an empty or wildcard chunk '" + std::string(chunk) + "'");
     }
+    if (chunk.front() == '@') {
+      throw std::invalid_argument(
+              quoted + ": chunk '" + std::string(chunk) + "' starts with '@', reserved by Zenoh "
+              "('@/' admin space) and rmw_zenoh ('@ros2_lv/' liveliness)");
+    }
     start = end + 1;
+  }
+  // rmw_zenoh keys topics and services <ROS domain id>/...: a prefix that starts with a number
+  // could meet ROS traffic on a router both use.
+  const std::string_view first = prefix.substr(0, prefix.find('/'));
+  if (std::all_of(first.begin(), first.end(), [](char c) {return c >= '0' && c <= '9';})) {
+    throw std::invalid_argument(
+            quoted + " starts with a number: rmw_zenoh's topics and services are keyed "
+            "<ROS domain id>/..., so a prefix like that could meet ROS traffic on a shared "
+            "router; start it with a name (e.g. nav2_pyif/...)");
   }
 }
 

@@ -234,10 +234,13 @@ TEST(Keys, LikeThePythonKeySpace)
   EXPECT_EQ(keys.hosts(), "nav2_pyif/robot1/FollowPath/host/*");
   EXPECT_EQ(keys.host_token("h1"), "nav2_pyif/robot1/FollowPath/host/h1");
   EXPECT_EQ(KeySpace::host_id_of("nav2_pyif/robot1/FollowPath/host/h1"), "h1");
-  for (const char * bad : {"", "/a", "a/", "a//b", "a/*/b", "a/**", "a/$x", "a?", "a/#"}) {
+  for (const char * bad : {"", "/a", "a/", "a//b", "a/*/b", "a/**", "a/$x", "a?", "a/#",
+      "0/chatter", "42/a/b", "@ros2_lv/0", "a/@b"})
+  {
     EXPECT_THROW(validate_prefix(bad), std::invalid_argument) << bad;
   }
   EXPECT_NO_THROW(validate_prefix("single"));
+  EXPECT_NO_THROW(validate_prefix("robot7/0/FollowPath"));  // a number later is no ROS key
 }
 
 // --- HostWatcher ----------------------------------------------------------------------------
