@@ -1,0 +1,86 @@
+"""Keep-out polygons on a costmap window, in NumPy: which cells a set of polygons covers, and
+how a layer's costs combine with the master grid's (Nav2's costmap layer modes)."""
+
+from __future__ import annotations
+
+import ast
+from enum import Enum
+
+import numpy as np
+import numpy.typing as npt
+
+FloatArray = npt.NDArray[np.float64]
+ByteArray = npt.NDArray[np.uint8]
+
+
+class Combine(str, Enum):
+    """How a layer's window of costs meets the master grid's: nav2_costmap_2d::CostmapLayer's
+    update modes (the C++ layer plugin applies them with those very functions). A layer cell
+    of NO_INFORMATION never changes the master, except in TRUE_OVERWRITE."""
+
+    MAX = "max"  # updateWithMax: where the layer's is higher, or the master's unknown
+    MAX_KEEP_UNKNOWN = "max_keep_unknown"  # updateWithMaxWithoutUnknownOverwrite: only where
+    # the layer's is higher than a known master cost
+    OVERWRITE = "overwrite"  # updateWithOverwrite: the layer's cost, wherever it knows one
+    TRUE_OVERWRITE = "true_overwrite"  # updateWithTrueOverwrite: the layer's, unknown too
+
+
+NO_INFORMATION = 255
+
+
+def parse_polygons(text: str) -> list[FloatArray]:
+    """Polygons from a parameter string, as Nav2 writes footprints: "[[[x, y], [x, y], ...],
+    [[x, y], ...]]" (a list of polygons, each of at least three [x, y] points, in metres)."""
+    try:
+        value = ast.literal_eval(text) if text.strip() else []
+    except (ValueError, SyntaxError) as exc:
+        raise ValueError(f"polygons {text!r} are not a list of [[x, y], ...] lists") from exc
+    polygons = []
+    for i, polygon in enumerate(value):
+        points = np.asarray(polygon, dtype=np.float64)
+        if points.ndim != 2 or points.shape[1] != 2 or len(points) < 3:
+            raise ValueError(f"polygon {i} needs at least three [x, y] points, got {polygon!r}")
+        polygons.append(points)
+    return polygons
+
+
+def polygon_mask(
+    polygons: list[FloatArray],
+    origin: tuple[float, float],
+    resolution: float,
+    shape: tuple[int, int],
+) -> npt.NDArray[np.bool_]:
+    """(rows, cols) mask of the cells whose centres lie inside any polygon (even-odd rule);
+    the window's cell (0, 0) has its corner at ``origin`` (world metres)."""
+    rows, cols = shape
+    cx = origin[0] + (np.arange(cols) + 0.5) * resolution
+    cy = origin[1] + (np.arange(rows) + 0.5) * resolution
+    px, py = np.meshgrid(cx, cy)
+    mask = np.zeros(shape, dtype=bool)
+    for polygon in polygons:
+        inside = np.zeros(shape, dtype=bool)
+        x0, y0 = polygon[:, 0], polygon[:, 1]
+        x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
+        for ax, ay, bx, by in zip(x0, y0, x1, y1, strict=True):
+            if ay == by:
+                continue  # a horizontal edge crosses no horizontal ray
+            crosses = (ay > py) != (by > py)
+            at_x = ax + (py - ay) * (bx - ax) / (by - ay)
+            inside ^= crosses & (px < at_x)
+        mask |= inside
+    return mask
+
+
+def combine(master: ByteArray, layer: ByteArray, mode: Combine) -> ByteArray:
+    """The master window after the layer's costs are applied in ``mode``."""
+    if master.shape != layer.shape:
+        raise ValueError(f"layer window {layer.shape} does not match the master's {master.shape}")
+    if mode is Combine.TRUE_OVERWRITE:
+        return np.array(layer, dtype=np.uint8, copy=True)
+    if mode is Combine.OVERWRITE:
+        return np.where(layer == NO_INFORMATION, master, layer).astype(np.uint8)
+    known = layer != NO_INFORMATION
+    higher = known & (layer > master) & (master != NO_INFORMATION)
+    if mode is Combine.MAX:
+        higher |= known & (master == NO_INFORMATION)
+    return np.where(higher, layer, master).astype(np.uint8)
