@@ -46,7 +46,7 @@ class LaserSpec:
 
     @property
     def angles(self) -> npt.NDArray[np.float64]:
-        return self.angle_min + self.angle_increment * np.arange(self.beams)
+        return self.angle_min + self.angle_increment * np.arange(self.beams, dtype=np.float64)
 
 
 class Laser:
