@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import contextlib
 import os
+import subprocess
+import sys
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -143,6 +145,16 @@ def survivors(tree: dict[int, tuple[str, str]]) -> dict[int, str]:
             if fields[19] == started and fields[0] != "Z":
                 alive[pid] = command
     return alive
+
+
+def nav2_pyif_tool(*args: str, timeout: float = 90) -> subprocess.CompletedProcess[str]:
+    """``nav2-pyif ARGS`` (this Python's), its output captured."""
+    return subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.tool", *args],
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
 
 
 def wait_until(predicate: object, timeout: float = 10.0) -> bool:

@@ -5,12 +5,11 @@ from __future__ import annotations
 
 import json
 import subprocess
-import sys
 from typing import Any
 
 from nav2_pyif.client import ControllerClient
 
-from tests.conftest import free_port, make_costmap, wait_until
+from tests.conftest import free_port, make_costmap, nav2_pyif_tool, wait_until
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS
 
@@ -19,12 +18,7 @@ PLANNER_KEY = "nav2_pyif/robot2/GridBased"
 
 
 def hosts_tool(*args: str) -> subprocess.CompletedProcess[str]:
-    return subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.tool", "hosts", *args],
-        capture_output=True,
-        text=True,
-        timeout=30,
-    )
+    return nav2_pyif_tool("hosts", *args, timeout=30)
 
 
 def listed(router_at: str) -> dict[str, Any]:

@@ -19,13 +19,8 @@ import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.client.hosts import ALL_HOSTS, collect_tokens
-from nav2_pyif.zenoh_config import (
-    ZenohOptions,
-    add_zenoh_arguments,
-    configured_endpoints,
-    open_session,
-    options_from_args,
-)
+from nav2_pyif.client.reach import open_tool_session, unreachable
+from nav2_pyif.zenoh_config import ZenohOptions, add_zenoh_arguments, options_from_args
 
 
 @dataclass
@@ -154,17 +149,6 @@ def render(found: Survey) -> str:
     return "\n".join(lines)
 
 
-def unreachable(options: ZenohOptions) -> str:
-    connect, listen = configured_endpoints(options)
-    tried = ", ".join(connect) or "no connect endpoint"
-    return (
-        f"reached no Zenoh router or peer at all (tried {tried}"
-        + (f"; listening on {', '.join(listen)}" if listen else "")
-        + "): start a router there (zenohd, or nav2-pyif router), or --connect to where "
-        "the planner hosts are"
-    )
-
-
 def nothing_found(found: Survey, options: ZenohOptions, wait: float) -> str:
     if not found.routers and not found.peers:
         return unreachable(options)
@@ -205,12 +189,9 @@ def add_hosts_parser(subparsers: argparse._SubParsersAction) -> None:  # type: i
 def run_hosts(args: argparse.Namespace) -> int:
     options = options_from_args(args)
     try:
-        session = open_session(options)
-    except FileNotFoundError as exc:
+        session = open_tool_session(options, "nav2-pyif hosts")
+    except (FileNotFoundError, ConnectionError) as exc:  # a client reaching no router
         print(f"nav2-pyif hosts: {exc}", file=sys.stderr)
-        return 1
-    except ConnectionError:  # a client that reaches no router fails to open
-        print(f"nav2-pyif hosts: {unreachable(options)}", file=sys.stderr)
         return 1
     try:
         found = survey(session, args.wait, args.timeout)

@@ -29,7 +29,8 @@ def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
         type=float,
         default=60.0,
         metavar="SECONDS",
-        help="how long the host may take to load the new version (default 60)",
+        help="how long to wait for a router and a host on KEY (a host just started is "
+        "waited for), then how long the host may take to load the new version (default 60)",
     )
     add_zenoh_arguments(p, default_mode="client")
     p.set_defaults(func=run_reload)
@@ -37,11 +38,21 @@ def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
 
 def run_reload(args: argparse.Namespace) -> int:
     from nav2_pyif.client.admin import NoPlannerHost, request_reload
+    from nav2_pyif.client.hosts import reached
+    from nav2_pyif.client.reach import open_tool_session, unreachable
     from nav2_pyif.delegates import parse_delegates
     from nav2_pyif.exceptions import PlannerLoadError
-    from nav2_pyif.zenoh_config import open_session, options_from_args
+    from nav2_pyif.zenoh_config import options_from_args
 
-    session = open_session(options_from_args(args))
+    def say(message: str) -> None:
+        print(f"nav2-pyif reload: {message}", file=sys.stderr, flush=True)
+
+    options = options_from_args(args)
+    try:
+        session = open_tool_session(options, "nav2-pyif reload", args.timeout)
+    except (ConnectionError, FileNotFoundError) as exc:
+        say(str(exc))
+        return 1
     try:
         delegates = parse_delegates(args.delegate) if args.delegate else None
         print(
@@ -52,11 +63,17 @@ def run_reload(args: argparse.Namespace) -> int:
                 module=args.module,
                 delegates=delegates,
                 timeout=args.timeout,
+                wait=args.timeout,
+                on_waiting=say,
             )
         )
         return 0
-    except (PlannerLoadError, NoPlannerHost, TimeoutError) as exc:
-        print(f"nav2-pyif reload: {exc}", file=sys.stderr)
+    except NoPlannerHost as exc:
+        # a peer opens without reaching anything: say where it tried instead
+        say(str(exc) if reached(session) else f"no host on {args.key}: {unreachable(options)}")
+        return 1
+    except (PlannerLoadError, TimeoutError) as exc:
+        say(str(exc))
         return 1
     finally:
         session.close()

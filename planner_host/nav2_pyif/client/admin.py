@@ -4,15 +4,16 @@ import of the same one) without dropping the key. What ``nav2-pyif reload`` send
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 import msgpack
 import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
-from nav2_pyif.client.hosts import HostWatcher, collect_tokens
+from nav2_pyif.client.hosts import HostWatcher, visible_hosts
 from nav2_pyif.exceptions import PlannerLoadError
 
-#: How long to wait for a host's liveliness token to reach a freshly opened session.
+#: How long to wait, by default, for a host's liveliness token to reach a fresh session.
 DISCOVERY = 3.0
 
 
@@ -28,17 +29,33 @@ def request_reload(
     module: str | None = None,
     delegates: dict[str, str] | None = None,
     timeout: float = 60.0,
+    wait: float = DISCOVERY,
+    on_waiting: Callable[[str], None] | None = None,
 ) -> str:
     """Returns the host's confirmation; raises PlannerLoadError with the host's reason when
     it refused (the old planner keeps serving), NoPlannerHost when no host serves the key
-    (naming those that are visible), TimeoutError when a host did not answer in time."""
+    (naming those that are visible), TimeoutError when a host did not answer in time.
+
+    The reload is sent only once a host's liveliness token is seen on the key (the host
+    declares it after its queryables: a query sent before would find nothing to answer it),
+    waiting up to ``wait`` seconds for one; ``on_waiting`` is told, after DISCOVERY s without
+    one, what this session sees meanwhile. ``timeout``: how long the host may take to load."""
     keys = KeySpace(key_prefix)
     watcher = HostWatcher(session, keys)
     try:
-        if not watcher.wait(min(timeout, DISCOVERY)):
+        looking = time.monotonic()
+        if not watcher.wait(min(wait, DISCOVERY)) and wait > DISCOVERY:
+            if on_waiting is not None:
+                on_waiting(
+                    f"no planner host on {key_prefix} yet, waiting up to {wait:g} s; "
+                    f"{visible_hosts(session)}"
+                )
+            watcher.wait(max(0.0, wait - (time.monotonic() - looking)))
+        if not watcher.alive:
             raise NoPlannerHost(
                 f"no planner host serves {key_prefix} (no liveliness token under "
-                f"{keys.hosts} after {min(timeout, DISCOVERY):g} s); {visible_hosts(session)}"
+                f"{keys.hosts} after {time.monotonic() - looking:.1f} s); "
+                f"{visible_hosts(session)}"
             )
         started = time.monotonic()
         request = {"planner": planner, "module": module, "delegates": delegates}
@@ -65,18 +82,3 @@ def request_reload(
         f"host {hosts} on {key_prefix} did not answer the reload within {timeout:g} s "
         "(still loading the new version? give it longer with --timeout)"
     )
-
-
-def visible_hosts(session: zenoh.Session, timeout: float = 1.0) -> str:
-    """The planner hosts this session sees, by key prefix, as a sentence."""
-    served: dict[str, set[str]] = {}
-    for host, prefixes in collect_tokens(session, timeout).items():
-        for prefix in prefixes:
-            served.setdefault(prefix, set()).add(host)
-    if not served:
-        return (
-            "no planner host is visible at all from here: is this tool on the hosts' Zenoh "
-            "network (--connect / --zenoh-config)?"
-        )
-    listed = "; ".join(f"{p} (host {', '.join(sorted(h))})" for p, h in sorted(served.items()))
-    return f"planner hosts visible from here: {listed}"

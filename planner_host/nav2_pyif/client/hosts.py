@@ -86,3 +86,32 @@ def collect_tokens(session: zenoh.Session, wait: float) -> dict[str, set[str]]:
     for prefix, host in watcher.tokens:
         hosts.setdefault(host, set()).add(prefix)
     return hosts
+
+
+def reached(session: zenoh.Session) -> str:
+    """The routers and peers this session is connected to ("router 3bb4..., peer 30c8..."),
+    or "" when it reaches nothing."""
+    parts = [f"router {z}" for z in session.info.routers_zid()]
+    return ", ".join(parts + [f"peer {z}" for z in session.info.peers_zid()])
+
+
+def visible_hosts(session: zenoh.Session, wait: float = 1.0) -> str:
+    """The planner hosts this session sees, by key prefix, and what it went through, as a
+    sentence: what a tool that finds no host on its key tells the user."""
+    served: dict[str, set[str]] = {}
+    for host, prefixes in collect_tokens(session, wait).items():
+        for prefix in prefixes:
+            served.setdefault(prefix, set()).add(host)
+    where = reached(session)
+    if not served:
+        if not where:
+            return (
+                "no planner host is visible at all from here: this session reaches no Zenoh "
+                "router or peer (--connect / --zenoh-config)"
+            )
+        return (
+            f"no planner host is visible at all from here (reached {where}, but no host token "
+            f"under {ALL_HOSTS} within {wait:g} s)"
+        )
+    listed = "; ".join(f"{p} (host {', '.join(sorted(h))})" for p, h in sorted(served.items()))
+    return f"planner hosts visible from here: {listed}; reached {where}"

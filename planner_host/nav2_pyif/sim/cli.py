@@ -12,7 +12,9 @@ from nav2_pyif_planners.maps import BUNDLED
 
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.sim.runner import (
+    CONTROLLER_KEY,
     DEFAULTS,
+    PLANNER_KEY,
     RunInterrupted,
     SimConfig,
     SimError,
@@ -99,8 +101,19 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "--connect",
         metavar="ENDPOINT",
         help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
-        "nav2_pyif/sim/GridBased) instead of starting one; the run is named after what "
-        "it serves",
+        "nav2_pyif/sim/GridBased, or --controller-key / --planner-key) instead of starting "
+        "one, as a Zenoh client of ENDPOINT (the host listening there, or a router); the run "
+        "is named after what it serves",
+    )
+    p.add_argument("--controller-key", default=CONTROLLER_KEY, metavar="PREFIX")
+    p.add_argument("--planner-key", default=PLANNER_KEY, metavar="PREFIX")
+    p.add_argument(
+        "--wait",
+        type=float,
+        default=10.0,
+        metavar="SECONDS",
+        help="with --connect: how long to wait for a router at ENDPOINT, then for a host on "
+        "each key (default 10)",
     )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
     p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
@@ -140,6 +153,9 @@ def run_command(args: argparse.Namespace) -> int:
             controller_params=_params(args.param),  # type: ignore[arg-type]
             planner_params=_params(args.planner_param),  # type: ignore[arg-type]
             endpoint=args.connect,
+            wait=args.wait,
+            controller_key=args.controller_key,
+            planner_key=args.planner_key,
             path=args.path,
             progress=not args.no_progress and sys.stderr.isatty(),
         )

@@ -21,6 +21,8 @@ from tqdm import tqdm
 
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.client.hosts import visible_hosts
+from nav2_pyif.client.reach import open_tool_session
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_checker import GoalChecker
@@ -30,7 +32,7 @@ from nav2_pyif.signals import Interrupted
 from nav2_pyif.sim.inflation import inflate, window
 from nav2_pyif.sim.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.sim.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
-from nav2_pyif.zenoh_config import connect_to
+from nav2_pyif.zenoh_config import ZenohOptions, connect_to
 
 log = logging.getLogger("nav2_pyif.sim")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
@@ -76,6 +78,7 @@ class SimConfig:
     call_timeout: float = 0.25  # [s] per control cycle
     path: list[str] = field(default_factory=list)  # directories to import planners from
     endpoint: str | None = None  # connect to a running host instead of starting one
+    wait: float = 10.0  # [s] with an endpoint: for its router, then for the hosts' tokens
     controller_key: str = CONTROLLER_KEY
     planner_key: str = PLANNER_KEY
     progress: bool = False
@@ -229,9 +232,15 @@ def run_sim(config: SimConfig) -> SimResult:
                 host = PlannerHostProcess(entries, extra_path=import_path(config))
                 cleanup.callback(host.close)
                 host.start()
-            endpoint = config.endpoint or (host.endpoint if host else "")
-            # A host already running may be behind a router: be a client, as the C++ plugin is.
-            session = connect_to([endpoint], "client" if config.endpoint else "peer")
+            if config.endpoint:
+                # A host already running may be behind a router: be a client, as the C++
+                # plugin is, and give a router just started time to listen.
+                options = ZenohOptions(
+                    connect=[config.endpoint], mode="client", use_environment=False
+                )
+                session = open_tool_session(options, "nav2-pyif sim", config.wait)
+            else:
+                session = connect_to([host.endpoint if host else ""], "peer")
             cleanup.callback(session.close)
             _drive(config, result, session, host)
     except Interrupted as exc:
@@ -269,8 +278,11 @@ def _drive(
         for client, role in ((planner, "planner"), (controller, "controller")):
             if host is not None:
                 wait_alive(host, client.wait_for_host)
-            elif not client.wait_for_host(10.0):
-                raise SimError(f"no planner host on {client.keys.prefix} at {config.endpoint}")
+            elif not client.wait_for_host(config.wait):
+                raise SimError(
+                    f"no planner host on {client.keys.prefix} at {config.endpoint} within "
+                    f"{config.wait:g} s; {visible_hosts(session)}"
+                )
             try:
                 client.configure()
                 client.activate()
