@@ -10,7 +10,10 @@ Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, 
 colcon and zenoh-cpp, once per zenoh-cpp backend: NAV2_PYIF_NAV2_SETUP_ZENOHC and
 NAV2_PYIF_NAV2_SETUP_ZENOHPICO name the setup script of each; NAV2_PYIF_NAV2_SETUP (or
 /opt/ros/<distro>/setup.bash, whose zenoh_cpp_vendor is zenoh-c) serves for the backend its
-zenoh-cpp has. The test builds nav2_pyif_bridge with colcon into build/nav2_ws_<backend>,
+zenoh-cpp has. The rmw_zenoh variant (NAV2_PYIF_NAV2_SETUP_RMW_ZENOH, or the same fallbacks)
+needs rmw_zenoh_cpp there: it runs every launch test with RMW_IMPLEMENTATION=rmw_zenoh_cpp
+and its router on a free port, which test_host_recovery.py's plugins and host share. The test
+builds nav2_pyif_bridge with colcon into build/nav2_ws_<backend>,
 checks which Zenoh library the plugin links, then runs the launch tests with that
 environment. Each backend is skipped, saying what is missing, where its environment is absent.
 """
@@ -24,8 +27,13 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import free_port
+
 ROOT = Path(__file__).resolve().parents[1]
-BACKENDS = {"zenoh-c": "libzenohc", "zenoh-pico": "libzenohpico"}
+# Each variant: the Zenoh library the plugin must link. rmw_zenoh: Nav2's servers, the test's
+# nodes and the robot on rmw_zenoh_cpp with its router, which the plugins and host share.
+BACKENDS = {"zenoh-c": "libzenohc", "zenoh-pico": "libzenohpico", "rmw_zenoh": "libzenohc"}
+RMW_ZENOH_CONFIGS = "share/rmw_zenoh_cpp/config/DEFAULT_RMW_ZENOH_{}_CONFIG.json5"
 # The PyPI ROS wheels name Python-only libraries as dependencies of C++ ones: link only what
 # is used. Harmless on a system ROS install.
 CMAKE_ARGS = [
@@ -115,6 +123,7 @@ def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
     found = [name for name, lib in BACKENDS.items() if lib in linked]
     if backend not in found:
         pytest.skip(f"Nav2 launch tests on {backend} skipped: {setup} gives {found or linked}")
+    router = _rmw_zenoh_router(source, workspace) if backend == "rmw_zenoh" else ""
 
     wrapper = workspace / "in-project-env.sh"  # the project's own environment for its tools
     wrapper.write_text(
@@ -128,9 +137,10 @@ def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
     host.chmod(0o755)
     figures = workspace / "recovery_figures.json"
     figures.unlink(missing_ok=True)
+    zenoh_cpp = "zenoh-c" if backend == "rmw_zenoh" else backend
     run = _bash(
         f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
-        f"NAV2_PYIF_ZENOH_BACKEND={backend} NAV2_PYIF_RUN={shlex.quote(str(wrapper))} "
+        f"{router}NAV2_PYIF_ZENOH_BACKEND={zenoh_cpp} NAV2_PYIF_RUN={shlex.quote(str(wrapper))} "
         f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} "
         f"NAV2_PYIF_FIGURES={shlex.quote(str(figures))} python -m pytest "
         "-p no:cacheprovider -q -rs bridge_plugin/test/nav2",
@@ -140,3 +150,34 @@ def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
     assert " passed" in run.stdout and "skipped" not in run.stdout, _tail(run)
     # The recovery figures of RELIABILITY.md (bridge_plugin/test/nav2/test_host_recovery.py)
     print(f"{backend} recovery figures: {figures.read_text()}")
+
+
+def _rmw_zenoh_router(source: str, workspace: Path) -> str:
+    """Shell lines that start rmw_zenoh's router on a free port (its own default config, the
+    port replaced; the nodes' session config likewise) and export where it is; skips, saying
+    why, where the setup has no rmw_zenoh_cpp."""
+    found = _bash(
+        f"{source}; for p in ${{AMENT_PREFIX_PATH//:/ }}; do "
+        "[ -x $p/lib/rmw_zenoh_cpp/rmw_zenohd ] && echo $p && break; done; true",
+        timeout=60,
+    ).stdout.split()
+    if not found:
+        pytest.skip(
+            "Nav2 launch tests on rmw_zenoh skipped: the setup script has no rmw_zenoh_cpp "
+            "(lib/rmw_zenoh_cpp/rmw_zenohd)"
+        )
+    prefix, port = Path(found[0]), free_port()
+    lines = ["export RMW_IMPLEMENTATION=rmw_zenoh_cpp; "]
+    for kind in ("ROUTER", "SESSION"):
+        default = (prefix / RMW_ZENOH_CONFIGS.format(kind)).read_text()
+        assert ":7447" in default, f"rmw_zenoh's {kind} config no longer names port 7447"
+        config = workspace / f"rmw_zenoh_{kind.lower()}.json5"
+        config.write_text(default.replace(":7447", f":{port}"))
+        lines.append(f"export ZENOH_{kind}_CONFIG_URI={shlex.quote(str(config))}; ")
+    log = shlex.quote(str(workspace / "rmw_zenohd.log"))
+    return (
+        "".join(lines)
+        + f"{shlex.quote(str(prefix / 'lib/rmw_zenoh_cpp/rmw_zenohd'))} >{log} 2>&1 & "
+        + "trap 'kill $! 2>/dev/null' EXIT; "
+        + f"NAV2_PYIF_SHARED_ROUTER=tcp/127.0.0.1:{port} "
+    )

@@ -163,13 +163,21 @@ def start_nav2(procs: Processes, params: Path) -> None:
     )
 
 
-def prepare(logs: Path) -> tuple[str, Path, Processes]:
-    """A free endpoint for the host, the test's Nav2 params naming it (in ``logs``), and the
-    process set, in a ROS domain of its own (this process's rclpy too). On zenoh-c
-    ($NAV2_PYIF_ZENOH_BACKEND, set by tests/test_nav2_launch.py) the plugins read the
-    deployment guide's JSON5 file (docs/zenoh/plugin-client.json5, its endpoint replaced)
-    through `zenoh_config`, as a ROS install would; zenoh-pico takes `zenoh_connect`."""
-    endpoint = f"tcp/127.0.0.1:{free_port()}"
+def shared_router() -> str | None:
+    """The endpoint of the Zenoh router ROS itself runs on (rmw_zenoh's, started by
+    tests/test_nav2_launch.py's rmw_zenoh variant, listening on every interface), which the
+    plugins and the host are to share; None when ROS runs on another RMW."""
+    return os.environ.get("NAV2_PYIF_SHARED_ROUTER") or None
+
+
+def prepare(logs: Path, endpoint: str | None = None) -> tuple[str, Path, Processes]:
+    """The plugins' endpoint (by default a free one, for the host to listen on), the test's
+    Nav2 params naming it (in ``logs``), and the process set, in a ROS domain of its own (this
+    process's rclpy too). On zenoh-c ($NAV2_PYIF_ZENOH_BACKEND, set by
+    tests/test_nav2_launch.py) the plugins read the deployment guide's JSON5 file
+    (docs/zenoh/plugin-client.json5, its endpoint replaced) through `zenoh_config`, as a ROS
+    install would; zenoh-pico takes `zenoh_connect`."""
+    endpoint = endpoint or f"tcp/127.0.0.1:{free_port()}"
     text = (HERE / "nav2_params.yaml").read_text()
     if os.environ.get("NAV2_PYIF_ZENOH_BACKEND") == "zenoh-c":
         guide = HERE.parents[2] / "docs" / "zenoh" / "plugin-client.json5"
@@ -202,18 +210,20 @@ def bring_up(
     planners: tuple[str, ...] = REFERENCE_PLANNERS,
     edit_params: Callable[[str], str] = lambda text: text,
     topology: Topology = direct,
+    endpoint: str | None = None,
 ) -> Iterator[dict[str, Any]]:
     """What a launch test drives (a fixture's body): a planner host with ``planners`` (its
     arguments: by default the reference pure pursuit and A* on nav2_pyif/launch_test), the
     simulated robot (``robot_args``), controller_server, planner_server and a lifecycle
-    manager with the test's params (through ``edit_params``), and an rclpy client. Skips,
-    naming what is missing, without Nav2."""
+    manager with the test's params (through ``edit_params``; the plugins dial ``endpoint``,
+    by default a free one the host listens on), and an rclpy client. Skips, naming what is
+    missing, without Nav2."""
     import pytest
 
     absent = missing()
     if absent:
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
-    endpoint, params, procs = prepare(logs)
+    endpoint, params, procs = prepare(logs, endpoint)
     params.write_text(edit_params(params.read_text()))
     prefix, zenoh_args = topology(procs, endpoint)
     host = [*prefix, *(host_command() or []), *zenoh_args, *planners]

@@ -1,6 +1,7 @@
 """How fast Nav2 notices a lost planner host and moves again once one is back (issue 10,
 RELIABILITY.md "Recovery in Nav2"), through the deployment guide's router topology: a
-`nav2-pyif router` on the robot, the plugins its clients, the planner host on another
+`nav2-pyif router` on the robot (on rmw_zenoh: ROS's own router, which Nav2's traffic, the
+plugins and the host then share), the plugins its clients, the planner host on another
 "machine" (a network namespace behind a veth link; where namespaces cannot be made, the host
 runs here and its machine vanishing is a SIGSTOP: no packet, no closed connection either).
 
@@ -48,23 +49,27 @@ def nav2(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, Any]]:
     router = nav2_testing.project_command("nav2-pyif")
     if router is None:
         pytest.skip("the Nav2 recovery test needs nav2-pyif on PATH or $NAV2_PYIF_RUN")
+    shared = nav2_testing.shared_router()  # rmw_zenoh's own router: ROS, plugins and host
     with namespace_link_or_none() as link:
 
         def through_a_router(
             procs: nav2_testing.Processes, endpoint: str
         ) -> tuple[list[str], list[str]]:
             """The router listens on the plugins' endpoint (and on the link); the host, in
-            its namespace, connects to it."""
-            listen = ["--listen", endpoint]
-            if link is None:
-                procs.start("router", [*router, "router", *listen])
-                return [], ["--connect", endpoint]
-            remote = f"tcp/{link.subnet}.1:{endpoint.rsplit(':', 1)[1]}"
-            procs.start("router", [*router, "router", *listen, "--listen", remote])
-            return ["ip", "netns", "exec", link.ns], ["--connect", remote]
+            its namespace, connects to it. On rmw_zenoh the router is ROS's own, already
+            listening on every interface."""
+            port = endpoint.rsplit(":", 1)[1]
+            remote = f"tcp/{link.subnet}.1:{port}" if link else endpoint
+            if not shared:
+                extra = ["--listen", remote] if link else []
+                procs.start("router", [*router, "router", "--listen", endpoint, *extra])
+            inside = ["ip", "netns", "exec", link.ns] if link else []
+            return inside, ["--connect", remote]
 
         for up in nav2_testing.bring_up(
-            tmp_path_factory.mktemp("nav2_host_recovery"), topology=through_a_router
+            tmp_path_factory.mktemp("nav2_host_recovery"),
+            topology=through_a_router,
+            endpoint=shared,
         ):
             yield {**up, "link": link}
 
