@@ -312,7 +312,9 @@ proto::Reply FakeHost::handle(
     declared.set("gain", g);
     declared.set("label", std::string("echo"));
     sessions[request.sid] = session;
-    reply.outcome = proto::ReplyBody{proto::ConfigureReply{declared}};
+    proto::ConfigureReply configured;
+    configured.declared = declared;
+    reply.outcome = proto::ReplyBody{configured};
     return reply;
   }
   auto it = sessions.find(request.sid);
@@ -348,7 +350,7 @@ proto::Reply FakeHost::handle(
         break;
       }
     case proto::Op::SetPlan:
-      s.plan_size = static_cast<double>(std::get<proto::SetPlanRequest>(request.body).path.size());
+      s.plan_size = static_cast<double>(std::get<proto::SetPlanRequest>(request.body).path.pose_count());
       reply.outcome = proto::ReplyBody{proto::SetPlanReply{}};
       break;
     case proto::Op::SetSpeedLimit:
