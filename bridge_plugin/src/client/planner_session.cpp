@@ -8,20 +8,9 @@ namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
-namespace
-{
-
-SessionConfig as_planner(SessionConfig config)
-{
-  config.kind = PluginKind::GlobalPlanner;
-  return config;
-}
-
-}  // namespace
-
 PlannerSession::PlannerSession(
   SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
-: PluginSession(as_planner(std::move(config)), transport, costmap, std::move(logger))
+: PluginSession(PluginKind::GlobalPlanner, std::move(config), transport, costmap, std::move(logger))
 {
 }
 

@@ -67,6 +67,25 @@ protected:
   std::unique_ptr<ControllerSession> session;
 };
 
+TEST_F(ControllerSessionTest, ConfigureWarnsOfParametersThePlannerIgnores)
+{
+  proto::Params params;
+  params.set("gain", 2.0);
+  params.set("gian", 3.0);
+  params.set("lable", std::string("x"));
+  auto & s = make(params);
+  s.configure();
+  EXPECT_EQ(s.served(), "fakes:Echo");
+  EXPECT_TRUE(log.contains(
+      std::string(kKey) + ": the planner ignores parameter(s) gian, lable: 'gian' is not "
+      "declared (declared: gain, label); 'lable' is not declared (declared: gain, label)"));
+
+  auto & quiet = make();  // every parameter known: nothing to warn of
+  log.lines.clear();
+  quiet.configure();
+  EXPECT_FALSE(log.contains("ignores"));
+}
+
 TEST_F(ControllerSessionTest, FullSession)
 {
   proto::Params params;

@@ -314,6 +314,16 @@ proto::Reply FakeHost::handle(
     sessions[request.sid] = session;
     proto::ConfigureReply configured;
     configured.declared = declared;
+    configured.planner = "fakes:Echo";
+    for (const auto & entry : body.params) {
+      const std::string & name = entry.first;
+      if (name != "gain" && name != "mode" && name != "points") {
+        if (!configured.undeclared) {
+          configured.undeclared.emplace();
+        }
+        configured.undeclared->set(name, "'" + name + "' is not declared (declared: gain, label)");
+      }
+    }
     reply.outcome = proto::ReplyBody{configured};
     return reply;
   }
