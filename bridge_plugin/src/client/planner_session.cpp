@@ -8,12 +8,6 @@ namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
-PlannerSession::PlannerSession(
-  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
-: PluginSession(PluginKind::GlobalPlanner, std::move(config), transport, costmap, std::move(logger))
-{
-}
-
 proto::Path PlannerSession::create_plan(
   const proto::PoseStamped & start, const proto::PoseStamped & goal,
   const std::function<bool()> & cancel_checker)

@@ -47,18 +47,6 @@ protected:
     return session->compute_velocity_commands(pose_at(1.0, 1.0), {}, checker);
   }
 
-  // The error a call throws, failing the test when it throws nothing.
-  template<class F>
-  CallError error_of(F && f)
-  {
-    try {
-      f();
-    } catch (const CallError & e) {
-      return e;
-    }
-    ADD_FAILURE() << "no CallError thrown";
-    return CallError(ErrorKind::ControllerException, Cause::Local, "none");
-  }
 
   FakeClock clock;
   FakeHost host{clock};

@@ -40,17 +40,6 @@ protected:
     session->set_parameters(p);
   }
 
-  template<class F>
-  CallError error_of(F && f)
-  {
-    try {
-      f();
-    } catch (const CallError & e) {
-      return e;
-    }
-    ADD_FAILURE() << "no CallError thrown";
-    return CallError(ErrorKind::PlannerException, Cause::Local, "none");
-  }
 
   FakeClock clock;
   FakeHost host{clock};

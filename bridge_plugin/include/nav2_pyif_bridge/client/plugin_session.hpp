@@ -35,6 +35,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "nav2_pyif_bridge/client/costmap_version.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
@@ -184,6 +185,19 @@ private:
   std::string pinned_host_;
   std::uint64_t failovers_{0};
   std::optional<std::uint64_t> delivered_costmap_;
+};
+
+// The base of the sessions of one plugin type: ControllerSession, PlannerSession.
+template<PluginKind Kind>
+class KindSession : public PluginSession
+{
+public:
+  static constexpr PluginKind kKind = Kind;
+
+  // config.kind is set to Kind.
+  KindSession(
+    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {})
+  : PluginSession(Kind, std::move(config), transport, costmap, std::move(logger)) {}
 };
 
 // A random UUID4 as 32 lowercase hex digits (Python's uuid.uuid4().hex).
