@@ -20,6 +20,18 @@ from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
 from nav2_pyif_protocol.keys import KeySpace
 
 POSE = {"frame_id": "odom", "stamp_ns": 1, "pose": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]}
+COSTMAP = {
+    "version": 1,
+    "frame_id": "odom",
+    "size_x": 4,
+    "size_y": 3,
+    "resolution": 0.05,
+    "origin_x": 0.0,
+    "origin_y": 0.0,
+    "data": bytes(12),
+    "footprint": b"",
+    "robot_radius": 0.2,
+}
 
 
 def raw(**overrides: object) -> bytes:
@@ -73,6 +85,27 @@ def test_version_mismatch_names_both_versions() -> None:
         ),
         (raw(op="set_parameters", body={"params": {"p": [1, "a"]}}), "array mixes"),
         (raw(op="set_parameters", body={"params": {"p": {"nested": 1}}}), "is not bool/int"),
+        # the schema's int ranges, packed rows and cell counts, checked as the C++ codec does
+        (raw(seq=-1), "request.seq: expected an int >= 0, got -1"),
+        (raw(op="cancel_plan", body={"target_seq": -3}), "target_seq: expected an int >= 0"),
+        (
+            raw(op="set_plan", body={"path": {"frame_id": "m", "stamp_ns": 0, "poses": b"x" * 57}}),
+            "set_plan request body.path.poses: 57 bytes is not a whole number of rows of 7",
+        ),
+        (
+            raw(body={"pose": POSE, "velocity": [0.0] * 6, "costmap": COSTMAP | {"size_x": 2**32}}),
+            "body.costmap.size_x: int 4294967296 is out of the uint32 range",
+        ),
+        (
+            raw(body={"pose": POSE, "velocity": [0.0] * 6, "costmap": COSTMAP | {"size_x": 5}}),
+            "body.costmap.data: 12 bytes, but size 5 x 3 needs 15",
+        ),
+        (
+            raw(
+                body={"pose": POSE, "velocity": [0.0] * 6, "costmap": COSTMAP | {"footprint": b"?"}}
+            ),
+            "body.costmap.footprint: 1 bytes is not a whole number of rows of 2 float64",
+        ),
     ],
 )
 def test_malformed_requests_are_bad_requests_saying_why(data: bytes, words: str) -> None:

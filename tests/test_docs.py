@@ -18,7 +18,12 @@ import pytest
 from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import Block, blocks
 
-DOCS = [ROOT / "README.md", ROOT / "docs" / "DEPLOYMENT.md", ROOT / "bridge_plugin" / "README.md"]
+DOCS = [
+    ROOT / "README.md",
+    ROOT / "docs" / "DEPLOYMENT.md",
+    ROOT / "bridge_plugin" / "README.md",
+    ROOT / "protocol" / "PROTOCOL.md",
+]
 ALL_BLOCKS = [block for doc in DOCS for block in blocks(doc, ROOT)]
 
 

@@ -64,12 +64,3 @@ def test_vectors_include_the_required_edge_cases() -> None:
     } <= names
     big = decode_request((VECTORS / "create_plan_costmap_1000.msgpack").read_bytes())
     assert len(big.body["costmap"]["data"]) == 1000 * 1000
-
-
-def test_protocol_md_tables_match_the_schema() -> None:
-    from nav2_pyif_protocol.spec_tables import splice
-
-    document = (VECTORS.parent / "PROTOCOL.md").read_text()
-    assert splice(document) == document, (
-        "run: python -m nav2_pyif_protocol.spec_tables --update protocol/PROTOCOL.md"
-    )

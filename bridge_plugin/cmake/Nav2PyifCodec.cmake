@@ -12,7 +12,10 @@ if(NOT MSGPACK_CXX_INCLUDE_DIR)
     "or set MSGPACK_CXX_INCLUDE_DIR")
 endif()
 
+# body_codec.cpp (and the public headers ops, types, bodies, fields, constants) are generated
+# from protocol/nav2_pyif_protocol/schema.py: python -m nav2_pyif_protocol.generate
 add_library(nav2_pyif_protocol_codec STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/body_codec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/decode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/encode.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/reader.cpp

@@ -26,9 +26,12 @@ from nav2_pyif_protocol.schema import (
     PARAMS,
     REPLY_ENVELOPE,
     REQUEST_ENVELOPE,
+    ROWS,
     STR,
     STR_MAP,
     STRUCTS,
+    UINT,
+    UINT32,
     Field,
 )
 
@@ -128,6 +131,35 @@ def _exact(expected: type) -> Any:
 _WIRE_NAMES = {int: "int", bool: "bool", str: "str", bytes: "bin"}
 
 
+def _unsigned(limit: int, name: str) -> Any:
+    def check(value: Any) -> int:
+        if type(value) is not int:
+            raise _Invalid("", f"expected int, got {type(value).__name__}")
+        if value < 0:
+            raise _Invalid("", f"expected an int >= 0, got {value}")
+        if value > limit:
+            raise _Invalid("", f"int {value} is out of the {name} range")
+        return value
+
+    return check
+
+
+def _rows(row_size: int) -> Any:
+    check_bytes = _exact(bytes)
+
+    def check(value: Any) -> bytes:
+        data: bytes = check_bytes(value)
+        if len(data) % (row_size * 8):
+            raise _Invalid(
+                "",
+                f"{len(data)} bytes is not a whole number of rows of {row_size} float64 "
+                f"({row_size * 8} bytes)",
+            )
+        return data
+
+    return check
+
+
 def _scalar_param(name: str, value: Any) -> None:
     if not isinstance(value, (bool, int, float, str)):
         raise _Invalid(
@@ -166,6 +198,8 @@ def _str_map(value: Any) -> dict[str, str]:
 
 _CHECKERS: dict[str, Any] = {
     INT: _exact(int),
+    UINT: _unsigned(2**64 - 1, "uint64"),
+    UINT32: _unsigned(2**32 - 1, "uint32"),
     FLOAT: _float,
     BOOL: _exact(bool),
     STR: _exact(str),
@@ -176,18 +210,40 @@ _CHECKERS: dict[str, Any] = {
     STR_MAP: _str_map,
 }
 
-# A compiled field table: (name, checker, required, struct fields or None).
-_Compiled = tuple[tuple[str, Any, bool, Any], ...]
+
+@dataclass(frozen=True)
+class _Compiled:
+    """A field table compiled from the schema: each field's checker (or its structure's
+    table), and the byte counts that follow from other fields (a costmap's cells)."""
+
+    fields: tuple[tuple[str, Any, bool, _Compiled | None], ...]
+    cells: tuple[tuple[str, tuple[str, ...]], ...]
 
 
 def _compile(fields: tuple[Field, ...]) -> _Compiled:
-    out: list[tuple[str, Any, bool, Any]] = []
+    out: list[tuple[str, Any, bool, _Compiled | None]] = []
     for f in fields:
         if f.kind in STRUCTS:
             out.append((f.name, None, f.required, _compile(STRUCTS[f.kind])))
+        elif f.rows:
+            out.append((f.name, _rows(ROWS[f.rows][0]), f.required, None))
         else:
             out.append((f.name, _CHECKERS[f.kind], f.required, None))
-    return tuple(out)
+    return _Compiled(tuple(out), tuple((f.name, f.cells) for f in fields if f.cells))
+
+
+def _check_cells(compiled: _Compiled, checked: dict[str, Any]) -> None:
+    for name, dims in compiled.cells:
+        data = checked.get(name)
+        sizes = [checked.get(d) for d in dims]
+        if data is None or any(size is None for size in sizes):
+            continue
+        needed = math.prod(sizes)  # type: ignore[arg-type]
+        if len(data) != needed:
+            raise _Invalid(
+                f".{name}",
+                f"{len(data)} bytes, but size {' x '.join(map(str, sizes))} needs {needed}",
+            )
 
 
 def _check_map(compiled: _Compiled, value: Any, canonical: bool) -> dict[str, Any]:
@@ -196,7 +252,7 @@ def _check_map(compiled: _Compiled, value: Any, canonical: bool) -> dict[str, An
     if not isinstance(value, dict):
         raise _Invalid("", f"expected a map, got {type(value).__name__}")
     out = {} if canonical else value
-    for name, checker, required, struct in compiled:
+    for name, checker, required, struct in compiled.fields:
         item = value.get(name)
         if item is None:
             if required:
@@ -208,6 +264,8 @@ def _check_map(compiled: _Compiled, value: Any, canonical: bool) -> dict[str, An
             raise _Invalid(f".{name}{exc.path}", exc.message) from None
         if canonical or checked is not item:
             out[name] = checked
+    if compiled.cells:
+        _check_cells(compiled, out)
     return out
 
 

@@ -1,7 +1,11 @@
-"""The machine-readable form of PROTOCOL.md: every field of every message, in wire order.
+"""The one description of the protocol: every field of every message, in wire order.
 
 Encoders write map keys in exactly this order (so both codecs produce identical bytes);
-decoders check types and required fields and ignore keys they do not know.
+decoders check types and required fields and ignore keys they do not know. The Python codec
+compiles its validators from these tables when it is imported; ``generate`` renders them as
+the C++ message structs and their codec (bridge_plugin/) and as PROTOCOL.md's field tables:
+
+    python -m nav2_pyif_protocol.generate    # after any edit here
 """
 
 from __future__ import annotations
@@ -12,7 +16,9 @@ from typing import Final
 from nav2_pyif_protocol.constants import Op
 
 # Field kinds. A struct kind is the name of an entry of STRUCTS.
-INT: Final = "int"  # msgpack int, fits int64 (uint64 for seq)
+INT: Final = "int"  # msgpack int, fits int64
+UINT: Final = "uint"  # msgpack int >= 0, fits uint64
+UINT32: Final = "uint32"  # msgpack int >= 0, fits uint32
 FLOAT: Final = "float"  # msgpack float64, always (even for whole numbers)
 BOOL: Final = "bool"
 STR: Final = "str"  # UTF-8 msgpack str
@@ -23,23 +29,61 @@ PARAMS: Final = "params"  # map str -> bool | int | float | str | array of one o
 STR_MAP: Final = "map<str,str>"
 
 
+#: Packed float64 arrays (``bin``): row name -> (values per row, what a row holds).
+ROWS: dict[str, tuple[int, str]] = {
+    "Pose": (7, "x, y, z, qx, qy, qz, qw"),
+    "Footprint": (2, "x, y"),
+}
+
+
 @dataclass(frozen=True)
 class Field:
     name: str
     kind: str
     required: bool = True
     doc: str = ""
+    #: BIN only: packed little-endian float64 rows of this ROWS entry (a whole number of them).
+    rows: str = ""
+    #: BIN only: its byte count is the product of these int fields of the same map.
+    cells: tuple[str, ...] = ()
+    #: FLOAT6 / FLOAT7 only: the value a new C++ struct starts with (all zeros when empty).
+    default: tuple[float, ...] = ()
 
 
-def _f(name: str, kind: str, doc: str = "", required: bool = True) -> Field:
-    return Field(name, kind, required, doc)
+def _f(
+    name: str,
+    kind: str,
+    doc: str = "",
+    required: bool = True,
+    *,
+    rows: str = "",
+    cells: tuple[str, ...] = (),
+    default: tuple[float, ...] = (),
+) -> Field:
+    return Field(name, kind, required, doc, rows, cells, default)
+
+
+#: What each structure is, for the generated C++ and PROTOCOL.md.
+STRUCT_DOCS: dict[str, str] = {
+    "PoseStamped": "A stamped pose, in the costmap's global frame.",
+    "TwistStamped": "A stamped velocity, in the robot base frame.",
+    "Path": "A plan: poses packed as float64 rows (one 56-byte row per pose, not 7 floats).",
+    "Costmap": "Nav2's Costmap2D: metadata, the raw cost bytes and the footprint.",
+    "GoalChecker": "The goal checker's tolerances.",
+    "Error": "The error of a failed reply (PROTOCOL.md section 7).",
+}
 
 
 STRUCTS: dict[str, tuple[Field, ...]] = {
     "PoseStamped": (
         _f("frame_id", STR, "frame of the pose"),
         _f("stamp_ns", INT, "header stamp, ns since the epoch of the ROS clock"),
-        _f("pose", FLOAT7, "x, y, z [m], qx, qy, qz, qw"),
+        _f(
+            "pose",
+            FLOAT7,
+            "x, y, z [m], qx, qy, qz, qw",
+            default=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),  # the identity, not all-zero
+        ),
     ),
     "TwistStamped": (
         _f("frame_id", STR, "frame of the twist (the robot base frame)"),
@@ -49,18 +93,33 @@ STRUCTS: dict[str, tuple[Field, ...]] = {
     "Path": (
         _f("frame_id", STR, "frame of every pose"),
         _f("stamp_ns", INT, "header stamp [ns]"),
-        _f("poses", BIN, "N x 7 float64 little-endian, row-major: x, y, z, qx, qy, qz, qw"),
+        _f(
+            "poses",
+            BIN,
+            "N x 7 float64 little-endian, row-major: x, y, z, qx, qy, qz, qw",
+            rows="Pose",
+        ),
     ),
     "Costmap": (
-        _f("version", INT, "client's counter; changes whenever data or metadata change"),
+        _f("version", UINT, "client's counter; changes whenever data or metadata change"),
         _f("frame_id", STR, "the costmap's global frame"),
-        _f("size_x", INT, "cells along x (width)"),
-        _f("size_y", INT, "cells along y (height)"),
+        _f("size_x", UINT32, "cells along x (width)"),
+        _f("size_y", UINT32, "cells along y (height)"),
         _f("resolution", FLOAT, "m per cell"),
         _f("origin_x", FLOAT, "world x of cell (0, 0)'s outer corner [m]"),
         _f("origin_y", FLOAT, "world y of cell (0, 0)'s outer corner [m]"),
-        _f("data", BIN, "size_x * size_y uint8 costs, index = my * size_x + mx"),
-        _f("footprint", BIN, "K x 2 float64 little-endian x, y [m] in the robot frame; K may be 0"),
+        _f(
+            "data",
+            BIN,
+            "size_x * size_y uint8 costs, index = my * size_x + mx",
+            cells=("size_x", "size_y"),
+        ),
+        _f(
+            "footprint",
+            BIN,
+            "K x 2 float64 little-endian x, y [m] in the robot frame; K may be 0",
+            rows="Footprint",
+        ),
         _f("robot_radius", FLOAT, "[m]; used when the footprint is empty"),
     ),
     "GoalChecker": (
@@ -81,14 +140,14 @@ REQUEST_ENVELOPE: tuple[Field, ...] = (
     _f("v", INT, "protocol version"),
     _f("op", STR, "operation (also the last key chunk)"),
     _f("sid", STR, "session id chosen by the client at configure"),
-    _f("epoch", INT, "session epoch: 1 at the first configure, +1 at each re-establishment"),
-    _f("seq", INT, "per-plugin sequence number, strictly increasing across epochs"),
+    _f("epoch", UINT, "session epoch: 1 at the first configure, +1 at each re-establishment"),
+    _f("seq", UINT, "per-plugin sequence number, strictly increasing across epochs"),
     _f("body", "body", "operation-specific map"),
 )
 
 REPLY_ENVELOPE: tuple[Field, ...] = (
     _f("v", INT, "protocol version"),
-    _f("seq", INT, "the request's seq"),
+    _f("seq", UINT, "the request's seq"),
     _f("ok", BOOL, "true: body follows; false: error follows"),
     _f("body", "body", "operation-specific map (ok replies)", required=False),
     _f("error", "Error", "failure (error replies)", required=False),
@@ -163,7 +222,7 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         (_f("path", "Path", "the plan; every value finite"),),
     ),
     Op.CANCEL_PLAN: (
-        (_f("target_seq", INT, "seq of the create_plan call to cancel"),),
+        (_f("target_seq", UINT, "seq of the create_plan call to cancel"),),
         (_f("accepted", BOOL, "true when that call was running and is now flagged"),),
     ),
 }

@@ -184,6 +184,23 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         ok(Op.CONFIGURE, {"declared": {"max_vel_x": 0.5, "k_rep": 2}}, seq=0),
         "declared parameters",
     )
+    yield (
+        "configure_reply_planner_undeclared",
+        Op.CONFIGURE,
+        ok(
+            Op.CONFIGURE,
+            {
+                "declared": {"max_vel_x": 0.5},
+                "planner": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
+                "undeclared": {
+                    "max_vel": "'max_vel' is not declared (declared: max_vel_x)",
+                    "lookahed": "'lookahed' is not declared (declared: max_vel_x)",
+                },
+            },
+            seq=0,
+        ),
+        "the optional planner label and parameters the planner ignores",
+    )
     for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PLAN, Op.RESET, Op.SET_SPEED_LIMIT):
         yield f"{op.value}_reply", op, ok(op, {}, compute_ns=0), "empty body"
     yield (

@@ -1,41 +1,27 @@
 // nav2_pyif_bridge::PyController: a nav2_core::Controller whose every call is answered by a
-// Python controller in a planner host, over Zenoh. Thin: frames and messages here, the rest
-// in client::ControllerSession and PluginBridge.
+// Python controller in a planner host, over Zenoh. Thin: frames and messages here, the
+// lifecycle in PyPlugin, the rest in client::ControllerSession and PluginBridge.
 #pragma once
-
-#include <memory>
-#include <string>
 
 #include "geometry_msgs/msg/pose_stamped.hpp"
 #include "geometry_msgs/msg/twist.hpp"
 #include "geometry_msgs/msg/twist_stamped.hpp"
 #include "nav2_core/controller.hpp"
 #include "nav2_core/goal_checker.hpp"
-#include "nav2_costmap_2d/costmap_2d_ros.hpp"
 #include "nav_msgs/msg/path.hpp"
-#include "rclcpp_lifecycle/lifecycle_node.hpp"
-#include "tf2_ros/buffer.h"
 
 #include "nav2_pyif_bridge/client/controller_session.hpp"
 #include "nav2_pyif_bridge/fresh_plan.hpp"
-#include "nav2_pyif_bridge/plugin_bridge.hpp"
+#include "nav2_pyif_bridge/py_plugin.hpp"
 
 namespace nav2_pyif_bridge
 {
 
-class PyController : public nav2_core::Controller
+class PyController : public PyPlugin<nav2_core::Controller, client::ControllerSession>
 {
 public:
-  PyController() = default;
-  ~PyController() override;
-
-  void configure(
-    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-    std::shared_ptr<tf2_ros::Buffer> tf,
-    std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
+  // Also forgets the plan.
   void cleanup() override;
-  void activate() override;
-  void deactivate() override;
 
   // The plan, transformed into the costmap's global frame (ControllerTFError when it cannot be);
   // re-sent, transformed anew, before a cycle in which that transform has moved.
@@ -59,13 +45,7 @@ public:
 private:
   void send_reset();  // the session's reset; a failure is only logged (debug)
 
-  std::string name_;
-  std::shared_ptr<tf2_ros::Buffer> tf_;
-  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
   FreshPlan plan_;
-  // Destroyed in this order: the session uses the bridge's transport and costmap source.
-  std::unique_ptr<PluginBridge> bridge_;
-  std::unique_ptr<client::ControllerSession> session_;
   // The last compute_velocity_commands got no reply in time: the host is likely gone, and
   // Nav2's reset() right after (while it aborts the goal) must not wait on it again. The reset
   // is then owed and sent before the next plan.

@@ -59,7 +59,7 @@ void check_path(const protocol::Path & path, const std::string & host)
     if (!std::isfinite(path.poses[i])) {
       std::ostringstream message;
       message << "create_plan reply" << host_part(host) << " has a non-finite value in pose "
-              << i / protocol::kPoseRowSize << " of " << path.size();
+              << i / protocol::kPoseRowSize << " of " << path.pose_count();
       throw CallError(ErrorKind::NoValidPathCouldBeFound, Cause::Local, message.str());
     }
   }

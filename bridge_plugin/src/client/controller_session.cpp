@@ -8,23 +8,6 @@ namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
-namespace
-{
-
-SessionConfig as_controller(SessionConfig config)
-{
-  config.kind = PluginKind::Controller;
-  return config;
-}
-
-}  // namespace
-
-ControllerSession::ControllerSession(
-  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
-: PluginSession(as_controller(std::move(config)), transport, costmap, std::move(logger))
-{
-}
-
 void ControllerSession::set_plan(const proto::Path & path)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());

@@ -8,23 +8,6 @@ namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
-namespace
-{
-
-SessionConfig as_planner(SessionConfig config)
-{
-  config.kind = PluginKind::GlobalPlanner;
-  return config;
-}
-
-}  // namespace
-
-PlannerSession::PlannerSession(
-  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
-: PluginSession(as_planner(std::move(config)), transport, costmap, std::move(logger))
-{
-}
-
 proto::Path PlannerSession::create_plan(
   const proto::PoseStamped & start, const proto::PoseStamped & goal,
   const std::function<bool()> & cancel_checker)

@@ -74,10 +74,12 @@ std::string new_session_id()
 }
 
 PluginSession::PluginSession(
-  SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger)
+  PluginKind kind, SessionConfig config, Transport & transport, CostmapSource & costmap,
+  Logger logger)
 : config_(std::move(config)), keys_(config_.key_prefix), transport_(transport),
   costmap_(costmap), logger_(std::move(logger)), sid_(new_session_id())
 {
+  config_.kind = kind;
 }
 
 // --- lifecycle ------------------------------------------------------------------------------
@@ -106,6 +108,18 @@ proto::Params PluginSession::configure_locked()
   auto reply = call_for<proto::ConfigureReply>(body, options);
   configured_ = true;
   established_ = true;
+  served_ = reply.planner.value_or("");
+  if (reply.undeclared && !reply.undeclared->empty()) {
+    std::string names;
+    std::string reasons;
+    for (const auto & [name, reason] : *reply.undeclared) {
+      names += (names.empty() ? "" : ", ") + name;
+      reasons += (reasons.empty() ? "" : "; ") + reason;
+    }
+    log(
+      logger_, LogLevel::Warn,
+      keys_.prefix() + ": the planner ignores parameter(s) " + names + ": " + reasons);
+  }
   for (const auto & [name, value] : reply.declared) {
     if (config_.params.find(name) == nullptr) {
       config_.params.set(name, value);
@@ -455,6 +469,12 @@ std::string PluginSession::last_host() const
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
   return last_host_;
+}
+
+std::string PluginSession::served() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return served_;
 }
 
 std::string PluginSession::pinned_host() const

@@ -1,8 +1,6 @@
 #include "nav2_pyif_bridge/py_controller.hpp"
 
 #include <optional>
-#include <stdexcept>
-#include <utility>
 
 #include "pluginlib/class_list_macros.hpp"
 #include "tf2/utils.h"
@@ -33,50 +31,10 @@ std::optional<protocol::GoalChecker> tolerances(nav2_core::GoalChecker * goal_ch
 
 }  // namespace
 
-PyController::~PyController()
-{
-  session_.reset();
-  bridge_.reset();
-}
-
-void PyController::configure(
-  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-  std::shared_ptr<tf2_ros::Buffer> tf,
-  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
-{
-  auto node = parent.lock();
-  if (!node) {
-    throw std::runtime_error("nav2_pyif_bridge::PyController: unable to lock the node");
-  }
-  name_ = std::move(name);
-  tf_ = std::move(tf);
-  costmap_ros_ = std::move(costmap_ros);
-  session_.reset();
-  bridge_ = std::make_unique<PluginBridge>(
-    node, name_, client::PluginKind::Controller, costmap_ros_);
-  session_ = std::make_unique<client::ControllerSession>(
-    bridge_->session_config(), bridge_->transport(), bridge_->costmap(), bridge_->logger());
-  bridge_->configure(*session_);
-}
-
 void PyController::cleanup()
 {
-  if (bridge_ && session_) {
-    bridge_->cleanup(*session_);
-  }
-  session_.reset();
-  bridge_.reset();
+  PyPlugin::cleanup();
   plan_.clear();
-}
-
-void PyController::activate()
-{
-  bridge_->lifecycle("activate", [this]() {session_->activate();});
-}
-
-void PyController::deactivate()
-{
-  bridge_->lifecycle("deactivate", [this]() {session_->deactivate();});
 }
 
 void PyController::setPlan(const nav_msgs::msg::Path & path)

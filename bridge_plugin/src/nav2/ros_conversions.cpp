@@ -101,7 +101,7 @@ nav_msgs::msg::Path to_ros(
   nav_msgs::msg::Path out;
   out.header.frame_id = path.frame_id.empty() ? frame : path.frame_id;
   out.header.stamp = path.stamp_ns == 0 ? stamp : from_ns(path.stamp_ns);
-  out.poses.resize(path.size());
+  out.poses.resize(path.pose_count());
   for (std::size_t i = 0; i < out.poses.size(); ++i) {
     out.poses[i].header = out.header;
     out.poses[i].pose = pose_of(&path.poses[i * proto::kPoseRowSize]);

@@ -7,6 +7,7 @@
 
 #include "nav2_pyif_bridge/protocol/constants.hpp"
 #include "nav2_pyif_bridge/protocol/errors.hpp"
+#include "cells.hpp"
 #include "packed.hpp"
 #include "utf8.hpp"
 
@@ -237,6 +238,15 @@ std::vector<double> read_packed_f64(
     out[i] = load_f64_le(data + 8 * i);
   }
   return out;
+}
+
+void expect_cells(
+  std::size_t bytes, std::initializer_list<std::uint64_t> sizes, const FieldPath & where)
+{
+  const std::string problem = cells_problem(bytes, sizes);
+  if (!problem.empty()) {
+    fail(where, problem);
+  }
 }
 
 void read_f64_array(const Object & object, const FieldPath & where, double * out, std::size_t n)

@@ -1,7 +1,7 @@
 // Typed reads of a decoded msgpack tree, each naming the field at fault when the tree breaks
-// the schema. decode.cpp says *which* fields a message has; this says how each kind of field
-// is read and checked (PROTOCOL.md section 2: an int is accepted where a float is specified,
-// nil counts as absent, unknown keys are ignored).
+// the schema. The generated body_codec.cpp says *which* fields a message has; this says how
+// each kind of field is read and checked (PROTOCOL.md section 2: an int is accepted where a
+// float is specified, nil counts as absent, unknown keys are ignored).
 #pragma once
 
 #include <msgpack.hpp>
@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -39,8 +40,17 @@ std::vector<std::uint8_t> read_bin(const Object & object, const FieldPath & wher
 // A packed little-endian float64 array whose length is a whole number of rows.
 std::vector<double> read_packed_f64(
   const Object & object, const FieldPath & where, std::size_t row_size);
+template<std::size_t RowSize>
+std::vector<double> read_rows(const Object & object, const FieldPath & where)
+{
+  return read_packed_f64(object, where, RowSize);
+}
 Params read_params(const Object & object, const FieldPath & where);
 StringMap read_str_map(const Object & object, const FieldPath & where);
+
+// DecodeError naming `where` unless `bytes` is the product of `sizes` (a costmap's cells).
+void expect_cells(
+  std::size_t bytes, std::initializer_list<std::uint64_t> sizes, const FieldPath & where);
 
 // A msgpack array of exactly N floats (float[6], float[7]).
 void read_f64_array(const Object & object, const FieldPath & where, double * out, std::size_t n);

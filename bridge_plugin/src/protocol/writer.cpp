@@ -3,8 +3,11 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include "nav2_pyif_bridge/protocol/errors.hpp"
+#include "cells.hpp"
 #include "packed.hpp"
 #include "utf8.hpp"
 
@@ -98,8 +101,12 @@ void Writer::bin(const std::uint8_t * data, std::size_t size)
   packer_.pack_bin_body(reinterpret_cast<const char *>(data), size32);
 }
 
-void Writer::packed_f64(const std::vector<double> & values)
+void Writer::rows(const std::vector<double> & values, std::size_t row_size, const FieldPath & where)
 {
+  if (values.size() % row_size != 0) {
+    throw EncodeError(where.str() + ": " + std::to_string(values.size()) +
+            " values is not a whole number of rows of " + std::to_string(row_size));
+  }
   const std::size_t bytes = values.size() * 8;
   packer_.pack_bin(length32(bytes, "bin"));
   // The body goes straight into the output (no temporary buffer for a 1000-pose plan).
@@ -109,6 +116,80 @@ void Writer::packed_f64(const std::vector<double> & values)
   for (const double value : values) {
     store_f64_le(value, cursor);
     cursor += 8;
+  }
+}
+
+namespace
+{
+
+template<class... Fs>
+struct Overloaded : Fs ...
+{
+  using Fs::operator()...;
+};
+template<class... Fs>
+Overloaded(Fs...)->Overloaded<Fs...>;
+
+template<class T, class WriteOne>
+void write_array(Writer & w, const std::vector<T> & items, WriteOne write_one)
+{
+  w.array(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    write_one(items[i], i);
+  }
+}
+
+void write_param(Writer & w, const ParamValue & value, const FieldPath & where)
+{
+  std::visit(
+    Overloaded{
+      [&](bool v) {w.boolean(v);},
+      [&](std::int64_t v) {w.i64(v);},
+      [&](double v) {w.f64(v);},
+      [&](const std::string & v) {w.str(v, where);},
+      [&](const std::vector<bool> & v) {
+        write_array(w, v, [&](bool item, std::size_t) {w.boolean(item);});
+      },
+      [&](const std::vector<std::int64_t> & v) {
+        write_array(w, v, [&](std::int64_t item, std::size_t) {w.i64(item);});
+      },
+      [&](const std::vector<double> & v) {
+        write_array(w, v, [&](double item, std::size_t) {w.f64(item);});
+      },
+      [&](const std::vector<std::string> & v) {
+        write_array(
+          w, v, [&](const std::string & item, std::size_t i) {w.str(item, where.index(i));});
+      },
+    },
+    value);
+}
+
+}  // namespace
+
+void write_params(Writer & w, const Params & params, const FieldPath & where)
+{
+  w.map(params.size());
+  for (const auto & [name, value] : params) {
+    w.str(name, where);
+    write_param(w, value, where.param(name));
+  }
+}
+
+void write_str_map(Writer & w, const StringMap & map, const FieldPath & where)
+{
+  w.map(map.size());
+  for (const auto & [name, value] : map) {
+    w.str(name, where);
+    w.str(value, where.param(name));
+  }
+}
+
+void require_cells(
+  std::size_t bytes, std::initializer_list<std::uint64_t> sizes, const FieldPath & where)
+{
+  const std::string problem = cells_problem(bytes, sizes);
+  if (!problem.empty()) {
+    throw EncodeError(where.str() + ": " + problem);
   }
 }
 

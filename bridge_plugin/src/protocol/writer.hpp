@@ -1,17 +1,21 @@
 // The canonical msgpack primitives (PROTOCOL.md section 2), on top of msgpack::packer.
-// encode.cpp says *what* to write, in schema order; this says *how*: floats always float64,
-// ints in their shortest form, text as str, bytes as bin.
+// The generated body_codec.cpp says *what* to write, in schema order; this says *how*, once
+// per field kind: floats always float64, ints in their shortest form, text as str, bytes as
+// bin.
 #pragma once
 
 #include <msgpack.hpp>
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
 #include <string_view>
 #include <utility>
 #include <vector>
 
 #include "field_path.hpp"
+#include "nav2_pyif_bridge/protocol/params.hpp"
 
 namespace nav2_pyif_bridge::protocol::detail
 {
@@ -35,8 +39,19 @@ public:
   void f64(double value);
   void boolean(bool value);
   void bin(const std::uint8_t * data, std::size_t size);
-  // A packed little-endian float64 array as one `bin` (paths, footprints).
-  void packed_f64(const std::vector<double> & values);
+  void bin(const std::vector<std::uint8_t> & bytes) {bin(bytes.data(), bytes.size());}
+  // A packed little-endian float64 array as one `bin` (paths, footprints): whole rows of
+  // row_size values, else EncodeError naming `where`.
+  void rows(const std::vector<double> & values, std::size_t row_size, const FieldPath & where);
+  // A msgpack array of N float64 (float[6], float[7]).
+  template<std::size_t N>
+  void floats(const std::array<double, N> & values)
+  {
+    array(N);
+    for (const double value : values) {
+      f64(value);
+    }
+  }
 
   std::vector<std::uint8_t> take() {return std::move(out_);}
 
@@ -55,5 +70,14 @@ private:
   Sink sink_{out_};
   msgpack::packer<Sink> packer_{sink_};
 };
+
+// `params` maps: name -> bool, int, float, str or an array of one of those.
+void write_params(Writer & w, const Params & params, const FieldPath & where);
+// map<str,str> (a reply's `rejected`, `undeclared`).
+void write_str_map(Writer & w, const StringMap & map, const FieldPath & where);
+
+// EncodeError naming `where` unless `bytes` is the product of `sizes` (a costmap's cells).
+void require_cells(
+  std::size_t bytes, std::initializer_list<std::uint64_t> sizes, const FieldPath & where);
 
 }  // namespace nav2_pyif_bridge::protocol::detail

@@ -47,18 +47,6 @@ protected:
     return session->compute_velocity_commands(pose_at(1.0, 1.0), {}, checker);
   }
 
-  // The error a call throws, failing the test when it throws nothing.
-  template<class F>
-  CallError error_of(F && f)
-  {
-    try {
-      f();
-    } catch (const CallError & e) {
-      return e;
-    }
-    ADD_FAILURE() << "no CallError thrown";
-    return CallError(ErrorKind::ControllerException, Cause::Local, "none");
-  }
 
   FakeClock clock;
   FakeHost host{clock};
@@ -66,6 +54,25 @@ protected:
   LogSink log;
   std::unique_ptr<ControllerSession> session;
 };
+
+TEST_F(ControllerSessionTest, ConfigureWarnsOfParametersThePlannerIgnores)
+{
+  proto::Params params;
+  params.set("gain", 2.0);
+  params.set("gian", 3.0);
+  params.set("lable", std::string("x"));
+  auto & s = make(params);
+  s.configure();
+  EXPECT_EQ(s.served(), "fakes:Echo");
+  EXPECT_TRUE(log.contains(
+      std::string(kKey) + ": the planner ignores parameter(s) gian, lable: 'gian' is not "
+      "declared (declared: gain, label); 'lable' is not declared (declared: gain, label)"));
+
+  auto & quiet = make();  // every parameter known: nothing to warn of
+  log.lines.clear();
+  quiet.configure();
+  EXPECT_FALSE(log.contains("ignores"));
+}
 
 TEST_F(ControllerSessionTest, FullSession)
 {

@@ -312,7 +312,19 @@ proto::Reply FakeHost::handle(
     declared.set("gain", g);
     declared.set("label", std::string("echo"));
     sessions[request.sid] = session;
-    reply.outcome = proto::ReplyBody{proto::ConfigureReply{declared}};
+    proto::ConfigureReply configured;
+    configured.declared = declared;
+    configured.planner = "fakes:Echo";
+    for (const auto & entry : body.params) {
+      const std::string & name = entry.first;
+      if (name != "gain" && name != "mode" && name != "points") {
+        if (!configured.undeclared) {
+          configured.undeclared.emplace();
+        }
+        configured.undeclared->set(name, "'" + name + "' is not declared (declared: gain, label)");
+      }
+    }
+    reply.outcome = proto::ReplyBody{configured};
     return reply;
   }
   auto it = sessions.find(request.sid);
@@ -348,7 +360,7 @@ proto::Reply FakeHost::handle(
         break;
       }
     case proto::Op::SetPlan:
-      s.plan_size = static_cast<double>(std::get<proto::SetPlanRequest>(request.body).path.size());
+      s.plan_size = static_cast<double>(std::get<proto::SetPlanRequest>(request.body).path.pose_count());
       reply.outcome = proto::ReplyBody{proto::SetPlanReply{}};
       break;
     case proto::Op::SetSpeedLimit:

@@ -3,6 +3,8 @@
 // PROTOCOL.md section 4, answering like tests/fixtures/echo_planners.py), and a costmap grid.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -14,6 +16,7 @@
 
 #include "nav2_pyif_bridge/client/clock.hpp"
 #include "nav2_pyif_bridge/client/costmap_version.hpp"
+#include "nav2_pyif_bridge/client/error_mapping.hpp"
 #include "nav2_pyif_bridge/client/host_watcher.hpp"
 #include "nav2_pyif_bridge/client/log.hpp"
 #include "nav2_pyif_bridge/client/transport.hpp"
@@ -170,6 +173,19 @@ struct LogSink
   }
   bool contains(const std::string & text) const;
 };
+
+// The CallError `call` throws; fails the test (and returns a Local error) when it throws none.
+template<class Call>
+CallError error_of(Call && call)
+{
+  try {
+    call();
+  } catch (const CallError & e) {
+    return e;
+  }
+  ADD_FAILURE() << "no CallError thrown";
+  return CallError(ErrorKind::ControllerException, Cause::Local, "none");
+}
 
 // A straight n-pose path from (0, 0) to (x, y) in frame "odom".
 protocol::Path straight_path(std::size_t n, double x, double y);

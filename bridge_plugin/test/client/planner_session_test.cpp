@@ -40,17 +40,6 @@ protected:
     session->set_parameters(p);
   }
 
-  template<class F>
-  CallError error_of(F && f)
-  {
-    try {
-      f();
-    } catch (const CallError & e) {
-      return e;
-    }
-    ADD_FAILURE() << "no CallError thrown";
-    return CallError(ErrorKind::PlannerException, Cause::Local, "none");
-  }
 
   FakeClock clock;
   FakeHost host{clock};
@@ -65,7 +54,7 @@ TEST_F(PlannerSessionTest, PlansAndSendsTheCostmapOnce)
   const auto configure = std::get<proto::ConfigureRequest>(host.received[0].request.body);
   EXPECT_EQ(configure.plugin_type, "global_planner");
   const proto::Path plan = s.create_plan(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map"));
-  EXPECT_EQ(plan.size(), 25u);
+  EXPECT_EQ(plan.pose_count(), 25u);
   EXPECT_EQ(plan.poses[24 * 7], 2.0);
   EXPECT_EQ(plan.poses[24 * 7 + 1], 1.0);
   EXPECT_FALSE(host.last_had_costmap());  // configure delivered it
@@ -110,7 +99,7 @@ TEST_F(PlannerSessionTest, CancellationIsForwardedOnceAndThePlannerAnswers)
   EXPECT_EQ(cancel.request.epoch, plan_request.epoch);
 
   set_mode("ok");
-  EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(3, 3)).size(), 25u);
+  EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(3, 3)).pose_count(), 25u);
 }
 
 TEST_F(PlannerSessionTest, ACheckerThatNeverCancelsSendsNothing)
@@ -118,7 +107,7 @@ TEST_F(PlannerSessionTest, ACheckerThatNeverCancelsSendsNothing)
   make();
   host.next_call_time = 50ms;
   const auto plan = session->create_plan(pose_at(0, 0), pose_at(1, 1), [] {return false;});
-  EXPECT_EQ(plan.size(), 25u);
+  EXPECT_EQ(plan.pose_count(), 25u);
   EXPECT_EQ(session->cancels_sent(), 0u);
 }
 
@@ -155,7 +144,7 @@ TEST_F(PlannerSessionTest, HostRestartReestablishes)
 {
   make();
   host.restart();
-  EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(1, 1)).size(), 25u);
+  EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(1, 1)).pose_count(), 25u);
   EXPECT_EQ(session->resyncs(), 1u);
   EXPECT_EQ(session->epoch(), 2u);
 }

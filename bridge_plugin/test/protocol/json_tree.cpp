@@ -7,10 +7,13 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <variant>
+
+#include "nav2_pyif_bridge/protocol/fields.hpp"
 
 namespace nav2_pyif_bridge::protocol::test
 {
@@ -77,54 +80,58 @@ Json floats_json(const std::array<double, N> & values)
   return out;
 }
 
-Json to_json(const PoseStamped & pose)
-{
-  return Json{{"frame_id", pose.frame_id}, {"stamp_ns", pose.stamp_ns},
-    {"pose", floats_json(pose.pose)}};
-}
+template<class T>
+struct IsOptional : std::false_type {};
+template<class T>
+struct IsOptional<std::optional<T>>: std::true_type {};
 
-Json to_json(const TwistStamped & twist)
-{
-  return Json{{"frame_id", twist.frame_id}, {"stamp_ns", twist.stamp_ns},
-    {"twist", floats_json(twist.twist)}};
-}
+template<class T>
+struct IsFloatArray : std::false_type {};
+template<std::size_t N>
+struct IsFloatArray<std::array<double, N>>: std::true_type {};
 
-Json to_json(const Path & path)
-{
-  return Json{{"frame_id", path.frame_id}, {"stamp_ns", path.stamp_ns},
-    {"poses", packed_json(path.poses)}};
-}
+Json param_json(const ParamValue & value);
 
-Json to_json(const Costmap & c)
+// Any field of any message, by its C++ type; structures and bodies field by field, through the
+// generated for_each_field (in wire order, absent optional fields left out).
+template<class T>
+Json value_json(const T & value)
 {
-  Json out = Json::object();
-  out["version"] = c.version;
-  out["frame_id"] = c.frame_id;
-  out["size_x"] = c.size_x;
-  out["size_y"] = c.size_y;
-  out["resolution"] = float_json(c.resolution);
-  out["origin_x"] = float_json(c.origin_x);
-  out["origin_y"] = float_json(c.origin_y);
-  out["data"] = bin_json(c.data);
-  out["footprint"] = packed_json(c.footprint);
-  out["robot_radius"] = float_json(c.robot_radius);
-  return out;
-}
-
-Json to_json(const GoalChecker & g)
-{
-  Json out = Json::object();
-  out["xy_goal_tolerance"] = float_json(g.xy_goal_tolerance);
-  out["yaw_goal_tolerance"] = float_json(g.yaw_goal_tolerance);
-  out["trans_stopped_velocity"] = float_json(g.trans_stopped_velocity);
-  out["rot_stopped_velocity"] = float_json(g.rot_stopped_velocity);
-  return out;
-}
-
-Json to_json(const Error & e)
-{
-  return Json{{"type", e.type}, {"message", e.message}, {"traceback", e.traceback},
-    {"python_type", e.python_type}};
+  if constexpr (std::is_same_v<T, double>) {
+    return float_json(value);
+  } else if constexpr (std::is_same_v<T, std::string> || std::is_integral_v<T>) {
+    return Json(value);
+  } else if constexpr (std::is_same_v<T, std::vector<std::uint8_t>>) {
+    return bin_json(value);
+  } else if constexpr (std::is_same_v<T, std::vector<double>>) {
+    return packed_json(value);  // the only top-level float vectors are packed rows
+  } else if constexpr (IsFloatArray<T>::value) {
+    return floats_json(value);
+  } else if constexpr (std::is_same_v<T, Params>|| std::is_same_v<T, StringMap>) {
+    Json out = Json::object();
+    for (const auto & [name, item] : value) {
+      if constexpr (std::is_same_v<T, Params>) {
+        out[name] = param_json(item);
+      } else {
+        out[name] = item;
+      }
+    }
+    return out;
+  } else {
+    Json out = Json::object();  // `{}` for an empty body, whatever its op
+    for_each_field(
+      value, [&out](const char * name, const auto & field) {
+        using Field = std::decay_t<decltype(field)>;
+        if constexpr (IsOptional<Field>::value) {
+          if (field) {
+            out[name] = value_json(*field);
+          }
+        } else {
+          out[name] = value_json(field);
+        }
+      });
+    return out;
+  }
 }
 
 Json param_json(const ParamValue & value)
@@ -152,85 +159,6 @@ Json param_json(const ParamValue & value)
     },
     value);
 }
-
-template<class Value>
-Json map_json(const OrderedMap<Value> & map)
-{
-  Json out = Json::object();
-  for (const auto & [name, value] : map) {
-    if constexpr (std::is_same_v<Value, ParamValue>) {
-      out[name] = param_json(value);
-    } else {
-      out[name] = value;
-    }
-  }
-  return out;
-}
-
-// An empty body is `{}`, whatever its op.
-template<class Body>
-Json body_json(const Body &)
-{
-  static_assert(std::is_empty_v<Body>, "every non-empty body has its own overload");
-  return Json::object();
-}
-
-Json body_json(const ConfigureRequest & b)
-{
-  Json out = Json::object();
-  out["plugin_type"] = b.plugin_type;
-  out["name"] = b.name;
-  out["node"] = b.node;
-  out["params"] = map_json(b.params);
-  out["global_frame"] = b.global_frame;
-  out["robot_base_frame"] = b.robot_base_frame;
-  out["costmap"] = to_json(b.costmap);
-  return out;
-}
-
-Json body_json(const SetParametersRequest & b) {return Json{{"params", map_json(b.params)}};}
-Json body_json(const SetPlanRequest & b) {return Json{{"path", to_json(b.path)}};}
-
-Json body_json(const ComputeVelocityCommandsRequest & b)
-{
-  Json out = Json::object();
-  out["pose"] = to_json(b.pose);
-  out["velocity"] = floats_json(b.velocity);
-  if (b.goal_checker) {
-    out["goal_checker"] = to_json(*b.goal_checker);
-  }
-  if (b.costmap) {
-    out["costmap"] = to_json(*b.costmap);
-  }
-  return out;
-}
-
-Json body_json(const SetSpeedLimitRequest & b)
-{
-  return Json{{"speed_limit", float_json(b.speed_limit)}, {"percentage", b.percentage}};
-}
-
-Json body_json(const CreatePlanRequest & b)
-{
-  Json out = Json::object();
-  out["start"] = to_json(b.start);
-  out["goal"] = to_json(b.goal);
-  if (b.costmap) {
-    out["costmap"] = to_json(*b.costmap);
-  }
-  return out;
-}
-
-Json body_json(const CancelPlanRequest & b) {return Json{{"target_seq", b.target_seq}};}
-Json body_json(const ConfigureReply & b) {return Json{{"declared", map_json(b.declared)}};}
-Json body_json(const SetParametersReply & b) {return Json{{"rejected", map_json(b.rejected)}};}
-Json body_json(const ComputeVelocityCommandsReply & b)
-{
-  return Json{{"cmd_vel", to_json(b.cmd_vel)}};
-}
-Json body_json(const CancelReply & b) {return Json{{"cancelled", b.cancelled}};}
-Json body_json(const CreatePlanReply & b) {return Json{{"path", to_json(b.path)}};}
-Json body_json(const CancelPlanReply & b) {return Json{{"accepted", b.accepted}};}
 
 // --- comparison ---------------------------------------------------------------------------
 
@@ -414,7 +342,7 @@ Json to_json(const Request & request)
   out["sid"] = request.sid;
   out["epoch"] = request.epoch;
   out["seq"] = request.seq;
-  out["body"] = std::visit([](const auto & body) {return body_json(body);}, request.body);
+  out["body"] = std::visit([](const auto & body) {return value_json(body);}, request.body);
   return out;
 }
 
@@ -425,9 +353,9 @@ Json to_json(const Reply & reply)
   out["seq"] = reply.seq;
   out["ok"] = reply.ok();
   if (reply.ok()) {
-    out["body"] = std::visit([](const auto & body) {return body_json(body);}, reply.body());
+    out["body"] = std::visit([](const auto & body) {return value_json(body);}, reply.body());
   } else {
-    out["error"] = to_json(reply.error());
+    out["error"] = value_json(reply.error());
   }
   out["host"] = reply.host;
   out["compute_ns"] = reply.compute_ns;

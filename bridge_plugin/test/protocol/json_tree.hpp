@@ -17,7 +17,8 @@ namespace nav2_pyif_bridge::protocol::test
 {
 
 // A decoded message as the tree its canonical encoding would have, built from the typed
-// structs field by field (independently of the encoder, which the byte comparison tests).
+// structs field by field (through the generated for_each_field, not the encoder, which the
+// byte comparison tests).
 Json to_json(const Request & request);
 Json to_json(const Reply & reply);
 

@@ -19,7 +19,9 @@ Reply configure_reply(Params declared)
   Reply reply;
   reply.seq = 3;
   reply.host = "h";
-  reply.outcome = ReplyBody{ConfigureReply{std::move(declared)}};
+  ConfigureReply body;
+  body.declared = std::move(declared);
+  reply.outcome = ReplyBody{std::move(body)};
   return reply;
 }
 

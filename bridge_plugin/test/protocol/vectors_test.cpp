@@ -115,7 +115,7 @@ TEST(VectorIndex, LargeVectorsDecodeToTheirFullSize)
   ASSERT_TRUE(body.costmap.has_value());
   EXPECT_EQ(body.costmap->data.size(), 1000u * 1000u);
   const Request plan = decode_request(read_vector_bytes("set_plan_1000"));
-  EXPECT_EQ(std::get<SetPlanRequest>(plan.body).path.size(), 1000u);
+  EXPECT_EQ(std::get<SetPlanRequest>(plan.body).path.pose_count(), 1000u);
 }
 
 }  // namespace

@@ -11,12 +11,10 @@
 namespace nav2_pyif_bridge::client
 {
 
-class ControllerSession : public PluginSession
+class ControllerSession : public KindSession<PluginKind::Controller>
 {
 public:
-  // config.kind is set to Controller.
-  ControllerSession(
-    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {});
+  using KindSession::KindSession;
 
   // The plan in the costmap's global frame; remembered (after an ok reply) for re-sending.
   void set_plan(const protocol::Path & path);

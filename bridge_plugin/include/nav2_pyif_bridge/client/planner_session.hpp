@@ -9,12 +9,10 @@
 namespace nav2_pyif_bridge::client
 {
 
-class PlannerSession : public PluginSession
+class PlannerSession : public KindSession<PluginKind::GlobalPlanner>
 {
 public:
-  // config.kind is set to GlobalPlanner.
-  PlannerSession(
-    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {});
+  using KindSession::KindSession;
 
   // start, goal in the costmap's global frame -> the plan (every value finite, else
   // NoValidPathCouldBeFound). While waiting, `cancel_checker` (when set) is polled about every

@@ -35,6 +35,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "nav2_pyif_bridge/client/costmap_version.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
@@ -76,15 +77,19 @@ struct SessionConfig
 class PluginSession
 {
 public:
-  // `transport` and `costmap` must outlive the session.
+  // A session of the `kind` plugin type (config.kind is set to it). `transport` and `costmap`
+  // must outlive the session.
   PluginSession(
-    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {});
+    PluginKind kind, SessionConfig config, Transport & transport, CostmapSource & costmap,
+    Logger logger = {});
   virtual ~PluginSession() = default;
   PluginSession(const PluginSession &) = delete;
   PluginSession & operator=(const PluginSession &) = delete;
 
   // Start a session (epoch + 1, full costmap); returns the parameters the planner declared.
   // Those the session did not have join its parameters (sent again in a later configure).
+  // Given parameters the planner ignores (the reply's `undeclared`: a misspelt name in the
+  // params YAML) are logged as a warning, naming each with the host's reason.
   protocol::Params configure();
   // Configured without a host yet: the first call establishes the session (see above).
   void defer_configure();
@@ -111,6 +116,7 @@ public:
   bool active() const;
   std::uint64_t resyncs() const;              // re-establishments after SessionUnknown
   std::string last_host() const;              // the host of the last reply
+  std::string served() const;                 // the configure reply's planner; "" if unsaid
   std::string pinned_host() const;            // the replica queries go to; "" before the first
   std::uint64_t failovers() const;            // times another replica was pinned
   std::optional<std::uint64_t> delivered_costmap() const;
@@ -175,9 +181,23 @@ private:
   bool active_{false};
   std::uint64_t resyncs_{0};
   std::string last_host_;
+  std::string served_;
   std::string pinned_host_;
   std::uint64_t failovers_{0};
   std::optional<std::uint64_t> delivered_costmap_;
+};
+
+// The base of the sessions of one plugin type: ControllerSession, PlannerSession.
+template<PluginKind Kind>
+class KindSession : public PluginSession
+{
+public:
+  static constexpr PluginKind kKind = Kind;
+
+  // config.kind is set to Kind.
+  KindSession(
+    SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {})
+  : PluginSession(Kind, std::move(config), transport, costmap, std::move(logger)) {}
 };
 
 // A random UUID4 as 32 lowercase hex digits (Python's uuid.uuid4().hex).

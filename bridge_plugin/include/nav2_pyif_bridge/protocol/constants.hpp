@@ -1,6 +1,9 @@
-// Names every party of the protocol shares: the version and the protocol-level error types
-// (PROTOCOL.md sections 3 and 7). nav2_core exception names travel as plain strings in
-// Error::type; mapping them to exceptions is the plugin's job, not the codec's.
+// Generated from protocol/nav2_pyif_protocol/schema.py by
+// `python -m nav2_pyif_protocol.generate`: do not edit.
+//
+// Names every party of the protocol shares: the version and the error types (PROTOCOL.md sections 3
+// and 7).
+
 #pragma once
 
 #include <cstdint>
@@ -12,6 +15,8 @@ namespace nav2_pyif_bridge::protocol
 // Sent in every request and reply. Decoders refuse any other value (VersionMismatch).
 inline constexpr std::int64_t kProtocolVersion = 1;
 
+// The protocol's own error types (error.type). The nav2_core exception names travel as plain
+// strings too; mapping them to exceptions is the plugin's job (client/error_mapping.hpp).
 namespace error_type
 {
 inline constexpr std::string_view kSessionUnknown = "SessionUnknown";

@@ -1,5 +1,9 @@
-// The operations of the protocol and their wire names (the request's `op`, also the last
-// chunk of the Zenoh key `P/rpc/<op>`).
+// Generated from protocol/nav2_pyif_protocol/schema.py by
+// `python -m nav2_pyif_protocol.generate`: do not edit.
+//
+// The operations of the protocol and their wire names (the request's `op`, also the last chunk of
+// the Zenoh key `P/rpc/<op>`).
+
 #pragma once
 
 #include <array>
@@ -12,30 +16,37 @@ namespace nav2_pyif_bridge::protocol
 {
 
 // The enumerator order is also the order of the alternatives of RequestBody and ReplyBody
-// (bodies.hpp), so a body's variant index *is* its op; bodies.hpp checks this at compile time.
+// (bodies.hpp), so a body's variant index *is* its op.
 enum class Op : std::uint8_t
 {
-  Configure,
-  Activate,
-  Deactivate,
-  Cleanup,
-  SetParameters,
-  // controller
-  SetPlan,
-  ComputeVelocityCommands,
-  SetSpeedLimit,
-  Cancel,
-  Reset,
-  // global planner
-  CreatePlan,
-  CancelPlan,
+  Configure,  // controller and global_planner
+  Activate,  // controller and global_planner
+  Deactivate,  // controller and global_planner
+  Cleanup,  // controller and global_planner
+  SetParameters,  // controller and global_planner
+  SetPlan,  // controller
+  ComputeVelocityCommands,  // controller
+  SetSpeedLimit,  // controller
+  Cancel,  // controller
+  Reset,  // controller
+  CreatePlan,  // global_planner
+  CancelPlan,  // global_planner
 };
 
 inline constexpr std::size_t kOpCount = 12;
 
 inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
-  "configure", "activate", "deactivate", "cleanup", "set_parameters", "set_plan",
-  "compute_velocity_commands", "set_speed_limit", "cancel", "reset", "create_plan",
+  "configure",
+  "activate",
+  "deactivate",
+  "cleanup",
+  "set_parameters",
+  "set_plan",
+  "compute_velocity_commands",
+  "set_speed_limit",
+  "cancel",
+  "reset",
+  "create_plan",
   "cancel_plan",
 };
 

@@ -1,7 +1,9 @@
-// The structures shared by several messages (PROTOCOL.md section 13, "Structures").
-// Plain data: the codec checks them when encoding, so they carry no invariants of their own.
-// Units are SI; stamps are integer nanoseconds; poses and plans are in the costmap's global
-// frame, velocities in the robot base frame (PROTOCOL.md section 6).
+// Generated from protocol/nav2_pyif_protocol/schema.py by
+// `python -m nav2_pyif_protocol.generate`: do not edit.
+//
+// The structures shared by several messages (PROTOCOL.md section 13, "Structures"). Plain data: the
+// codec checks them when encoding. Units are SI; stamps are integer nanoseconds.
+
 #pragma once
 
 #include <array>
@@ -14,68 +16,97 @@ namespace nav2_pyif_bridge::protocol
 {
 
 // Values per row of the packed float64 arrays (PROTOCOL.md section 2).
-inline constexpr std::size_t kPoseRowSize = 7;       // x, y, z, qx, qy, qz, qw
+inline constexpr std::size_t kPoseRowSize = 7;  // x, y, z, qx, qy, qz, qw
 inline constexpr std::size_t kFootprintRowSize = 2;  // x, y
 
+// A stamped pose, in the costmap's global frame.
 struct PoseStamped
 {
+  // frame of the pose
   std::string frame_id;
+  // header stamp, ns since the epoch of the ROS clock
   std::int64_t stamp_ns{0};
-  // x, y, z [m], qx, qy, qz, qw; the identity rotation by default, not an invalid all-zero one.
+  // x, y, z [m], qx, qy, qz, qw
   std::array<double, 7> pose{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
 };
 
+// A stamped velocity, in the robot base frame.
 struct TwistStamped
 {
+  // frame of the twist (the robot base frame)
   std::string frame_id;
+  // header stamp [ns]
   std::int64_t stamp_ns{0};
-  std::array<double, 6> twist{};  // vx, vy, vz [m/s], wx, wy, wz [rad/s]
+  // vx, vy, vz [m/s], wx, wy, wz [rad/s]
+  std::array<double, 6> twist{};
 };
 
+// A plan: poses packed as float64 rows (one 56-byte row per pose, not 7 floats).
 struct Path
 {
+  // frame of every pose
   std::string frame_id;
+  // header stamp [ns]
   std::int64_t stamp_ns{0};
-  // N x 7 row-major (kPoseRowSize per pose). On the wire a packed little-endian `bin`, so a
-  // 1000-pose plan is one 56 kB copy instead of 7000 msgpack floats.
+  // N x 7 float64 little-endian, row-major: x, y, z, qx, qy, qz, qw
   std::vector<double> poses;
 
-  std::size_t size() const noexcept {return poses.size() / kPoseRowSize;}
+  // Rows of poses (kPoseRowSize values each).
+  std::size_t pose_count() const noexcept {return poses.size() / kPoseRowSize;}
 };
 
+// Nav2's Costmap2D: metadata, the raw cost bytes and the footprint.
 struct Costmap
 {
-  // The client's counter: bumped whenever anything below changes, so the costmap is sent only
-  // when the host has not seen this version yet (PROTOCOL.md section 5).
+  // client's counter; changes whenever data or metadata change
   std::uint64_t version{0};
+  // the costmap's global frame
   std::string frame_id;
-  std::uint32_t size_x{0};  // unsigned int in Nav2's Costmap2D
+  // cells along x (width)
+  std::uint32_t size_x{0};
+  // cells along y (height)
   std::uint32_t size_y{0};
-  double resolution{0.0};  // m per cell
-  double origin_x{0.0};    // world coordinates of cell (0, 0)'s outer corner [m]
+  // m per cell
+  double resolution{0.0};
+  // world x of cell (0, 0)'s outer corner [m]
+  double origin_x{0.0};
+  // world y of cell (0, 0)'s outer corner [m]
   double origin_y{0.0};
-  // size_x * size_y costs, Costmap2D::getCharMap() layout: index = my * size_x + mx.
+  // size_x * size_y uint8 costs, index = my * size_x + mx
   std::vector<std::uint8_t> data;
-  // K x 2 row-major (kFootprintRowSize per point) in the robot frame [m]; K may be 0.
+  // K x 2 float64 little-endian x, y [m] in the robot frame; K may be 0
   std::vector<double> footprint;
-  double robot_radius{0.0};  // [m]; used when the footprint is empty
+  // [m]; used when the footprint is empty
+  double robot_radius{0.0};
+
+  // Rows of footprint (kFootprintRowSize values each).
+  std::size_t footprint_count() const noexcept {return footprint.size() / kFootprintRowSize;}
 };
 
+// The goal checker's tolerances.
 struct GoalChecker
 {
-  double xy_goal_tolerance{0.0};       // [m]
-  double yaw_goal_tolerance{0.0};      // [rad]
-  double trans_stopped_velocity{0.0};  // [m/s]
-  double rot_stopped_velocity{0.0};    // [rad/s]
+  // [m]
+  double xy_goal_tolerance{0.0};
+  // [rad]
+  double yaw_goal_tolerance{0.0};
+  // [m/s]
+  double trans_stopped_velocity{0.0};
+  // [rad/s]
+  double rot_stopped_velocity{0.0};
 };
 
 // The error of a failed reply (PROTOCOL.md section 7).
 struct Error
 {
-  std::string type;         // nav2_core exception name or protocol error name
-  std::string message;      // human-readable, names the cause
-  std::string traceback;    // Python traceback, empty when none
-  std::string python_type;  // qualified name of the Python exception, empty when none
+  // nav2_core exception name or protocol error name
+  std::string type;
+  // human-readable, names the cause
+  std::string message;
+  // Python traceback, empty when none
+  std::string traceback;
+  // qualified name of the Python exception, empty when none
+  std::string python_type;
 };
 
 }  // namespace nav2_pyif_bridge::protocol

@@ -1,0 +1,728 @@
+// Generated from protocol/nav2_pyif_protocol/schema.py by
+// `python -m nav2_pyif_protocol.generate`: do not edit.
+//
+// Encode and decode every structure and op body of the schema, on the hand-written primitives of
+// writer.hpp and reader.hpp (PROTOCOL.md section 2's canonical form).
+
+#include "body_codec.hpp"
+
+#include <variant>
+
+namespace nav2_pyif_bridge::protocol::detail
+{
+
+// --- encode --------------------------------------------------------------------------------------
+
+void write(Writer & w, const PoseStamped & value, const FieldPath & where)
+{
+  w.map(3);
+  w.key("frame_id");
+  w.str(value.frame_id, where.key("frame_id"));
+  w.key("stamp_ns");
+  w.i64(value.stamp_ns);
+  w.key("pose");
+  w.floats(value.pose);
+}
+
+void write(Writer & w, const TwistStamped & value, const FieldPath & where)
+{
+  w.map(3);
+  w.key("frame_id");
+  w.str(value.frame_id, where.key("frame_id"));
+  w.key("stamp_ns");
+  w.i64(value.stamp_ns);
+  w.key("twist");
+  w.floats(value.twist);
+}
+
+void write(Writer & w, const Path & value, const FieldPath & where)
+{
+  w.map(3);
+  w.key("frame_id");
+  w.str(value.frame_id, where.key("frame_id"));
+  w.key("stamp_ns");
+  w.i64(value.stamp_ns);
+  w.key("poses");
+  w.rows(value.poses, kPoseRowSize, where.key("poses"));
+}
+
+void write(Writer & w, const Costmap & value, const FieldPath & where)
+{
+  require_cells(value.data.size(), {value.size_x, value.size_y}, where.key("data"));
+  w.map(10);
+  w.key("version");
+  w.u64(value.version);
+  w.key("frame_id");
+  w.str(value.frame_id, where.key("frame_id"));
+  w.key("size_x");
+  w.u64(value.size_x);
+  w.key("size_y");
+  w.u64(value.size_y);
+  w.key("resolution");
+  w.f64(value.resolution);
+  w.key("origin_x");
+  w.f64(value.origin_x);
+  w.key("origin_y");
+  w.f64(value.origin_y);
+  w.key("data");
+  w.bin(value.data);
+  w.key("footprint");
+  w.rows(value.footprint, kFootprintRowSize, where.key("footprint"));
+  w.key("robot_radius");
+  w.f64(value.robot_radius);
+}
+
+void write(Writer & w, const GoalChecker & value, const FieldPath &)
+{
+  w.map(4);
+  w.key("xy_goal_tolerance");
+  w.f64(value.xy_goal_tolerance);
+  w.key("yaw_goal_tolerance");
+  w.f64(value.yaw_goal_tolerance);
+  w.key("trans_stopped_velocity");
+  w.f64(value.trans_stopped_velocity);
+  w.key("rot_stopped_velocity");
+  w.f64(value.rot_stopped_velocity);
+}
+
+void write(Writer & w, const Error & value, const FieldPath & where)
+{
+  w.map(4);
+  w.key("type");
+  w.str(value.type, where.key("type"));
+  w.key("message");
+  w.str(value.message, where.key("message"));
+  w.key("traceback");
+  w.str(value.traceback, where.key("traceback"));
+  w.key("python_type");
+  w.str(value.python_type, where.key("python_type"));
+}
+
+void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
+{
+  w.map(7);
+  w.key("plugin_type");
+  w.str(value.plugin_type, where.key("plugin_type"));
+  w.key("name");
+  w.str(value.name, where.key("name"));
+  w.key("node");
+  w.str(value.node, where.key("node"));
+  w.key("params");
+  write_params(w, value.params, where.key("params"));
+  w.key("global_frame");
+  w.str(value.global_frame, where.key("global_frame"));
+  w.key("robot_base_frame");
+  w.str(value.robot_base_frame, where.key("robot_base_frame"));
+  w.key("costmap");
+  write(w, value.costmap, where.key("costmap"));
+}
+
+void write(Writer & w, const ConfigureReply & value, const FieldPath & where)
+{
+  w.map(std::size_t{1} + (value.planner ? 1u : 0u) + (value.undeclared ? 1u : 0u));
+  w.key("declared");
+  write_params(w, value.declared, where.key("declared"));
+  if (value.planner) {
+    w.key("planner");
+    w.str(*value.planner, where.key("planner"));
+  }
+  if (value.undeclared) {
+    w.key("undeclared");
+    write_str_map(w, *value.undeclared, where.key("undeclared"));
+  }
+}
+
+void write(Writer & w, const ActivateRequest &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const ActivateReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const DeactivateRequest &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const DeactivateReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const CleanupRequest &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const CleanupReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const SetParametersRequest & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("params");
+  write_params(w, value.params, where.key("params"));
+}
+
+void write(Writer & w, const SetParametersReply & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("rejected");
+  write_str_map(w, value.rejected, where.key("rejected"));
+}
+
+void write(Writer & w, const SetPlanRequest & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("path");
+  write(w, value.path, where.key("path"));
+}
+
+void write(Writer & w, const SetPlanReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const ComputeVelocityCommandsRequest & value, const FieldPath & where)
+{
+  w.map(std::size_t{2} + (value.goal_checker ? 1u : 0u) + (value.costmap ? 1u : 0u));
+  w.key("pose");
+  write(w, value.pose, where.key("pose"));
+  w.key("velocity");
+  w.floats(value.velocity);
+  if (value.goal_checker) {
+    w.key("goal_checker");
+    write(w, *value.goal_checker, where.key("goal_checker"));
+  }
+  if (value.costmap) {
+    w.key("costmap");
+    write(w, *value.costmap, where.key("costmap"));
+  }
+}
+
+void write(Writer & w, const ComputeVelocityCommandsReply & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("cmd_vel");
+  write(w, value.cmd_vel, where.key("cmd_vel"));
+}
+
+void write(Writer & w, const SetSpeedLimitRequest & value, const FieldPath &)
+{
+  w.map(2);
+  w.key("speed_limit");
+  w.f64(value.speed_limit);
+  w.key("percentage");
+  w.boolean(value.percentage);
+}
+
+void write(Writer & w, const SetSpeedLimitReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const CancelRequest &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const CancelReply & value, const FieldPath &)
+{
+  w.map(1);
+  w.key("cancelled");
+  w.boolean(value.cancelled);
+}
+
+void write(Writer & w, const ResetRequest &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const ResetReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const CreatePlanRequest & value, const FieldPath & where)
+{
+  w.map(std::size_t{2} + (value.costmap ? 1u : 0u));
+  w.key("start");
+  write(w, value.start, where.key("start"));
+  w.key("goal");
+  write(w, value.goal, where.key("goal"));
+  if (value.costmap) {
+    w.key("costmap");
+    write(w, *value.costmap, where.key("costmap"));
+  }
+}
+
+void write(Writer & w, const CreatePlanReply & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("path");
+  write(w, value.path, where.key("path"));
+}
+
+void write(Writer & w, const CancelPlanRequest & value, const FieldPath &)
+{
+  w.map(1);
+  w.key("target_seq");
+  w.u64(value.target_seq);
+}
+
+void write(Writer & w, const CancelPlanReply & value, const FieldPath &)
+{
+  w.map(1);
+  w.key("accepted");
+  w.boolean(value.accepted);
+}
+
+void write(Writer & w, const RequestBody & body, const FieldPath & where)
+{
+  std::visit([&](const auto & alternative) {write(w, alternative, where);}, body);
+}
+
+void write(Writer & w, const ReplyBody & body, const FieldPath & where)
+{
+  std::visit([&](const auto & alternative) {write(w, alternative, where);}, body);
+}
+
+// --- decode --------------------------------------------------------------------------------------
+
+PoseStamped read_pose_stamped(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  PoseStamped out;
+  out.frame_id = m.required("frame_id", read_str);
+  out.stamp_ns = m.required("stamp_ns", read_i64);
+  out.pose = m.required("pose", read_f64_array<7>);
+  return out;
+}
+
+TwistStamped read_twist_stamped(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  TwistStamped out;
+  out.frame_id = m.required("frame_id", read_str);
+  out.stamp_ns = m.required("stamp_ns", read_i64);
+  out.twist = m.required("twist", read_f64_array<6>);
+  return out;
+}
+
+Path read_path(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  Path out;
+  out.frame_id = m.required("frame_id", read_str);
+  out.stamp_ns = m.required("stamp_ns", read_i64);
+  out.poses = m.required("poses", read_rows<kPoseRowSize>);
+  return out;
+}
+
+Costmap read_costmap(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  Costmap out;
+  out.version = m.required("version", read_u64);
+  out.frame_id = m.required("frame_id", read_str);
+  out.size_x = m.required("size_x", read_u32);
+  out.size_y = m.required("size_y", read_u32);
+  out.resolution = m.required("resolution", read_f64);
+  out.origin_x = m.required("origin_x", read_f64);
+  out.origin_y = m.required("origin_y", read_f64);
+  out.data = m.required("data", read_bin);
+  out.footprint = m.required("footprint", read_rows<kFootprintRowSize>);
+  out.robot_radius = m.required("robot_radius", read_f64);
+  expect_cells(out.data.size(), {out.size_x, out.size_y}, where.key("data"));
+  return out;
+}
+
+GoalChecker read_goal_checker(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  GoalChecker out;
+  out.xy_goal_tolerance = m.required("xy_goal_tolerance", read_f64);
+  out.yaw_goal_tolerance = m.required("yaw_goal_tolerance", read_f64);
+  out.trans_stopped_velocity = m.required("trans_stopped_velocity", read_f64);
+  out.rot_stopped_velocity = m.required("rot_stopped_velocity", read_f64);
+  return out;
+}
+
+Error read_error(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  Error out;
+  out.type = m.required("type", read_str);
+  out.message = m.required("message", read_str);
+  out.traceback = m.required("traceback", read_str);
+  out.python_type = m.required("python_type", read_str);
+  return out;
+}
+
+ConfigureRequest read_configure_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  ConfigureRequest out;
+  out.plugin_type = m.required("plugin_type", read_str);
+  out.name = m.required("name", read_str);
+  out.node = m.required("node", read_str);
+  out.params = m.required("params", read_params);
+  out.global_frame = m.required("global_frame", read_str);
+  out.robot_base_frame = m.required("robot_base_frame", read_str);
+  out.costmap = m.required("costmap", read_costmap);
+  return out;
+}
+
+ConfigureReply read_configure_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  ConfigureReply out;
+  out.declared = m.required("declared", read_params);
+  out.planner = m.optional("planner", read_str);
+  out.undeclared = m.optional("undeclared", read_str_map);
+  return out;
+}
+
+ActivateRequest read_activate_request(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return ActivateRequest{};
+}
+
+ActivateReply read_activate_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return ActivateReply{};
+}
+
+DeactivateRequest read_deactivate_request(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return DeactivateRequest{};
+}
+
+DeactivateReply read_deactivate_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return DeactivateReply{};
+}
+
+CleanupRequest read_cleanup_request(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return CleanupRequest{};
+}
+
+CleanupReply read_cleanup_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return CleanupReply{};
+}
+
+SetParametersRequest read_set_parameters_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  SetParametersRequest out;
+  out.params = m.required("params", read_params);
+  return out;
+}
+
+SetParametersReply read_set_parameters_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  SetParametersReply out;
+  out.rejected = m.required("rejected", read_str_map);
+  return out;
+}
+
+SetPlanRequest read_set_plan_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  SetPlanRequest out;
+  out.path = m.required("path", read_path);
+  return out;
+}
+
+SetPlanReply read_set_plan_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return SetPlanReply{};
+}
+
+ComputeVelocityCommandsRequest read_compute_velocity_commands_request(
+  const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  ComputeVelocityCommandsRequest out;
+  out.pose = m.required("pose", read_pose_stamped);
+  out.velocity = m.required("velocity", read_f64_array<6>);
+  out.goal_checker = m.optional("goal_checker", read_goal_checker);
+  out.costmap = m.optional("costmap", read_costmap);
+  return out;
+}
+
+ComputeVelocityCommandsReply read_compute_velocity_commands_reply(
+  const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  ComputeVelocityCommandsReply out;
+  out.cmd_vel = m.required("cmd_vel", read_twist_stamped);
+  return out;
+}
+
+SetSpeedLimitRequest read_set_speed_limit_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  SetSpeedLimitRequest out;
+  out.speed_limit = m.required("speed_limit", read_f64);
+  out.percentage = m.required("percentage", read_bool);
+  return out;
+}
+
+SetSpeedLimitReply read_set_speed_limit_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return SetSpeedLimitReply{};
+}
+
+CancelRequest read_cancel_request(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return CancelRequest{};
+}
+
+CancelReply read_cancel_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CancelReply out;
+  out.cancelled = m.required("cancelled", read_bool);
+  return out;
+}
+
+ResetRequest read_reset_request(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return ResetRequest{};
+}
+
+ResetReply read_reset_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return ResetReply{};
+}
+
+CreatePlanRequest read_create_plan_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CreatePlanRequest out;
+  out.start = m.required("start", read_pose_stamped);
+  out.goal = m.required("goal", read_pose_stamped);
+  out.costmap = m.optional("costmap", read_costmap);
+  return out;
+}
+
+CreatePlanReply read_create_plan_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CreatePlanReply out;
+  out.path = m.required("path", read_path);
+  return out;
+}
+
+CancelPlanRequest read_cancel_plan_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CancelPlanRequest out;
+  out.target_seq = m.required("target_seq", read_u64);
+  return out;
+}
+
+CancelPlanReply read_cancel_plan_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CancelPlanReply out;
+  out.accepted = m.required("accepted", read_bool);
+  return out;
+}
+
+RequestBody read_request_body(Op op, const Object & object, const FieldPath & where)
+{
+  switch (op) {
+    case Op::Configure:
+      return read_configure_request(object, where);
+    case Op::Activate:
+      return read_activate_request(object, where);
+    case Op::Deactivate:
+      return read_deactivate_request(object, where);
+    case Op::Cleanup:
+      return read_cleanup_request(object, where);
+    case Op::SetParameters:
+      return read_set_parameters_request(object, where);
+    case Op::SetPlan:
+      return read_set_plan_request(object, where);
+    case Op::ComputeVelocityCommands:
+      return read_compute_velocity_commands_request(object, where);
+    case Op::SetSpeedLimit:
+      return read_set_speed_limit_request(object, where);
+    case Op::Cancel:
+      return read_cancel_request(object, where);
+    case Op::Reset:
+      return read_reset_request(object, where);
+    case Op::CreatePlan:
+      return read_create_plan_request(object, where);
+    case Op::CancelPlan:
+      return read_cancel_plan_request(object, where);
+  }
+  fail(where, "unknown op");  // unreachable: every Op is handled above
+}
+
+ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where)
+{
+  switch (op) {
+    case Op::Configure:
+      return read_configure_reply(object, where);
+    case Op::Activate:
+      return read_activate_reply(object, where);
+    case Op::Deactivate:
+      return read_deactivate_reply(object, where);
+    case Op::Cleanup:
+      return read_cleanup_reply(object, where);
+    case Op::SetParameters:
+      return read_set_parameters_reply(object, where);
+    case Op::SetPlan:
+      return read_set_plan_reply(object, where);
+    case Op::ComputeVelocityCommands:
+      return read_compute_velocity_commands_reply(object, where);
+    case Op::SetSpeedLimit:
+      return read_set_speed_limit_reply(object, where);
+    case Op::Cancel:
+      return read_cancel_reply(object, where);
+    case Op::Reset:
+      return read_reset_reply(object, where);
+    case Op::CreatePlan:
+      return read_create_plan_reply(object, where);
+    case Op::CancelPlan:
+      return read_cancel_plan_reply(object, where);
+  }
+  fail(where, "unknown op");  // unreachable: every Op is handled above
+}
+
+// --- sizes ---------------------------------------------------------------------------------------
+
+std::size_t payload_size(const PoseStamped & value)
+{
+  return value.frame_id.size();
+}
+
+std::size_t payload_size(const TwistStamped & value)
+{
+  return value.frame_id.size();
+}
+
+std::size_t payload_size(const Path & value)
+{
+  return value.frame_id.size() + value.poses.size() * 8;
+}
+
+std::size_t payload_size(const Costmap & value)
+{
+  return value.frame_id.size() + value.data.size() + value.footprint.size() * 8;
+}
+
+std::size_t payload_size(const GoalChecker &) {return 0;}
+
+std::size_t payload_size(const Error & value)
+{
+  return value.type.size() + value.message.size() + value.traceback.size()
+           + value.python_type.size();
+}
+
+std::size_t payload_size(const ConfigureRequest & value)
+{
+  return value.plugin_type.size() + value.name.size() + value.node.size()
+           + value.global_frame.size() + value.robot_base_frame.size()
+           + payload_size(value.costmap);
+}
+
+std::size_t payload_size(const ConfigureReply & value)
+{
+  return (value.planner ? (*value.planner).size() : 0);
+}
+
+std::size_t payload_size(const ActivateRequest &) {return 0;}
+
+std::size_t payload_size(const ActivateReply &) {return 0;}
+
+std::size_t payload_size(const DeactivateRequest &) {return 0;}
+
+std::size_t payload_size(const DeactivateReply &) {return 0;}
+
+std::size_t payload_size(const CleanupRequest &) {return 0;}
+
+std::size_t payload_size(const CleanupReply &) {return 0;}
+
+std::size_t payload_size(const SetParametersRequest &) {return 0;}
+
+std::size_t payload_size(const SetParametersReply &) {return 0;}
+
+std::size_t payload_size(const SetPlanRequest & value)
+{
+  return payload_size(value.path);
+}
+
+std::size_t payload_size(const SetPlanReply &) {return 0;}
+
+std::size_t payload_size(const ComputeVelocityCommandsRequest & value)
+{
+  return payload_size(value.pose) + (value.goal_checker ? payload_size((*value.goal_checker)) : 0)
+           + (value.costmap ? payload_size((*value.costmap)) : 0);
+}
+
+std::size_t payload_size(const ComputeVelocityCommandsReply & value)
+{
+  return payload_size(value.cmd_vel);
+}
+
+std::size_t payload_size(const SetSpeedLimitRequest &) {return 0;}
+
+std::size_t payload_size(const SetSpeedLimitReply &) {return 0;}
+
+std::size_t payload_size(const CancelRequest &) {return 0;}
+
+std::size_t payload_size(const CancelReply &) {return 0;}
+
+std::size_t payload_size(const ResetRequest &) {return 0;}
+
+std::size_t payload_size(const ResetReply &) {return 0;}
+
+std::size_t payload_size(const CreatePlanRequest & value)
+{
+  return payload_size(value.start) + payload_size(value.goal)
+           + (value.costmap ? payload_size((*value.costmap)) : 0);
+}
+
+std::size_t payload_size(const CreatePlanReply & value)
+{
+  return payload_size(value.path);
+}
+
+std::size_t payload_size(const CancelPlanRequest &) {return 0;}
+
+std::size_t payload_size(const CancelPlanReply &) {return 0;}
+
+std::size_t payload_size(const RequestBody & body)
+{
+  return std::visit([](const auto & alternative) {return payload_size(alternative);}, body);
+}
+
+std::size_t payload_size(const ReplyBody & body)
+{
+  return std::visit([](const auto & alternative) {return payload_size(alternative);}, body);
+}
+
+}  // namespace nav2_pyif_bridge::protocol::detail

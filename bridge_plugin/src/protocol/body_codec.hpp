@@ -1,0 +1,124 @@
+// Generated from protocol/nav2_pyif_protocol/schema.py by
+// `python -m nav2_pyif_protocol.generate`: do not edit.
+//
+// Encode and decode every structure and op body of the schema (the envelopes, encode.cpp and
+// decode.cpp, call these).
+
+#pragma once
+
+#include <cstddef>
+
+#include "nav2_pyif_bridge/protocol/bodies.hpp"
+#include "nav2_pyif_bridge/protocol/types.hpp"
+#include "field_path.hpp"
+#include "reader.hpp"
+#include "writer.hpp"
+
+namespace nav2_pyif_bridge::protocol::detail
+{
+
+// Writes one map, its keys in schema order; throws EncodeError naming the field.
+void write(Writer & w, const PoseStamped & value, const FieldPath & where);
+void write(Writer & w, const TwistStamped & value, const FieldPath & where);
+void write(Writer & w, const Path & value, const FieldPath & where);
+void write(Writer & w, const Costmap & value, const FieldPath & where);
+void write(Writer & w, const GoalChecker & value, const FieldPath & where);
+void write(Writer & w, const Error & value, const FieldPath & where);
+void write(Writer & w, const ConfigureRequest & value, const FieldPath & where);
+void write(Writer & w, const ConfigureReply & value, const FieldPath & where);
+void write(Writer & w, const ActivateRequest & value, const FieldPath & where);
+void write(Writer & w, const ActivateReply & value, const FieldPath & where);
+void write(Writer & w, const DeactivateRequest & value, const FieldPath & where);
+void write(Writer & w, const DeactivateReply & value, const FieldPath & where);
+void write(Writer & w, const CleanupRequest & value, const FieldPath & where);
+void write(Writer & w, const CleanupReply & value, const FieldPath & where);
+void write(Writer & w, const SetParametersRequest & value, const FieldPath & where);
+void write(Writer & w, const SetParametersReply & value, const FieldPath & where);
+void write(Writer & w, const SetPlanRequest & value, const FieldPath & where);
+void write(Writer & w, const SetPlanReply & value, const FieldPath & where);
+void write(Writer & w, const ComputeVelocityCommandsRequest & value, const FieldPath & where);
+void write(Writer & w, const ComputeVelocityCommandsReply & value, const FieldPath & where);
+void write(Writer & w, const SetSpeedLimitRequest & value, const FieldPath & where);
+void write(Writer & w, const SetSpeedLimitReply & value, const FieldPath & where);
+void write(Writer & w, const CancelRequest & value, const FieldPath & where);
+void write(Writer & w, const CancelReply & value, const FieldPath & where);
+void write(Writer & w, const ResetRequest & value, const FieldPath & where);
+void write(Writer & w, const ResetReply & value, const FieldPath & where);
+void write(Writer & w, const CreatePlanRequest & value, const FieldPath & where);
+void write(Writer & w, const CreatePlanReply & value, const FieldPath & where);
+void write(Writer & w, const CancelPlanRequest & value, const FieldPath & where);
+void write(Writer & w, const CancelPlanReply & value, const FieldPath & where);
+void write(Writer & w, const RequestBody & body, const FieldPath & where);
+void write(Writer & w, const ReplyBody & body, const FieldPath & where);
+
+// Reads one map, checking every field; throws DecodeError naming the field.
+PoseStamped read_pose_stamped(const Object & object, const FieldPath & where);
+TwistStamped read_twist_stamped(const Object & object, const FieldPath & where);
+Path read_path(const Object & object, const FieldPath & where);
+Costmap read_costmap(const Object & object, const FieldPath & where);
+GoalChecker read_goal_checker(const Object & object, const FieldPath & where);
+Error read_error(const Object & object, const FieldPath & where);
+ConfigureRequest read_configure_request(const Object & object, const FieldPath & where);
+ConfigureReply read_configure_reply(const Object & object, const FieldPath & where);
+ActivateRequest read_activate_request(const Object & object, const FieldPath & where);
+ActivateReply read_activate_reply(const Object & object, const FieldPath & where);
+DeactivateRequest read_deactivate_request(const Object & object, const FieldPath & where);
+DeactivateReply read_deactivate_reply(const Object & object, const FieldPath & where);
+CleanupRequest read_cleanup_request(const Object & object, const FieldPath & where);
+CleanupReply read_cleanup_reply(const Object & object, const FieldPath & where);
+SetParametersRequest read_set_parameters_request(const Object & object, const FieldPath & where);
+SetParametersReply read_set_parameters_reply(const Object & object, const FieldPath & where);
+SetPlanRequest read_set_plan_request(const Object & object, const FieldPath & where);
+SetPlanReply read_set_plan_reply(const Object & object, const FieldPath & where);
+ComputeVelocityCommandsRequest read_compute_velocity_commands_request(
+  const Object & object, const FieldPath & where);
+ComputeVelocityCommandsReply read_compute_velocity_commands_reply(
+  const Object & object, const FieldPath & where);
+SetSpeedLimitRequest read_set_speed_limit_request(const Object & object, const FieldPath & where);
+SetSpeedLimitReply read_set_speed_limit_reply(const Object & object, const FieldPath & where);
+CancelRequest read_cancel_request(const Object & object, const FieldPath & where);
+CancelReply read_cancel_reply(const Object & object, const FieldPath & where);
+ResetRequest read_reset_request(const Object & object, const FieldPath & where);
+ResetReply read_reset_reply(const Object & object, const FieldPath & where);
+CreatePlanRequest read_create_plan_request(const Object & object, const FieldPath & where);
+CreatePlanReply read_create_plan_reply(const Object & object, const FieldPath & where);
+CancelPlanRequest read_cancel_plan_request(const Object & object, const FieldPath & where);
+CancelPlanReply read_cancel_plan_reply(const Object & object, const FieldPath & where);
+RequestBody read_request_body(Op op, const Object & object, const FieldPath & where);
+ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where);
+
+// Bytes of the variable-length fields (text, bin), to reserve before encoding.
+std::size_t payload_size(const PoseStamped & value);
+std::size_t payload_size(const TwistStamped & value);
+std::size_t payload_size(const Path & value);
+std::size_t payload_size(const Costmap & value);
+std::size_t payload_size(const GoalChecker & value);
+std::size_t payload_size(const Error & value);
+std::size_t payload_size(const ConfigureRequest & value);
+std::size_t payload_size(const ConfigureReply & value);
+std::size_t payload_size(const ActivateRequest & value);
+std::size_t payload_size(const ActivateReply & value);
+std::size_t payload_size(const DeactivateRequest & value);
+std::size_t payload_size(const DeactivateReply & value);
+std::size_t payload_size(const CleanupRequest & value);
+std::size_t payload_size(const CleanupReply & value);
+std::size_t payload_size(const SetParametersRequest & value);
+std::size_t payload_size(const SetParametersReply & value);
+std::size_t payload_size(const SetPlanRequest & value);
+std::size_t payload_size(const SetPlanReply & value);
+std::size_t payload_size(const ComputeVelocityCommandsRequest & value);
+std::size_t payload_size(const ComputeVelocityCommandsReply & value);
+std::size_t payload_size(const SetSpeedLimitRequest & value);
+std::size_t payload_size(const SetSpeedLimitReply & value);
+std::size_t payload_size(const CancelRequest & value);
+std::size_t payload_size(const CancelReply & value);
+std::size_t payload_size(const ResetRequest & value);
+std::size_t payload_size(const ResetReply & value);
+std::size_t payload_size(const CreatePlanRequest & value);
+std::size_t payload_size(const CreatePlanReply & value);
+std::size_t payload_size(const CancelPlanRequest & value);
+std::size_t payload_size(const CancelPlanReply & value);
+std::size_t payload_size(const RequestBody & body);
+std::size_t payload_size(const ReplyBody & body);
+
+}  // namespace nav2_pyif_bridge::protocol::detail
