@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+from tests.conftest import free_port
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -86,3 +88,12 @@ def test_fleet_benchmark_prints_its_table_and_draws_it(tmp_path: Path) -> None:
     result = bench("fleet", "--robots", "1", "--seconds", "1", "--plot", str(png))
     assert_prints(result, "fleet: N controllers on one host", "missed:", f"wrote {png}")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+
+
+def test_host_benchmark_without_a_router_says_where_it_looked() -> None:
+    """(The benchmark against a running host: tests/test_topologies.py::test_bench.)"""
+    nowhere = f"tcp/127.0.0.1:{free_port()}"
+    result = bench("host", "--key", "nav2_pyif/robot1/FollowPath", "--connect", nowhere)
+    assert result.returncode == 1, result.stderr
+    assert "cannot open a Zenoh session" in result.stderr and nowhere in result.stderr
+    assert "Traceback" not in result.stderr

@@ -260,6 +260,19 @@ def test_strangers_are_refused_and_robot1_is_served(fleet: Fleet) -> None:
         for _ in range(3):
             assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 17
         assert sessions_served(fleet) == 1
+        # the benchmark against a running host, as robot1 (its certificate and file)
+        timed = subprocess.run(
+            [
+                *(sys.executable, "-m", "nav2_pyif_bench.cli", "host", "--key", KEY),
+                *("--zenoh-config", str(fleet.config("plugin-secure.json5"))),
+                *("--connect", fleet.endpoint, "--calls", "20", "--rate", "0"),
+            ],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
+        assert timed.returncode == 0, timed.stderr
+        assert "compute_velocity_commands round trip" in timed.stdout, timed.stdout
 
         # robot1 may call its planner, not swap it: the router drops the query
         with pytest.raises(NoPlannerHost, match="access control"):

@@ -191,6 +191,20 @@ def test_hosts(topology: Topology) -> None:
     assert (routers, peers) == expected[topology.name], found["via"]
 
 
+def test_bench(topology: Topology) -> None:
+    """`nav2-pyif-bench host`: the control cycle against the running host, in the tools' mode."""
+    done = subprocess.run(
+        [sys.executable, "-m", "nav2_pyif_bench.cli", "host", "--key", CONTROLLER_KEY,
+         *topology.zenoh_args(), "--calls", "40", "--rate", "0"],
+        capture_output=True, text=True, timeout=120,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr
+    assert f"on {CONTROLLER_KEY} (back to back)" in done.stdout, done.stdout
+    row = next(line for line in done.stdout.splitlines() if "round trip" in line)
+    median, p99, n = row.split()[-3:]
+    assert int(n) == 40 and 0 < float(median) <= float(p99), row
+
+
 @pytest.mark.parametrize("topology", CLIENT_TOPOLOGIES, indirect=True)
 def test_sim(topology: Topology, tmp_path: Path) -> None:
     """A short run on the office map: plan and drive 1 m, with the host's planners."""

@@ -6,6 +6,7 @@ nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers' rate throu
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
+nav2-pyif-bench host --connect E --key K        the control cycle against a running host
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from nav2_pyif.signals import Interrupted, raise_on_signals
 from nav2_pyif_bench import (
     cpp_cycle_bench,
     fleet_bench,
+    host_bench,
     mppi_bench,
     protocol_bench,
     reliability_bench,
@@ -61,7 +63,11 @@ def main(argv: list[str] | None = None) -> int:
     reliability.add_argument("--cycles", type=int, default=100, help="lifecycle cycles")
     tls = sub.add_parser("tls", help="TLS's cost: the control cycle over TCP and mutual TLS")
     protocol_bench.add_round_arguments(tls)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls):
+    host = sub.add_parser(
+        "host", help="the control cycle against a planner host already running (--connect)"
+    )
+    host_bench.add_arguments(host)
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -84,6 +90,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "protocol":
         results = protocol_bench.run(protocol_bench.apply_quick(args))
         text = protocol_bench.report(results)
+    elif args.bench == "host":
+        results = host_bench.run(args)
+        text = host_bench.report(results)
     elif args.bench == "tls":
         results = tls_bench.run(protocol_bench.apply_quick_rounds(args))
         text = tls_bench.report(results)
