@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import re
 import shlex
+import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -84,3 +85,21 @@ def blocks(doc: Path, root: Path) -> list[Block]:
             out.append(Block(doc, label, start + 1, lang, text, options))
         i = end + 1
     return out
+
+
+def guide_certificates(directory: Path, router_address: str) -> Path:
+    """Run docs/DEPLOYMENT.md's openssl commands in ``directory`` (they make ``tls/``), the
+    router's address in place of the guide's example address; the ``tls/`` directory made.
+    (The Nav2 launch tests use it too: standard library only here.)"""
+    root = Path(__file__).resolve().parents[1]
+    (block,) = [b for b in blocks(root / "docs" / "DEPLOYMENT.md", root) if "openssl req" in b.text]
+    script = block.text.replace("IP:192.168.1.20", f"IP:{router_address}")
+    done = subprocess.run(
+        ["bash", "-c", f"set -eo pipefail\n{script}"],
+        cwd=directory,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert done.returncode == 0, done.stderr
+    return directory / "tls"

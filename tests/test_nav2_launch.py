@@ -4,7 +4,9 @@ FollowPath reaches the goal, a host killed mid-goal aborts it with the matching 
 while the servers stay active, a restarted host serves the next goal; through a router, a host
 whose machine vanishes is noticed within a lease and comes back by itself, with the recovery
 figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans cross whole;
-map -> odom moving while driving; and the seed paper's YAML starts its own hosts.
+map -> odom moving while driving; the secure fleet of DEPLOYMENT.md section 6 (TLS, client
+certificates, access control) carries robot1's goal; and the seed paper's YAML starts its own
+hosts.
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per zenoh-cpp backend: NAV2_PYIF_NAV2_SETUP_ZENOHC and

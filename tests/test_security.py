@@ -37,7 +37,7 @@ from nav2_pyif.spec import PlannerSpec
 from nav2_pyif_bench.pki import CertificateAuthority
 
 from tests.conftest import free_port, make_costmap, wait_until
-from tests.docs_blocks import blocks
+from tests.docs_blocks import guide_certificates
 from tests.netns import SUBNET, Link, namespace_link
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS, pose
@@ -93,21 +93,6 @@ def open_with(config: Path, endpoint: str) -> zenoh.Session:
     loaded = zenoh.Config.from_file(str(config))
     loaded.insert_json5("connect/endpoints", json.dumps([endpoint]))
     return zenoh.open(loaded)
-
-
-def guide_certificates(directory: Path, router_address: str) -> None:
-    """Run DEPLOYMENT.md's openssl commands in ``directory`` (they make ``tls/``), the
-    router's address in place of the guide's example address."""
-    (block,) = [b for b in blocks(ROOT / "docs" / "DEPLOYMENT.md", ROOT) if "openssl req" in b.text]
-    script = block.text.replace("IP:192.168.1.20", f"IP:{router_address}")
-    result = subprocess.run(
-        ["bash", "-c", f"set -eo pipefail\n{script}"],
-        cwd=directory,
-        capture_output=True,
-        text=True,
-        timeout=60,
-    )
-    assert result.returncode == 0, result.stderr
 
 
 def make_certificates(tmp_path: Path, router_address: str, maker: str) -> tuple[Path, Path]:
