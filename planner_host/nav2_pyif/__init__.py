@@ -1,8 +1,10 @@
-"""nav2_pyif: write Nav2 controllers and global planners in Python; serve them over Zenoh.
+"""nav2_pyif: write Nav2 controllers, global planners, path smoothers, goal checkers and
+progress checkers in Python; serve them over Zenoh.
 
 The planner API (what a planner imports)::
 
     from nav2_pyif import Controller, GlobalPlanner, Costmap, Plan, GoalChecker
+    from nav2_pyif import Smoother, GoalCheckerPlugin, ProgressCheckerPlugin
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
 """
 
@@ -13,11 +15,13 @@ from nav2_pyif.exceptions import (
     ControllerTFError,
     ControllerTimedOut,
     FailedToMakeProgress,
+    FailedToSmoothPath,
     GoalOccupied,
     GoalOutsideMapBounds,
     InvalidController,
     InvalidPath,
     InvalidPlanner,
+    InvalidSmoother,
     Nav2Error,
     NoValidControl,
     NoValidPathCouldBeFound,
@@ -28,14 +32,20 @@ from nav2_pyif.exceptions import (
     PlannerLoadError,
     PlannerTFError,
     PlannerTimedOut,
+    SmoothedPathInCollision,
+    SmootherException,
+    SmootherTimedOut,
     StartOccupied,
     StartOutsideMapBounds,
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
 from nav2_pyif.params import Parameters, ParamValue
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
+from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.smoother import Smoother
 
 __version__ = "0.1.0"
 
@@ -46,13 +56,16 @@ __all__ = [
     "ControllerTimedOut",
     "Costmap",
     "FailedToMakeProgress",
+    "FailedToSmoothPath",
     "GlobalPlanner",
     "GoalChecker",
+    "GoalCheckerPlugin",
     "GoalOccupied",
     "GoalOutsideMapBounds",
     "InvalidController",
     "InvalidPath",
     "InvalidPlanner",
+    "InvalidSmoother",
     "Nav2Error",
     "NoValidControl",
     "NoValidPathCouldBeFound",
@@ -67,6 +80,11 @@ __all__ = [
     "PlannerPlugin",
     "PlannerTFError",
     "PlannerTimedOut",
+    "ProgressCheckerPlugin",
+    "SmoothedPathInCollision",
+    "Smoother",
+    "SmootherException",
+    "SmootherTimedOut",
     "StartOccupied",
     "StartOutsideMapBounds",
 ]

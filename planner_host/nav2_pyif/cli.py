@@ -82,7 +82,8 @@ def build_parser() -> argparse.ArgumentParser:
     what.add_argument(
         "--planner",
         metavar="MODULE:CLASS",
-        help="a Controller or GlobalPlanner subclass, e.g. my_pkg.ctrl:MyController",
+        help="a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin or "
+        "ProgressCheckerPlugin subclass, e.g. my_pkg.ctrl:MyController",
     )
     what.add_argument(
         "--module", metavar="MODULE", help="module of plain functions (the seed's python_module)"

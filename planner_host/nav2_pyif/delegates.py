@@ -12,6 +12,10 @@ Signatures (the seed's, with the costmap first where the seed passed the occupan
     set_plan(plan: Plan)                      # reads like nav_msgs/Path
     set_speed_limit(speed_limit: float, is_percentage: bool)
     create_plan(costmap: Costmap, start: PoseStamped, goal: PoseStamped) -> Path | Plan | array
+    smooth(costmap: Costmap, path: Plan, max_time: float) -> Path | Plan | array
+    is_goal_reached(pose: Pose, goal: Pose, velocity: Twist) -> bool
+    get_tolerances() -> GoalChecker | None
+    check(pose: PoseStamped) -> bool            # a progress checker
     configure(params: Parameters); activate(); deactivate(); cleanup(); reset(); cancel() -> bool
 """
 
@@ -26,16 +30,30 @@ from nav2_pyif.controller import Controller
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
 from nav2_pyif.loader import import_module
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
+from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.smoother import Smoother
 
 CONTROLLER_ROLES = frozenset(
     {"compute_velocity_commands", "set_plan", "set_speed_limit", "cancel", "reset"}
 )
 PLANNER_ROLES = frozenset({"create_plan"})
+SMOOTHER_ROLES = frozenset({"smooth"})
+GOAL_CHECKER_ROLES = frozenset({"is_goal_reached", "get_tolerances", "reset"})
+PROGRESS_CHECKER_ROLES = frozenset({"check", "reset"})
 LIFECYCLE_ROLES = frozenset({"configure", "activate", "deactivate", "cleanup"})
-ALL_ROLES = CONTROLLER_ROLES | PLANNER_ROLES | LIFECYCLE_ROLES
+#: The role whose function makes a module a plugin of that kind -> the kind's other roles.
+KIND_ROLES = {
+    "compute_velocity_commands": CONTROLLER_ROLES,
+    "create_plan": PLANNER_ROLES,
+    "smooth": SMOOTHER_ROLES,
+    "is_goal_reached": GOAL_CHECKER_ROLES,
+    "check": PROGRESS_CHECKER_ROLES,
+}
+ALL_ROLES = frozenset().union(*KIND_ROLES.values()) | LIFECYCLE_ROLES
 
 #: What Nav2's call does when a role has no function (logged as a warning at load).
 WITHOUT_DELEGATE = {
@@ -45,6 +63,7 @@ WITHOUT_DELEGATE = {
     "set_speed_limit": "Nav2's speed limits (speed filter zones) never reach your functions",
     "cancel": "a cancel is answered at once as done",
     "reset": "Nav2's reset between goals does nothing",
+    "get_tolerances": "getTolerances reports no tolerances (returns false) to the controller",
     "configure": "your functions get no Parameters: the plugin's parameters in the Nav2 YAML "
     "are not read",
     "activate": "Nav2's activate does nothing",
@@ -82,27 +101,31 @@ def parse_delegates(items: list[str]) -> dict[str, str]:
 def delegate_class(
     module_name: str, delegates: Mapping[str, str], *, reload: bool = False, quiet: bool = False
 ) -> type[PlannerPlugin]:
-    """Build a Controller or GlobalPlanner class whose methods call the module's functions:
+    """Build a plugin class (a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin or
+    ProgressCheckerPlugin) whose methods call the module's functions:
     those ``delegates`` maps roles to, or (no map) those named after the roles. Logs a
     warning for each role left without a function, unless ``quiet`` (a worker restart)."""
     check_roles(delegates)
     module = import_module(module_name, reload=reload)
     if not delegates:
         delegates = {r: r for r in sorted(ALL_ROLES) if callable(getattr(module, r, None))}
-        if not {"compute_velocity_commands", "create_plan"} & set(delegates):
+        if not set(KIND_ROLES) & set(delegates):
             raise PlannerLoadError(
-                f"module {module_name!r} defines neither compute_velocity_commands (a "
-                "controller) nor create_plan (a global planner); name your functions after "
-                "the roles or map them with --delegate ROLE=FUNCTION"
+                f"module {module_name!r} defines none of compute_velocity_commands (a "
+                "controller), create_plan (a global planner), smooth (a smoother), "
+                "is_goal_reached (a goal checker) or check (a progress checker); name your "
+                "functions after the roles or map them with --delegate ROLE=FUNCTION"
             )
         if not quiet:
             log.info("%s: functions bound by name: %s", module_name, ", ".join(delegates))
-    is_controller = "compute_velocity_commands" in delegates
-    if is_controller == ("create_plan" in delegates):
+    kinds = sorted(set(KIND_ROLES) & set(delegates))
+    if len(kinds) != 1:
         raise PlannerLoadError(
-            "delegates need exactly one of compute_velocity_commands (a controller) "
-            "or create_plan (a global planner)"
+            "delegates need exactly one of compute_velocity_commands (a controller), "
+            "create_plan (a global planner), smooth (a smoother), is_goal_reached (a goal "
+            f"checker) or check (a progress checker); got {', '.join(kinds) or 'none'}"
         )
+    kind = kinds[0]
     funcs: dict[str, Callable[..., Any]] = {}
     for role, func_name in delegates.items():
         func = getattr(module, func_name, None)
@@ -111,12 +134,25 @@ def delegate_class(
                 f"module {module_name!r} has no function {func_name!r} (delegate for {role})"
             )
         funcs[role] = func
-    roles = (CONTROLLER_ROLES if is_controller else frozenset()) | LIFECYCLE_ROLES
-    for role in [] if quiet else sorted(roles - set(funcs)):
+    roles = (KIND_ROLES[kind] - {kind}) | LIFECYCLE_ROLES
+    # Nav2's checkers are only initialized (= configure): no warning for the other three.
+    lifecycle = {"configure"} if kind in ("is_goal_reached", "check") else LIFECYCLE_ROLES
+    for role in [] if quiet else sorted((roles & (lifecycle | KIND_ROLES[kind])) - set(funcs)):
         log.warning("%s: %s has no delegate: %s", module_name, role, WITHOUT_DELEGATE[role])
-    if is_controller:
-        return _controller_class(module_name, funcs)
-    return _planner_class(module_name, funcs)
+    stray = sorted(set(funcs) - roles - {kind})
+    if stray:
+        raise PlannerLoadError(
+            f"delegates {', '.join(stray)} are not roles of a plugin whose main role is "
+            f"{kind}; its roles: {', '.join(sorted(roles | {kind}))}"
+        )
+    build = {
+        "compute_velocity_commands": _controller_class,
+        "create_plan": _planner_class,
+        "smooth": _smoother_class,
+        "is_goal_reached": _goal_checker_class,
+        "check": _progress_checker_class,
+    }[kind]
+    return build(module_name, funcs)
 
 
 class _DelegateLifecycle(PlannerPlugin):
@@ -180,3 +216,52 @@ def _planner_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> ty
 
     DelegatePlanner.__qualname__ = DelegatePlanner.__name__ = f"Delegates[{module_name}]"
     return DelegatePlanner
+
+
+def _smoother_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[Smoother]:
+    class DelegateSmoother(_DelegateLifecycle, Smoother):
+        _funcs = funcs
+
+        def smooth(self, path: Plan, max_time: float) -> Any:
+            return funcs["smooth"](self.costmap, path, max_time)
+
+    DelegateSmoother.__qualname__ = DelegateSmoother.__name__ = f"Delegates[{module_name}]"
+    return DelegateSmoother
+
+
+def _goal_checker_class(
+    module_name: str, funcs: dict[str, Callable[..., Any]]
+) -> type[GoalCheckerPlugin]:
+    class DelegateGoalChecker(_DelegateLifecycle, GoalCheckerPlugin):
+        _funcs = funcs
+
+        def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+            return funcs["is_goal_reached"](pose, goal, velocity)  # type: ignore[no-any-return]
+
+        def get_tolerances(self) -> GoalChecker | None:
+            return funcs["get_tolerances"]() if "get_tolerances" in funcs else None
+
+        def reset(self) -> None:
+            if "reset" in funcs:
+                funcs["reset"]()
+
+    DelegateGoalChecker.__qualname__ = DelegateGoalChecker.__name__ = f"Delegates[{module_name}]"
+    return DelegateGoalChecker
+
+
+def _progress_checker_class(
+    module_name: str, funcs: dict[str, Callable[..., Any]]
+) -> type[ProgressCheckerPlugin]:
+    class DelegateProgressChecker(_DelegateLifecycle, ProgressCheckerPlugin):
+        _funcs = funcs
+
+        def check(self, pose: Any) -> bool:
+            return funcs["check"](pose)  # type: ignore[no-any-return]
+
+        def reset(self) -> None:
+            if "reset" in funcs:
+                funcs["reset"]()
+
+    DelegateProgressChecker.__qualname__ = f"Delegates[{module_name}]"
+    DelegateProgressChecker.__name__ = DelegateProgressChecker.__qualname__
+    return DelegateProgressChecker

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from nav2_pyif_protocol.constants import ErrorType, PluginType
+from nav2_pyif_protocol.constants import GENERIC_ERROR, TIMED_OUT_ERROR, ErrorType, PluginType
 
 
 class Nav2Error(Exception):
@@ -44,16 +44,39 @@ class PatienceExceeded(ControllerException):
     error_type = ErrorType.PATIENCE_EXCEEDED
 
 
-class InvalidPath(ControllerException):
-    error_type = ErrorType.INVALID_PATH
-
-
 class NoValidControl(ControllerException):
     error_type = ErrorType.NO_VALID_CONTROL
 
 
 class ControllerTimedOut(ControllerException):
     error_type = ErrorType.CONTROLLER_TIMED_OUT
+
+
+class SmootherException(Nav2Error):
+    error_type = ErrorType.SMOOTHER_EXCEPTION
+
+
+class InvalidSmoother(SmootherException):
+    error_type = ErrorType.INVALID_SMOOTHER
+
+
+class SmootherTimedOut(SmootherException):
+    error_type = ErrorType.SMOOTHER_TIMED_OUT
+
+
+class SmoothedPathInCollision(SmootherException):
+    error_type = ErrorType.SMOOTHED_PATH_IN_COLLISION
+
+
+class FailedToSmoothPath(SmootherException):
+    error_type = ErrorType.FAILED_TO_SMOOTH_PATH
+
+
+class InvalidPath(ControllerException, SmootherException):
+    """nav2_core has an InvalidPath among the controller exceptions and another among the
+    smoother exceptions; this one is both, and the plugin's kind picks the C++ class."""
+
+    error_type = ErrorType.INVALID_PATH
 
 
 class PlannerException(Nav2Error):
@@ -122,17 +145,23 @@ NAV2_EXCEPTIONS: dict[str, type[Nav2Error]] = {
         PlannerTFError,
         NoViapointsGiven,
         PlannerCancelled,
+        SmootherException,
+        InvalidSmoother,
+        SmootherTimedOut,
+        SmoothedPathInCollision,
+        FailedToSmoothPath,
     )
 }
 
 
 def generic_error(plugin_type: PluginType) -> type[Nav2Error]:
-    """The catch-all nav2_core exception of a plugin type."""
-    return ControllerException if plugin_type is PluginType.CONTROLLER else PlannerException
+    """The catch-all nav2_core exception of a plugin type (ControllerException for the
+    checkers: Nav2 has none of its own for them)."""
+    return NAV2_EXCEPTIONS[GENERIC_ERROR[plugin_type].value]
 
 
 def timed_out_error(plugin_type: PluginType) -> type[Nav2Error]:
-    return ControllerTimedOut if plugin_type is PluginType.CONTROLLER else PlannerTimedOut
+    return NAV2_EXCEPTIONS[TIMED_OUT_ERROR[plugin_type].value]
 
 
 class PlannerLoadError(Exception):

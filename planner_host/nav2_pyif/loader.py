@@ -52,7 +52,8 @@ def _import_failure(name: str, exc: BaseException) -> str:
 
 
 def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
-    """``pkg.module:Class`` -> the class, checked to be a Controller or GlobalPlanner."""
+    """``pkg.module:Class`` -> the class, checked to be a nav2_pyif plugin (Controller,
+    GlobalPlanner, Smoother, GoalCheckerPlugin or ProgressCheckerPlugin)."""
     module_name, sep, class_name = spec.partition(":")
     if not sep or not module_name or not class_name:
         raise PlannerLoadError(f"planner {spec!r} is not of the form 'package.module:ClassName'")
@@ -72,7 +73,8 @@ def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
         )
     if not (inspect.isclass(cls) and issubclass(cls, PlannerPlugin)):
         raise PlannerLoadError(
-            f"{spec} is not a nav2_pyif Controller or GlobalPlanner subclass "
+            f"{spec} is not a nav2_pyif Controller, GlobalPlanner, Smoother, "
+            f"GoalCheckerPlugin or ProgressCheckerPlugin subclass "
             f"(got {type(cls).__name__})"
         )
     if inspect.isabstract(cls):

@@ -10,11 +10,14 @@ from geometry_msgs.msg import Twist, TwistStamped
 
 from nav2_pyif.exceptions import (
     ControllerException,
+    FailedToSmoothPath,
     Nav2Error,
     NoValidControl,
     NoValidPathCouldBeFound,
     PlannerException,
+    SmootherException,
 )
+from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.messages import twist_to_list
 from nav2_pyif.plan import Plan
 
@@ -43,13 +46,21 @@ def checked_twist_stamped(result: Any, method: str) -> list[float]:
     return values
 
 
-def checked_plan(result: Any, frame_id: str, stamp_ns: int, method: str) -> Plan:
-    """A Plan from what create_plan returned (Plan, nav_msgs/Path or array); finite values."""
+def checked_plan(
+    result: Any,
+    frame_id: str,
+    stamp_ns: int,
+    method: str,
+    errors: tuple[type[Nav2Error], type[Nav2Error]] = (PlannerException, NoValidPathCouldBeFound),
+) -> Plan:
+    """A Plan from what create_plan returned (Plan, nav_msgs/Path or array); finite values.
+    ``errors``: what to raise for a wrong type and for non-finite values."""
+    wrong_type, not_finite = errors
     if isinstance(result, Plan):
         plan = result
     elif isinstance(result, np.ndarray):
         if result.ndim != 2 or result.shape[1] not in (2, 3, 7):
-            raise PlannerException(
+            raise wrong_type(
                 f"{method} returned an array of shape {result.shape}; expected (N, 2) x, y, "
                 f"(N, 3) x, y, yaw or (N, 7) x, y, z, qx, qy, qz, qw"
             )
@@ -57,14 +68,14 @@ def checked_plan(result: Any, frame_id: str, stamp_ns: int, method: str) -> Plan
     elif hasattr(result, "poses") and hasattr(result, "header"):
         plan = Plan.from_msg(result)
     else:
-        raise PlannerException(
+        raise wrong_type(
             f"{method} returned {type(result).__name__}; expected nav_msgs.msg.Path, "
             f"nav2_pyif.Plan or a NumPy array"
         )
     finite = np.isfinite(plan.array)
     if not finite.all():
         rows = int((~finite.all(axis=1)).sum())
-        raise NoValidPathCouldBeFound(
+        raise not_finite(
             f"{method} returned a path with non-finite values in {rows} of {len(plan)} poses"
         )
     return plan
@@ -74,3 +85,52 @@ def checked_bool(result: Any, method: str, error: type[Nav2Error]) -> bool:
     if not isinstance(result, (bool, np.bool_)):
         raise error(f"{method} returned {type(result).__name__}; expected bool")
     return bool(result)
+
+
+def checked_smoothed(result: Any, frame_id: str, stamp_ns: int) -> tuple[Plan, bool]:
+    """What smooth returned (a path, or ``(path, was_completed)``) -> a finite Plan and
+    was_completed; the input path's frame and stamp for an array."""
+    completed: Any = True
+    if isinstance(result, tuple) and len(result) == 2:
+        result, completed = result
+    plan = checked_plan(
+        result, frame_id, stamp_ns, "smooth", (SmootherException, FailedToSmoothPath)
+    )
+    return plan, checked_bool(completed, "smooth's was_completed", SmootherException)
+
+
+def tolerances_to_wire(tolerances: Any) -> dict[str, Any]:
+    """get_tolerances' GoalChecker (or None) -> the reply body, as Nav2's goal checkers fill
+    getTolerances: position x, y = the xy tolerance, the yaw tolerance as a quaternion about
+    z, linear x, y = the translational and angular z = the rotational stopped velocity."""
+    if tolerances is None:
+        return {
+            "available": False,
+            "pose_tolerance": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
+            "velocity_tolerance": [0.0] * 6,
+        }
+    if not isinstance(tolerances, GoalChecker):
+        raise ControllerException(
+            f"get_tolerances returned {type(tolerances).__name__}; expected "
+            "nav2_pyif.GoalChecker or None"
+        )
+    xy, yaw = float(tolerances.xy_goal_tolerance), float(tolerances.yaw_goal_tolerance)
+    trans = float(tolerances.trans_stopped_velocity)
+    rot = float(tolerances.rot_stopped_velocity)
+    values = [xy, yaw, trans, rot]
+    if not all(math.isfinite(v) for v in values):
+        raise ControllerException(f"get_tolerances returned non-finite values: {values}")
+    return {
+        "available": True,
+        "pose_tolerance": [xy, xy, 0.0, 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)],
+        "velocity_tolerance": [trans, trans, 0.0, 0.0, 0.0, rot],
+    }
+
+
+def tolerances_from_wire(body: dict[str, Any]) -> GoalChecker | None:
+    """The inverse of tolerances_to_wire (the client's side)."""
+    if not body["available"]:
+        return None
+    pose, velocity = body["pose_tolerance"], body["velocity_tolerance"]
+    yaw = 2.0 * math.atan2(pose[5], pose[6])
+    return GoalChecker(pose[0], yaw, velocity[0], velocity[5])

@@ -27,23 +27,31 @@ from nav2_pyif_protocol.codec import (
     decode_request,
     encode_reply,
 )
-from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, ErrorType, Op, PluginType
+from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import (
-    InvalidController,
+    NAV2_EXCEPTIONS,
     InvalidPath,
-    InvalidPlanner,
     Nav2Error,
     generic_error,
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
 from nav2_pyif.messages import pose_from_wire, stamp_to_ns, twist_from_list
 from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
-from nav2_pyif.results import checked_bool, checked_plan, checked_twist_stamped
+from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.results import (
+    checked_bool,
+    checked_plan,
+    checked_smoothed,
+    checked_twist_stamped,
+    tolerances_to_wire,
+)
+from nav2_pyif.smoother import Smoother
 
 MAX_TRACEBACK_CHARS = 16_000
 Body = dict[str, Any]
@@ -112,6 +120,10 @@ class PlannerRuntime:
             Op.CANCEL: self._cancel,
             Op.RESET: self._reset,
             Op.CREATE_PLAN: self._create_plan,
+            Op.SMOOTH: self._smooth,
+            Op.IS_GOAL_REACHED: self._is_goal_reached,
+            Op.GET_TOLERANCES: self._get_tolerances,
+            Op.CHECK: self._check,
         }
 
     # --- entry points -------------------------------------------------------------------
@@ -213,12 +225,11 @@ class PlannerRuntime:
             error_type = exc.error_type
             message = str(exc) or type(exc).__name__
         else:
-            invalid = (
-                InvalidController if self.plugin_type is PluginType.CONTROLLER else InvalidPlanner
-            )
             error_type = (
-                invalid if request.op is Op.CONFIGURE else generic_error(self.plugin_type)
-            ).error_type
+                INVALID_ERROR[self.plugin_type]
+                if request.op is Op.CONFIGURE
+                else generic_error(self.plugin_type).error_type
+            )
             message = "".join(traceback.format_exception_only(type(exc), exc)).strip()
         message = f"{self.label}.{request.op.value}: {message}"
         tb = _short_traceback(exc)
@@ -229,7 +240,10 @@ class PlannerRuntime:
     def _configure(self, request: Request) -> Body:
         body = request.body
         if body["plugin_type"] != self.plugin_type.value:
-            invalid = InvalidController if body["plugin_type"] == "controller" else InvalidPlanner
+            try:
+                invalid = NAV2_EXCEPTIONS[INVALID_ERROR[PluginType(body["plugin_type"])].value]
+            except ValueError:
+                invalid = generic_error(self.plugin_type)
             raise invalid(
                 f"the Nav2 plugin is a {body['plugin_type']} but this key serves "
                 f"{self.label}, a {self.plugin_type.value}"
@@ -351,6 +365,41 @@ class PlannerRuntime:
             result, session.context.global_frame, request.body["start"]["stamp_ns"], "create_plan"
         )
         return {"path": plan.to_wire()}
+
+    def _smooth(self, session: Session, request: Request) -> Body:
+        smoother = session.planner
+        assert isinstance(smoother, Smoother)
+        wire = request.body["path"]
+        path = Plan.from_wire(wire)
+        if not np.isfinite(path.array).all():
+            raise InvalidPath("the path sent to smooth has non-finite values")
+        result = smoother.smooth(path, request.body["max_time"])
+        smoothed, completed = checked_smoothed(result, wire["frame_id"], wire["stamp_ns"])
+        return {"path": smoothed.to_wire(), "was_completed": completed}
+
+    def _is_goal_reached(self, session: Session, request: Request) -> Body:
+        checker = session.planner
+        assert isinstance(checker, GoalCheckerPlugin)
+        body, frame = request.body, session.context.global_frame
+        reached = checker.is_goal_reached(
+            pose_from_wire({"frame_id": frame, "stamp_ns": 0, "pose": body["pose"]}).pose,
+            pose_from_wire({"frame_id": frame, "stamp_ns": 0, "pose": body["goal"]}).pose,
+            twist_from_list(body["velocity"]),
+        )
+        return {
+            "reached": checked_bool(reached, "is_goal_reached", generic_error(self.plugin_type))
+        }
+
+    def _get_tolerances(self, session: Session, request: Request) -> Body:
+        checker = session.planner
+        assert isinstance(checker, GoalCheckerPlugin)
+        return tolerances_to_wire(checker.get_tolerances())
+
+    def _check(self, session: Session, request: Request) -> Body:
+        checker = session.planner
+        assert isinstance(checker, ProgressCheckerPlugin)
+        progress = checker.check(pose_from_wire(request.body["pose"]))
+        return {"making_progress": checked_bool(progress, "check", generic_error(self.plugin_type))}
 
 
 def error_reply(

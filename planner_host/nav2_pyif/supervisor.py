@@ -27,7 +27,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import msgpack
-from nav2_pyif_protocol.constants import ErrorType, Op, PluginType
+from nav2_pyif_protocol.constants import TIMED_OUT_ERROR, ErrorType, Op, PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.journal import Journal, Snapshot, replay
@@ -41,7 +41,8 @@ _SPAWN = multiprocessing.get_context("spawn")  # never fork a process that runs 
 
 # Op names as plain strings: Deadlines.of runs on every call, and Enum.value costs an
 # attribute lookup through a descriptor each time.
-_CONFIGURE, _CREATE_PLAN = Op.CONFIGURE.value, Op.CREATE_PLAN.value
+_CONFIGURE = Op.CONFIGURE.value
+_PLAN_OPS = frozenset({Op.CREATE_PLAN.value, Op.SMOOTH.value})  # may take seconds
 _LIFECYCLE_OPS = frozenset(
     op.value for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS)
 )
@@ -53,14 +54,14 @@ class Deadlines:
 
     call: float = 1.0  # control-loop ops
     configure: float = 60.0
-    plan: float = 30.0
+    plan: float = 30.0  # create_plan and smooth
     lifecycle: float = 10.0
     hang_grace: float = 3.0  # then a worker still busy is killed and restarted
 
     def of(self, op: str) -> float:
         if op == _CONFIGURE:
             return self.configure
-        if op == _CREATE_PLAN:
+        if op in _PLAN_OPS:
             return self.plan
         if op in _LIFECYCLE_OPS:
             return self.lifecycle
@@ -283,13 +284,10 @@ class SupervisedPlanner:
                     f"restarted unless it returns within {self.deadlines.hang_grace:g} s"
                 )
                 self._wake.set()
-                timed_out = (
-                    ErrorType.CONTROLLER_TIMED_OUT
-                    if self.plugin_type is PluginType.CONTROLLER
-                    else ErrorType.PLANNER_TIMED_OUT
-                )
                 return self._error(
-                    payload, timed_out, f"{self.label}.{op} overran its {deadline:g} s deadline"
+                    payload,
+                    TIMED_OUT_ERROR[self.plugin_type],
+                    f"{self.label}.{op} overran its {deadline:g} s deadline",
                 )
             self.journal.note(op, payload, reply)
             return reply

@@ -11,6 +11,9 @@ PROTOCOL_VERSION = 1
 class PluginType(str, Enum):
     CONTROLLER = "controller"
     GLOBAL_PLANNER = "global_planner"
+    SMOOTHER = "smoother"  # nav2_core::Smoother (smoother_server)
+    GOAL_CHECKER = "goal_checker"  # nav2_core::GoalChecker (controller_server)
+    PROGRESS_CHECKER = "progress_checker"  # nav2_core::ProgressChecker (controller_server)
 
 
 class Op(str, Enum):
@@ -30,6 +33,13 @@ class Op(str, Enum):
     # global planner
     CREATE_PLAN = "create_plan"
     CANCEL_PLAN = "cancel_plan"
+    # smoother
+    SMOOTH = "smooth"
+    # goal checker (and RESET)
+    IS_GOAL_REACHED = "is_goal_reached"
+    GET_TOLERANCES = "get_tolerances"
+    # progress checker (and RESET)
+    CHECK = "check"
 
 
 LIFECYCLE_OPS = frozenset({Op.CONFIGURE, Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS})
@@ -41,9 +51,18 @@ CONTROLLER_OPS = LIFECYCLE_OPS | {
     Op.RESET,
 }
 GLOBAL_PLANNER_OPS = LIFECYCLE_OPS | {Op.CREATE_PLAN, Op.CANCEL_PLAN}
+SMOOTHER_OPS = LIFECYCLE_OPS | {Op.SMOOTH}
+# Nav2's checkers have no activate/deactivate/cleanup (only initialize and reset); their
+# plugins still send configure (= initialize) and cleanup (when destroyed), and the lifecycle
+# ops are accepted so that one session machinery serves every plugin type.
+GOAL_CHECKER_OPS = LIFECYCLE_OPS | {Op.IS_GOAL_REACHED, Op.GET_TOLERANCES, Op.RESET}
+PROGRESS_CHECKER_OPS = LIFECYCLE_OPS | {Op.CHECK, Op.RESET}
 OPS_BY_PLUGIN = {
     PluginType.CONTROLLER: CONTROLLER_OPS,
     PluginType.GLOBAL_PLANNER: GLOBAL_PLANNER_OPS,
+    PluginType.SMOOTHER: SMOOTHER_OPS,
+    PluginType.GOAL_CHECKER: GOAL_CHECKER_OPS,
+    PluginType.PROGRESS_CHECKER: PROGRESS_CHECKER_OPS,
 }
 
 
@@ -71,6 +90,13 @@ class ErrorType(str, Enum):
     PLANNER_TF_ERROR = "PlannerTFError"
     NO_VIAPOINTS_GIVEN = "NoViapointsGiven"
     PLANNER_CANCELLED = "PlannerCancelled"
+    # nav2_core smoother exceptions (Jazzy+; smoother_exceptions.hpp). InvalidPath is also a
+    # smoother exception there: the plugin's kind decides which C++ class it becomes.
+    SMOOTHER_EXCEPTION = "SmootherException"
+    INVALID_SMOOTHER = "InvalidSmoother"
+    SMOOTHER_TIMED_OUT = "SmootherTimedOut"
+    SMOOTHED_PATH_IN_COLLISION = "SmoothedPathInCollision"
+    FAILED_TO_SMOOTH_PATH = "FailedToSmoothPath"
     # protocol errors: not raised by planners
     SESSION_UNKNOWN = "SessionUnknown"
     VERSION_MISMATCH = "VersionMismatch"
@@ -105,6 +131,49 @@ PLANNER_ERRORS = frozenset(
         ErrorType.PLANNER_CANCELLED,
     }
 )
+SMOOTHER_ERRORS = frozenset(
+    {
+        ErrorType.SMOOTHER_EXCEPTION,
+        ErrorType.INVALID_SMOOTHER,
+        ErrorType.INVALID_PATH,
+        ErrorType.SMOOTHER_TIMED_OUT,
+        ErrorType.SMOOTHED_PATH_IN_COLLISION,
+        ErrorType.FAILED_TO_SMOOTH_PATH,
+    }
+)
+#: The nav2_core exceptions a plugin of each type throws under their own name; any other
+#: error type becomes that plugin type's generic exception (PROTOCOL.md section 7). Nav2 has
+#: no checker exceptions: the checkers run inside controller_server's control loop, whose
+#: ControllerException aborts the FollowPath action.
+ERRORS_BY_PLUGIN = {
+    PluginType.CONTROLLER: CONTROLLER_ERRORS,
+    PluginType.GLOBAL_PLANNER: PLANNER_ERRORS,
+    PluginType.SMOOTHER: SMOOTHER_ERRORS,
+    PluginType.GOAL_CHECKER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
+    PluginType.PROGRESS_CHECKER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
+}
+#: The catch-all exception of each plugin type, its timeout and its configure failure.
+GENERIC_ERROR = {
+    PluginType.CONTROLLER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_EXCEPTION,
+    PluginType.SMOOTHER: ErrorType.SMOOTHER_EXCEPTION,
+    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+}
+TIMED_OUT_ERROR = {
+    PluginType.CONTROLLER: ErrorType.CONTROLLER_TIMED_OUT,
+    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_TIMED_OUT,
+    PluginType.SMOOTHER: ErrorType.SMOOTHER_TIMED_OUT,
+    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
+    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
+}
+INVALID_ERROR = {
+    PluginType.CONTROLLER: ErrorType.INVALID_CONTROLLER,
+    PluginType.GLOBAL_PLANNER: ErrorType.INVALID_PLANNER,
+    PluginType.SMOOTHER: ErrorType.INVALID_SMOOTHER,
+    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+}
 PROTOCOL_ERRORS = frozenset(
     {
         ErrorType.SESSION_UNKNOWN,

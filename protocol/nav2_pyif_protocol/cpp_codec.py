@@ -273,7 +273,8 @@ def ops_hpp() -> str:
         "{",
     ]
     for op in Op:
-        who = " and ".join(p.value for p in PluginType if op in OPS_BY_PLUGIN[p])
+        kinds = [p.value for p in PluginType if op in OPS_BY_PLUGIN[p]]
+        who = "every plugin type" if len(kinds) == len(PluginType) else " and ".join(kinds)
         body.append(f"  {camel(op.value)},  // {who}")
     body += [
         "};",

@@ -156,13 +156,22 @@ REPLY_ENVELOPE: tuple[Field, ...] = (
 )
 
 _CONFIGURE_REQUEST = (
-    _f("plugin_type", STR, "'controller' or 'global_planner'"),
+    _f(
+        "plugin_type",
+        STR,
+        "'controller', 'global_planner', 'smoother', 'goal_checker' or 'progress_checker'",
+    ),
     _f("name", STR, "plugin name in Nav2 (e.g. FollowPath)"),
     _f("node", STR, "name of the Nav2 server node"),
     _f("params", PARAMS, "every parameter under the plugin's namespace, prefix stripped"),
     _f("global_frame", STR, "the costmap's global frame"),
     _f("robot_base_frame", STR, "the robot base frame"),
-    _f("costmap", "Costmap", "the costmap at configure time"),
+    _f(
+        "costmap",
+        "Costmap",
+        "the costmap at configure time (0 x 0 when the plugin has none: a progress checker, "
+        "a smoother before its costmap subscription delivered one)",
+    ),
 )
 
 #: op -> (request body fields, reply body fields)
@@ -224,5 +233,45 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     Op.CANCEL_PLAN: (
         (_f("target_seq", UINT, "seq of the create_plan call to cancel"),),
         (_f("accepted", BOOL, "true when that call was running and is now flagged"),),
+    ),
+    Op.SMOOTH: (
+        (
+            _f("path", "Path", "the path to smooth, in its own frame (Nav2 does not transform it)"),
+            _f(
+                "max_time",
+                FLOAT,
+                "time the smoother may take [s] (SmoothPath's max_smoothing_duration)",
+            ),
+            _f("costmap", "Costmap", "present only when changed since last sent", False),
+        ),
+        (
+            _f("path", "Path", "the smoothed path, same frame; every value finite"),
+            _f("was_completed", BOOL, "smooth()'s return: false when it stopped at max_time"),
+        ),
+    ),
+    Op.IS_GOAL_REACHED: (
+        (
+            _f("pose", FLOAT7, "robot pose (x, y, z, qx, qy, qz, qw), the costmap's global frame"),
+            _f("goal", FLOAT7, "goal pose, same frame"),
+            _f("velocity", FLOAT6, "current velocity in the robot base frame"),
+        ),
+        (_f("reached", BOOL, "the goal is reached"),),
+    ),
+    Op.GET_TOLERANCES: (
+        (),
+        (
+            _f("available", BOOL, "getTolerances' return: false when the checker has none"),
+            _f(
+                "pose_tolerance",
+                FLOAT7,
+                "x, y, z [m], qx, qy, qz, qw: the yaw tolerance as a quaternion",
+                default=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
+            ),
+            _f("velocity_tolerance", FLOAT6, "vx, vy, vz [m/s], wx, wy, wz [rad/s]"),
+        ),
+    ),
+    Op.CHECK: (
+        (_f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),),
+        (_f("making_progress", BOOL, "check()'s return: false = failed to make progress"),),
     ),
 }

@@ -172,6 +172,42 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     big = dict(plan_body, costmap=costmap(1000, 1000, 2))
     yield "create_plan_costmap_1000", req(Op.CREATE_PLAN, big, seq=4), "1000x1000 costmap"
     yield "cancel_plan_request", req(Op.CANCEL_PLAN, {"target_seq": 3}, seq=5), ""
+    smoother_configure = dict(
+        planner_configure,
+        plugin_type="smoother",
+        name="simple_smoother",
+        node="smoother_server",
+        params={"tolerance": 1e-10, "max_its": 1000, "do_refinement": True},
+        costmap=costmap(6, 5, 2),
+    )
+    yield "configure_smoother", req(Op.CONFIGURE, smoother_configure, seq=0), "smoother"
+    checker_configure = dict(
+        configure,
+        plugin_type="progress_checker",
+        name="progress_checker",
+        params={"required_movement_radius": 0.5, "movement_time_allowance": 10.0},
+        costmap={**costmap(1, 1, 0, "odom"), "size_x": 0, "size_y": 0, "data": b""},
+    )
+    yield (
+        "configure_progress_checker",
+        req(Op.CONFIGURE, checker_configure, seq=0),
+        "a plugin without a costmap: 0 x 0",
+    )
+    smooth = {"path": path(7), "max_time": 0.1}
+    yield "smooth_request", req(Op.SMOOTH, smooth, seq=11), "costmap unchanged"
+    yield (
+        "smooth_costmap",
+        req(Op.SMOOTH, dict(smooth, costmap=costmap(20, 10, 3)), seq=12),
+        "costmap changed: attached",
+    )
+    reached = {
+        "pose": _pose7(1.0, 2.0, 0.5),
+        "goal": _pose7(1.1, 2.0, 0.4),
+        "velocity": [0.01, 0.0, 0.0, 0.0, 0.0, -0.02],
+    }
+    yield "is_goal_reached_request", req(Op.IS_GOAL_REACHED, reached, seq=13), ""
+    yield "get_tolerances_request", req(Op.GET_TOLERANCES, {}, seq=14), "empty body"
+    yield "check_request", req(Op.CHECK, {"pose": pose(3.0, -1.0, 1.0, "odom")}, seq=15), ""
 
 
 def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
@@ -220,6 +256,37 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
     yield "create_plan_reply", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(50)}, seq=3), ""
     yield "create_plan_reply_empty", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(0)}), ""
     yield "cancel_plan_reply", Op.CANCEL_PLAN, ok(Op.CANCEL_PLAN, {"accepted": True}, seq=5), ""
+    smoothed = {"path": path(7), "was_completed": True}
+    yield "smooth_reply", Op.SMOOTH, ok(Op.SMOOTH, smoothed, seq=11), ""
+    yield (
+        "smooth_reply_incomplete",
+        Op.SMOOTH,
+        ok(Op.SMOOTH, {"path": path(0), "was_completed": False}, seq=12),
+        "stopped at max_time; empty path",
+    )
+    yield (
+        "is_goal_reached_reply",
+        Op.IS_GOAL_REACHED,
+        ok(Op.IS_GOAL_REACHED, {"reached": True}, seq=13),
+        "",
+    )
+    tolerances = {
+        "available": True,
+        "pose_tolerance": [0.25, 0.25, 0.0, 0.0, 0.0, math.sin(0.125), math.cos(0.125)],
+        "velocity_tolerance": [0.25, 0.25, 0.0, 0.0, 0.0, 0.25],
+    }
+    yield (
+        "get_tolerances_reply",
+        Op.GET_TOLERANCES,
+        ok(Op.GET_TOLERANCES, tolerances, seq=14),
+        "",
+    )
+    yield (
+        "check_reply",
+        Op.CHECK,
+        ok(Op.CHECK, {"making_progress": False}, seq=15),
+        "failed to make progress",
+    )
     errors = [
         (
             "error_no_valid_control",
@@ -261,6 +328,14 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
             "kein Pfad gefunden → 目標に到達できません",
             "",
             "nav2_pyif.exceptions.X",
+        ),
+        (
+            "error_smoothed_path_in_collision",
+            Op.SMOOTH,
+            ErrorType.SMOOTHED_PATH_IN_COLLISION,
+            "smoothed pose 3 is lethal",
+            "",
+            "nav2_pyif.exceptions.SmoothedPathInCollision",
         ),
         (
             "error_unavailable",

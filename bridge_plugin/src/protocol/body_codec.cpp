@@ -282,6 +282,76 @@ void write(Writer & w, const CancelPlanReply & value, const FieldPath &)
   w.boolean(value.accepted);
 }
 
+void write(Writer & w, const SmoothRequest & value, const FieldPath & where)
+{
+  w.map(std::size_t{2} + (value.costmap ? 1u : 0u));
+  w.key("path");
+  write(w, value.path, where.key("path"));
+  w.key("max_time");
+  w.f64(value.max_time);
+  if (value.costmap) {
+    w.key("costmap");
+    write(w, *value.costmap, where.key("costmap"));
+  }
+}
+
+void write(Writer & w, const SmoothReply & value, const FieldPath & where)
+{
+  w.map(2);
+  w.key("path");
+  write(w, value.path, where.key("path"));
+  w.key("was_completed");
+  w.boolean(value.was_completed);
+}
+
+void write(Writer & w, const IsGoalReachedRequest & value, const FieldPath &)
+{
+  w.map(3);
+  w.key("pose");
+  w.floats(value.pose);
+  w.key("goal");
+  w.floats(value.goal);
+  w.key("velocity");
+  w.floats(value.velocity);
+}
+
+void write(Writer & w, const IsGoalReachedReply & value, const FieldPath &)
+{
+  w.map(1);
+  w.key("reached");
+  w.boolean(value.reached);
+}
+
+void write(Writer & w, const GetTolerancesRequest &, const FieldPath &)
+{
+  w.map(0);
+}
+
+void write(Writer & w, const GetTolerancesReply & value, const FieldPath &)
+{
+  w.map(3);
+  w.key("available");
+  w.boolean(value.available);
+  w.key("pose_tolerance");
+  w.floats(value.pose_tolerance);
+  w.key("velocity_tolerance");
+  w.floats(value.velocity_tolerance);
+}
+
+void write(Writer & w, const CheckRequest & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("pose");
+  write(w, value.pose, where.key("pose"));
+}
+
+void write(Writer & w, const CheckReply & value, const FieldPath &)
+{
+  w.map(1);
+  w.key("making_progress");
+  w.boolean(value.making_progress);
+}
+
 void write(Writer & w, const RequestBody & body, const FieldPath & where)
 {
   std::visit([&](const auto & alternative) {write(w, alternative, where);}, body);
@@ -550,6 +620,75 @@ CancelPlanReply read_cancel_plan_reply(const Object & object, const FieldPath & 
   return out;
 }
 
+SmoothRequest read_smooth_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  SmoothRequest out;
+  out.path = m.required("path", read_path);
+  out.max_time = m.required("max_time", read_f64);
+  out.costmap = m.optional("costmap", read_costmap);
+  return out;
+}
+
+SmoothReply read_smooth_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  SmoothReply out;
+  out.path = m.required("path", read_path);
+  out.was_completed = m.required("was_completed", read_bool);
+  return out;
+}
+
+IsGoalReachedRequest read_is_goal_reached_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  IsGoalReachedRequest out;
+  out.pose = m.required("pose", read_f64_array<7>);
+  out.goal = m.required("goal", read_f64_array<7>);
+  out.velocity = m.required("velocity", read_f64_array<6>);
+  return out;
+}
+
+IsGoalReachedReply read_is_goal_reached_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  IsGoalReachedReply out;
+  out.reached = m.required("reached", read_bool);
+  return out;
+}
+
+GetTolerancesRequest read_get_tolerances_request(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return GetTolerancesRequest{};
+}
+
+GetTolerancesReply read_get_tolerances_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  GetTolerancesReply out;
+  out.available = m.required("available", read_bool);
+  out.pose_tolerance = m.required("pose_tolerance", read_f64_array<7>);
+  out.velocity_tolerance = m.required("velocity_tolerance", read_f64_array<6>);
+  return out;
+}
+
+CheckRequest read_check_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CheckRequest out;
+  out.pose = m.required("pose", read_pose_stamped);
+  return out;
+}
+
+CheckReply read_check_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CheckReply out;
+  out.making_progress = m.required("making_progress", read_bool);
+  return out;
+}
+
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where)
 {
   switch (op) {
@@ -577,6 +716,14 @@ RequestBody read_request_body(Op op, const Object & object, const FieldPath & wh
       return read_create_plan_request(object, where);
     case Op::CancelPlan:
       return read_cancel_plan_request(object, where);
+    case Op::Smooth:
+      return read_smooth_request(object, where);
+    case Op::IsGoalReached:
+      return read_is_goal_reached_request(object, where);
+    case Op::GetTolerances:
+      return read_get_tolerances_request(object, where);
+    case Op::Check:
+      return read_check_request(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -608,6 +755,14 @@ ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where)
       return read_create_plan_reply(object, where);
     case Op::CancelPlan:
       return read_cancel_plan_reply(object, where);
+    case Op::Smooth:
+      return read_smooth_reply(object, where);
+    case Op::IsGoalReached:
+      return read_is_goal_reached_reply(object, where);
+    case Op::GetTolerances:
+      return read_get_tolerances_reply(object, where);
+    case Op::Check:
+      return read_check_reply(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -714,6 +869,31 @@ std::size_t payload_size(const CreatePlanReply & value)
 std::size_t payload_size(const CancelPlanRequest &) {return 0;}
 
 std::size_t payload_size(const CancelPlanReply &) {return 0;}
+
+std::size_t payload_size(const SmoothRequest & value)
+{
+  return payload_size(value.path) + (value.costmap ? payload_size((*value.costmap)) : 0);
+}
+
+std::size_t payload_size(const SmoothReply & value)
+{
+  return payload_size(value.path);
+}
+
+std::size_t payload_size(const IsGoalReachedRequest &) {return 0;}
+
+std::size_t payload_size(const IsGoalReachedReply &) {return 0;}
+
+std::size_t payload_size(const GetTolerancesRequest &) {return 0;}
+
+std::size_t payload_size(const GetTolerancesReply &) {return 0;}
+
+std::size_t payload_size(const CheckRequest & value)
+{
+  return payload_size(value.pose);
+}
+
+std::size_t payload_size(const CheckReply &) {return 0;}
 
 std::size_t payload_size(const RequestBody & body)
 {

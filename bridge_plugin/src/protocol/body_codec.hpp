@@ -48,6 +48,14 @@ void write(Writer & w, const CreatePlanRequest & value, const FieldPath & where)
 void write(Writer & w, const CreatePlanReply & value, const FieldPath & where);
 void write(Writer & w, const CancelPlanRequest & value, const FieldPath & where);
 void write(Writer & w, const CancelPlanReply & value, const FieldPath & where);
+void write(Writer & w, const SmoothRequest & value, const FieldPath & where);
+void write(Writer & w, const SmoothReply & value, const FieldPath & where);
+void write(Writer & w, const IsGoalReachedRequest & value, const FieldPath & where);
+void write(Writer & w, const IsGoalReachedReply & value, const FieldPath & where);
+void write(Writer & w, const GetTolerancesRequest & value, const FieldPath & where);
+void write(Writer & w, const GetTolerancesReply & value, const FieldPath & where);
+void write(Writer & w, const CheckRequest & value, const FieldPath & where);
+void write(Writer & w, const CheckReply & value, const FieldPath & where);
 void write(Writer & w, const RequestBody & body, const FieldPath & where);
 void write(Writer & w, const ReplyBody & body, const FieldPath & where);
 
@@ -84,6 +92,14 @@ CreatePlanRequest read_create_plan_request(const Object & object, const FieldPat
 CreatePlanReply read_create_plan_reply(const Object & object, const FieldPath & where);
 CancelPlanRequest read_cancel_plan_request(const Object & object, const FieldPath & where);
 CancelPlanReply read_cancel_plan_reply(const Object & object, const FieldPath & where);
+SmoothRequest read_smooth_request(const Object & object, const FieldPath & where);
+SmoothReply read_smooth_reply(const Object & object, const FieldPath & where);
+IsGoalReachedRequest read_is_goal_reached_request(const Object & object, const FieldPath & where);
+IsGoalReachedReply read_is_goal_reached_reply(const Object & object, const FieldPath & where);
+GetTolerancesRequest read_get_tolerances_request(const Object & object, const FieldPath & where);
+GetTolerancesReply read_get_tolerances_reply(const Object & object, const FieldPath & where);
+CheckRequest read_check_request(const Object & object, const FieldPath & where);
+CheckReply read_check_reply(const Object & object, const FieldPath & where);
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where);
 ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where);
 
@@ -118,6 +134,14 @@ std::size_t payload_size(const CreatePlanRequest & value);
 std::size_t payload_size(const CreatePlanReply & value);
 std::size_t payload_size(const CancelPlanRequest & value);
 std::size_t payload_size(const CancelPlanReply & value);
+std::size_t payload_size(const SmoothRequest & value);
+std::size_t payload_size(const SmoothReply & value);
+std::size_t payload_size(const IsGoalReachedRequest & value);
+std::size_t payload_size(const IsGoalReachedReply & value);
+std::size_t payload_size(const GetTolerancesRequest & value);
+std::size_t payload_size(const GetTolerancesReply & value);
+std::size_t payload_size(const CheckRequest & value);
+std::size_t payload_size(const CheckReply & value);
 std::size_t payload_size(const RequestBody & body);
 std::size_t payload_size(const ReplyBody & body);
 

@@ -6,16 +6,21 @@ liveliness fail-fast, costmap sent only when changed.
 """
 
 from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient
 from nav2_pyif.client.controller import ControllerClient
 from nav2_pyif.client.global_planner import GlobalPlannerClient
 from nav2_pyif.client.hosts import HostWatcher
 from nav2_pyif.client.plugin_client import PluginClient, Timeouts
+from nav2_pyif.client.smoother import SmootherClient
 
 __all__ = [
     "CallRecord",
     "ControllerClient",
     "GlobalPlannerClient",
+    "GoalCheckerClient",
     "HostWatcher",
     "PluginClient",
+    "ProgressCheckerClient",
+    "SmootherClient",
     "Timeouts",
 ]

@@ -28,13 +28,7 @@ from nav2_pyif_protocol.codec import (
     decode_reply,
     encode_request,
 )
-from nav2_pyif_protocol.constants import (
-    CONTROLLER_ERRORS,
-    PLANNER_ERRORS,
-    ErrorType,
-    Op,
-    PluginType,
-)
+from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.client.calls import CallRecord
@@ -60,8 +54,7 @@ class Timeouts:
 def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
     """The exception a plugin raises for an error reply: the named nav2_core class when it
     belongs to this plugin type, the generic one otherwise (protocol errors included)."""
-    own = CONTROLLER_ERRORS if plugin_type is PluginType.CONTROLLER else PLANNER_ERRORS
-    named = {e.value for e in own}
+    named = {e.value for e in ERRORS_BY_PLUGIN[plugin_type]}
     cls = NAV2_EXCEPTIONS[error.type] if error.type in named else generic_error(plugin_type)
     message = error.message if error.type in named else f"[{error.type}] {error.message}"
     return cls(message, remote_traceback=error.traceback, python_type=error.python_type)
@@ -185,9 +178,12 @@ class PluginClient:
             Op.SET_SPEED_LIMIT,
             Op.CANCEL,
             Op.RESET,
+            Op.IS_GOAL_REACHED,
+            Op.GET_TOLERANCES,
+            Op.CHECK,
         ):  # Nav2 calls reset after every goal: it must not stall an abort
             return self.timeouts.call
-        if op is Op.CREATE_PLAN:
+        if op in (Op.CREATE_PLAN, Op.SMOOTH):
             return self.timeouts.plan
         return self.timeouts.lifecycle
 

@@ -22,7 +22,7 @@ namespace nav2_pyif_bridge::protocol
 // --- configure -----------------------------------------------------------------------------------
 struct ConfigureRequest
 {
-  // 'controller' or 'global_planner'
+  // 'controller', 'global_planner', 'smoother', 'goal_checker' or 'progress_checker'
   std::string plugin_type;
   // plugin name in Nav2 (e.g. FollowPath)
   std::string name;
@@ -34,7 +34,8 @@ struct ConfigureRequest
   std::string global_frame;
   // the robot base frame
   std::string robot_base_frame;
-  // the costmap at configure time
+  // the costmap at configure time (0 x 0 when the plugin has none: a progress checker, a smoother
+  // before its costmap subscription delivered one)
   Costmap costmap;
 };
 
@@ -161,15 +162,79 @@ struct CancelPlanReply
   bool accepted{false};
 };
 
+// --- smooth --------------------------------------------------------------------------------------
+struct SmoothRequest
+{
+  // the path to smooth, in its own frame (Nav2 does not transform it)
+  Path path;
+  // time the smoother may take [s] (SmoothPath's max_smoothing_duration)
+  double max_time{0.0};
+  // optional: present only when changed since last sent
+  std::optional<Costmap> costmap;
+};
+
+struct SmoothReply
+{
+  // the smoothed path, same frame; every value finite
+  Path path;
+  // smooth()'s return: false when it stopped at max_time
+  bool was_completed{false};
+};
+
+// --- is_goal_reached -----------------------------------------------------------------------------
+struct IsGoalReachedRequest
+{
+  // robot pose (x, y, z, qx, qy, qz, qw), the costmap's global frame
+  std::array<double, 7> pose{};
+  // goal pose, same frame
+  std::array<double, 7> goal{};
+  // current velocity in the robot base frame
+  std::array<double, 6> velocity{};
+};
+
+struct IsGoalReachedReply
+{
+  // the goal is reached
+  bool reached{false};
+};
+
+// --- get_tolerances ------------------------------------------------------------------------------
+struct GetTolerancesRequest {};
+
+struct GetTolerancesReply
+{
+  // getTolerances' return: false when the checker has none
+  bool available{false};
+  // x, y, z [m], qx, qy, qz, qw: the yaw tolerance as a quaternion
+  std::array<double, 7> pose_tolerance{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  // vx, vy, vz [m/s], wx, wy, wz [rad/s]
+  std::array<double, 6> velocity_tolerance{};
+};
+
+// --- check ---------------------------------------------------------------------------------------
+struct CheckRequest
+{
+  // robot pose, in the costmap's global frame
+  PoseStamped pose;
+};
+
+struct CheckReply
+{
+  // check()'s return: false = failed to make progress
+  bool making_progress{false};
+};
+
 // Alternative i belongs to Op(i).
 using RequestBody = std::variant<ConfigureRequest, ActivateRequest, DeactivateRequest,
   CleanupRequest, SetParametersRequest, SetPlanRequest, ComputeVelocityCommandsRequest,
-  SetSpeedLimitRequest, CancelRequest, ResetRequest, CreatePlanRequest, CancelPlanRequest>;
+  SetSpeedLimitRequest, CancelRequest, ResetRequest, CreatePlanRequest, CancelPlanRequest,
+  SmoothRequest, IsGoalReachedRequest, GetTolerancesRequest, CheckRequest>;
 
 // Alternative i belongs to Op(i).
 using ReplyBody = std::variant<ConfigureReply, ActivateReply, DeactivateReply, CleanupReply,
   SetParametersReply, SetPlanReply, ComputeVelocityCommandsReply, SetSpeedLimitReply, CancelReply,
-  ResetReply, CreatePlanReply, CancelPlanReply>;
+  ResetReply, CreatePlanReply, CancelPlanReply, SmoothReply, IsGoalReachedReply, GetTolerancesReply,
+  CheckReply>;
 
 inline Op op_of(const RequestBody & body) noexcept {return static_cast<Op>(body.index());}
 inline Op op_of(const ReplyBody & body) noexcept {return static_cast<Op>(body.index());}

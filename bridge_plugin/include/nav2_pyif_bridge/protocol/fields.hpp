@@ -195,4 +195,56 @@ void for_each_field(const CancelPlanReply & value, Visit && visit)
   visit("accepted", value.accepted);
 }
 
+template<class Visit>
+void for_each_field(const SmoothRequest & value, Visit && visit)
+{
+  visit("path", value.path);
+  visit("max_time", value.max_time);
+  visit("costmap", value.costmap);
+}
+
+template<class Visit>
+void for_each_field(const SmoothReply & value, Visit && visit)
+{
+  visit("path", value.path);
+  visit("was_completed", value.was_completed);
+}
+
+template<class Visit>
+void for_each_field(const IsGoalReachedRequest & value, Visit && visit)
+{
+  visit("pose", value.pose);
+  visit("goal", value.goal);
+  visit("velocity", value.velocity);
+}
+
+template<class Visit>
+void for_each_field(const IsGoalReachedReply & value, Visit && visit)
+{
+  visit("reached", value.reached);
+}
+
+template<class Visit>
+void for_each_field(const GetTolerancesRequest &, Visit &&) {}
+
+template<class Visit>
+void for_each_field(const GetTolerancesReply & value, Visit && visit)
+{
+  visit("available", value.available);
+  visit("pose_tolerance", value.pose_tolerance);
+  visit("velocity_tolerance", value.velocity_tolerance);
+}
+
+template<class Visit>
+void for_each_field(const CheckRequest & value, Visit && visit)
+{
+  visit("pose", value.pose);
+}
+
+template<class Visit>
+void for_each_field(const CheckReply & value, Visit && visit)
+{
+  visit("making_progress", value.making_progress);
+}
+
 }  // namespace nav2_pyif_bridge::protocol

@@ -19,21 +19,25 @@ namespace nav2_pyif_bridge::protocol
 // (bodies.hpp), so a body's variant index *is* its op.
 enum class Op : std::uint8_t
 {
-  Configure,  // controller and global_planner
-  Activate,  // controller and global_planner
-  Deactivate,  // controller and global_planner
-  Cleanup,  // controller and global_planner
-  SetParameters,  // controller and global_planner
+  Configure,  // every plugin type
+  Activate,  // every plugin type
+  Deactivate,  // every plugin type
+  Cleanup,  // every plugin type
+  SetParameters,  // every plugin type
   SetPlan,  // controller
   ComputeVelocityCommands,  // controller
   SetSpeedLimit,  // controller
   Cancel,  // controller
-  Reset,  // controller
+  Reset,  // controller and goal_checker and progress_checker
   CreatePlan,  // global_planner
   CancelPlan,  // global_planner
+  Smooth,  // smoother
+  IsGoalReached,  // goal_checker
+  GetTolerances,  // goal_checker
+  Check,  // progress_checker
 };
 
-inline constexpr std::size_t kOpCount = 12;
+inline constexpr std::size_t kOpCount = 16;
 
 inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "configure",
@@ -48,6 +52,10 @@ inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "reset",
   "create_plan",
   "cancel_plan",
+  "smooth",
+  "is_goal_reached",
+  "get_tolerances",
+  "check",
 };
 
 constexpr std::string_view op_name(Op op) noexcept

@@ -1,0 +1,59 @@
+"""Clients of Python goal and progress checkers: what nav2_pyif's C++ checker plugins do."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nav2_pyif_protocol.constants import Op, PluginType
+
+from nav2_pyif.client.plugin_client import PluginClient
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.messages import pose_to_wire, twist_to_list
+from nav2_pyif.results import tolerances_from_wire
+
+
+class GoalCheckerClient(PluginClient):
+    plugin_type = PluginType.GOAL_CHECKER
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("name", "goal_checker")
+        kwargs.setdefault("node", "controller_server")
+        super().__init__(*args, **kwargs)
+
+    def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+        """geometry_msgs/Pose pose and goal (the costmap's global frame), Twist velocity."""
+        body = {
+            "pose": _pose7(pose),
+            "goal": _pose7(goal),
+            "velocity": twist_to_list(velocity),
+        }
+        reached: bool = self._call(Op.IS_GOAL_REACHED, body)["reached"]
+        return reached
+
+    def get_tolerances(self) -> GoalChecker | None:
+        return tolerances_from_wire(self._call(Op.GET_TOLERANCES, {}))
+
+    def reset(self) -> None:
+        self._call(Op.RESET, {})
+
+
+class ProgressCheckerClient(PluginClient):
+    plugin_type = PluginType.PROGRESS_CHECKER
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("name", "progress_checker")
+        kwargs.setdefault("node", "controller_server")
+        super().__init__(*args, **kwargs)
+
+    def check(self, pose: Any) -> bool:
+        """geometry_msgs/PoseStamped -> False when the robot failed to make progress."""
+        progress: bool = self._call(Op.CHECK, {"pose": pose_to_wire(pose)})["making_progress"]
+        return progress
+
+    def reset(self) -> None:
+        self._call(Op.RESET, {})
+
+
+def _pose7(pose: Any) -> list[float]:
+    p, q = pose.position, pose.orientation
+    return [p.x, p.y, p.z, q.x, q.y, q.z, q.w]

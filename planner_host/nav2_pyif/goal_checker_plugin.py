@@ -1,0 +1,35 @@
+"""Base class of Python goal checkers: mirrors nav2_core::GoalChecker (controller_server).
+
+Named GoalCheckerPlugin because ``nav2_pyif.GoalChecker`` is the tolerances a controller
+receives (what getTolerances reports), which ``get_tolerances`` here returns.
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from typing import Any, ClassVar
+
+from nav2_pyif_protocol.constants import PluginType
+
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.plugin import PlannerPlugin
+
+
+class GoalCheckerPlugin(PlannerPlugin):
+    """Subclass and implement ``is_goal_reached``; ``configure`` is Nav2's ``initialize``
+    (goal checkers have no activate/deactivate in Nav2)."""
+
+    plugin_type: ClassVar[PluginType] = PluginType.GOAL_CHECKER
+
+    @abstractmethod
+    def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+        """``pose``, ``goal``: geometry_msgs/Pose in the costmap's global frame;
+        ``velocity``: geometry_msgs/Twist in the robot base frame. True when reached."""
+
+    def get_tolerances(self) -> GoalChecker | None:
+        """The tolerances a controller sees through getTolerances; None when this checker
+        has none (getTolerances returns false)."""
+        return None
+
+    def reset(self) -> None:
+        """Forget per-goal state (controller_server calls it for every new goal)."""
