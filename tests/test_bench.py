@@ -97,3 +97,14 @@ def test_host_benchmark_without_a_router_says_where_it_looked() -> None:
     assert result.returncode == 1, result.stderr
     assert "cannot open a Zenoh session" in result.stderr and nowhere in result.stderr
     assert "Traceback" not in result.stderr
+
+
+def test_checkers_benchmark_quick_run_prints_the_three_cycles_side_by_side() -> None:
+    result = bench("checkers", "--quick")
+    assert_prints(
+        result,
+        "controller only (1 query)",
+        "checkers, a query each (3)",
+        "checkers carried (1 query)",
+        "carried cycles: 700 calls answered from carried replies, 0 sent alone",
+    )

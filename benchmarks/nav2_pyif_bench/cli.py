@@ -7,6 +7,7 @@ nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
+nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progress checkers
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from pathlib import Path
 from nav2_pyif.signals import Interrupted, raise_on_signals
 
 from nav2_pyif_bench import (
+    checkers_bench,
     cpp_cycle_bench,
     fleet_bench,
     host_bench,
@@ -67,7 +69,11 @@ def main(argv: list[str] | None = None) -> int:
         "host", help="the control cycle against a planner host already running (--connect)"
     )
     host_bench.add_arguments(host)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host):
+    checkers = sub.add_parser(
+        "checkers", help="the control cycle with Python goal and progress checkers"
+    )
+    checkers_bench.add_arguments(checkers)
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -93,6 +99,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "host":
         results = host_bench.run(args)
         text = host_bench.report(results)
+    elif args.bench == "checkers":
+        results = checkers_bench.run(args)
+        text = checkers_bench.report(results)
     elif args.bench == "tls":
         results = tls_bench.run(protocol_bench.apply_quick_rounds(args))
         text = tls_bench.report(results)

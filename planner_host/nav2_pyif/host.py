@@ -16,14 +16,19 @@ from typing import Any
 
 import msgpack
 import zenoh
+from nav2_pyif_protocol.constants import Op
 from nav2_pyif_protocol.keys import KeySpace
 
+from nav2_pyif.carried import Route, carry_on
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.reload_policy import ReloadPolicy
 from nav2_pyif.service import PlannerService
 from nav2_pyif.spec import PlannerSpec
 
 log = logging.getLogger("nav2_pyif.host")
+
+
+_IS_GOAL_REACHED = Op.IS_GOAL_REACHED.value
 
 
 def new_host_id() -> str:
@@ -47,9 +52,11 @@ class ServedPlanner:
         host_id: str,
         started: float | None = None,
         reload_policy: ReloadPolicy | None = None,
+        route: Route | None = None,
     ) -> None:
         self.keys = keys
         self.runtime = runtime
+        self.route = route  # the host's other keys, for calls carried in a goal check
         self.host_id = host_id
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
@@ -77,7 +84,10 @@ class ServedPlanner:
                 continue
             try:
                 op = str(query.key_expr).rsplit("/", 1)[-1]
-                reply = self.runtime.handle(_payload(query), key_op=op)
+                payload = _payload(query)
+                reply = self.runtime.handle(payload, key_op=op)
+                if op == _IS_GOAL_REACHED and self.route is not None and b"then_" in payload:
+                    reply = carry_on(payload, reply, self.route, self.host_id)
                 query.reply(query.key_expr, reply)
             except Exception:
                 log.exception("%s: could not answer a query", self.keys.prefix)
@@ -242,11 +252,22 @@ class PlannerHost:
         if key_prefix in self.served:
             raise ValueError(f"key {key_prefix!r} is already served by this host")
         served = ServedPlanner(
-            self.session, keys, runtime, self.host_id, self.started, self.reload_policy
+            self.session,
+            keys,
+            runtime,
+            self.host_id,
+            self.started,
+            self.reload_policy,
+            route=self._route,
         )
         self.served[key_prefix] = served
         log.info("serving %s on %s/** (%s)", runtime.label, key_prefix, runtime.plugin_type.value)
         return served
+
+    def _route(self, key_prefix: str, op: str, payload: bytes) -> bytes | None:
+        """A call carried in another key's query, served as if it came on its own key."""
+        served = self.served.get(key_prefix)
+        return None if served is None else served.runtime.handle(payload, key_op=op)
 
     def reload_all(self) -> None:
         """SIGHUP: re-import every planner (fresh worker processes) without dropping a key."""

@@ -254,8 +254,22 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             _f("pose", FLOAT7, "robot pose (x, y, z, qx, qy, qz, qw), the costmap's global frame"),
             _f("goal", FLOAT7, "goal pose, same frame"),
             _f("velocity", FLOAT6, "current velocity in the robot base frame"),
+            # The rest of the control cycle, carried along (PROTOCOL.md section 15).
+            _f("then_check_key", STR, "key prefix of the progress checker to run next", False),
+            _f("then_check", BIN, "an encoded check request for then_check_key", False),
+            _f("then_compute_key", STR, "key prefix of the controller to run next", False),
+            _f(
+                "then_compute",
+                BIN,
+                "an encoded compute_velocity_commands request for then_compute_key",
+                False,
+            ),
         ),
-        (_f("reached", BOOL, "the goal is reached"),),
+        (
+            _f("reached", BOOL, "the goal is reached"),
+            _f("then_check", BIN, "the encoded reply to then_check, when it ran", False),
+            _f("then_compute", BIN, "the encoded reply to then_compute, when it ran", False),
+        ),
     ),
     Op.GET_TOLERANCES: (
         (),

@@ -206,6 +206,20 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         "velocity": [0.01, 0.0, 0.0, 0.0, 0.0, -0.02],
     }
     yield "is_goal_reached_request", req(Op.IS_GOAL_REACHED, reached, seq=13), ""
+    check = encode_request(req(Op.CHECK, {"pose": pose(1.0, 2.0, 0.5, "odom")}, seq=90))
+    compute = encode_request(req(Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=91))
+    carrying = dict(
+        reached,
+        then_check_key="nav2_pyif/robot1/progress_checker",
+        then_check=check,
+        then_compute_key="nav2_pyif/robot1/FollowPath",
+        then_compute=compute,
+    )
+    yield (
+        "is_goal_reached_carrying_the_cycle",
+        req(Op.IS_GOAL_REACHED, carrying, seq=16),
+        "the progress check and the controller's call carried along (encoded requests)",
+    )
     yield "get_tolerances_request", req(Op.GET_TOLERANCES, {}, seq=14), "empty body"
     yield "check_request", req(Op.CHECK, {"pose": pose(3.0, -1.0, 1.0, "odom")}, seq=15), ""
 
@@ -269,6 +283,20 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         Op.IS_GOAL_REACHED,
         ok(Op.IS_GOAL_REACHED, {"reached": True}, seq=13),
         "",
+    )
+    carried = {
+        "reached": False,
+        "then_check": encode_reply(ok(Op.CHECK, {"making_progress": True}, seq=90), Op.CHECK),
+        "then_compute": encode_reply(
+            ok(Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd}, seq=91),
+            Op.COMPUTE_VELOCITY_COMMANDS,
+        ),
+    }
+    yield (
+        "is_goal_reached_reply_carrying_the_cycle",
+        Op.IS_GOAL_REACHED,
+        ok(Op.IS_GOAL_REACHED, carried, seq=16),
+        "not reached: the carried replies (encoded)",
     )
     tolerances = {
         "available": True,

@@ -304,22 +304,47 @@ void write(Writer & w, const SmoothReply & value, const FieldPath & where)
   w.boolean(value.was_completed);
 }
 
-void write(Writer & w, const IsGoalReachedRequest & value, const FieldPath &)
+void write(Writer & w, const IsGoalReachedRequest & value, const FieldPath & where)
 {
-  w.map(3);
+  w.map(std::size_t{3} + (value.then_check_key ? 1u : 0u) + (value.then_check ? 1u : 0u)
+      + (value.then_compute_key ? 1u : 0u) + (value.then_compute ? 1u : 0u));
   w.key("pose");
   w.floats(value.pose);
   w.key("goal");
   w.floats(value.goal);
   w.key("velocity");
   w.floats(value.velocity);
+  if (value.then_check_key) {
+    w.key("then_check_key");
+    w.str(*value.then_check_key, where.key("then_check_key"));
+  }
+  if (value.then_check) {
+    w.key("then_check");
+    w.bin(*value.then_check);
+  }
+  if (value.then_compute_key) {
+    w.key("then_compute_key");
+    w.str(*value.then_compute_key, where.key("then_compute_key"));
+  }
+  if (value.then_compute) {
+    w.key("then_compute");
+    w.bin(*value.then_compute);
+  }
 }
 
 void write(Writer & w, const IsGoalReachedReply & value, const FieldPath &)
 {
-  w.map(1);
+  w.map(std::size_t{1} + (value.then_check ? 1u : 0u) + (value.then_compute ? 1u : 0u));
   w.key("reached");
   w.boolean(value.reached);
+  if (value.then_check) {
+    w.key("then_check");
+    w.bin(*value.then_check);
+  }
+  if (value.then_compute) {
+    w.key("then_compute");
+    w.bin(*value.then_compute);
+  }
 }
 
 void write(Writer & w, const GetTolerancesRequest &, const FieldPath &)
@@ -646,6 +671,10 @@ IsGoalReachedRequest read_is_goal_reached_request(const Object & object, const F
   out.pose = m.required("pose", read_f64_array<7>);
   out.goal = m.required("goal", read_f64_array<7>);
   out.velocity = m.required("velocity", read_f64_array<6>);
+  out.then_check_key = m.optional("then_check_key", read_str);
+  out.then_check = m.optional("then_check", read_bin);
+  out.then_compute_key = m.optional("then_compute_key", read_str);
+  out.then_compute = m.optional("then_compute", read_bin);
   return out;
 }
 
@@ -654,6 +683,8 @@ IsGoalReachedReply read_is_goal_reached_reply(const Object & object, const Field
   const MapReader m(object, where);
   IsGoalReachedReply out;
   out.reached = m.required("reached", read_bool);
+  out.then_check = m.optional("then_check", read_bin);
+  out.then_compute = m.optional("then_compute", read_bin);
   return out;
 }
 
@@ -880,9 +911,19 @@ std::size_t payload_size(const SmoothReply & value)
   return payload_size(value.path);
 }
 
-std::size_t payload_size(const IsGoalReachedRequest &) {return 0;}
+std::size_t payload_size(const IsGoalReachedRequest & value)
+{
+  return (value.then_check_key ? (*value.then_check_key).size() : 0)
+           + (value.then_check ? (*value.then_check).size() : 0)
+           + (value.then_compute_key ? (*value.then_compute_key).size() : 0)
+           + (value.then_compute ? (*value.then_compute).size() : 0);
+}
 
-std::size_t payload_size(const IsGoalReachedReply &) {return 0;}
+std::size_t payload_size(const IsGoalReachedReply & value)
+{
+  return (value.then_check ? (*value.then_check).size() : 0)
+           + (value.then_compute ? (*value.then_compute).size() : 0);
+}
 
 std::size_t payload_size(const GetTolerancesRequest &) {return 0;}
 

@@ -8,6 +8,7 @@ liveliness fail-fast, costmap sent only when changed.
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient
 from nav2_pyif.client.controller import ControllerClient
+from nav2_pyif.client.cycle import ControlCycle
 from nav2_pyif.client.global_planner import GlobalPlannerClient
 from nav2_pyif.client.hosts import HostWatcher
 from nav2_pyif.client.plugin_client import PluginClient, Timeouts
@@ -15,6 +16,7 @@ from nav2_pyif.client.smoother import SmootherClient
 
 __all__ = [
     "CallRecord",
+    "ControlCycle",
     "ControllerClient",
     "GlobalPlannerClient",
     "GoalCheckerClient",

@@ -23,8 +23,8 @@ class GoalCheckerClient(PluginClient):
     def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
         """geometry_msgs/Pose pose and goal (the costmap's global frame), Twist velocity."""
         body = {
-            "pose": _pose7(pose),
-            "goal": _pose7(goal),
+            "pose": pose7(pose),
+            "goal": pose7(goal),
             "velocity": twist_to_list(velocity),
         }
         reached: bool = self._call(Op.IS_GOAL_REACHED, body)["reached"]
@@ -54,6 +54,7 @@ class ProgressCheckerClient(PluginClient):
         self._call(Op.RESET, {})
 
 
-def _pose7(pose: Any) -> list[float]:
+def pose7(pose: Any) -> list[float]:
+    """geometry_msgs/Pose -> x, y, z, qx, qy, qz, qw."""
     p, q = pose.position, pose.orientation
     return [p.x, p.y, p.z, q.x, q.y, q.z, q.w]

@@ -221,6 +221,46 @@ class PluginClient:
         self._seq += 1
         return Request(op=op, sid=self.sid, epoch=self.epoch, seq=self._seq, body=body)
 
+    # --- calls carried in another plugin's query (PROTOCOL.md section 15) -----------------
+    def _prepare(self, op: Op, body: Body, *, with_costmap: bool = False) -> Carried | None:
+        """An encoded request another plugin's query carries to this plugin's host; None
+        when this plugin cannot send one now (not configured)."""
+        if not self.configured:
+            return None
+        version = self.costmap.version
+        send_costmap = with_costmap and version != self._delivered_costmap
+        request = self._next_request(
+            op, dict(body, costmap=self.costmap.to_wire()) if send_costmap else body
+        )
+        return Carried(request, encode_request(request), version, send_costmap)
+
+    def _settle(self, carried: Carried, reply_bytes: bytes | None) -> Body | None:
+        """The body of the reply to a carried request, as ``_call`` would return it; None
+        when it must be sent on its own (it did not run, its host does not serve this key,
+        or does not know this session: the call on its own re-establishes it)."""
+        if reply_bytes is None:
+            return None
+        op = carried.request.op
+        try:
+            reply = decode_reply(reply_bytes, op)
+        except ProtocolError as exc:
+            raise generic_error(self.plugin_type)(
+                f"bad carried reply to {op.value}: {exc}"
+            ) from exc
+        if reply.seq != carried.request.seq:
+            raise generic_error(self.plugin_type)(
+                f"carried reply to {op.value} has seq {reply.seq}, expected {carried.request.seq}"
+            )
+        if reply.ok:
+            if carried.sent_costmap:
+                self._delivered_costmap = carried.costmap_version
+            assert reply.body is not None
+            return reply.body
+        assert reply.error is not None
+        if reply.error.type in (ErrorType.SESSION_UNKNOWN.value, ErrorType.UNAVAILABLE.value):
+            return None
+        raise error_from_reply(reply.error, self.plugin_type)
+
     def _call(
         self,
         op: Op,
@@ -347,6 +387,16 @@ class PluginClient:
         if self.active:
             self._call(Op.ACTIVATE, {}, allow_resync=False)
         self._restore_state()
+
+
+@dataclass(frozen=True)
+class Carried:
+    """A request prepared to travel inside another plugin's query."""
+
+    request: Request
+    payload: bytes
+    costmap_version: int
+    sent_costmap: bool
 
 
 def _first_ok(replies: Any) -> Any:

@@ -190,12 +190,24 @@ struct IsGoalReachedRequest
   std::array<double, 7> goal{};
   // current velocity in the robot base frame
   std::array<double, 6> velocity{};
+  // optional: key prefix of the progress checker to run next
+  std::optional<std::string> then_check_key;
+  // optional: an encoded check request for then_check_key
+  std::optional<std::vector<std::uint8_t>> then_check;
+  // optional: key prefix of the controller to run next
+  std::optional<std::string> then_compute_key;
+  // optional: an encoded compute_velocity_commands request for then_compute_key
+  std::optional<std::vector<std::uint8_t>> then_compute;
 };
 
 struct IsGoalReachedReply
 {
   // the goal is reached
   bool reached{false};
+  // optional: the encoded reply to then_check, when it ran
+  std::optional<std::vector<std::uint8_t>> then_check;
+  // optional: the encoded reply to then_compute, when it ran
+  std::optional<std::vector<std::uint8_t>> then_compute;
 };
 
 // --- get_tolerances ------------------------------------------------------------------------------

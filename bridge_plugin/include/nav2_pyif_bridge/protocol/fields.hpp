@@ -216,12 +216,18 @@ void for_each_field(const IsGoalReachedRequest & value, Visit && visit)
   visit("pose", value.pose);
   visit("goal", value.goal);
   visit("velocity", value.velocity);
+  visit("then_check_key", value.then_check_key);
+  visit("then_check", value.then_check);
+  visit("then_compute_key", value.then_compute_key);
+  visit("then_compute", value.then_compute);
 }
 
 template<class Visit>
 void for_each_field(const IsGoalReachedReply & value, Visit && visit)
 {
   visit("reached", value.reached);
+  visit("then_check", value.then_check);
+  visit("then_compute", value.then_compute);
 }
 
 template<class Visit>

@@ -1,0 +1,122 @@
+"""Nav2's control cycle with Python checkers in one query (PROTOCOL.md section 15).
+
+controller_server (Jazzy) calls, every cycle: the goal checker's ``isGoalReached(pose, goal,
+velocity)``, then (not reached) the progress checker's ``check(pose)``, then (progress) the
+controller's ``computeVelocityCommands(pose, velocity, goal_checker)``; three round trips
+when each is its own query. Here the goal check carries the other two, prepared for the same
+pose and velocity; the host runs them in that order, as far as Nav2 would go. When Nav2 then
+makes those calls with the inputs they were prepared for (it looks the pose up again, which
+is nearly always the same), their carried replies are used: one round trip per cycle. With
+other inputs, or when a carried call did not run (another host, an unknown session), the call
+goes on its own, so the results are always those of Nav2's order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from nav2_pyif_protocol.constants import Op
+
+from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient, pose7
+from nav2_pyif.client.controller import ControllerClient
+from nav2_pyif.client.plugin_client import Carried
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
+
+
+@dataclass
+class _Pending:
+    pose: dict[str, Any]
+    velocity: list[float]
+    tolerances: GoalChecker | None
+    check: tuple[Carried, bytes | None] | None
+    compute: tuple[Carried, bytes | None] | None
+
+
+class ControlCycle:
+    """A controller and its goal (and progress) checker, called in Nav2's order."""
+
+    def __init__(
+        self,
+        controller: ControllerClient,
+        goal_checker: GoalCheckerClient,
+        progress_checker: ProgressCheckerClient | None = None,
+    ) -> None:
+        self.controller = controller
+        self.goal_checker = goal_checker
+        self.progress_checker = progress_checker
+        self._pending: _Pending | None = None
+        self.carried_used = 0  # calls answered from a carried reply
+        self.sent_alone = 0  # calls that went on their own
+
+    def is_goal_reached(
+        self, pose: Any, goal: Any, velocity: Any, tolerances: GoalChecker | None = None
+    ) -> bool:
+        """``pose``: PoseStamped (the robot, global frame), ``goal``: Pose, ``velocity``:
+        Twist; ``tolerances``: what the controller will be given (getTolerances)."""
+        wire_pose, speed = pose_to_wire(pose), twist_to_list(velocity)
+        body: dict[str, Any] = {"pose": pose7(pose.pose), "goal": pose7(goal), "velocity": speed}
+        check = None
+        if self.progress_checker is not None:
+            check = self.progress_checker._prepare(Op.CHECK, {"pose": wire_pose})
+            if check is not None:
+                body["then_check_key"] = self.progress_checker.keys.prefix
+                body["then_check"] = check.payload
+        compute_body: dict[str, Any] = {"pose": wire_pose, "velocity": speed}
+        if tolerances is not None:
+            compute_body["goal_checker"] = tolerances.to_wire()
+        compute = self.controller._prepare(
+            Op.COMPUTE_VELOCITY_COMMANDS, compute_body, with_costmap=True
+        )
+        if compute is not None:
+            body["then_compute_key"] = self.controller.keys.prefix
+            body["then_compute"] = compute.payload
+        self._pending = None
+        reply = self.goal_checker._call(Op.IS_GOAL_REACHED, body)
+        self._pending = _Pending(
+            wire_pose,
+            speed,
+            tolerances,
+            None if check is None else (check, reply.get("then_check")),
+            None if compute is None else (compute, reply.get("then_compute")),
+        )
+        reached: bool = reply["reached"]
+        return reached
+
+    def check(self, pose: Any) -> bool:
+        """The progress checker's ``check(pose)``."""
+        assert self.progress_checker is not None
+        pending = self._pending
+        carried = pending.check if pending and pose_to_wire(pose) == pending.pose else None
+        if pending is not None:
+            pending.check = None
+        body = self.progress_checker._settle(*carried) if carried else None
+        if body is None:
+            self.sent_alone += 1
+            return self.progress_checker.check(pose)
+        self.carried_used += 1
+        progress: bool = body["making_progress"]
+        return progress
+
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, tolerances: GoalChecker | None = None
+    ) -> Any:
+        """The controller's ``compute_velocity_commands``."""
+        pending, self._pending = self._pending, None
+        carried = None
+        if (
+            pending is not None
+            and pose_to_wire(pose) == pending.pose
+            and twist_to_list(velocity) == pending.velocity
+            and tolerances == pending.tolerances
+            and pending.compute is not None
+            and pending.compute[0].costmap_version == self.controller.costmap.version
+        ):
+            carried = pending.compute
+        body = self.controller._settle(*carried) if carried else None
+        if body is None:
+            self.sent_alone += 1
+            return self.controller.compute_velocity_commands(pose, velocity, tolerances)
+        self.carried_used += 1
+        return twist_stamped_from_wire(body["cmd_vel"])
