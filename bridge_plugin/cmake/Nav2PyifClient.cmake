@@ -9,6 +9,7 @@
 find_package(Threads REQUIRED)
 
 add_library(nav2_pyif_client STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/checker_sessions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/clock.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/command_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/controller_session.cpp
@@ -20,6 +21,7 @@ add_library(nav2_pyif_client STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/planner_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/plugin_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/settings.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/smoother_session.cpp
 )
 target_include_directories(nav2_pyif_client PUBLIC ${CMAKE_CURRENT_LIST_DIR}/../include)
 target_link_libraries(nav2_pyif_client PUBLIC nav2_pyif_protocol_codec Threads::Threads)

@@ -28,7 +28,9 @@ inline constexpr client::Nav2Api kNav2Api =
   NAV2_PYIF_JAZZY_API ? client::Nav2Api::Jazzy : client::Nav2Api::Humble;
 
 // Throw the nav2_core exception class `kind` names on this distribution (Humble:
-// PlannerException for everything), with `message`.
-[[noreturn]] void throw_nav2_exception(client::ErrorKind kind, const std::string & message);
+// PlannerException for everything), with `message`. `plugin` picks between nav2_core's two
+// InvalidPath classes (the controller's and the smoother's).
+[[noreturn]] void throw_nav2_exception(
+  client::PluginKind plugin, client::ErrorKind kind, const std::string & message);
 
 }  // namespace nav2_pyif_bridge

@@ -22,12 +22,29 @@
 namespace nav2_pyif_bridge
 {
 
+// Where a plugin's costmap and frames come from: Costmap2DROS (controller, planner, goal
+// checker), the smoother's costmap subscription, or nothing (progress checker).
+struct CostmapBinding
+{
+  std::unique_ptr<client::CostmapSource> source;
+  std::string global_frame;
+  std::string robot_base_frame;
+  double transform_tolerance{0.1};  // [s]
+};
+
+// The binding of a Costmap2DROS: its costmap, frames and transform tolerance.
+CostmapBinding bind_costmap(std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros);
+
 class PluginBridge
 {
 public:
   // Reads and declares the plugin's parameters, starts the local host when asked, opens the
-  // transport. Throws nav2_core InvalidController / InvalidPlanner (Humble: PlannerException)
-  // for bad parameters or a local host that cannot start.
+  // transport. Throws the nav2_core exception of a plugin that cannot be configured
+  // (InvalidController / InvalidPlanner / InvalidSmoother; Humble: PlannerException) for bad
+  // parameters or a local host that cannot start.
+  PluginBridge(
+    const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
+    client::PluginKind kind, CostmapBinding costmap);
   PluginBridge(
     const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
     client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros);
@@ -90,7 +107,8 @@ private:
   client::PluginKind kind_;
   rclcpp::Logger logger_;
   rclcpp::Clock::SharedPtr clock_;
-  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
+  std::string global_frame_;
+  std::string robot_base_frame_;
   double transform_tolerance_{0.1};
 
   client::BridgeSettings settings_;
@@ -98,7 +116,7 @@ private:
   std::string key_;
   std::unique_ptr<client::LocalHost> local_host_;
   std::unique_ptr<ZenohTransport> transport_;
-  std::unique_ptr<CostmapRosSource> costmap_source_;
+  std::unique_ptr<client::CostmapSource> costmap_source_;
 
   client::PluginSession * session_{nullptr};
   rclcpp::node_interfaces::OnSetParametersCallbackHandle::SharedPtr parameter_callback_;

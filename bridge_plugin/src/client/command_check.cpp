@@ -53,14 +53,15 @@ void check_command(const protocol::TwistStamped & cmd, const std::string & host)
   }
 }
 
-void check_path(const protocol::Path & path, const std::string & host)
+void check_path(
+  const protocol::Path & path, const std::string & host, ErrorKind kind, const char * what)
 {
   for (std::size_t i = 0; i < path.poses.size(); ++i) {
     if (!std::isfinite(path.poses[i])) {
       std::ostringstream message;
-      message << "create_plan reply" << host_part(host) << " has a non-finite value in pose "
+      message << what << host_part(host) << " has a non-finite value in pose "
               << i / protocol::kPoseRowSize << " of " << path.pose_count();
-      throw CallError(ErrorKind::NoValidPathCouldBeFound, Cause::Local, message.str());
+      throw CallError(kind, Cause::Local, message.str());
     }
   }
 }

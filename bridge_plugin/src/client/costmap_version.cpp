@@ -57,4 +57,17 @@ CostmapRead read_costmap(
   return read;
 }
 
+CostmapView NoCostmap::view() const
+{
+  CostmapView view;
+  view.frame_id = frame_id_;
+  view.resolution = 1.0;  // any positive value: the host refuses a costmap of resolution 0
+  return view;
+}
+
+CostmapRead NoCostmap::read(std::optional<std::uint64_t> known)
+{
+  return read_costmap(view(), version_, known);
+}
+
 }  // namespace nav2_pyif_bridge::client

@@ -13,14 +13,23 @@ constexpr std::array<std::string_view, kErrorKindCount> kNames = {
   "PlannerException", "InvalidPlanner", "StartOccupied", "GoalOccupied",
   "StartOutsideMapBounds", "GoalOutsideMapBounds", "NoValidPathCouldBeFound",
   "PlannerTimedOut", "PlannerTFError", "NoViapointsGiven", "PlannerCancelled",
+  "SmootherException", "InvalidSmoother", "SmootherTimedOut", "SmoothedPathInCollision",
+  "FailedToSmoothPath",
 };
-static_assert(static_cast<std::size_t>(ErrorKind::PlannerCancelled) + 1 == kErrorKindCount);
+static_assert(static_cast<std::size_t>(ErrorKind::FailedToSmoothPath) + 1 == kErrorKindCount);
 
 }  // namespace
 
 std::string_view plugin_type_name(PluginKind kind) noexcept
 {
-  return kind == PluginKind::Controller ? "controller" : "global_planner";
+  switch (kind) {
+    case PluginKind::Controller: return "controller";
+    case PluginKind::GlobalPlanner: return "global_planner";
+    case PluginKind::Smoother: return "smoother";
+    case PluginKind::GoalChecker: return "goal_checker";
+    case PluginKind::ProgressChecker: return "progress_checker";
+  }
+  return "controller";
 }
 
 std::string_view error_kind_name(ErrorKind kind) noexcept
@@ -40,19 +49,53 @@ std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept
 
 PluginKind plugin_kind_of(ErrorKind kind) noexcept
 {
-  return kind < ErrorKind::PlannerException ? PluginKind::Controller : PluginKind::GlobalPlanner;
+  if (kind < ErrorKind::PlannerException) {
+    return PluginKind::Controller;
+  }
+  return kind < ErrorKind::SmootherException ? PluginKind::GlobalPlanner : PluginKind::Smoother;
+}
+
+bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept
+{
+  switch (plugin) {
+    case PluginKind::Controller:
+    case PluginKind::GlobalPlanner:
+      return plugin_kind_of(kind) == plugin;
+    case PluginKind::Smoother:
+      return kind == ErrorKind::InvalidPath || plugin_kind_of(kind) == PluginKind::Smoother;
+    case PluginKind::GoalChecker:
+    case PluginKind::ProgressChecker:
+      return kind == ErrorKind::ControllerException;
+  }
+  return false;
 }
 
 ErrorKind generic_error(PluginKind kind) noexcept
 {
-  return kind == PluginKind::Controller ? ErrorKind::ControllerException :
-         ErrorKind::PlannerException;
+  switch (kind) {
+    case PluginKind::GlobalPlanner: return ErrorKind::PlannerException;
+    case PluginKind::Smoother: return ErrorKind::SmootherException;
+    default: return ErrorKind::ControllerException;
+  }
 }
 
 ErrorKind timed_out_error(PluginKind kind) noexcept
 {
-  return kind == PluginKind::Controller ? ErrorKind::ControllerTimedOut :
-         ErrorKind::PlannerTimedOut;
+  switch (kind) {
+    case PluginKind::GlobalPlanner: return ErrorKind::PlannerTimedOut;
+    case PluginKind::Smoother: return ErrorKind::SmootherTimedOut;
+    default: return ErrorKind::ControllerTimedOut;
+  }
+}
+
+ErrorKind invalid_error(PluginKind kind) noexcept
+{
+  switch (kind) {
+    case PluginKind::Controller: return ErrorKind::InvalidController;
+    case PluginKind::GlobalPlanner: return ErrorKind::InvalidPlanner;
+    case PluginKind::Smoother: return ErrorKind::InvalidSmoother;
+    default: return ErrorKind::ControllerException;
+  }
 }
 
 ErrorKind for_api(ErrorKind kind, Nav2Api api) noexcept
@@ -84,7 +127,7 @@ CallError error_from_reply(const protocol::Error & error, PluginKind kind)
 {
   CallError::Remote remote{error.type, error.traceback, error.python_type};
   const std::optional<ErrorKind> named = error_kind_from_name(error.type);
-  if (named && plugin_kind_of(*named) == kind) {
+  if (named && belongs_to(*named, kind)) {
     return CallError(*named, Cause::Remote, error.message, std::move(remote));
   }
   return CallError(

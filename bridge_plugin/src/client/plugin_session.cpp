@@ -43,8 +43,12 @@ Duration Timeouts::for_op(proto::Op op) const noexcept
     case proto::Op::SetPlan:
     case proto::Op::SetSpeedLimit:
     case proto::Op::Cancel:
+    case proto::Op::IsGoalReached:  // the checkers: every control cycle
+    case proto::Op::GetTolerances:
+    case proto::Op::Check:
       return call;
     case proto::Op::CreatePlan:
+    case proto::Op::Smooth:
       return plan;
     default:
       return lifecycle;

@@ -1,5 +1,7 @@
 #include "nav2_pyif_bridge/costmap_ros_source.hpp"
 
+#include "nav2_pyif_bridge/plugin_bridge.hpp"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -51,6 +53,16 @@ client::CostmapRead CostmapRosSource::read(std::optional<std::uint64_t> known)
   view.footprint = std::move(footprint);
   view.robot_radius = robot_radius(*costmap_ros_, 0);
   return client::read_costmap(view, version_, known);
+}
+
+CostmapBinding bind_costmap(std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+{
+  CostmapBinding binding;
+  binding.global_frame = costmap_ros->getGlobalFrameID();
+  binding.robot_base_frame = costmap_ros->getBaseFrameID();
+  binding.transform_tolerance = costmap_ros->getTransformTolerance();
+  binding.source = std::make_unique<CostmapRosSource>(std::move(costmap_ros));
+  return binding;
 }
 
 }  // namespace nav2_pyif_bridge

@@ -1,14 +1,19 @@
 #include <string>
 
 #include "nav2_pyif_bridge/nav2_api.hpp"
+#include "nav2_pyif_bridge/smoother_exceptions.hpp"
 
 namespace nav2_pyif_bridge
 {
 
-void throw_nav2_exception(client::ErrorKind kind, const std::string & message)
+void throw_nav2_exception(
+  client::PluginKind plugin, client::ErrorKind kind, const std::string & message)
 {
 #if NAV2_PYIF_JAZZY_API
   using client::ErrorKind;
+  if (plugin == client::PluginKind::Smoother) {
+    throw_smoother_exception(kind, message);
+  }
   switch (kind) {
     case ErrorKind::ControllerException: throw nav2_core::ControllerException(message);
     case ErrorKind::InvalidController: throw nav2_core::InvalidController(message);
@@ -29,9 +34,16 @@ void throw_nav2_exception(client::ErrorKind kind, const std::string & message)
     case ErrorKind::PlannerTFError: throw nav2_core::PlannerTFError(message);
     case ErrorKind::NoViapointsGiven: throw nav2_core::NoViapointsGiven(message);
     case ErrorKind::PlannerCancelled: throw nav2_core::PlannerCancelled(message);
+    case ErrorKind::SmootherException:
+    case ErrorKind::InvalidSmoother:
+    case ErrorKind::SmootherTimedOut:
+    case ErrorKind::SmoothedPathInCollision:
+    case ErrorKind::FailedToSmoothPath:
+      throw_smoother_exception(kind, message);
   }
   throw nav2_core::PlannerException(message);
 #else
+  (void)plugin;
   (void)kind;
   throw nav2_core::PlannerException(message);
 #endif

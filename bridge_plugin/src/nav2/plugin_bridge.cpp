@@ -54,20 +54,24 @@ proto::Params read_parameters(rclcpp_lifecycle::LifecycleNode & node, const std:
   return out;
 }
 
-client::ErrorKind invalid(client::PluginKind kind)
-{
-  return kind == client::PluginKind::Controller ? client::ErrorKind::InvalidController :
-         client::ErrorKind::InvalidPlanner;
-}
-
 }  // namespace
 
 PluginBridge::PluginBridge(
   const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
   client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+: PluginBridge(node, name, kind, bind_costmap(std::move(costmap_ros)))
+{
+}
+
+PluginBridge::PluginBridge(
+  const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
+  client::PluginKind kind, CostmapBinding costmap)
 : node_(node), name_(name), node_name_(node->get_name()), kind_(kind),
   logger_(node->get_logger().get_child(name)), clock_(node->get_clock()),
-  costmap_ros_(std::move(costmap_ros)), transform_tolerance_(costmap_ros_->getTransformTolerance())
+  global_frame_(std::move(costmap.global_frame)),
+  robot_base_frame_(std::move(costmap.robot_base_frame)),
+  transform_tolerance_(costmap.transform_tolerance),
+  costmap_source_(std::move(costmap.source))
 {
   try {
     client::PluginParameters parameters = client::split_parameters(read_parameters(*node, name));
@@ -82,9 +86,9 @@ PluginBridge::PluginBridge(
     transport_ = std::make_unique<ZenohTransport>(zenoh, client::KeySpace(key_), logger());
   } catch (const std::exception & error) {
     RCLCPP_FATAL(logger_, "%s: %s", name_.c_str(), error.what());
-    throw_nav2_exception(client::for_api(invalid(kind_), kNav2Api), name_ + ": " + error.what());
+    throw_nav2_exception(
+      kind_, client::for_api(client::invalid_error(kind_), kNav2Api), name_ + ": " + error.what());
   }
-  costmap_source_ = std::make_unique<CostmapRosSource>(costmap_ros_);
   RCLCPP_INFO(
     logger_, "%s: Python planner on Zenoh key %s (%s, %s%s)", name_.c_str(), key_.c_str(),
     zenoh_backend(), transport_->where().c_str(),
@@ -106,8 +110,8 @@ client::SessionConfig PluginBridge::session_config() const
   config.name = name_;
   config.node = node_name_;
   config.params = forwarded_;
-  config.global_frame = costmap_ros_->getGlobalFrameID();
-  config.robot_base_frame = costmap_ros_->getBaseFrameID();
+  config.global_frame = global_frame_;
+  config.robot_base_frame = robot_base_frame_;
   config.timeouts = settings_.timeouts;
   return config;
 }
@@ -281,7 +285,7 @@ void PluginBridge::fail(const CallError & error) const
   } else {
     RCLCPP_DEBUG(logger_, "%s: %s", name_.c_str(), error.what());
   }
-  throw_nav2_exception(client::for_api(error.kind(), kNav2Api), error.what());
+  throw_nav2_exception(kind_, client::for_api(error.kind(), kNav2Api), error.what());
 }
 
 }  // namespace nav2_pyif_bridge

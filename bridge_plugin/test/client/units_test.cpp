@@ -29,6 +29,9 @@ const std::vector<std::string> kPlannerNames = {
   "PlannerException", "InvalidPlanner", "StartOccupied", "GoalOccupied",
   "StartOutsideMapBounds", "GoalOutsideMapBounds", "NoValidPathCouldBeFound",
   "PlannerTimedOut", "PlannerTFError", "NoViapointsGiven", "PlannerCancelled"};
+const std::vector<std::string> kSmootherNames = {
+  "SmootherException", "InvalidSmoother", "SmootherTimedOut", "SmoothedPathInCollision",
+  "FailedToSmoothPath"};
 
 proto::Error remote(const std::string & type)
 {
@@ -49,7 +52,42 @@ TEST(ErrorMapping, EveryNameOfThePluginsKindIsThrownAsItself)
     EXPECT_EQ(error_kind_name(e.kind()), name);
     EXPECT_EQ(plugin_kind_of(e.kind()), PluginKind::GlobalPlanner);
   }
-  EXPECT_EQ(kControllerNames.size() + kPlannerNames.size(), kErrorKindCount);
+  for (const auto & name : kSmootherNames) {
+    const CallError e = error_from_reply(remote(name), PluginKind::Smoother);
+    EXPECT_EQ(error_kind_name(e.kind()), name);
+    EXPECT_EQ(plugin_kind_of(e.kind()), PluginKind::Smoother);
+  }
+  EXPECT_EQ(
+    kControllerNames.size() + kPlannerNames.size() + kSmootherNames.size(), kErrorKindCount);
+}
+
+TEST(ErrorMapping, InvalidPathIsTheSmoothersTooAndCheckersOnlyThrowControllerException)
+{
+  // nav2_core has an InvalidPath among the smoother exceptions as well: the plugin's kind
+  // picks the C++ class (nav2_exceptions.hpp).
+  EXPECT_EQ(error_from_reply(remote("InvalidPath"), PluginKind::Smoother).kind(),
+    ErrorKind::InvalidPath);
+  for (const auto & name : kControllerNames) {
+    if (name != "InvalidPath") {
+      EXPECT_EQ(error_from_reply(remote(name), PluginKind::Smoother).kind(),
+        ErrorKind::SmootherException) << name;
+    }
+  }
+  for (const auto kind : {PluginKind::GoalChecker, PluginKind::ProgressChecker}) {
+    EXPECT_EQ(error_from_reply(remote("ControllerException"), kind).kind(),
+      ErrorKind::ControllerException);
+    const CallError e = error_from_reply(remote("NoValidControl"), kind);
+    EXPECT_EQ(e.kind(), ErrorKind::ControllerException);
+    EXPECT_EQ(std::string(e.what()), "[NoValidControl] msg");
+    EXPECT_EQ(timed_out_error(kind), ErrorKind::ControllerTimedOut);
+    EXPECT_EQ(invalid_error(kind), ErrorKind::ControllerException);
+  }
+  EXPECT_EQ(generic_error(PluginKind::Smoother), ErrorKind::SmootherException);
+  EXPECT_EQ(timed_out_error(PluginKind::Smoother), ErrorKind::SmootherTimedOut);
+  EXPECT_EQ(invalid_error(PluginKind::Smoother), ErrorKind::InvalidSmoother);
+  EXPECT_EQ(plugin_type_name(PluginKind::Smoother), "smoother");
+  EXPECT_EQ(plugin_type_name(PluginKind::GoalChecker), "goal_checker");
+  EXPECT_EQ(plugin_type_name(PluginKind::ProgressChecker), "progress_checker");
 }
 
 TEST(ErrorMapping, TheOtherKindsNamesAndProtocolErrorsAreGeneric)

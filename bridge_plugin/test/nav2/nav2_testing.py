@@ -145,11 +145,17 @@ SUCCEEDED, ABORTED = 4, 6  # action_msgs/GoalStatus
 SERVERS = ("controller_server", "planner_server")
 
 
-def start_nav2(procs: Processes, params: Path) -> None:
-    """controller_server, planner_server and a lifecycle manager (autostart) with `params`."""
+def start_nav2(procs: Processes, params: Path, servers: tuple[str, ...] = SERVERS) -> None:
+    """Nav2's ``servers`` (controller_server, planner_server, smoother_server: each from its
+    package) and a lifecycle manager (autostart) with `params`."""
     ros = ["--ros-args", "--params-file", str(params)]
-    procs.start("controller_server", [str(find("lib/nav2_controller/controller_server")), *ros])
-    procs.start("planner_server", [str(find("lib/nav2_planner/planner_server")), *ros])
+    packages = {
+        "controller_server": "nav2_controller",
+        "planner_server": "nav2_planner",
+        "smoother_server": "nav2_smoother",
+    }
+    for server in servers:
+        procs.start(server, [str(find(f"lib/{packages[server]}/{server}")), *ros])
     procs.start(
         "lifecycle_manager",
         [
@@ -211,16 +217,20 @@ def bring_up(
     edit_params: Callable[[str], str] = lambda text: text,
     topology: Topology = direct,
     endpoint: str | None = None,
+    servers: tuple[str, ...] = SERVERS,
 ) -> Iterator[dict[str, Any]]:
     """What a launch test drives (a fixture's body): a planner host with ``planners`` (its
     arguments: by default the reference pure pursuit and A* on nav2_pyif/launch_test), the
     simulated robot (``robot_args``), controller_server, planner_server and a lifecycle
     manager with the test's params (through ``edit_params``; the plugins dial ``endpoint``,
-    by default a free one the host listens on), and an rclpy client. Skips, naming what is
+    by default a free one the host listens on), and an rclpy client. ``servers``: the Nav2
+    servers to start (the params' lifecycle manager must name the same). Skips, naming what is
     missing, without Nav2."""
     import pytest
 
     absent = missing()
+    if "smoother_server" in servers and find("lib/nav2_smoother/smoother_server") is None:
+        absent.append("smoother_server")
     if absent:
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
     endpoint, params, procs = prepare(logs, endpoint)
@@ -236,7 +246,7 @@ def bring_up(
 
     start_host()
     procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py"), *robot_args])
-    start_nav2(procs, params)
+    start_nav2(procs, params, servers)
     import rclpy
 
     rclpy.init()
@@ -253,7 +263,7 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
     import rclpy
     from geometry_msgs.msg import PoseStamped
     from lifecycle_msgs.srv import GetState
-    from nav2_msgs.action import ComputePathToPose, FollowPath
+    from nav2_msgs.action import ComputePathToPose, FollowPath, SmoothPath
     from nav_msgs.msg import Odometry
     from rclpy.action import ActionClient
     from rclpy.node import Node
@@ -263,6 +273,7 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             super().__init__("nav2_pyif_launch_test")
             self.plan_client = ActionClient(self, ComputePathToPose, "compute_path_to_pose")
             self.follow_client = ActionClient(self, FollowPath, "follow_path")
+            self.smooth_client = ActionClient(self, SmoothPath, "smooth_path")
             self.pose: tuple[float, float] | None = None
             self.speed = 0.0  # the commanded speed, as the simulated robot reports it
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
@@ -345,12 +356,24 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             assert handle is not None and handle.accepted, "ComputePathToPose not accepted"
             return self.wait(handle.get_result_async(), timeout)
 
-        def follow(self, path: Any) -> Any:
+        def smooth(self, path: Any, smoother: str, timeout: float = 30.0) -> Any:
+            """SmoothPath (smoother_server): the action's result, or None."""
+            assert self.smooth_client.wait_for_server(timeout_sec=10.0)
+            goal = SmoothPath.Goal()
+            goal.path = path
+            goal.smoother_id = smoother
+            goal.max_smoothing_duration.sec = 2
+            goal.check_for_collisions = False
+            handle = self.wait(self.smooth_client.send_goal_async(goal), 10.0)
+            assert handle is not None and handle.accepted, "SmoothPath not accepted"
+            return self.wait(handle.get_result_async(), timeout)
+
+        def follow(self, path: Any, goal_checker: str = "general_goal_checker") -> Any:
             assert self.follow_client.wait_for_server(timeout_sec=10.0)
             goal = FollowPath.Goal()
             goal.path = path
             goal.controller_id = "FollowPath"
-            goal.goal_checker_id = "general_goal_checker"
+            goal.goal_checker_id = goal_checker
             handle = self.wait(self.follow_client.send_goal_async(goal), 10.0)
             assert handle is not None and handle.accepted, "FollowPath not accepted"
             return handle

@@ -14,7 +14,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "nav2_pyif_bridge/protocol/types.hpp"
@@ -72,6 +74,26 @@ public:
   virtual ~CostmapSource() = default;
   // The current version, and a copy of the costmap unless `known` is that version.
   virtual CostmapRead read(std::optional<std::uint64_t> known) = 0;
+};
+
+}  // namespace nav2_pyif_bridge::client
+
+namespace nav2_pyif_bridge::client
+{
+
+// The costmap of a plugin Nav2 gives none (a progress checker), or none yet (a smoother before
+// its costmap subscription received one): 0 x 0 cells, resolution 1 m (PROTOCOL.md section 14).
+class NoCostmap : public CostmapSource
+{
+public:
+  explicit NoCostmap(std::string frame_id = {}) : frame_id_(std::move(frame_id)) {}
+  CostmapRead read(std::optional<std::uint64_t> known) override;
+  // The view read() reports: what a source without a costmap yet observes.
+  CostmapView view() const;
+
+private:
+  std::string frame_id_;
+  CostmapVersion version_;
 };
 
 }  // namespace nav2_pyif_bridge::client

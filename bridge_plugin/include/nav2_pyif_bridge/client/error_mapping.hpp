@@ -15,13 +15,16 @@
 namespace nav2_pyif_bridge::client
 {
 
-enum class PluginKind : std::uint8_t {Controller, GlobalPlanner};
+enum class PluginKind : std::uint8_t
+{Controller, GlobalPlanner, Smoother, GoalChecker, ProgressChecker};
 
-// The wire's configure.plugin_type: "controller" or "global_planner".
+// The wire's configure.plugin_type: "controller", "global_planner", "smoother",
+// "goal_checker" or "progress_checker".
 std::string_view plugin_type_name(PluginKind kind) noexcept;
 
 // Which nav2_core exception classes exist: Humble has only PlannerException (its controllers
-// throw it too); Jazzy and Kilted have the controller and planner classes below.
+// and smoothers throw it too); Jazzy and Kilted have the controller, planner and smoother
+// classes below.
 enum class Nav2Api : std::uint8_t {Humble, Jazzy};
 
 // The nav2_core exception classes of Jazzy / Kilted, by name; the names are also the wire's
@@ -49,19 +52,33 @@ enum class ErrorKind : std::uint8_t
   PlannerTFError,
   NoViapointsGiven,
   PlannerCancelled,
+  // smoother (InvalidPath above is one too: nav2_core has a smoother class of that name)
+  SmootherException,
+  InvalidSmoother,
+  SmootherTimedOut,
+  SmoothedPathInCollision,
+  FailedToSmoothPath,
 };
 
-inline constexpr std::size_t kErrorKindCount = 19;
+inline constexpr std::size_t kErrorKindCount = 24;
 
 std::string_view error_kind_name(ErrorKind kind) noexcept;
 // std::nullopt for a name that is no nav2_core exception (protocol errors included).
 std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept;
-// The plugin type whose exceptions `kind` belongs to.
+// The plugin type whose exceptions `kind` belongs to (InvalidPath: the controller's).
 PluginKind plugin_kind_of(ErrorKind kind) noexcept;
-// ControllerException / PlannerException.
+// Whether a plugin of type `plugin` throws `kind` under its own name: the controller's and the
+// smoother's own classes (InvalidPath for both), the planner's; the checkers have no classes
+// of their own in nav2_core and throw ControllerException only.
+bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept;
+// ControllerException (controller, goal and progress checker) / PlannerException /
+// SmootherException.
 ErrorKind generic_error(PluginKind kind) noexcept;
-// ControllerTimedOut / PlannerTimedOut.
+// ControllerTimedOut / PlannerTimedOut / SmootherTimedOut.
 ErrorKind timed_out_error(PluginKind kind) noexcept;
+// What a plugin throws when it cannot be configured: InvalidController / InvalidPlanner /
+// InvalidSmoother / ControllerException (checkers).
+ErrorKind invalid_error(PluginKind kind) noexcept;
 // The class actually thrown on `api`: `kind` itself on Jazzy, PlannerException on Humble.
 ErrorKind for_api(ErrorKind kind, Nav2Api api) noexcept;
 

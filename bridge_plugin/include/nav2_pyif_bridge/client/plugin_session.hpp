@@ -50,13 +50,14 @@ namespace nav2_pyif_bridge::client
 // How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults).
 struct Timeouts
 {
-  // compute_velocity_commands, set_plan, set_speed_limit, cancel: below the control period.
+  // compute_velocity_commands, set_plan, set_speed_limit, cancel, and the checkers'
+  // is_goal_reached, get_tolerances, check: below the control period.
   Duration call{std::chrono::milliseconds(40)};
   // activate, deactivate, cleanup, set_parameters, reset, cancel_plan.
   Duration lifecycle{std::chrono::seconds(5)};
   // configure: imports, JIT compilation.
   Duration configure{std::chrono::seconds(10)};
-  // create_plan.
+  // create_plan, smooth.
   Duration plan{std::chrono::seconds(5)};
 
   Duration for_op(protocol::Op op) const noexcept;
@@ -187,7 +188,8 @@ private:
   std::optional<std::uint64_t> delivered_costmap_;
 };
 
-// The base of the sessions of one plugin type: ControllerSession, PlannerSession.
+// The base of the sessions of one plugin type: ControllerSession, PlannerSession,
+// SmootherSession, GoalCheckerSession, ProgressCheckerSession.
 template<PluginKind Kind>
 class KindSession : public PluginSession
 {

@@ -1,0 +1,57 @@
+// nav2_pyif_bridge::PyGoalChecker and PyProgressChecker: controller_server's goal and progress
+// checkers answered by Python checkers in a planner host, over Zenoh. Nav2 only initializes
+// checkers: the session is configured at initialize and ends when the checker is destroyed.
+// Each call is one query (the carried cycle of PROTOCOL.md section 15 is the reference
+// client's only).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "geometry_msgs/msg/pose.hpp"
+#include "geometry_msgs/msg/pose_stamped.hpp"
+#include "geometry_msgs/msg/twist.hpp"
+#include "nav2_core/goal_checker.hpp"
+#include "nav2_core/progress_checker.hpp"
+
+#include "nav2_pyif_bridge/bridged_session.hpp"
+#include "nav2_pyif_bridge/client/checker_sessions.hpp"
+
+namespace nav2_pyif_bridge
+{
+
+class PyGoalChecker : public nav2_core::GoalChecker
+{
+public:
+  void initialize(
+    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, const std::string & plugin_name,
+    const std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
+  // Every new goal: the checker's reset, then its tolerances again (they are cached between:
+  // a controller asks for them every cycle, and a parameter change shows from the next goal).
+  void reset() override;
+  bool isGoalReached(
+    const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+    const geometry_msgs::msg::Twist & velocity) override;
+  bool getTolerances(
+    geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance) override;
+
+private:
+  BridgedSession<client::GoalCheckerSession> plugin_;
+  std::optional<protocol::GetTolerancesReply> tolerances_;
+};
+
+class PyProgressChecker : public nav2_core::ProgressChecker
+{
+public:
+  void initialize(
+    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent,
+    const std::string & plugin_name) override;
+  bool check(geometry_msgs::msg::PoseStamped & current_pose) override;
+  void reset() override;
+
+private:
+  BridgedSession<client::ProgressCheckerSession> plugin_;
+};
+
+}  // namespace nav2_pyif_bridge

@@ -1,0 +1,100 @@
+#include "nav2_pyif_bridge/py_checkers.hpp"
+
+#include <array>
+#include <utility>
+
+#include "pluginlib/class_list_macros.hpp"
+
+#include "nav2_pyif_bridge/ros_conversions.hpp"
+
+namespace nav2_pyif_bridge
+{
+namespace
+{
+
+std::array<double, 7> pose7(const geometry_msgs::msg::Pose & pose) noexcept
+{
+  return {pose.position.x, pose.position.y, pose.position.z, pose.orientation.x,
+    pose.orientation.y, pose.orientation.z, pose.orientation.w};
+}
+
+}  // namespace
+
+void PyGoalChecker::initialize(
+  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, const std::string & plugin_name,
+  const std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+{
+  tolerances_.reset();
+  plugin_.start(parent, plugin_name, bind_costmap(costmap_ros));
+}
+
+void PyGoalChecker::reset()
+{
+  plugin_.bridge().forward(
+    [this]() {
+      tolerances_.reset();
+      plugin_.session().reset();
+    });
+}
+
+bool PyGoalChecker::isGoalReached(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      return plugin_.session().is_goal_reached(
+        pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity));
+    });
+}
+
+bool PyGoalChecker::getTolerances(
+  geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      if (!tolerances_) {
+        tolerances_ = plugin_.session().get_tolerances();
+      }
+      const auto & p = tolerances_->pose_tolerance;
+      const auto & v = tolerances_->velocity_tolerance;
+      pose_tolerance.position.x = p[0];
+      pose_tolerance.position.y = p[1];
+      pose_tolerance.position.z = p[2];
+      pose_tolerance.orientation.x = p[3];
+      pose_tolerance.orientation.y = p[4];
+      pose_tolerance.orientation.z = p[5];
+      pose_tolerance.orientation.w = p[6];
+      vel_tolerance.linear.x = v[0];
+      vel_tolerance.linear.y = v[1];
+      vel_tolerance.linear.z = v[2];
+      vel_tolerance.angular.x = v[3];
+      vel_tolerance.angular.y = v[4];
+      vel_tolerance.angular.z = v[5];
+      return tolerances_->available;
+    });
+}
+
+void PyProgressChecker::initialize(
+  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, const std::string & plugin_name)
+{
+  CostmapBinding none;  // Nav2 gives a progress checker no costmap
+  none.source = std::make_unique<client::NoCostmap>();
+  plugin_.start(parent, plugin_name, std::move(none));
+}
+
+bool PyProgressChecker::check(geometry_msgs::msg::PoseStamped & current_pose)
+{
+  return plugin_.bridge().forward(
+    [&]() {return plugin_.session().check(ros::to_wire(current_pose));});
+}
+
+void PyProgressChecker::reset()
+{
+  plugin_.bridge().forward([this]() {plugin_.session().reset();});
+}
+
+}  // namespace nav2_pyif_bridge
+
+PLUGINLIB_EXPORT_CLASS(nav2_pyif_bridge::PyGoalChecker, nav2_core::GoalChecker)
+PLUGINLIB_EXPORT_CLASS(nav2_pyif_bridge::PyProgressChecker, nav2_core::ProgressChecker)

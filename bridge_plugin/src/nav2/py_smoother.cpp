@@ -1,0 +1,74 @@
+#include "nav2_pyif_bridge/py_smoother.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <utility>
+
+#include "pluginlib/class_list_macros.hpp"
+
+#include "nav2_pyif_bridge/costmap_subscriber_source.hpp"
+#include "nav2_pyif_bridge/ros_conversions.hpp"
+
+namespace nav2_pyif_bridge
+{
+
+void PySmoother::configure(
+  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
+  std::shared_ptr<tf2_ros::Buffer>,
+  std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> costmap_sub,
+  std::shared_ptr<nav2_costmap_2d::FootprintSubscriber>)
+{
+  name_ = std::move(name);
+  CostmapBinding costmap;
+  // smoother_server's robot_base_frame; its costmap's frame is not known here (the
+  // subscriber does not say it): paths are smoothed in their own frame.
+  if (auto node = parent.lock(); node && node->has_parameter("robot_base_frame")) {
+    costmap.robot_base_frame = node->get_parameter("robot_base_frame").as_string();
+  }
+  costmap.source = std::make_unique<CostmapSubscriberSource>(std::move(costmap_sub), "");
+  plugin_.start(parent, name_, std::move(costmap));
+}
+
+void PySmoother::cleanup()
+{
+  plugin_.stop();
+}
+
+void PySmoother::activate()
+{
+  plugin_.bridge().lifecycle("activate", [this]() {plugin_.session().activate();});
+}
+
+void PySmoother::deactivate()
+{
+  plugin_.bridge().lifecycle("deactivate", [this]() {plugin_.session().deactivate();});
+}
+
+bool PySmoother::smooth(nav_msgs::msg::Path & path, const rclcpp::Duration & max_time)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      auto & session = plugin_.session();
+      // smoother_server gives the smoother max_time: wait for the host a little longer.
+      client::Timeouts timeouts = session.timeouts();
+      const client::Timeouts configured = timeouts;
+      const auto allowed = std::chrono::duration_cast<client::Duration>(
+        std::chrono::nanoseconds(max_time.nanoseconds()) + std::chrono::seconds(1));
+      timeouts.plan = std::max(timeouts.plan, allowed);
+      session.set_timeouts(timeouts);
+      protocol::SmoothReply reply;
+      try {
+        reply = session.smooth(ros::to_wire(path), max_time.seconds());
+      } catch (...) {
+        session.set_timeouts(configured);
+        throw;
+      }
+      session.set_timeouts(configured);
+      path = ros::to_ros(reply.path, path.header.frame_id, path.header.stamp);
+      return reply.was_completed;
+    });
+}
+
+}  // namespace nav2_pyif_bridge
+
+PLUGINLIB_EXPORT_CLASS(nav2_pyif_bridge::PySmoother, nav2_core::Smoother)
