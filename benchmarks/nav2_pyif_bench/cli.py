@@ -7,6 +7,7 @@ nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
+nav2-pyif-bench hops [--quick]                  one more hop's cost: pipe, Zenoh thread, relay
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from nav2_pyif.signals import Interrupted, raise_on_signals
 from nav2_pyif_bench import (
     cpp_cycle_bench,
     fleet_bench,
+    hop_bench,
     host_bench,
     mppi_bench,
     protocol_bench,
@@ -67,7 +69,9 @@ def main(argv: list[str] | None = None) -> int:
         "host", help="the control cycle against a planner host already running (--connect)"
     )
     host_bench.add_arguments(host)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host):
+    hops = sub.add_parser("hops", help="what one more hop costs: worker pipe, Zenoh thread, relay")
+    hop_bench.add_arguments(hops)
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, hops):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -99,6 +103,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "mppi":
         results = mppi_bench.run(args)
         text = mppi_bench.report(results)
+    elif args.bench == "hops":
+        results = hop_bench.run(hop_bench.apply_quick(args))
+        text = hop_bench.report(results)
     elif args.bench == "fleet":
         results = fleet_bench.run(args)
         text = fleet_bench.report(results)
