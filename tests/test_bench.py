@@ -43,6 +43,19 @@ def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
     )
 
 
+def test_hop_benchmark_quick_run_prints_each_hop_tight_and_at_20_hz() -> None:
+    assert_prints(
+        bench("hops", "--quick"),
+        "pipe to a worker process and back",
+        "FIFO-channel queryable (the host's way)",
+        "callback queryable",
+        "queryable behind a listening peer",
+        "direct by gossip",
+        "(at 20 Hz)",
+        "a worker's own queryable behind a listening host adds",
+    )
+
+
 def test_tls_benchmark_quick_run_prints_tcp_and_tls_side_by_side() -> None:
     assert_prints(
         bench("tls", "--quick"),
@@ -79,7 +92,9 @@ def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
         "nav2_pyif cycle, --isolation none",
         "of which C++ client",
         "rclpy node via rclcpp client",
-        "over bare Zenoh",
+        "at a real control rate (20 Hz",
+        "worker cycle / bare get, median",
+        "worker cycle at 20 Hz, p99 / median",
     )
 
 

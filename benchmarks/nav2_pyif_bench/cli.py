@@ -8,6 +8,7 @@ nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long r
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
 nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progress checkers
+nav2-pyif-bench hops [--quick]                  one more hop's cost: pipe, Zenoh thread, relay
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from nav2_pyif_bench import (
     checkers_bench,
     cpp_cycle_bench,
     fleet_bench,
+    hop_bench,
     host_bench,
     mppi_bench,
     protocol_bench,
@@ -73,7 +75,9 @@ def main(argv: list[str] | None = None) -> int:
         "checkers", help="the control cycle with Python goal and progress checkers"
     )
     checkers_bench.add_arguments(checkers)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers):
+    hops = sub.add_parser("hops", help="what one more hop costs: worker pipe, Zenoh thread, relay")
+    hop_bench.add_arguments(hops)
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers, hops):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -108,6 +112,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "mppi":
         results = mppi_bench.run(args)
         text = mppi_bench.report(results)
+    elif args.bench == "hops":
+        results = hop_bench.run(hop_bench.apply_quick(args))
+        text = hop_bench.report(results)
     elif args.bench == "fleet":
         results = fleet_bench.run(args)
         text = fleet_bench.report(results)

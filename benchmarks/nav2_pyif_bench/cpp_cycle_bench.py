@@ -26,9 +26,10 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
+from nav2_pyif_bench.cycle_targets import cycle_target_lines
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
 from nav2_pyif_bench.protocol_bench import BARE_KEY, INPROC_KEY, KEY, peer_commands, progress
-from nav2_pyif_bench.stats import Summary, cycle_target_lines, header_row
+from nav2_pyif_bench.stats import Summary, header_row
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_BINARY = ROOT / "build" / "cpp_bench" / "nav2_pyif_cycle_bench"
@@ -91,6 +92,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         *("--inproc", f"tcp/127.0.0.1:{inproc_port}", "--inproc-key", INPROC_KEY),
         "--rclcpp",
         *("--rounds", str(args.rounds), "--calls", str(args.calls)),
+        *("--paced-calls", str(args.paced_calls), "--rate", str(args.rate)),
     ]
     script = f"source {shlex.quote(setup)} >/dev/null && exec {shlex.join(command)}"
     with peer_processes(peer_commands(host_port, inproc_port, bare_port), env):
@@ -112,6 +114,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         rows[f"{name}.client"] = [total - query for total, query in pairs]
     return {
         "backend": output["backend"],
+        "rate": args.rate,
         "cycle": {k: asdict(Summary.of_ns(v)) for k, v in rows.items()},
     }
 
@@ -136,11 +139,19 @@ def report(results: dict[str, Any]) -> str:
             c[f"{name}.handler"].row("    of which planner call (compute_ns)"),
         ]
     lines.append(c["rclcpp"].row("rclpy node via rclcpp client (workaround)"))
-    lines += cycle_target_lines(
-        c["bare"].median_us,
-        c["rclcpp"].median_us,
-        {"--isolation none": c["pyif_inproc"].median_us, "worker process": c["pyif"].median_us},
-    )
+    paced = [
+        ("bare", "bare Zenoh get"),
+        ("pyif", "nav2_pyif cycle, worker process"),
+        ("pyif_inproc", "nav2_pyif cycle, --isolation none"),
+        ("rclcpp", "rclpy node via rclcpp client"),
+    ]
+    if "pyif.paced" in c:
+        lines.append(
+            f"  at a real control rate ({results.get('rate', 20):g} Hz, rows spread over "
+            "the period):"
+        )
+        lines += [c[f"{n}.paced"].row(f"  {label}") for n, label in paced if f"{n}.paced" in c]
+    lines += cycle_target_lines(c)
     return "\n".join(lines)
 
 
@@ -153,11 +164,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
     parser.add_argument("--calls", type=int, default=300, help="calls per row and round")
+    parser.add_argument(
+        "--paced-calls",
+        type=int,
+        default=300,
+        help="then this many calls per row at --rate (0: none)",
+    )
+    parser.add_argument("--rate", type=float, default=20.0, help="the paced rows' rate, Hz")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds for the binary")
     parser.add_argument("--quick", action="store_true", help="a short smoke run")
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:
     if args.quick:
-        args.rounds, args.calls = 2, 50
+        args.rounds, args.calls, args.paced_calls = 2, 50, 20
     return args

@@ -7,6 +7,9 @@
 //   pyif         ControllerSession::compute_velocity_commands -> planner-host (worker process)
 //   pyif_inproc  the same -> planner-host --isolation none
 //   rclcpp       nav_msgs/Odometry -> rclpy_node.py -> geometry_msgs/TwistStamped
+// With --paced-calls N, each row but host_floor is then measured again at a real control rate
+// (--rate, 20 Hz: Nav2's default controller_frequency), the rows' calls spread over the period
+// so every call starts from an idle client and host, as in Nav2: rows <row>.paced.
 // The peers are started by `nav2-pyif-bench cpp-cycle`, which reads the samples this prints
 // on stdout as JSON (progress goes to stderr):
 //   {"backend": "...", "rows": {"bare": [ns, ...], "pyif": [...], "pyif.query": [...], ...}}
@@ -19,6 +22,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "pyif_rows.hpp"
@@ -34,7 +38,7 @@ using namespace std::chrono_literals;
 constexpr const char * kUsage =
   "usage: nav2_pyif_cycle_bench [--bare ENDPOINT --bare-key KEY] [--host ENDPOINT --key KEY]\n"
   "         [--inproc ENDPOINT --inproc-key KEY] [--rclcpp] [--rounds N] [--calls N]\n"
-  "         [--warmup N] [--wait SECONDS]\n"
+  "         [--warmup N] [--wait SECONDS] [--paced-calls N] [--rate HZ]\n"
   "  ENDPOINT: where the peer listens (tcp/127.0.0.1:PORT); each row has its own session.\n"
   "  --host also measures host_floor. --rclcpp needs rclpy_node.py on the same ROS domain.\n";
 
@@ -47,6 +51,8 @@ struct Options
   int rounds{10};
   int calls{300};
   int warmup{50};
+  int paced_calls{0};
+  double rate_hz{20.0};
   double wait_s{30.0};
 };
 
@@ -57,7 +63,8 @@ Options parse(int argc, char ** argv)
     {"--bare", &o.bare}, {"--bare-key", &o.bare_key}, {"--host", &o.host}, {"--key", &o.key},
     {"--inproc", &o.inproc}, {"--inproc-key", &o.inproc_key}};
   const std::map<std::string, int *> ints{
-    {"--rounds", &o.rounds}, {"--calls", &o.calls}, {"--warmup", &o.warmup}};
+    {"--rounds", &o.rounds}, {"--calls", &o.calls}, {"--warmup", &o.warmup},
+    {"--paced-calls", &o.paced_calls}};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--rclcpp") {
@@ -74,12 +81,15 @@ Options parse(int argc, char ** argv)
       *n->second = std::stoi(value);
     } else if (arg == "--wait") {
       o.wait_s = std::stod(value);
+    } else if (arg == "--rate") {
+      o.rate_hz = std::stod(value);
     } else {
       throw std::invalid_argument("unknown option " + arg);
     }
   }
-  if (o.rounds < 1 || o.calls < 1 || o.warmup < 0) {
-    throw std::invalid_argument("--rounds and --calls must be >= 1, --warmup >= 0");
+  if (o.rounds < 1 || o.calls < 1 || o.warmup < 0 || o.paced_calls < 0 || !(o.rate_hz > 0)) {
+    throw std::invalid_argument(
+            "--rounds and --calls must be >= 1, --warmup and --paced-calls >= 0, --rate > 0");
   }
   return o;
 }
@@ -130,6 +140,34 @@ Samples interleaved(const std::vector<Row> & rows, const Options & o)
     }
   }
   return samples;
+}
+
+// Each row once per period, the rows' calls evenly spread over it: between two calls of a row
+// its client and peer sleep for a whole period, as a controller server's do between cycles.
+void paced(const std::vector<Row> & rows, const Options & o, Samples & samples)
+{
+  std::vector<const Row *> paced_rows;
+  for (const auto & row : rows) {
+    if (row.name != "host_floor") {
+      paced_rows.push_back(&row);
+    }
+  }
+  if (o.paced_calls == 0 || paced_rows.empty()) {
+    return;
+  }
+  const auto period = std::chrono::duration_cast<BenchClock::duration>(
+    std::chrono::duration<double>(1.0 / o.rate_hz));
+  const auto slot = period / static_cast<int>(paced_rows.size());
+  progress(
+    "control cycle at " + std::to_string(o.rate_hz) + " Hz: " + std::to_string(o.paced_calls) +
+    " calls per row");
+  auto next = BenchClock::now() + period;
+  for (int i = 0; i < o.paced_calls; ++i, next += period) {
+    for (std::size_t k = 0; k < paced_rows.size(); ++k) {
+      std::this_thread::sleep_until(next + slot * static_cast<int>(k));
+      samples[paced_rows[k]->name + ".paced"].push_back(paced_rows[k]->run().total_ns);
+    }
+  }
 }
 
 void print_json(const Samples & samples)
@@ -197,7 +235,8 @@ int run(const Options & o)
   if (rows.empty()) {
     throw std::invalid_argument("no row given");
   }
-  const Samples samples = interleaved(rows, o);
+  Samples samples = interleaved(rows, o);
+  paced(rows, o, samples);
   for (auto * session : {host.get(), inproc.get()}) {
     if (session) {
       session->stop();

@@ -109,6 +109,8 @@ class PlannerRuntime:
         self.label = label or planner_class.__qualname__
         self.log = logger or logging.getLogger("nav2_pyif.host")
         self.sessions: dict[str, Session] = {}
+        # cancel_plan has its own key (handle_cancel), never a call.
+        self._served_ops = OPS_BY_PLUGIN[self.plugin_type] - {Op.CANCEL_PLAN}
         self._handlers: dict[Op, Callable[[Session, Request], Body]] = {
             Op.ACTIVATE: self._activate,
             Op.DEACTIVATE: self._deactivate,
@@ -139,7 +141,7 @@ class PlannerRuntime:
                 ErrorType.BAD_REQUEST,
                 f"request op {request.op.value!r} sent to key of op {key_op!r}",
             )
-        if request.op not in OPS_BY_PLUGIN[self.plugin_type] or request.op is Op.CANCEL_PLAN:
+        if request.op not in self._served_ops:
             return self._error_reply(
                 request.seq,
                 ErrorType.BAD_REQUEST,

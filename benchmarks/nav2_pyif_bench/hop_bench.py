@@ -1,0 +1,185 @@
+"""What one more hop on the control cycle's path costs, by kind of hop (issue 15):
+
+- ``pipe``: two Python processes echoing a 300-byte request over a multiprocessing pipe — the
+  host ↔ worker hop that crash isolation adds to every call;
+- ``channel``: a Zenoh get answered by a queryable read from a FIFO channel by a Python thread
+  (how the planner host and the bare floor answer), ``callback``: answered in Zenoh's own
+  callback thread instead;
+- ``relayed``: the same get answered by a queryable in a second process that reaches the
+  client through a first process's listening session — the route a worker's own Zenoh
+  queryable would take behind a host the plugin connects to. The client is in client mode,
+  as the C++ plugin's zenoh-pico is (and as every other row's client); ``gossip``: the same
+  with a peer client, which learns the second process's own endpoint and connects to it.
+
+Each in a tight loop and at a real control rate (rows spread over the period), with a
+300-byte request like compute_velocity_commands'.
+"""
+
+from __future__ import annotations
+
+import argparse
+import multiprocessing
+import time
+from collections.abc import Callable
+from dataclasses import asdict
+from multiprocessing.connection import Connection
+from typing import Any
+
+import zenoh
+from nav2_pyif.zenoh_config import connect_to
+
+from nav2_pyif_bench.processes import free_port, peer_processes
+from nav2_pyif_bench.protocol_bench import interleaved, progress
+from nav2_pyif_bench.stats import Summary, header_row
+
+REQUEST = b"r" * 300
+ROWS = {
+    "pipe": "pipe to a worker process and back",
+    "channel": "Zenoh get -> FIFO-channel queryable (the host's way)",
+    "callback": "Zenoh get -> callback queryable",
+    "relayed": "Zenoh get -> queryable behind a listening peer",
+    "gossip": "  the same from a peer client (direct by gossip)",
+}
+
+
+def _echo(conn: Connection) -> None:
+    while message := conn.recv_bytes():
+        conn.send_bytes(message)
+
+
+class PipeEcho:
+    def __init__(self) -> None:
+        context = multiprocessing.get_context("spawn")  # as the host starts its workers
+        self.conn, child = context.Pipe()
+        self.process = context.Process(target=_echo, args=(child,), daemon=True)
+        self.process.start()
+        child.close()
+
+    def __call__(self) -> int:
+        start = time.perf_counter_ns()
+        self.conn.send_bytes(REQUEST)
+        self.conn.recv_bytes()
+        return time.perf_counter_ns() - start
+
+    def close(self) -> None:
+        self.conn.send_bytes(b"")
+        self.process.join(5)
+
+
+def _bare(key: str, *where: str) -> list[str]:
+    return ["-m", "nav2_pyif_bench.bare_zenoh", "--key", key, *where]
+
+
+def _open(endpoint: str, mode: str, wait: float = 30.0) -> zenoh.Session:
+    """A session to a peer process that may still be starting."""
+    end = time.monotonic() + wait
+    while True:
+        try:
+            return connect_to([endpoint], mode=mode)
+        except ConnectionError:
+            if time.monotonic() > end:
+                raise
+            time.sleep(0.2)
+
+
+def _timed_get(session: zenoh.Session, key: str) -> int:
+    """Round trip [ns] of one get; raises TimeoutError unless a reply came."""
+    start = time.perf_counter_ns()
+    for reply in session.get(key, payload=REQUEST, timeout=2.0):
+        if reply.ok is not None:
+            return time.perf_counter_ns() - start
+    raise TimeoutError(f"nothing answered {key}")
+
+
+def _answered(session: zenoh.Session, key: str, wait: float = 30.0) -> Callable[[], int]:
+    end = time.monotonic() + wait
+    while True:
+        try:
+            _timed_get(session, key)
+            return lambda: _timed_get(session, key)
+        except TimeoutError:
+            if time.monotonic() > end:
+                raise
+            time.sleep(0.2)
+
+
+def paced(rows: dict[str, Callable[[], int]], calls: int, rate: float) -> dict[str, list[int]]:
+    """Each row once per period, the rows' calls evenly spread over it."""
+    period = 1.0 / rate
+    slot = period / len(rows)
+    samples: dict[str, list[int]] = {name: [] for name in rows}
+    progress(f"at {rate:g} Hz: {calls} calls per row")
+    start = time.monotonic() + period
+    for i in range(calls):
+        for k, (name, row) in enumerate(rows.items()):
+            time.sleep(max(0.0, start + i * period + k * slot - time.monotonic()))
+            samples[name].append(row())
+    return samples
+
+
+def run(args: argparse.Namespace) -> dict[str, Any]:
+    channel, callback, relay = (f"tcp/127.0.0.1:{free_port()}" for _ in range(3))
+    peers = {
+        "channel": _bare("hop/channel", "--listen", channel),
+        "callback": _bare("hop/callback", "--listen", callback, "--callback"),
+        "relay": _bare("hop/relay", "--listen", relay),
+        "relayed": _bare("hop/relayed", "--connect", relay),
+    }
+    pipe = PipeEcho()
+    sessions: list[zenoh.Session] = []
+    try:
+        with peer_processes(peers, {}):
+            progress("waiting for the queryables")
+            # Client mode, as the C++ plugin's zenoh-pico; the last one a peer.
+            for endpoint, mode in ((channel, "client"), (callback, "client"), (relay, "client")):
+                sessions.append(_open(endpoint, mode))
+            sessions.append(_open(relay, "peer"))
+            rows: dict[str, Callable[[], int]] = {
+                "pipe": pipe,
+                "channel": _answered(sessions[0], "hop/channel"),
+                "callback": _answered(sessions[1], "hop/callback"),
+                "relayed": _answered(sessions[2], "hop/relayed"),
+                "gossip": _answered(sessions[3], "hop/relayed"),
+            }
+            tight = interleaved(rows, args.rounds, args.calls, "tight loop")
+            at_rate = paced(rows, args.paced_calls, args.rate)
+    finally:
+        pipe.close()
+        for session in sessions:
+            session.close()
+    return {
+        "rate": args.rate,
+        "tight": {k: asdict(Summary.of_ns(v)) for k, v in tight.items()},
+        "paced": {k: asdict(Summary.of_ns(v)) for k, v in at_rate.items()},
+    }
+
+
+def report(results: dict[str, Any]) -> str:
+    lines = ["one hop, 300-byte request (tight loop)", header_row(52)]
+    for part, title in (("tight", None), ("paced", f"at {results['rate']:g} Hz")):
+        if title:
+            lines += [f"one hop, 300-byte request ({title})", header_row(52)]
+        lines += [Summary(**results[part][k]).row(label, 52) for k, label in ROWS.items()]
+    t = {k: Summary(**v) for k, v in results["tight"].items()}
+    p = {k: Summary(**v) for k, v in results["paced"].items()}
+    lines += [
+        "  a worker's own queryable behind a listening host adds (relayed - channel): "
+        f"{t['relayed'].median_us - t['channel'].median_us:+.1f} µs median tight, "
+        f"{p['relayed'].median_us - p['channel'].median_us:+.1f} µs at the rate; the pipe "
+        f"hop it would replace: {t['pipe'].median_us:.1f} / {p['pipe'].median_us:.1f} µs",
+    ]
+    return "\n".join(lines)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
+    parser.add_argument("--calls", type=int, default=300, help="calls per row and round")
+    parser.add_argument("--paced-calls", type=int, default=200, help="calls per row at --rate")
+    parser.add_argument("--rate", type=float, default=20.0, help="the paced rows' rate, Hz")
+    parser.add_argument("--quick", action="store_true", help="a short smoke run")
+
+
+def apply_quick(args: argparse.Namespace) -> argparse.Namespace:
+    if args.quick:
+        args.rounds, args.calls, args.paced_calls = 2, 50, 10
+    return args
