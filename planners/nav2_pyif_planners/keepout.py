@@ -4,25 +4,15 @@ how a layer's costs combine with the master grid's (Nav2's costmap layer modes).
 from __future__ import annotations
 
 import ast
-from enum import Enum
 
 import numpy as np
 import numpy.typing as npt
+from nav2_pyif.costmap_layer import Combine
+
+__all__ = ["NO_INFORMATION", "Combine", "combine", "parse_polygons", "polygon_mask"]
 
 FloatArray = npt.NDArray[np.float64]
 ByteArray = npt.NDArray[np.uint8]
-
-
-class Combine(str, Enum):
-    """How a layer's window of costs meets the master grid's: nav2_costmap_2d::CostmapLayer's
-    update modes (the C++ layer plugin applies them with those very functions). A layer cell
-    of NO_INFORMATION never changes the master, except in TRUE_OVERWRITE."""
-
-    MAX = "max"  # updateWithMax: where the layer's is higher, or the master's unknown
-    MAX_KEEP_UNKNOWN = "max_keep_unknown"  # updateWithMaxWithoutUnknownOverwrite: only where
-    # the layer's is higher than a known master cost
-    OVERWRITE = "overwrite"  # updateWithOverwrite: the layer's cost, wherever it knows one
-    TRUE_OVERWRITE = "true_overwrite"  # updateWithTrueOverwrite: the layer's, unknown too
 
 
 NO_INFORMATION = 255
