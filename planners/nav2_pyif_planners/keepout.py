@@ -41,14 +41,23 @@ def polygon_mask(
     shape: tuple[int, int],
 ) -> npt.NDArray[np.bool_]:
     """(rows, cols) mask of the cells whose centres lie inside any polygon (even-odd rule);
-    the window's cell (0, 0) has its corner at ``origin`` (world metres)."""
+    the window's cell (0, 0) has its corner at ``origin`` (world metres). Each polygon is
+    tested only on the cells of its bounding box: a 400 x 400 window with a few small zones
+    costs what their boxes cost."""
     rows, cols = shape
-    cx = origin[0] + (np.arange(cols) + 0.5) * resolution
-    cy = origin[1] + (np.arange(rows) + 0.5) * resolution
-    px, py = np.meshgrid(cx, cy)
     mask = np.zeros(shape, dtype=bool)
     for polygon in polygons:
-        inside = np.zeros(shape, dtype=bool)
+        (x_lo, y_lo), (x_hi, y_hi) = polygon.min(axis=0), polygon.max(axis=0)
+        c0 = max(0, int(np.floor((x_lo - origin[0]) / resolution - 0.5)))
+        c1 = min(cols, int(np.ceil((x_hi - origin[0]) / resolution + 0.5)))
+        r0 = max(0, int(np.floor((y_lo - origin[1]) / resolution - 0.5)))
+        r1 = min(rows, int(np.ceil((y_hi - origin[1]) / resolution + 0.5)))
+        if c0 >= c1 or r0 >= r1:
+            continue  # the polygon misses the window
+        cx = origin[0] + (np.arange(c0, c1) + 0.5) * resolution
+        cy = origin[1] + (np.arange(r0, r1) + 0.5) * resolution
+        px, py = np.meshgrid(cx, cy)
+        inside = np.zeros(px.shape, dtype=bool)
         x0, y0 = polygon[:, 0], polygon[:, 1]
         x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
         for ax, ay, bx, by in zip(x0, y0, x1, y1, strict=True):
@@ -57,7 +66,7 @@ def polygon_mask(
             crosses = (ay > py) != (by > py)
             at_x = ax + (py - ay) * (bx - ax) / (by - ay)
             inside ^= crosses & (px < at_x)
-        mask |= inside
+        mask[r0:r1, c0:c1] |= inside
     return mask
 
 
