@@ -123,3 +123,12 @@ def test_checkers_benchmark_quick_run_prints_the_three_cycles_side_by_side() -> 
         "checkers carried (1 query)",
         "carried cycles: 700 calls answered from carried replies, 0 sent alone",
     )
+
+
+def test_layer_benchmark_quick_run_prints_both_windows() -> None:
+    assert_prints(
+        bench("layer", "--quick"),
+        "400 x 400 window (whole grid)",
+        "60 x 60 window (3 m x 3 m)",
+        "of the 200 ms update period at p99",
+    )

@@ -104,3 +104,16 @@ def test_combine_modes_as_nav2s_costmap_layer() -> None:
     assert combine(master, layer, Combine.TRUE_OVERWRITE).tolist() == [[50, 50, 50, NO_INFORMATION]]
     with pytest.raises(ValueError, match="does not match"):
         combine(master, layer[:, :2], Combine.MAX)
+
+
+def test_a_sub_window_sees_exactly_the_cells_of_the_whole_grid() -> None:
+    """Each polygon is tested only within its bounding box: clipping it to any window gives
+    the same cells as the whole grid has there."""
+    rng = np.random.default_rng(7)
+    for _ in range(50):
+        polygons = [rng.uniform(-3.0, 3.0, (int(rng.integers(3, 7)), 2)) for _ in range(3)]
+        whole = polygon_mask(polygons, origin=(-3.0, -3.0), resolution=0.1, shape=(60, 60))
+        r0, c0 = (int(v) for v in rng.integers(0, 40, 2))
+        corner = (-3.0 + c0 * 0.1, -3.0 + r0 * 0.1)
+        window = polygon_mask(polygons, origin=corner, resolution=0.1, shape=(20, 17))
+        assert (window == whole[r0 : r0 + 20, c0 : c0 + 17]).all()

@@ -70,15 +70,15 @@ def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
             2,
             "module 'seed_delegates' defines none of compute_velocity_commands (a controller), "
             "create_plan (a global planner), smooth (a smoother), is_goal_reached (a goal "
-            "checker) or check (a progress checker)",
+            "checker), check (a progress checker) or update_costs (a costmap layer)",
         ),
         (
             ["--key", "k/a", "--module", "seed_delegates", "--delegate", "compute_velocity=c"],
             2,
             "unknown delegate role 'compute_velocity' (did you mean compute_velocity_commands?)"
             "; roles: activate, cancel, check, cleanup, compute_velocity_commands, configure, "
-            "create_plan, deactivate, get_tolerances, is_goal_reached, reset, set_plan, "
-            "set_speed_limit, smooth",
+            "create_plan, deactivate, get_tolerances, is_goal_reached, match_size, reset, "
+            "set_plan, set_speed_limit, smooth, update_bounds, update_costs",
         ),
         (
             [

@@ -9,6 +9,7 @@ nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
 nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progress checkers
 nav2-pyif-bench hops [--quick]                  one more hop's cost: pipe, Zenoh thread, relay
+nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from nav2_pyif_bench import (
     fleet_bench,
     hop_bench,
     host_bench,
+    layer_bench,
     mppi_bench,
     protocol_bench,
     reliability_bench,
@@ -77,7 +79,9 @@ def main(argv: list[str] | None = None) -> int:
     checkers_bench.add_arguments(checkers)
     hops = sub.add_parser("hops", help="what one more hop costs: worker pipe, Zenoh thread, relay")
     hop_bench.add_arguments(hops)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers, hops):
+    layer = sub.add_parser("layer", help="a Python costmap layer on a 400 x 400 grid at 5 Hz")
+    layer_bench.add_arguments(layer)
+    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers, hops, layer):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -106,6 +110,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "checkers":
         results = checkers_bench.run(args)
         text = checkers_bench.report(results)
+    elif args.bench == "layer":
+        results = layer_bench.run(args)
+        text = layer_bench.report(results)
     elif args.bench == "tls":
         results = tls_bench.run(protocol_bench.apply_quick_rounds(args))
         text = tls_bench.report(results)

@@ -1,15 +1,16 @@
-"""nav2_pyif: write Nav2 controllers, global planners, path smoothers, goal checkers and
-progress checkers in Python; serve them over Zenoh.
+"""nav2_pyif: write Nav2 controllers, global planners, path smoothers, goal checkers,
+progress checkers and costmap layers in Python; serve them over Zenoh.
 
 The planner API (what a planner imports)::
 
     from nav2_pyif import Controller, GlobalPlanner, Costmap, Plan, GoalChecker
-    from nav2_pyif import Smoother, GoalCheckerPlugin, ProgressCheckerPlugin
+    from nav2_pyif import Smoother, GoalCheckerPlugin, ProgressCheckerPlugin, CostmapLayer
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
 """
 
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap_layer import Combine, CostmapLayer, LayerWindow
 from nav2_pyif.exceptions import (
     ControllerException,
     ControllerTFError,
@@ -50,11 +51,13 @@ from nav2_pyif.smoother import Smoother
 __version__ = "0.1.0"
 
 __all__ = [
+    "Combine",
     "Controller",
     "ControllerException",
     "ControllerTFError",
     "ControllerTimedOut",
     "Costmap",
+    "CostmapLayer",
     "FailedToMakeProgress",
     "FailedToSmoothPath",
     "GlobalPlanner",
@@ -66,6 +69,7 @@ __all__ = [
     "InvalidPath",
     "InvalidPlanner",
     "InvalidSmoother",
+    "LayerWindow",
     "Nav2Error",
     "NoValidControl",
     "NoValidPathCouldBeFound",

@@ -16,6 +16,9 @@ Signatures (the seed's, with the costmap first where the seed passed the occupan
     is_goal_reached(pose: Pose, goal: Pose, velocity: Twist) -> bool
     get_tolerances() -> GoalChecker | None
     check(pose: PoseStamped) -> bool            # a progress checker
+    update_costs(window: LayerWindow) -> uint8 array | (array, Combine)   # a costmap layer
+    update_bounds(robot_x, robot_y, robot_yaw, bounds) -> bounds; match_size(size_x, size_y,
+    resolution, origin_x, origin_y)
     configure(params: Parameters); activate(); deactivate(); cleanup(); reset(); cancel() -> bool
 """
 
@@ -27,6 +30,7 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from nav2_pyif.controller import Controller
+from nav2_pyif.costmap_layer import Bounds, CostmapLayer, LayerWindow
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
@@ -44,6 +48,7 @@ PLANNER_ROLES = frozenset({"create_plan"})
 SMOOTHER_ROLES = frozenset({"smooth"})
 GOAL_CHECKER_ROLES = frozenset({"is_goal_reached", "get_tolerances", "reset"})
 PROGRESS_CHECKER_ROLES = frozenset({"check", "reset"})
+LAYER_ROLES = frozenset({"update_costs", "update_bounds", "match_size", "reset"})
 LIFECYCLE_ROLES = frozenset({"configure", "activate", "deactivate", "cleanup"})
 #: The role whose function makes a module a plugin of that kind -> the kind's other roles.
 KIND_ROLES = {
@@ -52,6 +57,7 @@ KIND_ROLES = {
     "smooth": SMOOTHER_ROLES,
     "is_goal_reached": GOAL_CHECKER_ROLES,
     "check": PROGRESS_CHECKER_ROLES,
+    "update_costs": LAYER_ROLES,
 }
 ALL_ROLES = frozenset().union(*KIND_ROLES.values()) | LIFECYCLE_ROLES
 
@@ -64,6 +70,9 @@ WITHOUT_DELEGATE = {
     "cancel": "a cancel is answered at once as done",
     "reset": "Nav2's reset between goals does nothing",
     "get_tolerances": "getTolerances reports no tolerances (returns false) to the controller",
+    "update_bounds": "the costmap's update bounds are not grown: your costs reach only the "
+    "cells other layers update",
+    "match_size": "the master grid's size and origin are not passed on",
     "configure": "your functions get no Parameters: the plugin's parameters in the Nav2 YAML "
     "are not read",
     "activate": "Nav2's activate does nothing",
@@ -113,8 +122,9 @@ def delegate_class(
             raise PlannerLoadError(
                 f"module {module_name!r} defines none of compute_velocity_commands (a "
                 "controller), create_plan (a global planner), smooth (a smoother), "
-                "is_goal_reached (a goal checker) or check (a progress checker); name your "
-                "functions after the roles or map them with --delegate ROLE=FUNCTION"
+                "is_goal_reached (a goal checker), check (a progress checker) or update_costs "
+                "(a costmap layer); name your functions after the roles or map them with "
+                "--delegate ROLE=FUNCTION"
             )
         if not quiet:
             log.info("%s: functions bound by name: %s", module_name, ", ".join(delegates))
@@ -123,7 +133,8 @@ def delegate_class(
         raise PlannerLoadError(
             "delegates need exactly one of compute_velocity_commands (a controller), "
             "create_plan (a global planner), smooth (a smoother), is_goal_reached (a goal "
-            f"checker) or check (a progress checker); got {', '.join(kinds) or 'none'}"
+            "checker), check (a progress checker) or update_costs (a costmap layer); got "
+            f"{', '.join(kinds) or 'none'}"
         )
     kind = kinds[0]
     funcs: dict[str, Callable[..., Any]] = {}
@@ -136,7 +147,9 @@ def delegate_class(
         funcs[role] = func
     roles = (KIND_ROLES[kind] - {kind}) | LIFECYCLE_ROLES
     # Nav2's checkers are only initialized (= configure): no warning for the other three.
-    lifecycle = {"configure"} if kind in ("is_goal_reached", "check") else LIFECYCLE_ROLES
+    lifecycle = (
+        {"configure"} if kind in ("is_goal_reached", "check", "update_costs") else LIFECYCLE_ROLES
+    )
     for role in [] if quiet else sorted((roles & (lifecycle | KIND_ROLES[kind])) - set(funcs)):
         log.warning("%s: %s has no delegate: %s", module_name, role, WITHOUT_DELEGATE[role])
     stray = sorted(set(funcs) - roles - {kind})
@@ -151,6 +164,7 @@ def delegate_class(
         "smooth": _smoother_class,
         "is_goal_reached": _goal_checker_class,
         "check": _progress_checker_class,
+        "update_costs": _layer_class,
     }[kind]
     return build(module_name, funcs)
 
@@ -265,3 +279,32 @@ def _progress_checker_class(
     DelegateProgressChecker.__qualname__ = f"Delegates[{module_name}]"
     DelegateProgressChecker.__name__ = DelegateProgressChecker.__qualname__
     return DelegateProgressChecker
+
+
+def _layer_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[CostmapLayer]:
+    class DelegateLayer(_DelegateLifecycle, CostmapLayer):
+        _funcs = funcs
+
+        def update_costs(self, window: LayerWindow) -> Any:
+            return funcs["update_costs"](window)
+
+        def update_bounds(
+            self, robot_x: float, robot_y: float, robot_yaw: float, bounds: Bounds
+        ) -> Bounds:
+            if "update_bounds" not in funcs:
+                return bounds
+            return funcs["update_bounds"](robot_x, robot_y, robot_yaw, bounds)  # type: ignore[no-any-return]
+
+        def match_size(
+            self, size_x: int, size_y: int, resolution: float, origin_x: float, origin_y: float
+        ) -> None:
+            super().match_size(size_x, size_y, resolution, origin_x, origin_y)
+            if "match_size" in funcs:
+                funcs["match_size"](size_x, size_y, resolution, origin_x, origin_y)
+
+        def reset(self) -> None:
+            if "reset" in funcs:
+                funcs["reset"]()
+
+    DelegateLayer.__qualname__ = DelegateLayer.__name__ = f"Delegates[{module_name}]"
+    return DelegateLayer

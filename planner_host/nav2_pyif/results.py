@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import Twist, TwistStamped
 
+from nav2_pyif.costmap_layer import Combine
 from nav2_pyif.exceptions import (
     ControllerException,
     FailedToSmoothPath,
@@ -136,3 +137,41 @@ def tolerances_from_wire(body: dict[str, Any]) -> GoalChecker | None:
     pose, velocity = body["pose_tolerance"], body["velocity_tolerance"]
     yaw = 2.0 * math.atan2(pose[5], pose[6])
     return GoalChecker(pose[0], yaw, velocity[0], velocity[5])
+
+
+def checked_bounds(result: Any) -> tuple[float, float, float, float]:
+    """update_bounds' (min_x, min_y, max_x, max_y): four numbers, none NaN (infinite is what
+    Nav2 starts from: no bounds yet)."""
+    try:
+        values = tuple(float(v) for v in result)
+    except (TypeError, ValueError):
+        values = ()
+    if len(values) != 4 or any(math.isnan(v) for v in values):
+        raise ControllerException(
+            f"update_bounds returned {result!r}; expected (min_x, min_y, max_x, max_y) [m]"
+        )
+    return values  # type: ignore[return-value]
+
+
+def checked_layer_costs(result: Any, shape: tuple[int, int]) -> tuple[bytes, str]:
+    """update_costs' costs (and combine mode) -> the window's bytes and the mode's name."""
+    combine: Any = Combine.MAX
+    if isinstance(result, tuple) and len(result) == 2:
+        result, combine = result
+    try:
+        mode = Combine(combine)
+    except ValueError:
+        modes = ", ".join(m.value for m in Combine)
+        raise ControllerException(
+            f"update_costs returned the combine mode {combine!r}; expected one of {modes}"
+        ) from None
+    if not isinstance(result, np.ndarray) or result.dtype != np.uint8 or result.shape != shape:
+        got = (
+            f"a {result.dtype} array of shape {result.shape}"
+            if isinstance(result, np.ndarray)
+            else type(result).__name__
+        )
+        raise ControllerException(
+            f"update_costs returned {got}; expected a uint8 array of the window's shape {shape}"
+        )
+    return np.ascontiguousarray(result).tobytes(), mode.value

@@ -30,6 +30,7 @@ from nav2_pyif_protocol.codec import (
 from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
 from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap_layer import CostmapLayer, LayerWindow
 from nav2_pyif.exceptions import (
     NAV2_EXCEPTIONS,
     InvalidPath,
@@ -46,6 +47,8 @@ from nav2_pyif.plugin import PlannerPlugin, PluginContext
 from nav2_pyif.progress_checker import ProgressCheckerPlugin
 from nav2_pyif.results import (
     checked_bool,
+    checked_bounds,
+    checked_layer_costs,
     checked_plan,
     checked_smoothed,
     checked_twist_stamped,
@@ -126,6 +129,9 @@ class PlannerRuntime:
             Op.IS_GOAL_REACHED: self._is_goal_reached,
             Op.GET_TOLERANCES: self._get_tolerances,
             Op.CHECK: self._check,
+            Op.UPDATE_BOUNDS: self._update_bounds,
+            Op.UPDATE_COSTS: self._update_costs,
+            Op.MATCH_SIZE: self._match_size,
         }
 
     # --- entry points -------------------------------------------------------------------
@@ -402,6 +408,34 @@ class PlannerRuntime:
         assert isinstance(checker, ProgressCheckerPlugin)
         progress = checker.check(pose_from_wire(request.body["pose"]))
         return {"making_progress": checked_bool(progress, "check", generic_error(self.plugin_type))}
+
+    def _update_bounds(self, session: Session, request: Request) -> Body:
+        layer = session.planner
+        assert isinstance(layer, CostmapLayer)
+        b = request.body
+        given = (b["min_x"], b["min_y"], b["max_x"], b["max_y"])
+        grown = layer.update_bounds(b["robot_x"], b["robot_y"], b["robot_yaw"], given)
+        min_x, min_y, max_x, max_y = checked_bounds(grown)
+        return {"min_x": min_x, "min_y": min_y, "max_x": max_x, "max_y": max_y}
+
+    def _update_costs(self, session: Session, request: Request) -> Body:
+        layer = session.planner
+        assert isinstance(layer, CostmapLayer)
+        b = request.body
+        window = LayerWindow(
+            b["min_i"], b["min_j"], b["max_i"], b["max_j"],
+            b["origin_x"], b["origin_y"], b["resolution"],
+        )  # fmt: skip
+        costs, combine = checked_layer_costs(layer.update_costs(window), window.shape)
+        rows, cols = window.shape
+        return {"width": cols, "height": rows, "costs": costs, "combine": combine}
+
+    def _match_size(self, session: Session, request: Request) -> Body:
+        layer = session.planner
+        assert isinstance(layer, CostmapLayer)
+        b = request.body
+        layer.match_size(b["size_x"], b["size_y"], b["resolution"], b["origin_x"], b["origin_y"])
+        return {}
 
 
 def error_reply(

@@ -4,25 +4,15 @@ how a layer's costs combine with the master grid's (Nav2's costmap layer modes).
 from __future__ import annotations
 
 import ast
-from enum import Enum
 
 import numpy as np
 import numpy.typing as npt
+from nav2_pyif.costmap_layer import Combine
+
+__all__ = ["NO_INFORMATION", "Combine", "combine", "parse_polygons", "polygon_mask"]
 
 FloatArray = npt.NDArray[np.float64]
 ByteArray = npt.NDArray[np.uint8]
-
-
-class Combine(str, Enum):
-    """How a layer's window of costs meets the master grid's: nav2_costmap_2d::CostmapLayer's
-    update modes (the C++ layer plugin applies them with those very functions). A layer cell
-    of NO_INFORMATION never changes the master, except in TRUE_OVERWRITE."""
-
-    MAX = "max"  # updateWithMax: where the layer's is higher, or the master's unknown
-    MAX_KEEP_UNKNOWN = "max_keep_unknown"  # updateWithMaxWithoutUnknownOverwrite: only where
-    # the layer's is higher than a known master cost
-    OVERWRITE = "overwrite"  # updateWithOverwrite: the layer's cost, wherever it knows one
-    TRUE_OVERWRITE = "true_overwrite"  # updateWithTrueOverwrite: the layer's, unknown too
 
 
 NO_INFORMATION = 255
@@ -51,14 +41,23 @@ def polygon_mask(
     shape: tuple[int, int],
 ) -> npt.NDArray[np.bool_]:
     """(rows, cols) mask of the cells whose centres lie inside any polygon (even-odd rule);
-    the window's cell (0, 0) has its corner at ``origin`` (world metres)."""
+    the window's cell (0, 0) has its corner at ``origin`` (world metres). Each polygon is
+    tested only on the cells of its bounding box: a 400 x 400 window with a few small zones
+    costs what their boxes cost."""
     rows, cols = shape
-    cx = origin[0] + (np.arange(cols) + 0.5) * resolution
-    cy = origin[1] + (np.arange(rows) + 0.5) * resolution
-    px, py = np.meshgrid(cx, cy)
     mask = np.zeros(shape, dtype=bool)
     for polygon in polygons:
-        inside = np.zeros(shape, dtype=bool)
+        (x_lo, y_lo), (x_hi, y_hi) = polygon.min(axis=0), polygon.max(axis=0)
+        c0 = max(0, int(np.floor((x_lo - origin[0]) / resolution - 0.5)))
+        c1 = min(cols, int(np.ceil((x_hi - origin[0]) / resolution + 0.5)))
+        r0 = max(0, int(np.floor((y_lo - origin[1]) / resolution - 0.5)))
+        r1 = min(rows, int(np.ceil((y_hi - origin[1]) / resolution + 0.5)))
+        if c0 >= c1 or r0 >= r1:
+            continue  # the polygon misses the window
+        cx = origin[0] + (np.arange(c0, c1) + 0.5) * resolution
+        cy = origin[1] + (np.arange(r0, r1) + 0.5) * resolution
+        px, py = np.meshgrid(cx, cy)
+        inside = np.zeros(px.shape, dtype=bool)
         x0, y0 = polygon[:, 0], polygon[:, 1]
         x1, y1 = np.roll(x0, -1), np.roll(y0, -1)
         for ax, ay, bx, by in zip(x0, y0, x1, y1, strict=True):
@@ -67,7 +66,7 @@ def polygon_mask(
             crosses = (ay > py) != (by > py)
             at_x = ax + (py - ay) * (bx - ax) / (by - ay)
             inside ^= crosses & (px < at_x)
-        mask |= inside
+        mask[r0:r1, c0:c1] |= inside
     return mask
 
 

@@ -14,6 +14,7 @@ class PluginType(str, Enum):
     SMOOTHER = "smoother"  # nav2_core::Smoother (smoother_server)
     GOAL_CHECKER = "goal_checker"  # nav2_core::GoalChecker (controller_server)
     PROGRESS_CHECKER = "progress_checker"  # nav2_core::ProgressChecker (controller_server)
+    COSTMAP_LAYER = "costmap_layer"  # nav2_costmap_2d::Layer (a costmap's plugins)
 
 
 class Op(str, Enum):
@@ -40,6 +41,10 @@ class Op(str, Enum):
     GET_TOLERANCES = "get_tolerances"
     # progress checker (and RESET)
     CHECK = "check"
+    # costmap layer (and RESET)
+    UPDATE_BOUNDS = "update_bounds"
+    UPDATE_COSTS = "update_costs"
+    MATCH_SIZE = "match_size"
 
 
 LIFECYCLE_OPS = frozenset({Op.CONFIGURE, Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS})
@@ -57,12 +62,14 @@ SMOOTHER_OPS = LIFECYCLE_OPS | {Op.SMOOTH}
 # ops are accepted so that one session machinery serves every plugin type.
 GOAL_CHECKER_OPS = LIFECYCLE_OPS | {Op.IS_GOAL_REACHED, Op.GET_TOLERANCES, Op.RESET}
 PROGRESS_CHECKER_OPS = LIFECYCLE_OPS | {Op.CHECK, Op.RESET}
+COSTMAP_LAYER_OPS = LIFECYCLE_OPS | {Op.UPDATE_BOUNDS, Op.UPDATE_COSTS, Op.MATCH_SIZE, Op.RESET}
 OPS_BY_PLUGIN = {
     PluginType.CONTROLLER: CONTROLLER_OPS,
     PluginType.GLOBAL_PLANNER: GLOBAL_PLANNER_OPS,
     PluginType.SMOOTHER: SMOOTHER_OPS,
     PluginType.GOAL_CHECKER: GOAL_CHECKER_OPS,
     PluginType.PROGRESS_CHECKER: PROGRESS_CHECKER_OPS,
+    PluginType.COSTMAP_LAYER: COSTMAP_LAYER_OPS,
 }
 
 
@@ -151,6 +158,9 @@ ERRORS_BY_PLUGIN = {
     PluginType.SMOOTHER: SMOOTHER_ERRORS,
     PluginType.GOAL_CHECKER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
     PluginType.PROGRESS_CHECKER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
+    # A layer never throws into Nav2 (its costmap's update thread would die): the plugin logs
+    # the error and keeps its last costs. ControllerException only names the failure here.
+    PluginType.COSTMAP_LAYER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
 }
 #: The catch-all exception of each plugin type, its timeout and its configure failure.
 GENERIC_ERROR = {
@@ -159,6 +169,7 @@ GENERIC_ERROR = {
     PluginType.SMOOTHER: ErrorType.SMOOTHER_EXCEPTION,
     PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
 }
 TIMED_OUT_ERROR = {
     PluginType.CONTROLLER: ErrorType.CONTROLLER_TIMED_OUT,
@@ -166,6 +177,7 @@ TIMED_OUT_ERROR = {
     PluginType.SMOOTHER: ErrorType.SMOOTHER_TIMED_OUT,
     PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
+    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_TIMED_OUT,
 }
 INVALID_ERROR = {
     PluginType.CONTROLLER: ErrorType.INVALID_CONTROLLER,
@@ -173,6 +185,7 @@ INVALID_ERROR = {
     PluginType.SMOOTHER: ErrorType.INVALID_SMOOTHER,
     PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
 }
 PROTOCOL_ERRORS = frozenset(
     {

@@ -159,7 +159,8 @@ _CONFIGURE_REQUEST = (
     _f(
         "plugin_type",
         STR,
-        "'controller', 'global_planner', 'smoother', 'goal_checker' or 'progress_checker'",
+        "'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker' or "
+        "'costmap_layer'",
     ),
     _f("name", STR, "plugin name in Nav2 (e.g. FollowPath)"),
     _f("node", STR, "name of the Nav2 server node"),
@@ -287,5 +288,58 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     Op.CHECK: (
         (_f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),),
         (_f("making_progress", BOOL, "check()'s return: false = failed to make progress"),),
+    ),
+    Op.UPDATE_BOUNDS: (
+        (
+            _f("robot_x", FLOAT, "robot x in the costmap's global frame [m]"),
+            _f("robot_y", FLOAT, "robot y [m]"),
+            _f("robot_yaw", FLOAT, "robot yaw [rad]"),
+            _f("min_x", FLOAT, "the bounds so far (earlier layers'), world [m]"),
+            _f("min_y", FLOAT, "[m]"),
+            _f("max_x", FLOAT, "[m]"),
+            _f("max_y", FLOAT, "[m]"),
+        ),
+        (
+            _f("min_x", FLOAT, "the bounds grown to cover what this layer will change [m]"),
+            _f("min_y", FLOAT, "[m]"),
+            _f("max_x", FLOAT, "[m]"),
+            _f("max_y", FLOAT, "[m]"),
+        ),
+    ),
+    Op.UPDATE_COSTS: (
+        (
+            _f("min_i", INT, "the window to update: first cell column of the master grid"),
+            _f("min_j", INT, "first cell row"),
+            _f("max_i", INT, "one past the last column"),
+            _f("max_j", INT, "one past the last row"),
+            _f("origin_x", FLOAT, "the master grid's origin (cell (0, 0)'s corner) [m]"),
+            _f("origin_y", FLOAT, "[m]"),
+            _f("resolution", FLOAT, "m per cell"),
+        ),
+        (
+            _f("width", UINT32, "max_i - min_i"),
+            _f("height", UINT32, "max_j - min_j"),
+            _f(
+                "costs",
+                BIN,
+                "height * width uint8 costs of the window, row-major from (min_i, min_j)",
+                cells=("width", "height"),
+            ),
+            _f(
+                "combine",
+                STR,
+                "how they meet the master's: max, max_keep_unknown, overwrite, true_overwrite",
+            ),
+        ),
+    ),
+    Op.MATCH_SIZE: (
+        (
+            _f("size_x", UINT32, "the master grid's cells along x"),
+            _f("size_y", UINT32, "cells along y"),
+            _f("resolution", FLOAT, "m per cell"),
+            _f("origin_x", FLOAT, "cell (0, 0)'s corner [m]"),
+            _f("origin_y", FLOAT, "[m]"),
+        ),
+        (),
     ),
 }

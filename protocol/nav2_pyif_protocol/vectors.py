@@ -222,6 +222,14 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     )
     yield "get_tolerances_request", req(Op.GET_TOLERANCES, {}, seq=14), "empty body"
     yield "check_request", req(Op.CHECK, {"pose": pose(3.0, -1.0, 1.0, "odom")}, seq=15), ""
+    bounds = {"robot_x": 1.5, "robot_y": -0.5, "robot_yaw": 0.25}
+    bounds.update(min_x=1e30, min_y=1e30, max_x=-1e30, max_y=-1e30)
+    yield "update_bounds_request", req(Op.UPDATE_BOUNDS, bounds, seq=17), "no bounds yet"
+    window: dict[str, Any] = {"min_i": 10, "min_j": 20, "max_i": 14, "max_j": 23}
+    window.update(origin_x=-10.0, origin_y=-7.5, resolution=0.05)
+    yield "update_costs_request", req(Op.UPDATE_COSTS, window, seq=18), "a 4 x 3 window"
+    grid = {"size_x": 400, "size_y": 400, "resolution": 0.05, "origin_x": -10.0, "origin_y": -10.0}
+    yield "match_size_request", req(Op.MATCH_SIZE, grid, seq=19), ""
 
 
 def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
@@ -298,6 +306,11 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         ok(Op.IS_GOAL_REACHED, carried, seq=16),
         "not reached: the carried replies (encoded)",
     )
+    grown = {"min_x": 1.0, "min_y": -1.0, "max_x": 2.5, "max_y": 0.75}
+    yield "update_bounds_reply", Op.UPDATE_BOUNDS, ok(Op.UPDATE_BOUNDS, grown, seq=17), ""
+    costs = {"width": 4, "height": 3, "costs": bytes([0, 254, 254, 255] * 3), "combine": "max"}
+    yield "update_costs_reply", Op.UPDATE_COSTS, ok(Op.UPDATE_COSTS, costs, seq=18), ""
+    yield "match_size_reply", Op.MATCH_SIZE, ok(Op.MATCH_SIZE, {}, seq=19), "empty body"
     tolerances = {
         "available": True,
         "pose_tolerance": [0.25, 0.25, 0.0, 0.0, 0.0, math.sin(0.125), math.cos(0.125)],

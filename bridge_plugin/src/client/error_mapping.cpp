@@ -28,6 +28,7 @@ std::string_view plugin_type_name(PluginKind kind) noexcept
     case PluginKind::Smoother: return "smoother";
     case PluginKind::GoalChecker: return "goal_checker";
     case PluginKind::ProgressChecker: return "progress_checker";
+    case PluginKind::CostmapLayer: return "costmap_layer";
   }
   return "controller";
 }
@@ -65,6 +66,7 @@ bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept
       return kind == ErrorKind::InvalidPath || plugin_kind_of(kind) == PluginKind::Smoother;
     case PluginKind::GoalChecker:
     case PluginKind::ProgressChecker:
+    case PluginKind::CostmapLayer:
       return kind == ErrorKind::ControllerException;
   }
   return false;

@@ -46,6 +46,9 @@ Duration Timeouts::for_op(proto::Op op) const noexcept
     case proto::Op::IsGoalReached:  // the checkers: every control cycle
     case proto::Op::GetTolerances:
     case proto::Op::Check:
+    case proto::Op::UpdateBounds:  // the costmap layer: every costmap update
+    case proto::Op::UpdateCosts:
+    case proto::Op::MatchSize:
       return call;
     case proto::Op::CreatePlan:
     case proto::Op::Smooth:

@@ -377,6 +377,91 @@ void write(Writer & w, const CheckReply & value, const FieldPath &)
   w.boolean(value.making_progress);
 }
 
+void write(Writer & w, const UpdateBoundsRequest & value, const FieldPath &)
+{
+  w.map(7);
+  w.key("robot_x");
+  w.f64(value.robot_x);
+  w.key("robot_y");
+  w.f64(value.robot_y);
+  w.key("robot_yaw");
+  w.f64(value.robot_yaw);
+  w.key("min_x");
+  w.f64(value.min_x);
+  w.key("min_y");
+  w.f64(value.min_y);
+  w.key("max_x");
+  w.f64(value.max_x);
+  w.key("max_y");
+  w.f64(value.max_y);
+}
+
+void write(Writer & w, const UpdateBoundsReply & value, const FieldPath &)
+{
+  w.map(4);
+  w.key("min_x");
+  w.f64(value.min_x);
+  w.key("min_y");
+  w.f64(value.min_y);
+  w.key("max_x");
+  w.f64(value.max_x);
+  w.key("max_y");
+  w.f64(value.max_y);
+}
+
+void write(Writer & w, const UpdateCostsRequest & value, const FieldPath &)
+{
+  w.map(7);
+  w.key("min_i");
+  w.i64(value.min_i);
+  w.key("min_j");
+  w.i64(value.min_j);
+  w.key("max_i");
+  w.i64(value.max_i);
+  w.key("max_j");
+  w.i64(value.max_j);
+  w.key("origin_x");
+  w.f64(value.origin_x);
+  w.key("origin_y");
+  w.f64(value.origin_y);
+  w.key("resolution");
+  w.f64(value.resolution);
+}
+
+void write(Writer & w, const UpdateCostsReply & value, const FieldPath & where)
+{
+  require_cells(value.costs.size(), {value.width, value.height}, where.key("costs"));
+  w.map(4);
+  w.key("width");
+  w.u64(value.width);
+  w.key("height");
+  w.u64(value.height);
+  w.key("costs");
+  w.bin(value.costs);
+  w.key("combine");
+  w.str(value.combine, where.key("combine"));
+}
+
+void write(Writer & w, const MatchSizeRequest & value, const FieldPath &)
+{
+  w.map(5);
+  w.key("size_x");
+  w.u64(value.size_x);
+  w.key("size_y");
+  w.u64(value.size_y);
+  w.key("resolution");
+  w.f64(value.resolution);
+  w.key("origin_x");
+  w.f64(value.origin_x);
+  w.key("origin_y");
+  w.f64(value.origin_y);
+}
+
+void write(Writer & w, const MatchSizeReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
 void write(Writer & w, const RequestBody & body, const FieldPath & where)
 {
   std::visit([&](const auto & alternative) {write(w, alternative, where);}, body);
@@ -720,6 +805,75 @@ CheckReply read_check_reply(const Object & object, const FieldPath & where)
   return out;
 }
 
+UpdateBoundsRequest read_update_bounds_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  UpdateBoundsRequest out;
+  out.robot_x = m.required("robot_x", read_f64);
+  out.robot_y = m.required("robot_y", read_f64);
+  out.robot_yaw = m.required("robot_yaw", read_f64);
+  out.min_x = m.required("min_x", read_f64);
+  out.min_y = m.required("min_y", read_f64);
+  out.max_x = m.required("max_x", read_f64);
+  out.max_y = m.required("max_y", read_f64);
+  return out;
+}
+
+UpdateBoundsReply read_update_bounds_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  UpdateBoundsReply out;
+  out.min_x = m.required("min_x", read_f64);
+  out.min_y = m.required("min_y", read_f64);
+  out.max_x = m.required("max_x", read_f64);
+  out.max_y = m.required("max_y", read_f64);
+  return out;
+}
+
+UpdateCostsRequest read_update_costs_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  UpdateCostsRequest out;
+  out.min_i = m.required("min_i", read_i64);
+  out.min_j = m.required("min_j", read_i64);
+  out.max_i = m.required("max_i", read_i64);
+  out.max_j = m.required("max_j", read_i64);
+  out.origin_x = m.required("origin_x", read_f64);
+  out.origin_y = m.required("origin_y", read_f64);
+  out.resolution = m.required("resolution", read_f64);
+  return out;
+}
+
+UpdateCostsReply read_update_costs_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  UpdateCostsReply out;
+  out.width = m.required("width", read_u32);
+  out.height = m.required("height", read_u32);
+  out.costs = m.required("costs", read_bin);
+  out.combine = m.required("combine", read_str);
+  expect_cells(out.costs.size(), {out.width, out.height}, where.key("costs"));
+  return out;
+}
+
+MatchSizeRequest read_match_size_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  MatchSizeRequest out;
+  out.size_x = m.required("size_x", read_u32);
+  out.size_y = m.required("size_y", read_u32);
+  out.resolution = m.required("resolution", read_f64);
+  out.origin_x = m.required("origin_x", read_f64);
+  out.origin_y = m.required("origin_y", read_f64);
+  return out;
+}
+
+MatchSizeReply read_match_size_reply(const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return MatchSizeReply{};
+}
+
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where)
 {
   switch (op) {
@@ -755,6 +909,12 @@ RequestBody read_request_body(Op op, const Object & object, const FieldPath & wh
       return read_get_tolerances_request(object, where);
     case Op::Check:
       return read_check_request(object, where);
+    case Op::UpdateBounds:
+      return read_update_bounds_request(object, where);
+    case Op::UpdateCosts:
+      return read_update_costs_request(object, where);
+    case Op::MatchSize:
+      return read_match_size_request(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -794,6 +954,12 @@ ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where)
       return read_get_tolerances_reply(object, where);
     case Op::Check:
       return read_check_reply(object, where);
+    case Op::UpdateBounds:
+      return read_update_bounds_reply(object, where);
+    case Op::UpdateCosts:
+      return read_update_costs_reply(object, where);
+    case Op::MatchSize:
+      return read_match_size_reply(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -935,6 +1101,21 @@ std::size_t payload_size(const CheckRequest & value)
 }
 
 std::size_t payload_size(const CheckReply &) {return 0;}
+
+std::size_t payload_size(const UpdateBoundsRequest &) {return 0;}
+
+std::size_t payload_size(const UpdateBoundsReply &) {return 0;}
+
+std::size_t payload_size(const UpdateCostsRequest &) {return 0;}
+
+std::size_t payload_size(const UpdateCostsReply & value)
+{
+  return value.costs.size() + value.combine.size();
+}
+
+std::size_t payload_size(const MatchSizeRequest &) {return 0;}
+
+std::size_t payload_size(const MatchSizeReply &) {return 0;}
 
 std::size_t payload_size(const RequestBody & body)
 {

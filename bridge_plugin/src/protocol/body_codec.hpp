@@ -56,6 +56,12 @@ void write(Writer & w, const GetTolerancesRequest & value, const FieldPath & whe
 void write(Writer & w, const GetTolerancesReply & value, const FieldPath & where);
 void write(Writer & w, const CheckRequest & value, const FieldPath & where);
 void write(Writer & w, const CheckReply & value, const FieldPath & where);
+void write(Writer & w, const UpdateBoundsRequest & value, const FieldPath & where);
+void write(Writer & w, const UpdateBoundsReply & value, const FieldPath & where);
+void write(Writer & w, const UpdateCostsRequest & value, const FieldPath & where);
+void write(Writer & w, const UpdateCostsReply & value, const FieldPath & where);
+void write(Writer & w, const MatchSizeRequest & value, const FieldPath & where);
+void write(Writer & w, const MatchSizeReply & value, const FieldPath & where);
 void write(Writer & w, const RequestBody & body, const FieldPath & where);
 void write(Writer & w, const ReplyBody & body, const FieldPath & where);
 
@@ -100,6 +106,12 @@ GetTolerancesRequest read_get_tolerances_request(const Object & object, const Fi
 GetTolerancesReply read_get_tolerances_reply(const Object & object, const FieldPath & where);
 CheckRequest read_check_request(const Object & object, const FieldPath & where);
 CheckReply read_check_reply(const Object & object, const FieldPath & where);
+UpdateBoundsRequest read_update_bounds_request(const Object & object, const FieldPath & where);
+UpdateBoundsReply read_update_bounds_reply(const Object & object, const FieldPath & where);
+UpdateCostsRequest read_update_costs_request(const Object & object, const FieldPath & where);
+UpdateCostsReply read_update_costs_reply(const Object & object, const FieldPath & where);
+MatchSizeRequest read_match_size_request(const Object & object, const FieldPath & where);
+MatchSizeReply read_match_size_reply(const Object & object, const FieldPath & where);
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where);
 ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where);
 
@@ -142,6 +154,12 @@ std::size_t payload_size(const GetTolerancesRequest & value);
 std::size_t payload_size(const GetTolerancesReply & value);
 std::size_t payload_size(const CheckRequest & value);
 std::size_t payload_size(const CheckReply & value);
+std::size_t payload_size(const UpdateBoundsRequest & value);
+std::size_t payload_size(const UpdateBoundsReply & value);
+std::size_t payload_size(const UpdateCostsRequest & value);
+std::size_t payload_size(const UpdateCostsReply & value);
+std::size_t payload_size(const MatchSizeRequest & value);
+std::size_t payload_size(const MatchSizeReply & value);
 std::size_t payload_size(const RequestBody & body);
 std::size_t payload_size(const ReplyBody & body);
 

@@ -11,6 +11,7 @@ from nav2_pyif.client.controller import ControllerClient
 from nav2_pyif.client.cycle import ControlCycle
 from nav2_pyif.client.global_planner import GlobalPlannerClient
 from nav2_pyif.client.hosts import HostWatcher
+from nav2_pyif.client.layer import CostmapLayerClient
 from nav2_pyif.client.plugin_client import PluginClient, Timeouts
 from nav2_pyif.client.smoother import SmootherClient
 
@@ -18,6 +19,7 @@ __all__ = [
     "CallRecord",
     "ControlCycle",
     "ControllerClient",
+    "CostmapLayerClient",
     "GlobalPlannerClient",
     "GoalCheckerClient",
     "HostWatcher",

@@ -181,6 +181,9 @@ class PluginClient:
             Op.IS_GOAL_REACHED,
             Op.GET_TOLERANCES,
             Op.CHECK,
+            Op.UPDATE_BOUNDS,
+            Op.UPDATE_COSTS,
+            Op.MATCH_SIZE,
         ):  # Nav2 calls reset after every goal: it must not stall an abort
             return self.timeouts.call
         if op in (Op.CREATE_PLAN, Op.SMOOTH):

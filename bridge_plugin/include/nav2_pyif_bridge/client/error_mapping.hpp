@@ -16,10 +16,10 @@ namespace nav2_pyif_bridge::client
 {
 
 enum class PluginKind : std::uint8_t
-{Controller, GlobalPlanner, Smoother, GoalChecker, ProgressChecker};
+{Controller, GlobalPlanner, Smoother, GoalChecker, ProgressChecker, CostmapLayer};
 
 // The wire's configure.plugin_type: "controller", "global_planner", "smoother",
-// "goal_checker" or "progress_checker".
+// "goal_checker", "progress_checker" or "costmap_layer".
 std::string_view plugin_type_name(PluginKind kind) noexcept;
 
 // Which nav2_core exception classes exist: Humble has only PlannerException (its controllers
@@ -68,8 +68,9 @@ std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept;
 // The plugin type whose exceptions `kind` belongs to (InvalidPath: the controller's).
 PluginKind plugin_kind_of(ErrorKind kind) noexcept;
 // Whether a plugin of type `plugin` throws `kind` under its own name: the controller's and the
-// smoother's own classes (InvalidPath for both), the planner's; the checkers have no classes
-// of their own in nav2_core and throw ControllerException only.
+// smoother's own classes (InvalidPath for both), the planner's; the checkers and costmap layers
+// have no classes of their own in nav2_core: ControllerException only (a layer never throws
+// into Nav2: its plugin logs the error).
 bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept;
 // ControllerException (controller, goal and progress checker) / PlannerException /
 // SmootherException.

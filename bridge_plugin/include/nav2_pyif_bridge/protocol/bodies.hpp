@@ -22,7 +22,8 @@ namespace nav2_pyif_bridge::protocol
 // --- configure -----------------------------------------------------------------------------------
 struct ConfigureRequest
 {
-  // 'controller', 'global_planner', 'smoother', 'goal_checker' or 'progress_checker'
+  // 'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker' or
+  // 'costmap_layer'
   std::string plugin_type;
   // plugin name in Nav2 (e.g. FollowPath)
   std::string name;
@@ -236,17 +237,97 @@ struct CheckReply
   bool making_progress{false};
 };
 
+// --- update_bounds -------------------------------------------------------------------------------
+struct UpdateBoundsRequest
+{
+  // robot x in the costmap's global frame [m]
+  double robot_x{0.0};
+  // robot y [m]
+  double robot_y{0.0};
+  // robot yaw [rad]
+  double robot_yaw{0.0};
+  // the bounds so far (earlier layers'), world [m]
+  double min_x{0.0};
+  // [m]
+  double min_y{0.0};
+  // [m]
+  double max_x{0.0};
+  // [m]
+  double max_y{0.0};
+};
+
+struct UpdateBoundsReply
+{
+  // the bounds grown to cover what this layer will change [m]
+  double min_x{0.0};
+  // [m]
+  double min_y{0.0};
+  // [m]
+  double max_x{0.0};
+  // [m]
+  double max_y{0.0};
+};
+
+// --- update_costs --------------------------------------------------------------------------------
+struct UpdateCostsRequest
+{
+  // the window to update: first cell column of the master grid
+  std::int64_t min_i{0};
+  // first cell row
+  std::int64_t min_j{0};
+  // one past the last column
+  std::int64_t max_i{0};
+  // one past the last row
+  std::int64_t max_j{0};
+  // the master grid's origin (cell (0, 0)'s corner) [m]
+  double origin_x{0.0};
+  // [m]
+  double origin_y{0.0};
+  // m per cell
+  double resolution{0.0};
+};
+
+struct UpdateCostsReply
+{
+  // max_i - min_i
+  std::uint32_t width{0};
+  // max_j - min_j
+  std::uint32_t height{0};
+  // height * width uint8 costs of the window, row-major from (min_i, min_j)
+  std::vector<std::uint8_t> costs;
+  // how they meet the master's: max, max_keep_unknown, overwrite, true_overwrite
+  std::string combine;
+};
+
+// --- match_size ----------------------------------------------------------------------------------
+struct MatchSizeRequest
+{
+  // the master grid's cells along x
+  std::uint32_t size_x{0};
+  // cells along y
+  std::uint32_t size_y{0};
+  // m per cell
+  double resolution{0.0};
+  // cell (0, 0)'s corner [m]
+  double origin_x{0.0};
+  // [m]
+  double origin_y{0.0};
+};
+
+struct MatchSizeReply {};
+
 // Alternative i belongs to Op(i).
 using RequestBody = std::variant<ConfigureRequest, ActivateRequest, DeactivateRequest,
   CleanupRequest, SetParametersRequest, SetPlanRequest, ComputeVelocityCommandsRequest,
   SetSpeedLimitRequest, CancelRequest, ResetRequest, CreatePlanRequest, CancelPlanRequest,
-  SmoothRequest, IsGoalReachedRequest, GetTolerancesRequest, CheckRequest>;
+  SmoothRequest, IsGoalReachedRequest, GetTolerancesRequest, CheckRequest, UpdateBoundsRequest,
+  UpdateCostsRequest, MatchSizeRequest>;
 
 // Alternative i belongs to Op(i).
 using ReplyBody = std::variant<ConfigureReply, ActivateReply, DeactivateReply, CleanupReply,
   SetParametersReply, SetPlanReply, ComputeVelocityCommandsReply, SetSpeedLimitReply, CancelReply,
   ResetReply, CreatePlanReply, CancelPlanReply, SmoothReply, IsGoalReachedReply, GetTolerancesReply,
-  CheckReply>;
+  CheckReply, UpdateBoundsReply, UpdateCostsReply, MatchSizeReply>;
 
 inline Op op_of(const RequestBody & body) noexcept {return static_cast<Op>(body.index());}
 inline Op op_of(const ReplyBody & body) noexcept {return static_cast<Op>(body.index());}

@@ -253,4 +253,59 @@ void for_each_field(const CheckReply & value, Visit && visit)
   visit("making_progress", value.making_progress);
 }
 
+template<class Visit>
+void for_each_field(const UpdateBoundsRequest & value, Visit && visit)
+{
+  visit("robot_x", value.robot_x);
+  visit("robot_y", value.robot_y);
+  visit("robot_yaw", value.robot_yaw);
+  visit("min_x", value.min_x);
+  visit("min_y", value.min_y);
+  visit("max_x", value.max_x);
+  visit("max_y", value.max_y);
+}
+
+template<class Visit>
+void for_each_field(const UpdateBoundsReply & value, Visit && visit)
+{
+  visit("min_x", value.min_x);
+  visit("min_y", value.min_y);
+  visit("max_x", value.max_x);
+  visit("max_y", value.max_y);
+}
+
+template<class Visit>
+void for_each_field(const UpdateCostsRequest & value, Visit && visit)
+{
+  visit("min_i", value.min_i);
+  visit("min_j", value.min_j);
+  visit("max_i", value.max_i);
+  visit("max_j", value.max_j);
+  visit("origin_x", value.origin_x);
+  visit("origin_y", value.origin_y);
+  visit("resolution", value.resolution);
+}
+
+template<class Visit>
+void for_each_field(const UpdateCostsReply & value, Visit && visit)
+{
+  visit("width", value.width);
+  visit("height", value.height);
+  visit("costs", value.costs);
+  visit("combine", value.combine);
+}
+
+template<class Visit>
+void for_each_field(const MatchSizeRequest & value, Visit && visit)
+{
+  visit("size_x", value.size_x);
+  visit("size_y", value.size_y);
+  visit("resolution", value.resolution);
+  visit("origin_x", value.origin_x);
+  visit("origin_y", value.origin_y);
+}
+
+template<class Visit>
+void for_each_field(const MatchSizeReply &, Visit &&) {}
+
 }  // namespace nav2_pyif_bridge::protocol

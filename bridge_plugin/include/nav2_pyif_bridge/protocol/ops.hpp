@@ -28,16 +28,19 @@ enum class Op : std::uint8_t
   ComputeVelocityCommands,  // controller
   SetSpeedLimit,  // controller
   Cancel,  // controller
-  Reset,  // controller and goal_checker and progress_checker
+  Reset,  // controller and goal_checker and progress_checker and costmap_layer
   CreatePlan,  // global_planner
   CancelPlan,  // global_planner
   Smooth,  // smoother
   IsGoalReached,  // goal_checker
   GetTolerances,  // goal_checker
   Check,  // progress_checker
+  UpdateBounds,  // costmap_layer
+  UpdateCosts,  // costmap_layer
+  MatchSize,  // costmap_layer
 };
 
-inline constexpr std::size_t kOpCount = 16;
+inline constexpr std::size_t kOpCount = 19;
 
 inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "configure",
@@ -56,6 +59,9 @@ inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "is_goal_reached",
   "get_tolerances",
   "check",
+  "update_bounds",
+  "update_costs",
+  "match_size",
 };
 
 constexpr std::string_view op_name(Op op) noexcept
