@@ -8,6 +8,7 @@ from typing import Any, ClassVar
 from nav2_pyif_protocol.constants import PluginType
 
 from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.inputs import Inputs
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
 
@@ -28,14 +29,36 @@ class Controller(PlannerPlugin):
                 return cmd
 
     Poses, the plan and the costmap share one frame (the costmap's global frame).
+
+    Sensor topics listed in the plugin's ``inputs`` parameter arrive in ``self.inputs``
+    (nav2_pyif.inputs); debug outputs declared in ``debug_outputs`` are handed to
+    ``publish_debug`` during a cycle (nav2_pyif.debug).
     """
 
     plugin_type: ClassVar[PluginType] = PluginType.CONTROLLER
+    #: Debug outputs this controller may publish: name -> ROS message type. The plugin
+    #: publishes each on ``<plugin name>/<name>`` (e.g. FollowPath/trajectories).
+    debug_outputs: ClassVar[dict[str, str]] = {}
 
     #: The latest plan (set by the default ``set_plan``), None before the first.
     plan: Plan | None = None
     #: The latest speed limit: (value, is_percentage), None when unlimited.
     speed_limit: tuple[float, bool] | None = None
+
+    @property
+    def inputs(self) -> Inputs:
+        """The latest message of each input topic, by its name in the ``inputs`` parameter:
+        NumPy forms for scans, clouds, images, odometry and IMU, else the rclpy message."""
+        return self._context.inputs
+
+    def debug_wanted(self, name: str) -> bool:
+        """Whether someone subscribes to debug output ``name`` now (skip building it if not)."""
+        return name in self._context.debug.wanted
+
+    def publish_debug(self, name: str, value: Any) -> None:
+        """Return a debug output with this cycle's command: a message of the declared type or
+        its array form (nav2_pyif.debug). Dropped when nobody subscribes."""
+        self._context.debug.publish(name, value)
 
     def set_plan(self, plan: Plan) -> None:
         """A new global plan: ``plan.xy_yaw`` is (N, 3) x, y [m], yaw [rad]; ``plan`` also

@@ -9,6 +9,8 @@ from typing import ClassVar
 from nav2_pyif_protocol.constants import PluginType
 
 from nav2_pyif.costmap import Costmap
+from nav2_pyif.debug import DebugOutputs
+from nav2_pyif.inputs import Inputs
 from nav2_pyif.params import Parameters, ParamValue
 
 
@@ -32,6 +34,9 @@ class PluginContext:
         self.costmap = costmap
         self.params = params
         self.logger = logger
+        # a controller's extra inputs and debug outputs (issue 13); set up at configure
+        self.inputs = Inputs()
+        self.debug = DebugOutputs({})
 
 
 class PlannerPlugin(ABC):

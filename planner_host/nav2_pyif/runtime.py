@@ -29,8 +29,10 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
+from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.costmap_layer import CostmapLayer, LayerWindow
+from nav2_pyif.debug import DebugOutputs, check_declared
 from nav2_pyif.exceptions import (
     NAV2_EXCEPTIONS,
     InvalidPath,
@@ -270,6 +272,9 @@ class PlannerRuntime:
             logger=logging.getLogger(f"nav2_pyif.planner.{body['name']}"),
         )
         planner._attach(context)
+        if isinstance(planner, Controller) and planner.debug_outputs:
+            check_declared(planner.debug_outputs)
+            context.debug = DebugOutputs(planner.debug_outputs)
         planner.configure()
         context.params.on_change(planner.on_parameters_changed)
         self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)
@@ -291,6 +296,8 @@ class PlannerRuntime:
                 "; ".join(undeclared.values()),
             )
             reply["undeclared"] = undeclared
+        if context.debug.declared:
+            reply["debug_outputs"] = dict(context.debug.declared)
         return reply
 
     def _safe_cleanup(self, session: Session) -> None:
@@ -328,22 +335,29 @@ class PlannerRuntime:
         return {}
 
     def _compute_velocity_commands(self, session: Session, request: Request) -> Body:
-        body = request.body
+        body, context = request.body, session.context
         checker = body.get("goal_checker")
+        context.inputs.update(body.get("inputs", []))
+        context.debug.begin(body.get("debug_wanted", ()))
+        pose = pose_from_wire(body["pose"])
         result = session.planner.compute_velocity_commands(  # type: ignore[attr-defined]
-            pose_from_wire(body["pose"]),
+            pose,
             twist_from_list(body["velocity"]),
             GoalChecker.from_wire(checker) if checker is not None else None,
         )
         values = checked_twist_stamped(result, "compute_velocity_commands")
         header = result.header
-        return {
+        reply: Body = {
             "cmd_vel": {
-                "frame_id": header.frame_id or session.context.robot_base_frame,
+                "frame_id": header.frame_id or context.robot_base_frame,
                 "stamp_ns": stamp_to_ns(header.stamp),
                 "twist": values,
             }
         }
+        debug = context.debug.collect(context.global_frame, pose.header.stamp)
+        if debug:
+            reply["debug"] = debug
+        return reply
 
     def _set_speed_limit(self, session: Session, request: Request) -> Body:
         body = request.body

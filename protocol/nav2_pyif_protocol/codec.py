@@ -216,20 +216,44 @@ class _Compiled:
     """A field table compiled from the schema: each field's checker (or its structure's
     table), and the byte counts that follow from other fields (a costmap's cells)."""
 
-    fields: tuple[tuple[str, Any, bool, _Compiled | None], ...]
+    #: name, checker (None for a structure), required, structure table, many (an array)
+    fields: tuple[tuple[str, Any, bool, _Compiled | None, bool], ...]
     cells: tuple[tuple[str, tuple[str, ...]], ...]
 
 
 def _compile(fields: tuple[Field, ...]) -> _Compiled:
-    out: list[tuple[str, Any, bool, _Compiled | None]] = []
+    out: list[tuple[str, Any, bool, _Compiled | None, bool]] = []
     for f in fields:
         if f.kind in STRUCTS:
-            out.append((f.name, None, f.required, _compile(STRUCTS[f.kind])))
+            out.append((f.name, None, f.required, _compile(STRUCTS[f.kind]), f.many))
         elif f.rows:
-            out.append((f.name, _rows(ROWS[f.rows][0]), f.required, None))
+            out.append((f.name, _rows(ROWS[f.rows][0]), f.required, None, f.many))
         else:
-            out.append((f.name, _CHECKERS[f.kind], f.required, None))
+            out.append((f.name, _CHECKERS[f.kind], f.required, None, f.many))
     return _Compiled(tuple(out), tuple((f.name, f.cells) for f in fields if f.cells))
+
+
+def _check_one(struct: _Compiled | None, checker: Any, value: Any, canonical: bool) -> Any:
+    return _check_map(struct, value, canonical) if struct else checker(value)
+
+
+def _check_array(struct: _Compiled | None, checker: Any, value: Any, canonical: bool) -> Any:
+    """A field with ``many``: an array, each element checked as the field's kind."""
+    if type(value) is not list:
+        if type(value) is not tuple:
+            raise _Invalid("", f"expected an array, got {type(value).__name__}")
+        value = list(value)
+    out: list[Any] = [] if canonical else value
+    for i, element in enumerate(value):
+        try:
+            checked = _check_one(struct, checker, element, canonical)
+        except _Invalid as exc:
+            raise _Invalid(f"[{i}]{exc.path}", exc.message) from None
+        if canonical:
+            out.append(checked)
+        elif checked is not element:
+            value[i] = checked
+    return out
 
 
 def _check_cells(compiled: _Compiled, checked: dict[str, Any]) -> None:
@@ -252,14 +276,15 @@ def _check_map(compiled: _Compiled, value: Any, canonical: bool) -> dict[str, An
     if not isinstance(value, dict):
         raise _Invalid("", f"expected a map, got {type(value).__name__}")
     out = {} if canonical else value
-    for name, checker, required, struct in compiled.fields:
+    for name, checker, required, struct, many in compiled.fields:
         item = value.get(name)
         if item is None:
             if required:
                 raise _Invalid("", f"missing field {name!r}")
             continue
         try:
-            checked = _check_map(struct, item, canonical) if struct else checker(item)
+            check = _check_array if many else _check_one
+            checked = check(struct, checker, item, canonical)
         except _Invalid as exc:
             raise _Invalid(f".{name}{exc.path}", exc.message) from None
         if canonical or checked is not item:

@@ -147,11 +147,13 @@ def cpp_type(f: Field) -> str:
         base = "std::vector<double>" if f.rows else "std::vector<std::uint8_t>"
     else:
         base = _SCALARS[f.kind][0]
+    if f.many:
+        base = f"std::vector<{base}>"
     return base if f.required else f"std::optional<{base}>"
 
 
 def initializer(f: Field) -> str:
-    if not f.required or is_struct(f.kind) or f.kind == BIN:
+    if not f.required or is_struct(f.kind) or f.kind == BIN or f.many:
         return ""
     if f.default:
         return "{" + ", ".join(repr(float(x)) for x in f.default) + "}"
@@ -159,6 +161,8 @@ def initializer(f: Field) -> str:
 
 
 def reader(f: Field) -> str:
+    if f.many:
+        return f"read_array<{reader(Field(f.name, f.kind, rows=f.rows))}>"
     if is_struct(f.kind):
         return f"read_{snake(f.kind)}"
     if f.kind == BIN:
@@ -168,12 +172,12 @@ def reader(f: Field) -> str:
 
 def uses_path(f: Field) -> bool:
     """Whether writing the field needs its path (for an EncodeError naming it)."""
-    return is_struct(f.kind) or bool(f.rows) or f.kind in _NAMED_KINDS
+    return is_struct(f.kind) or bool(f.rows) or f.kind in _NAMED_KINDS or f.many
 
 
 def write_call(f: Field, value: str) -> str:
     path = f'where.key("{f.name}")'
-    if is_struct(f.kind):
+    if is_struct(f.kind) or f.many:
         return f"write(w, {value}, {path})"
     if f.kind == BIN:
         if f.rows:
@@ -402,7 +406,14 @@ def bodies_hpp() -> str:
         "The operation-specific bodies of requests and replies (PROTOCOL.md section 13, "
         '"Operations"). Ops with an empty body still get their own (empty) type, so that a '
         "body's type alone says which op it belongs to.",
-        ["<cstdint>", "<optional>", "<string>", "<variant>", *_own("ops", "params", "types")],
+        [
+            "<cstdint>",
+            "<optional>",
+            "<string>",
+            "<variant>",
+            "<vector>",
+            *_own("ops", "params", "types"),
+        ],
         body,
     )
 
@@ -443,6 +454,16 @@ def body_codec_hpp() -> str:
             for d in ("Request", "Reply")
         ),
         "",
+        "// An array field (`many` in the schema): each element written as its kind.",
+        "template<class T>",
+        "void write(Writer & w, const std::vector<T> & values, const FieldPath & where)",
+        "{",
+        "  w.array(values.size());",
+        "  for (std::size_t i = 0; i < values.size(); ++i) {",
+        "    write(w, values[i], where.index(i));",
+        "  }",
+        "}",
+        "",
         "// Reads one map, checking every field; throws DecodeError naming the field.",
     ]
     for name, _ in all_types():
@@ -456,11 +477,29 @@ def body_codec_hpp() -> str:
         "// Bytes of the variable-length fields (text, bin), to reserve before encoding.",
         *(f"std::size_t payload_size(const {name} & value);" for name, _ in all_types()),
         *(f"std::size_t payload_size(const {d}Body & body);" for d in ("Request", "Reply")),
+        "inline std::size_t payload_size(const std::string & text) {return text.size();}",
+        "template<class T>",
+        "std::size_t payload_size(const std::vector<T> & values)",
+        "{",
+        "  std::size_t bytes = 0;",
+        "  for (const auto & value : values) {",
+        "    bytes += payload_size(value);",
+        "  }",
+        "  return bytes;",
+        "}",
     ]
     return cpp_file(
         "Encode and decode every structure and op body of the schema (the envelopes, "
         "encode.cpp and decode.cpp, call these).",
-        ["<cstddef>", *_own("bodies", "types"), '"field_path.hpp"', '"reader.hpp"', '"writer.hpp"'],
+        [
+            "<cstddef>",
+            "<string>",
+            "<vector>",
+            *_own("bodies", "types"),
+            '"field_path.hpp"',
+            '"reader.hpp"',
+            '"writer.hpp"',
+        ],
         body,
         namespace=f"{NAMESPACE}::detail",
     )
@@ -526,7 +565,7 @@ def _read_fn(name: str, fields: tuple[Field, ...]) -> list[str]:
 
 def _payload_term(f: Field) -> str | None:
     value = f"value.{f.name}" if f.required else f"(*value.{f.name})"
-    if is_struct(f.kind):
+    if is_struct(f.kind) or f.many:
         term = f"payload_size({value})"
     elif f.kind == BIN and f.rows:
         term = f"{value}.size() * 8"

@@ -48,6 +48,8 @@ class Field:
     cells: tuple[str, ...] = ()
     #: FLOAT6 / FLOAT7 only: the value a new C++ struct starts with (all zeros when empty).
     default: tuple[float, ...] = ()
+    #: A msgpack array of values of ``kind`` (a structure or STR), possibly empty.
+    many: bool = False
 
 
 def _f(
@@ -59,8 +61,9 @@ def _f(
     rows: str = "",
     cells: tuple[str, ...] = (),
     default: tuple[float, ...] = (),
+    many: bool = False,
 ) -> Field:
-    return Field(name, kind, required, doc, rows, cells, default)
+    return Field(name, kind, required, doc, rows, cells, default, many)
 
 
 #: What each structure is, for the generated C++ and PROTOCOL.md.
@@ -71,6 +74,8 @@ STRUCT_DOCS: dict[str, str] = {
     "Costmap": "Nav2's Costmap2D: metadata, the raw cost bytes and the footprint.",
     "GoalChecker": "The goal checker's tolerances.",
     "Error": "The error of a failed reply (PROTOCOL.md section 7).",
+    "Input": "The latest message of one of the plugin's input topics, ROS-serialized (CDR).",
+    "DebugOutput": "A message the planner publishes for debugging, ROS-serialized (CDR).",
 }
 
 
@@ -134,6 +139,17 @@ STRUCTS: dict[str, tuple[Field, ...]] = {
         _f("traceback", STR, "Python traceback, empty when none"),
         _f("python_type", STR, "qualified name of the Python exception, empty when none"),
     ),
+    "Input": (
+        _f("name", STR, "the input's name in the plugin's `inputs` parameter (e.g. scan)"),
+        _f("type", STR, "ROS message type, e.g. sensor_msgs/msg/LaserScan"),
+        _f("stamp_ns", INT, "when the plugin received it, ns on the server's clock"),
+        _f("cdr", BIN, "the message as ROS serializes it (CDR with its 4-byte header)"),
+    ),
+    "DebugOutput": (
+        _f("name", STR, "the output's name: published on <plugin name>/<name>"),
+        _f("type", STR, "ROS message type, one the configure reply listed for this name"),
+        _f("cdr", BIN, "the message as ROS serializes it (CDR with its 4-byte header)"),
+    ),
 }
 
 REQUEST_ENVELOPE: tuple[Field, ...] = (
@@ -195,6 +211,12 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
                 "absent when none",
                 required=False,
             ),
+            _f(
+                "debug_outputs",
+                STR_MAP,
+                "debug outputs the planner may return, name -> ROS message type; absent when none",
+                required=False,
+            ),
         ),
     ),
     Op.ACTIVATE: ((), ()),
@@ -211,8 +233,32 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             _f("velocity", FLOAT6, "current velocity in the robot base frame"),
             _f("goal_checker", "GoalChecker", "tolerances, when Nav2 gave a goal checker", False),
             _f("costmap", "Costmap", "present only when changed since last sent", False),
+            _f(
+                "inputs",
+                "Input",
+                "input messages received since the last call (the latest of each); absent "
+                "when none",
+                False,
+                many=True,
+            ),
+            _f(
+                "debug_wanted",
+                STR,
+                "names of the debug outputs someone subscribes to; absent when none",
+                False,
+                many=True,
+            ),
         ),
-        (_f("cmd_vel", "TwistStamped", "the command; every component finite"),),
+        (
+            _f("cmd_vel", "TwistStamped", "the command; every component finite"),
+            _f(
+                "debug",
+                "DebugOutput",
+                "debug outputs among debug_wanted the planner returned; absent when none",
+                False,
+                many=True,
+            ),
+        ),
     ),
     Op.SET_SPEED_LIMIT: (
         (

@@ -17,6 +17,8 @@ def _table(fields: tuple[Field, ...]) -> list[str]:
     rows = ["| # | field | type | required | meaning |", "|---|---|---|---|---|"]
     for i, f in enumerate(fields, 1):
         kind = f"[{f.kind}](#{f.kind.lower()})" if f.kind in STRUCTS else f"`{f.kind}`"
+        if f.many:
+            kind = f"array of {kind}"
         rows.append(f"| {i} | `{f.name}` | {kind} | {'yes' if f.required else 'no'} | {f.doc} |")
     return [*rows, ""]
 

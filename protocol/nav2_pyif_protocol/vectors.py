@@ -33,6 +33,17 @@ INLINE_BIN_LIMIT = 4096
 SID = "3f2a9c7e5b1d4e8f9a0b1c2d3e4f5a6b"
 HOST = "host-a-4242-01"
 
+# Real CDR (rclpy.serialization.serialize_message): a LaserScan of 3 beams in frame "laser",
+# stamp 12 s, ranges [1.0, 2.5, inf]; a PointStamped (1.5, -0.5, 0) in "map". The codec
+# carries them as opaque bytes; the host tests deserialise them.
+SCAN_CDR = bytes.fromhex(
+    "000100000c00000000000000060000006c617365720000000000c0bf0000c03f0000c03f00000000000000"
+    "00cdcccc3d00000041030000000000803f000020400000807f00000000"
+)
+POINT_CDR = bytes.fromhex(
+    "000100000000000000000000040000006d617000000000000000f83f000000000000e0bf0000000000000000"
+)
+
 
 @dataclass(frozen=True)
 class Vector:
@@ -157,6 +168,23 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         req(Op.COMPUTE_VELOCITY_COMMANDS, dict(minimal, pose=unicode_pose)),
         "non-ASCII frame id",
     )
+    with_inputs = dict(
+        minimal,
+        inputs=[
+            {
+                "name": "scan",
+                "type": "sensor_msgs/msg/LaserScan",
+                "stamp_ns": 12_000_000_000,
+                "cdr": SCAN_CDR,
+            }
+        ],
+        debug_wanted=["local_plan", "lookahead_point"],
+    )
+    yield (
+        "compute_velocity_commands_inputs",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, with_inputs, seq=1236),
+        "a new scan (real CDR) and two debug outputs someone subscribes to",
+    )
     yield (
         "set_speed_limit_absolute",
         req(Op.SET_SPEED_LIMIT, {"speed_limit": 0.35, "percentage": False}),
@@ -273,6 +301,31 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         Op.COMPUTE_VELOCITY_COMMANDS,
         ok(Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd}, seq=1234),
         "",
+    )
+    debug = [
+        {"name": "lookahead_point", "type": "geometry_msgs/msg/PointStamped", "cdr": POINT_CDR}
+    ]
+    yield (
+        "compute_velocity_commands_reply_debug",
+        Op.COMPUTE_VELOCITY_COMMANDS,
+        ok(Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd, "debug": debug}, seq=1236),
+        "a debug output (real CDR) with the command",
+    )
+    yield (
+        "configure_reply_debug_outputs",
+        Op.CONFIGURE,
+        ok(
+            Op.CONFIGURE,
+            {
+                "declared": {},
+                "debug_outputs": {
+                    "local_plan": "nav_msgs/msg/Path",
+                    "lookahead_point": "geometry_msgs/msg/PointStamped",
+                },
+            },
+            seq=0,
+        ),
+        "the debug outputs a planner may return",
     )
     yield "cancel_reply", Op.CANCEL, ok(Op.CANCEL, {"cancelled": True}), ""
     yield "create_plan_reply", Op.CREATE_PLAN, ok(Op.CREATE_PLAN, {"path": path(50)}, seq=3), ""

@@ -3,12 +3,19 @@
 // lifecycle in PyPlugin, the rest in client::ControllerSession and PluginBridge.
 #pragma once
 
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "geometry_msgs/msg/pose_stamped.hpp"
 #include "geometry_msgs/msg/twist.hpp"
 #include "geometry_msgs/msg/twist_stamped.hpp"
 #include "nav2_core/controller.hpp"
 #include "nav2_core/goal_checker.hpp"
 #include "nav_msgs/msg/path.hpp"
+#include "rclcpp/generic_publisher.hpp"
+#include "rclcpp/generic_subscription.hpp"
 
 #include "nav2_pyif_bridge/client/controller_session.hpp"
 #include "nav2_pyif_bridge/fresh_plan.hpp"
@@ -20,7 +27,13 @@ namespace nav2_pyif_bridge
 class PyController : public PyPlugin<nav2_core::Controller, client::ControllerSession>
 {
 public:
-  // Also forgets the plan.
+  // Also subscribes to the `inputs` topics (their serialized messages go to the host as they
+  // are: no per-type code here).
+  void configure(
+    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
+    std::shared_ptr<tf2_ros::Buffer> tf,
+    std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
+  // Also forgets the plan, the subscriptions and the debug publishers.
   void cleanup() override;
 
   // The plan, transformed into the costmap's global frame (ControllerTFError when it cannot be);
@@ -44,6 +57,20 @@ public:
 
 private:
   void send_reset();  // the session's reset; a failure is only logged (debug)
+  // A publisher <plugin name>/<output> per debug output the served planner declares (it may
+  // be known only once a host answered, and change with a hot swap), and which of them have
+  // a subscriber now: the host builds only those.
+  void sync_debug_publishers();
+  void publish_debug();
+
+  rclcpp_lifecycle::LifecycleNode::WeakPtr node_;
+  std::vector<rclcpp::GenericSubscription::SharedPtr> input_subscriptions_;
+  struct DebugPublisher
+  {
+    std::string type;
+    rclcpp::GenericPublisher::SharedPtr publisher;
+  };
+  std::map<std::string, DebugPublisher> debug_publishers_;
 
   FreshPlan plan_;
   // The last compute_velocity_commands got no reply in time: the host is likely gone, and

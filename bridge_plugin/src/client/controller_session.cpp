@@ -24,11 +24,54 @@ proto::TwistStamped ControllerSession::compute_velocity_commands(
   body.pose = pose;
   body.velocity = velocity;
   body.goal_checker = goal_checker;
+  std::vector<std::pair<std::string, std::uint64_t>> attached;  // name, generation
+  {
+    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
+    for (const auto & [name, latest] : inputs_) {
+      if (latest.sent != latest.generation) {
+        if (!body.inputs) {
+          body.inputs.emplace();
+        }
+        body.inputs->push_back(latest.input);
+        attached.emplace_back(name, latest.generation);
+      }
+    }
+    if (!debug_wanted_.empty()) {
+      body.debug_wanted = debug_wanted_;
+    }
+  }
   CallOptions options;
   options.costmap = CostmapMode::IfChanged;
   auto reply = call_for<proto::ComputeVelocityCommandsReply>(body, options);
   check_command(reply.cmd_vel, last_host());
+  {
+    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
+    for (const auto & [name, generation] : attached) {
+      inputs_[name].sent = generation;
+    }
+    debug_ = reply.debug ? std::move(*reply.debug) : std::vector<proto::DebugOutput>{};
+  }
   return std::move(reply.cmd_vel);
+}
+
+void ControllerSession::set_input(proto::Input input)
+{
+  std::lock_guard<std::mutex> lock(inputs_mutex_);
+  LatestInput & latest = inputs_[input.name];
+  latest.input = std::move(input);
+  ++latest.generation;
+}
+
+void ControllerSession::set_debug_wanted(std::vector<std::string> names)
+{
+  std::lock_guard<std::mutex> lock(inputs_mutex_);
+  debug_wanted_ = std::move(names);
+}
+
+std::vector<proto::DebugOutput> ControllerSession::take_debug()
+{
+  std::lock_guard<std::mutex> lock(inputs_mutex_);
+  return std::exchange(debug_, {});
 }
 
 void ControllerSession::set_speed_limit(double speed_limit, bool percentage)
@@ -68,6 +111,14 @@ bool ControllerSession::has_plan() const
 
 void ControllerSession::restore_state()
 {
+  {
+    // A new session (host restart, another replica) has none of the inputs: send them all
+    // again, from the next cycle on (the retried call carries those it was built with).
+    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
+    for (auto & [name, latest] : inputs_) {
+      latest.sent = 0;
+    }
+  }
   CallOptions options;
   options.allow_resync = false;
   if (plan_) {
@@ -80,6 +131,12 @@ void ControllerSession::restore_state()
 
 void ControllerSession::forget_state()
 {
+  {
+    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
+    for (auto & [name, latest] : inputs_) {
+      latest.sent = 0;
+    }
+  }
   plan_.reset();
   speed_limit_.reset();
 }

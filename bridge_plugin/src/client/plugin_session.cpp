@@ -116,6 +116,7 @@ proto::Params PluginSession::configure_locked()
   configured_ = true;
   established_ = true;
   served_ = reply.planner.value_or("");
+  debug_outputs_ = reply.debug_outputs.value_or(proto::StringMap{});
   if (reply.undeclared && !reply.undeclared->empty()) {
     std::string names;
     std::string reasons;
@@ -482,6 +483,12 @@ std::string PluginSession::served() const
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
   return served_;
+}
+
+proto::StringMap PluginSession::debug_outputs() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  return debug_outputs_;
 }
 
 std::string PluginSession::pinned_host() const

@@ -1,7 +1,10 @@
 #include "nav2_pyif_bridge/client/settings.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <optional>
+#include <utility>
 #include <stdexcept>
 #include <variant>
 
@@ -16,10 +19,10 @@ namespace
 
 constexpr std::string_view kDelegatesPrefix = "python_delegates.";
 
-constexpr std::array<std::string_view, 16> kBridgeNames = {
+constexpr std::array<std::string_view, 17> kBridgeNames = {
   "plugin", "key", "zenoh_config", "zenoh_connect", "timeout", "configure_timeout",
   "plan_timeout", "lifecycle_timeout", "wait_for_host", "python_module", "python_delegates",
-  "python_planner", "python_path", "planner_host_command", "planner_host_args",
+  "python_planner", "python_path", "planner_host_command", "planner_host_args", "inputs",
   "planner_host_executable",
 };
 
@@ -171,13 +174,79 @@ std::vector<std::pair<std::string, std::string>> parse_delegates(
   return out;
 }
 
+namespace
+{
+
+// "scan.topic" -> ("scan", "topic"); std::nullopt for other names.
+std::optional<std::pair<std::string, std::string>> input_part(const std::string & name)
+{
+  const std::size_t dot = name.rfind('.');
+  if (dot == std::string::npos || dot == 0) {
+    return std::nullopt;
+  }
+  std::string part = name.substr(dot + 1);
+  if (part != "topic" && part != "type") {
+    return std::nullopt;
+  }
+  return std::make_pair(name.substr(0, dot), std::move(part));
+}
+
+// The inputs listed in `inputs`, each with its topic and type; their `<name>.topic` and
+// `<name>.type` leave `forwarded` (they are the bridge's, not the planner's).
+std::vector<InputSpec> take_inputs(const std::vector<std::string> & names, proto::Params & forwarded)
+{
+  std::vector<InputSpec> out;
+  for (const std::string & name : names) {
+    InputSpec spec{name, {}, {}};
+    if (name.empty() || name.find('.') != std::string::npos) {
+      bad("inputs", "'" + name + "' is not an input name (non-empty, without '.')");
+    }
+    for (const auto & [item, value] : forwarded) {
+      const auto part = input_part(item);
+      if (part && part->first == name) {
+        (part->second == "topic" ? spec.topic : spec.type) = as_string(item, value);
+      }
+    }
+    if (spec.topic.empty()) {
+      bad(name + ".topic", "missing: the topic of input '" + name + "' (e.g. /scan)");
+    }
+    const std::size_t slash = spec.type.find("/msg/");
+    if (slash == std::string::npos || slash == 0 || slash + 5 >= spec.type.size()) {
+      bad(name + ".type", "expected package/msg/Type (e.g. sensor_msgs/msg/LaserScan), got '" +
+        spec.type + "'");
+    }
+    for (const auto & other : out) {
+      if (other.name == name) {
+        bad("inputs", "'" + name + "' is listed twice");
+      }
+    }
+    out.push_back(std::move(spec));
+  }
+  proto::Params rest;
+  for (const auto & [item, value] : forwarded) {
+    const auto part = input_part(item);
+    const bool taken = part && std::any_of(
+      out.begin(), out.end(), [&](const InputSpec & spec) {return spec.name == part->first;});
+    if (!taken) {
+      rest.set(item, value);
+    }
+  }
+  forwarded = std::move(rest);
+  return out;
+}
+
+}  // namespace
+
 PluginParameters split_parameters(const proto::Params & params)
 {
   PluginParameters out;
   BridgeSettings & s = out.settings;
   std::vector<std::string> delegate_items;
+  std::vector<std::string> inputs;
   for (const auto & [name, value] : params) {
-    if (name == "key") {
+    if (name == "inputs") {
+      inputs = as_strings(name, value);
+    } else if (name == "key") {
       s.key = as_string(name, value);
     } else if (name == "zenoh_config") {
       s.zenoh_config = as_string(name, value);
@@ -215,6 +284,7 @@ PluginParameters split_parameters(const proto::Params & params)
     }
   }
   s.local_host.delegates = parse_delegates(delegate_items);
+  s.inputs = take_inputs(inputs, out.forwarded);
 
   LocalHostSpec & local = s.local_host;
   if (!local.planner.empty() && !local.module.empty()) {

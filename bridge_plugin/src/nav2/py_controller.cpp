@@ -1,6 +1,8 @@
 #include "nav2_pyif_bridge/py_controller.hpp"
 
+#include <cstring>
 #include <optional>
+#include <utility>
 
 #include "pluginlib/class_list_macros.hpp"
 #include "tf2/utils.h"
@@ -31,10 +33,84 @@ std::optional<protocol::GoalChecker> tolerances(nav2_core::GoalChecker * goal_ch
 
 }  // namespace
 
+void PyController::configure(
+  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
+  std::shared_ptr<tf2_ros::Buffer> tf,
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+{
+  PyPlugin::configure(parent, std::move(name), std::move(tf), std::move(costmap_ros));
+  node_ = parent;
+  auto node = parent.lock();
+  for (const client::InputSpec & spec : bridge_->settings().inputs) {
+    // Best effort with a short queue (SensorDataQoS) matches reliable publishers too; only
+    // the latest message matters.
+    input_subscriptions_.push_back(
+      node->create_generic_subscription(
+        spec.topic, spec.type, rclcpp::SensorDataQoS(),
+        [this, spec, clock = bridge_->clock()](std::shared_ptr<rclcpp::SerializedMessage> msg) {
+          const rcl_serialized_message_t & raw = msg->get_rcl_serialized_message();
+          protocol::Input input;
+          input.name = spec.name;
+          input.type = spec.type;
+          input.stamp_ns = clock->now().nanoseconds();
+          input.cdr.assign(raw.buffer, raw.buffer + raw.buffer_length);
+          session_->set_input(std::move(input));
+        }));
+    RCLCPP_INFO(
+      bridge_->ros_logger(), "%s: input '%s' from %s (%s)", name_.c_str(), spec.name.c_str(),
+      spec.topic.c_str(), spec.type.c_str());
+  }
+  sync_debug_publishers();
+}
+
 void PyController::cleanup()
 {
+  input_subscriptions_.clear();  // before the session their callbacks feed goes
+  debug_publishers_.clear();
   PyPlugin::cleanup();
   plan_.clear();
+}
+
+void PyController::sync_debug_publishers()
+{
+  auto node = node_.lock();
+  if (!node || !session_) {
+    return;
+  }
+  const protocol::StringMap declared = session_->debug_outputs();
+  std::vector<std::string> wanted;
+  for (const auto & [output, type] : declared) {
+    auto found = debug_publishers_.find(output);
+    if (found == debug_publishers_.end() || found->second.type != type) {
+      debug_publishers_[output] = DebugPublisher{
+        type, node->create_generic_publisher(name_ + "/" + output, type, rclcpp::QoS(1))};
+      RCLCPP_INFO(
+        bridge_->ros_logger(), "%s: debug output on %s/%s (%s)", name_.c_str(), name_.c_str(),
+        output.c_str(), type.c_str());
+    }
+    if (debug_publishers_[output].publisher->get_subscription_count() > 0) {
+      wanted.push_back(output);
+    }
+  }
+  session_->set_debug_wanted(std::move(wanted));
+}
+
+void PyController::publish_debug()
+{
+  for (const protocol::DebugOutput & output : session_->take_debug()) {
+    const auto found = debug_publishers_.find(output.name);
+    if (found == debug_publishers_.end() || found->second.type != output.type) {
+      RCLCPP_WARN_ONCE(
+        bridge_->ros_logger(), "%s: the host returned debug output '%s' (%s), not declared at "
+        "configure: dropped", name_.c_str(), output.name.c_str(), output.type.c_str());
+      continue;
+    }
+    rclcpp::SerializedMessage message(output.cdr.size());
+    rcl_serialized_message_t & raw = message.get_rcl_serialized_message();
+    std::memcpy(raw.buffer, output.cdr.data(), output.cdr.size());
+    raw.buffer_length = output.cdr.size();
+    found->second.publisher->publish(message);
+  }
 }
 
 void PyController::setPlan(const nav_msgs::msg::Path & path)
@@ -64,10 +140,12 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
       {
         session_->set_plan(ros::to_wire(*fresh));  // localisation moved the plan's frame
       }
+      sync_debug_publishers();
       try {
         const protocol::TwistStamped cmd = session_->compute_velocity_commands(
           ros::to_wire(global), ros::to_wire(velocity), tolerances(goal_checker));
         host_silent_ = false;
+        publish_debug();
         return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
       } catch (const client::CallError & error) {
         host_silent_ = error.cause() == client::Cause::TimedOut;

@@ -98,6 +98,30 @@ void write(Writer & w, const Error & value, const FieldPath & where)
   w.str(value.python_type, where.key("python_type"));
 }
 
+void write(Writer & w, const Input & value, const FieldPath & where)
+{
+  w.map(4);
+  w.key("name");
+  w.str(value.name, where.key("name"));
+  w.key("type");
+  w.str(value.type, where.key("type"));
+  w.key("stamp_ns");
+  w.i64(value.stamp_ns);
+  w.key("cdr");
+  w.bin(value.cdr);
+}
+
+void write(Writer & w, const DebugOutput & value, const FieldPath & where)
+{
+  w.map(3);
+  w.key("name");
+  w.str(value.name, where.key("name"));
+  w.key("type");
+  w.str(value.type, where.key("type"));
+  w.key("cdr");
+  w.bin(value.cdr);
+}
+
 void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
 {
   w.map(7);
@@ -119,7 +143,8 @@ void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
 
 void write(Writer & w, const ConfigureReply & value, const FieldPath & where)
 {
-  w.map(std::size_t{1} + (value.planner ? 1u : 0u) + (value.undeclared ? 1u : 0u));
+  w.map(std::size_t{1} + (value.planner ? 1u : 0u) + (value.undeclared ? 1u : 0u)
+      + (value.debug_outputs ? 1u : 0u));
   w.key("declared");
   write_params(w, value.declared, where.key("declared"));
   if (value.planner) {
@@ -129,6 +154,10 @@ void write(Writer & w, const ConfigureReply & value, const FieldPath & where)
   if (value.undeclared) {
     w.key("undeclared");
     write_str_map(w, *value.undeclared, where.key("undeclared"));
+  }
+  if (value.debug_outputs) {
+    w.key("debug_outputs");
+    write_str_map(w, *value.debug_outputs, where.key("debug_outputs"));
   }
 }
 
@@ -190,7 +219,8 @@ void write(Writer & w, const SetPlanReply &, const FieldPath &)
 
 void write(Writer & w, const ComputeVelocityCommandsRequest & value, const FieldPath & where)
 {
-  w.map(std::size_t{2} + (value.goal_checker ? 1u : 0u) + (value.costmap ? 1u : 0u));
+  w.map(std::size_t{2} + (value.goal_checker ? 1u : 0u) + (value.costmap ? 1u : 0u)
+      + (value.inputs ? 1u : 0u) + (value.debug_wanted ? 1u : 0u));
   w.key("pose");
   write(w, value.pose, where.key("pose"));
   w.key("velocity");
@@ -203,13 +233,25 @@ void write(Writer & w, const ComputeVelocityCommandsRequest & value, const Field
     w.key("costmap");
     write(w, *value.costmap, where.key("costmap"));
   }
+  if (value.inputs) {
+    w.key("inputs");
+    write(w, *value.inputs, where.key("inputs"));
+  }
+  if (value.debug_wanted) {
+    w.key("debug_wanted");
+    write(w, *value.debug_wanted, where.key("debug_wanted"));
+  }
 }
 
 void write(Writer & w, const ComputeVelocityCommandsReply & value, const FieldPath & where)
 {
-  w.map(1);
+  w.map(std::size_t{1} + (value.debug ? 1u : 0u));
   w.key("cmd_vel");
   write(w, value.cmd_vel, where.key("cmd_vel"));
+  if (value.debug) {
+    w.key("debug");
+    write(w, *value.debug, where.key("debug"));
+  }
 }
 
 void write(Writer & w, const SetSpeedLimitRequest & value, const FieldPath &)
@@ -544,6 +586,27 @@ Error read_error(const Object & object, const FieldPath & where)
   return out;
 }
 
+Input read_input(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  Input out;
+  out.name = m.required("name", read_str);
+  out.type = m.required("type", read_str);
+  out.stamp_ns = m.required("stamp_ns", read_i64);
+  out.cdr = m.required("cdr", read_bin);
+  return out;
+}
+
+DebugOutput read_debug_output(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  DebugOutput out;
+  out.name = m.required("name", read_str);
+  out.type = m.required("type", read_str);
+  out.cdr = m.required("cdr", read_bin);
+  return out;
+}
+
 ConfigureRequest read_configure_request(const Object & object, const FieldPath & where)
 {
   const MapReader m(object, where);
@@ -565,6 +628,7 @@ ConfigureReply read_configure_reply(const Object & object, const FieldPath & whe
   out.declared = m.required("declared", read_params);
   out.planner = m.optional("planner", read_str);
   out.undeclared = m.optional("undeclared", read_str_map);
+  out.debug_outputs = m.optional("debug_outputs", read_str_map);
   return out;
 }
 
@@ -643,6 +707,8 @@ ComputeVelocityCommandsRequest read_compute_velocity_commands_request(
   out.velocity = m.required("velocity", read_f64_array<6>);
   out.goal_checker = m.optional("goal_checker", read_goal_checker);
   out.costmap = m.optional("costmap", read_costmap);
+  out.inputs = m.optional("inputs", read_array<read_input>);
+  out.debug_wanted = m.optional("debug_wanted", read_array<read_str>);
   return out;
 }
 
@@ -652,6 +718,7 @@ ComputeVelocityCommandsReply read_compute_velocity_commands_reply(
   const MapReader m(object, where);
   ComputeVelocityCommandsReply out;
   out.cmd_vel = m.required("cmd_vel", read_twist_stamped);
+  out.debug = m.optional("debug", read_array<read_debug_output>);
   return out;
 }
 
@@ -994,6 +1061,16 @@ std::size_t payload_size(const Error & value)
            + value.python_type.size();
 }
 
+std::size_t payload_size(const Input & value)
+{
+  return value.name.size() + value.type.size() + value.cdr.size();
+}
+
+std::size_t payload_size(const DebugOutput & value)
+{
+  return value.name.size() + value.type.size() + value.cdr.size();
+}
+
 std::size_t payload_size(const ConfigureRequest & value)
 {
   return value.plugin_type.size() + value.name.size() + value.node.size()
@@ -1032,12 +1109,14 @@ std::size_t payload_size(const SetPlanReply &) {return 0;}
 std::size_t payload_size(const ComputeVelocityCommandsRequest & value)
 {
   return payload_size(value.pose) + (value.goal_checker ? payload_size((*value.goal_checker)) : 0)
-           + (value.costmap ? payload_size((*value.costmap)) : 0);
+           + (value.costmap ? payload_size((*value.costmap)) : 0)
+           + (value.inputs ? payload_size((*value.inputs)) : 0)
+           + (value.debug_wanted ? payload_size((*value.debug_wanted)) : 0);
 }
 
 std::size_t payload_size(const ComputeVelocityCommandsReply & value)
 {
-  return payload_size(value.cmd_vel);
+  return payload_size(value.cmd_vel) + (value.debug ? payload_size((*value.debug)) : 0);
 }
 
 std::size_t payload_size(const SetSpeedLimitRequest &) {return 0;}

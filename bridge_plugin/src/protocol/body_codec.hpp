@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <string>
+#include <vector>
 
 #include "nav2_pyif_bridge/protocol/bodies.hpp"
 #include "nav2_pyif_bridge/protocol/types.hpp"
@@ -24,6 +26,8 @@ void write(Writer & w, const Path & value, const FieldPath & where);
 void write(Writer & w, const Costmap & value, const FieldPath & where);
 void write(Writer & w, const GoalChecker & value, const FieldPath & where);
 void write(Writer & w, const Error & value, const FieldPath & where);
+void write(Writer & w, const Input & value, const FieldPath & where);
+void write(Writer & w, const DebugOutput & value, const FieldPath & where);
 void write(Writer & w, const ConfigureRequest & value, const FieldPath & where);
 void write(Writer & w, const ConfigureReply & value, const FieldPath & where);
 void write(Writer & w, const ActivateRequest & value, const FieldPath & where);
@@ -65,6 +69,16 @@ void write(Writer & w, const MatchSizeReply & value, const FieldPath & where);
 void write(Writer & w, const RequestBody & body, const FieldPath & where);
 void write(Writer & w, const ReplyBody & body, const FieldPath & where);
 
+// An array field (`many` in the schema): each element written as its kind.
+template<class T>
+void write(Writer & w, const std::vector<T> & values, const FieldPath & where)
+{
+  w.array(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    write(w, values[i], where.index(i));
+  }
+}
+
 // Reads one map, checking every field; throws DecodeError naming the field.
 PoseStamped read_pose_stamped(const Object & object, const FieldPath & where);
 TwistStamped read_twist_stamped(const Object & object, const FieldPath & where);
@@ -72,6 +86,8 @@ Path read_path(const Object & object, const FieldPath & where);
 Costmap read_costmap(const Object & object, const FieldPath & where);
 GoalChecker read_goal_checker(const Object & object, const FieldPath & where);
 Error read_error(const Object & object, const FieldPath & where);
+Input read_input(const Object & object, const FieldPath & where);
+DebugOutput read_debug_output(const Object & object, const FieldPath & where);
 ConfigureRequest read_configure_request(const Object & object, const FieldPath & where);
 ConfigureReply read_configure_reply(const Object & object, const FieldPath & where);
 ActivateRequest read_activate_request(const Object & object, const FieldPath & where);
@@ -122,6 +138,8 @@ std::size_t payload_size(const Path & value);
 std::size_t payload_size(const Costmap & value);
 std::size_t payload_size(const GoalChecker & value);
 std::size_t payload_size(const Error & value);
+std::size_t payload_size(const Input & value);
+std::size_t payload_size(const DebugOutput & value);
 std::size_t payload_size(const ConfigureRequest & value);
 std::size_t payload_size(const ConfigureReply & value);
 std::size_t payload_size(const ActivateRequest & value);
@@ -162,5 +180,15 @@ std::size_t payload_size(const MatchSizeRequest & value);
 std::size_t payload_size(const MatchSizeReply & value);
 std::size_t payload_size(const RequestBody & body);
 std::size_t payload_size(const ReplyBody & body);
+inline std::size_t payload_size(const std::string & text) {return text.size();}
+template<class T>
+std::size_t payload_size(const std::vector<T> & values)
+{
+  std::size_t bytes = 0;
+  for (const auto & value : values) {
+    bytes += payload_size(value);
+  }
+  return bytes;
+}
 
 }  // namespace nav2_pyif_bridge::protocol::detail

@@ -264,6 +264,14 @@ void read_f64_array(const Object & object, const FieldPath & where, double * out
   }
 }
 
+const msgpack::object_array & read_array_items(const Object & object, const FieldPath & where)
+{
+  if (object.type != msgpack::type::ARRAY) {
+    fail(where, expected("an array", object));
+  }
+  return object.via.array;
+}
+
 Params read_params(const Object & object, const FieldPath & where)
 {
   if (object.type != msgpack::type::MAP) {

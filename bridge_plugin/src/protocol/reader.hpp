@@ -62,6 +62,21 @@ std::array<double, N> read_f64_array(const Object & object, const FieldPath & wh
   return out;
 }
 
+// The elements of a msgpack array (throws unless `object` is one).
+const msgpack::object_array & read_array_items(const Object & object, const FieldPath & where);
+// An array field (`many` in the schema): each element read by Read, naming its index in errors.
+template<auto Read>
+auto read_array(const Object & object, const FieldPath & where)
+{
+  const msgpack::object_array & items = read_array_items(object, where);
+  std::vector<decltype(Read(object, where))> out;
+  out.reserve(items.size);
+  for (std::uint32_t i = 0; i < items.size; ++i) {
+    out.push_back(Read(items.ptr[i], where.index(i)));
+  }
+  return out;
+}
+
 // A map with string keys, read field by field.
 class MapReader
 {

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
+#include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
@@ -70,6 +71,12 @@ private:
   Sink sink_{out_};
   msgpack::packer<Sink> packer_{sink_};
 };
+
+// One text element of an array field (the generated write of a std::vector calls it).
+inline void write(Writer & w, const std::string & text, const FieldPath & where)
+{
+  w.str(text, where);
+}
 
 // `params` maps: name -> bool, int, float, str or an array of one of those.
 void write_params(Writer & w, const Params & params, const FieldPath & where);

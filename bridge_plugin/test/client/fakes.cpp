@@ -382,7 +382,7 @@ proto::Reply FakeHost::handle(
           cmd.twist[0] = std::numeric_limits<double>::quiet_NaN();
           nan_once = false;
         }
-        reply.outcome = proto::ReplyBody{proto::ComputeVelocityCommandsReply{cmd}};
+        reply.outcome = proto::ReplyBody{proto::ComputeVelocityCommandsReply{cmd, std::nullopt}};
         break;
       }
     case proto::Op::Cancel:

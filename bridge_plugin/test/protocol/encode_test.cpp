@@ -75,6 +75,30 @@ TEST(EncodeFromScratch, ComputeVelocityCommandsRequest)
     read_vector_bytes("compute_velocity_commands_no_goal_checker"));
 }
 
+// Bytes from the vectors' SCAN_CDR (real CDR of a 3-beam LaserScan; opaque to the codec).
+Bytes hex_bytes(const std::string & hex)
+{
+  Bytes out;
+  for (std::size_t i = 0; i + 1 < hex.size(); i += 2) {
+    out.push_back(static_cast<std::uint8_t>(std::stoul(hex.substr(i, 2), nullptr, 16)));
+  }
+  return out;
+}
+
+TEST(EncodeFromScratch, InputsAndDebugWanted)
+{
+  ComputeVelocityCommandsRequest body;
+  body.pose = pose("odom", 1.0, 2.0, 0.24740395925452294, 0.9689124217106447);
+  body.velocity = {0.3, 0.0, 0.0, 0.0, 0.0, 0.1};
+  const Bytes scan = hex_bytes(
+    "000100000c00000000000000060000006c617365720000000000c0bf0000c03f0000c03f00000000000000"
+    "00cdcccc3d00000041030000000000803f000020400000807f00000000");
+  body.inputs = std::vector<Input>{Input{"scan", "sensor_msgs/msg/LaserScan", 12000000000, scan}};
+  body.debug_wanted = std::vector<std::string>{"local_plan", "lookahead_point"};
+  EXPECT_EQ(encode_request(request(body, 1236)),
+    read_vector_bytes("compute_velocity_commands_inputs"));
+}
+
 TEST(EncodeFromScratch, ConfigureController)
 {
   ConfigureRequest body;
@@ -110,7 +134,7 @@ TEST(EncodeFromScratch, SmallRequests)
 TEST(EncodeFromScratch, Replies)
 {
   TwistStamped cmd{"base_link", 42, {0.4, 0.0, 0.0, 0.0, 0.0, -0.2}};
-  EXPECT_EQ(encode_reply(ok_reply(ComputeVelocityCommandsReply{cmd}, 1234, 12345)),
+  EXPECT_EQ(encode_reply(ok_reply(ComputeVelocityCommandsReply{cmd, std::nullopt}, 1234, 12345)),
     read_vector_bytes("compute_velocity_commands_reply"));
   EXPECT_EQ(encode_reply(ok_reply(CreatePlanReply{Path{"map", 5, {}}}, 7, 12345)),
     read_vector_bytes("create_plan_reply_empty"));

@@ -85,6 +85,12 @@ struct IsOptional : std::false_type {};
 template<class T>
 struct IsOptional<std::optional<T>>: std::true_type {};
 
+// An array field of the schema (`many`): a vector of structures or strings.
+template<class T>
+struct IsArrayField : std::false_type {};
+template<class T>
+struct IsArrayField<std::vector<T>>: std::bool_constant<!std::is_arithmetic_v<T>> {};
+
 template<class T>
 struct IsFloatArray : std::false_type {};
 template<std::size_t N>
@@ -107,6 +113,12 @@ Json value_json(const T & value)
     return packed_json(value);  // the only top-level float vectors are packed rows
   } else if constexpr (IsFloatArray<T>::value) {
     return floats_json(value);
+  } else if constexpr (IsArrayField<T>::value) {
+    Json out = Json::array();
+    for (const auto & item : value) {
+      out.push_back(value_json(item));
+    }
+    return out;
   } else if constexpr (std::is_same_v<T, Params>|| std::is_same_v<T, StringMap>) {
     Json out = Json::object();
     for (const auto & [name, item] : value) {

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from typing import Any
 
 from nav2_pyif_protocol.constants import Op, PluginType
@@ -10,6 +11,7 @@ from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
 from nav2_pyif.plan import Plan
+from nav2_pyif.ros_types import deserialize, serialize, type_name_of
 
 
 class ControllerClient(PluginClient):
@@ -21,6 +23,8 @@ class ControllerClient(PluginClient):
         super().__init__(*args, **kwargs)
         self._plan: dict[str, Any] | None = None
         self._speed_limit: tuple[float, bool] | None = None
+        #: the debug outputs the last cycle returned, name -> rclpy message
+        self.debug: dict[str, Any] = {}
 
     def set_plan(self, path: Plan | Any) -> None:
         """``path``: a Plan or a nav_msgs/Path, in the costmap's global frame."""
@@ -29,13 +33,31 @@ class ControllerClient(PluginClient):
         self._call(Op.SET_PLAN, {"path": self._plan})
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None = None
+        self,
+        pose: Any,
+        velocity: Any,
+        goal_checker: GoalChecker | None = None,
+        inputs: Mapping[str, tuple[Any, int]] | None = None,
+        debug_wanted: Iterable[str] = (),
     ) -> Any:
-        """PoseStamped + Twist -> TwistStamped (finite, or an exception)."""
+        """PoseStamped + Twist -> TwistStamped (finite, or an exception).
+
+        inputs: new input messages, name -> (rclpy message, receive time [ns]), serialized
+        as the plugin sends them; debug_wanted: debug outputs to return (into ``self.debug``).
+        """
         body: dict[str, Any] = {"pose": pose_to_wire(pose), "velocity": twist_to_list(velocity)}
         if goal_checker is not None:
             body["goal_checker"] = goal_checker.to_wire()
+        if inputs:
+            body["inputs"] = [
+                {"name": name, "type": type_name_of(msg), "stamp_ns": ns, "cdr": serialize(msg)}
+                for name, (msg, ns) in inputs.items()
+            ]
+        wanted = list(debug_wanted)
+        if wanted:
+            body["debug_wanted"] = wanted
         reply = self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+        self.debug = {d["name"]: deserialize(d["type"], d["cdr"]) for d in reply.get("debug", [])}
         return twist_stamped_from_wire(reply["cmd_vel"])
 
     def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:

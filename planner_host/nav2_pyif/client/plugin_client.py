@@ -30,6 +30,7 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
+from nav2_pyif_protocol.schema import BODIES
 
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import HostWatcher
@@ -39,6 +40,8 @@ from nav2_pyif.params import ParamValue
 
 log = logging.getLogger("nav2_pyif.client")
 Body = dict[str, Any]
+# Each op's request fields in wire order.
+_REQUEST_FIELDS = {op: [f.name for f in fields[0]] for op, fields in BODIES.items()}
 
 
 @dataclass(frozen=True)
@@ -97,6 +100,7 @@ class PluginClient:
         self.host: str | None = None  # the pinned host among replicas
         self.resyncs = 0
         self.undeclared: dict[str, str] = {}  # given parameters the planner ignores
+        self.debug_outputs: dict[str, str] = {}  # debug outputs the planner declares: name -> type
         self.failovers = 0
         self.records: list[CallRecord] | None = [] if record_calls else None
         self.hosts = HostWatcher(session, self.keys)
@@ -114,6 +118,7 @@ class PluginClient:
         self.configured = True
         self.served = body.get("planner")
         self.undeclared = body.get("undeclared") or {}
+        self.debug_outputs = body.get("debug_outputs") or {}
         if self.undeclared:
             log.warning(
                 "%s: the planner ignores parameter(s) %s: %s",
@@ -287,9 +292,11 @@ class PluginClient:
         self._pin_host(alive)
         version = self.costmap.version
         send_costmap = with_costmap and version != self._delivered_costmap
-        request = self._next_request(
-            op, dict(body, costmap=self.costmap.to_wire()) if send_costmap else body
-        )
+        if send_costmap:
+            # in schema order, as the validation skipped for the control cycle would write it
+            merged = dict(body, costmap=self.costmap.to_wire())
+            body = {name: merged[name] for name in _REQUEST_FIELDS[op] if name in merged}
+        request = self._next_request(op, body)
         retry = {"with_costmap": with_costmap, "allow_failover": False, "wait": wait}
         try:
             reply = self._exchange(request, wait)

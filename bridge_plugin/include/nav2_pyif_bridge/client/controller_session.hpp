@@ -4,7 +4,12 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
+#include <map>
+#include <mutex>
 #include <optional>
+#include <string>
+#include <vector>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
@@ -18,8 +23,16 @@ public:
 
   // The plan in the costmap's global frame; remembered (after an ok reply) for re-sending.
   void set_plan(const protocol::Path & path);
+  // The latest message of an input topic (from a subscription's thread): sent with the next
+  // control cycle, once; every input again after the host lost the session.
+  void set_input(protocol::Input input);
+  // The debug outputs someone subscribes to, asked for in every following cycle.
+  void set_debug_wanted(std::vector<std::string> names);
+  // The debug outputs the last successful cycle returned (moved out).
+  std::vector<protocol::DebugOutput> take_debug();
+
   // The command, every component finite (else NoValidControl). The costmap travels when it
-  // changed since the host last got it.
+  // changed since the host last got it, and so do the inputs.
   protocol::TwistStamped compute_velocity_commands(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
@@ -40,6 +53,19 @@ protected:
 private:
   std::optional<protocol::Path> plan_;
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
+
+  // The latest message of each input; `sent` is the generation the host acknowledged.
+  struct LatestInput
+  {
+    protocol::Input input;
+    std::uint64_t generation{0};
+    std::uint64_t sent{0};
+  };
+  // Its own lock: subscription callbacks must not wait for a control cycle's round trip.
+  mutable std::mutex inputs_mutex_;
+  std::map<std::string, LatestInput> inputs_;
+  std::vector<std::string> debug_wanted_;
+  std::vector<protocol::DebugOutput> debug_;
 };
 
 }  // namespace nav2_pyif_bridge::client

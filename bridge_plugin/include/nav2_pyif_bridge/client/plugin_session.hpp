@@ -118,6 +118,8 @@ public:
   std::uint64_t resyncs() const;              // re-establishments after SessionUnknown
   std::string last_host() const;              // the host of the last reply
   std::string served() const;                 // the configure reply's planner; "" if unsaid
+  // The debug outputs the served planner may return (name -> ROS type), from configure.
+  protocol::StringMap debug_outputs() const;
   std::string pinned_host() const;            // the replica queries go to; "" before the first
   std::uint64_t failovers() const;            // times another replica was pinned
   std::optional<std::uint64_t> delivered_costmap() const;
@@ -183,6 +185,7 @@ private:
   std::uint64_t resyncs_{0};
   std::string last_host_;
   std::string served_;
+  protocol::StringMap debug_outputs_;
   std::string pinned_host_;
   std::uint64_t failovers_{0};
   std::optional<std::uint64_t> delivered_costmap_;

@@ -18,6 +18,8 @@
 //   python_path         directories to import planners from (planner-host --path)
 //   planner_host_command  the planner-host executable (default: planner-host on PATH)
 //   planner_host_args   more arguments for it (e.g. ["--isolation", "none"])
+//   inputs              extra topics for the controller, Nav2 style: ["scan"] with
+//                       scan.topic: "/scan" and scan.type: "sensor_msgs/msg/LaserScan"
 //
 // With python_module or python_planner the plugin starts and supervises its own planner host
 // (local_host.hpp) and connects to it directly; `key` is then optional.
@@ -50,6 +52,14 @@ struct LocalHostSpec
   bool enabled() const noexcept {return !planner.empty() || !module.empty();}
 };
 
+// One of a controller's extra input topics (the `inputs` parameter).
+struct InputSpec
+{
+  std::string name;   // the planner's self.inputs[name]
+  std::string topic;  // subscribed on the server's node
+  std::string type;   // package/msg/Type
+};
+
 struct BridgeSettings
 {
   std::string key;  // empty with a local host: the plugin chooses one
@@ -58,6 +68,7 @@ struct BridgeSettings
   Timeouts timeouts;
   std::optional<Duration> wait_for_host;  // unset: 5 s, or 60 s with a local host
   LocalHostSpec local_host;
+  std::vector<InputSpec> inputs;
 
   Duration host_wait() const;
 };

@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "nav2_pyif_bridge/protocol/ops.hpp"
 #include "nav2_pyif_bridge/protocol/params.hpp"
@@ -50,6 +51,8 @@ struct ConfigureReply
   // optional: given parameters the planner does not declare (ignored), name -> reason; absent when
   // none
   std::optional<StringMap> undeclared;
+  // optional: debug outputs the planner may return, name -> ROS message type; absent when none
+  std::optional<StringMap> debug_outputs;
 };
 
 // --- activate ------------------------------------------------------------------------------------
@@ -100,12 +103,18 @@ struct ComputeVelocityCommandsRequest
   std::optional<GoalChecker> goal_checker;
   // optional: present only when changed since last sent
   std::optional<Costmap> costmap;
+  // optional: input messages received since the last call (the latest of each); absent when none
+  std::optional<std::vector<Input>> inputs;
+  // optional: names of the debug outputs someone subscribes to; absent when none
+  std::optional<std::vector<std::string>> debug_wanted;
 };
 
 struct ComputeVelocityCommandsReply
 {
   // the command; every component finite
   TwistStamped cmd_vel;
+  // optional: debug outputs among debug_wanted the planner returned; absent when none
+  std::optional<std::vector<DebugOutput>> debug;
 };
 
 // --- set_speed_limit -----------------------------------------------------------------------------

@@ -71,6 +71,23 @@ void for_each_field(const Error & value, Visit && visit)
 }
 
 template<class Visit>
+void for_each_field(const Input & value, Visit && visit)
+{
+  visit("name", value.name);
+  visit("type", value.type);
+  visit("stamp_ns", value.stamp_ns);
+  visit("cdr", value.cdr);
+}
+
+template<class Visit>
+void for_each_field(const DebugOutput & value, Visit && visit)
+{
+  visit("name", value.name);
+  visit("type", value.type);
+  visit("cdr", value.cdr);
+}
+
+template<class Visit>
 void for_each_field(const ConfigureRequest & value, Visit && visit)
 {
   visit("plugin_type", value.plugin_type);
@@ -88,6 +105,7 @@ void for_each_field(const ConfigureReply & value, Visit && visit)
   visit("declared", value.declared);
   visit("planner", value.planner);
   visit("undeclared", value.undeclared);
+  visit("debug_outputs", value.debug_outputs);
 }
 
 template<class Visit>
@@ -136,12 +154,15 @@ void for_each_field(const ComputeVelocityCommandsRequest & value, Visit && visit
   visit("velocity", value.velocity);
   visit("goal_checker", value.goal_checker);
   visit("costmap", value.costmap);
+  visit("inputs", value.inputs);
+  visit("debug_wanted", value.debug_wanted);
 }
 
 template<class Visit>
 void for_each_field(const ComputeVelocityCommandsReply & value, Visit && visit)
 {
   visit("cmd_vel", value.cmd_vel);
+  visit("debug", value.debug);
 }
 
 template<class Visit>

@@ -109,4 +109,28 @@ struct Error
   std::string python_type;
 };
 
+// The latest message of one of the plugin's input topics, ROS-serialized (CDR).
+struct Input
+{
+  // the input's name in the plugin's `inputs` parameter (e.g. scan)
+  std::string name;
+  // ROS message type, e.g. sensor_msgs/msg/LaserScan
+  std::string type;
+  // when the plugin received it, ns on the server's clock
+  std::int64_t stamp_ns{0};
+  // the message as ROS serializes it (CDR with its 4-byte header)
+  std::vector<std::uint8_t> cdr;
+};
+
+// A message the planner publishes for debugging, ROS-serialized (CDR).
+struct DebugOutput
+{
+  // the output's name: published on <plugin name>/<name>
+  std::string name;
+  // ROS message type, one the configure reply listed for this name
+  std::string type;
+  // the message as ROS serializes it (CDR with its 4-byte header)
+  std::vector<std::uint8_t> cdr;
+};
+
 }  // namespace nav2_pyif_bridge::protocol

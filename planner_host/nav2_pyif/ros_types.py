@@ -1,0 +1,53 @@
+"""ROS messages by type name, and their serialized (CDR) form: how inputs and debug outputs
+travel between the C++ plugin, which handles them as bytes of a named type only
+(rclcpp::GenericSubscription / GenericPublisher), and the host, where they are rclpy messages.
+"""
+
+from __future__ import annotations
+
+import importlib
+from functools import cache
+from typing import Any
+
+
+class MessageTypeError(ValueError):
+    """A type name that is not ``package/msg/Type`` or names no importable message."""
+
+
+@cache
+def message_class(type_name: str) -> type:
+    """``"sensor_msgs/msg/LaserScan"`` -> the rclpy message class (imported by its name, as
+    rosidl_runtime_py.utilities.get_message does, without needing that package)."""
+    parts = type_name.split("/")
+    if len(parts) != 3 or parts[1] != "msg" or not all(parts):
+        raise MessageTypeError(f"{type_name!r} is not a message type name (package/msg/Type)")
+    package, _, name = parts
+    try:
+        cls = getattr(importlib.import_module(f"{package}.msg"), name)
+    except (ImportError, AttributeError) as exc:
+        raise MessageTypeError(
+            f"message type {type_name} is not available on this host ({exc}); install its "
+            f"package (e.g. pip install ros-jazzy-{package.replace('_', '-')})"
+        ) from None
+    if not isinstance(cls, type):
+        raise MessageTypeError(f"{type_name} is not a message class")
+    return cls
+
+
+def type_name_of(msg: Any) -> str:
+    """The ``package/msg/Type`` name of an rclpy message."""
+    cls = type(msg)
+    package = cls.__module__.split(".")[0]
+    return f"{package}/msg/{cls.__name__}"
+
+
+def deserialize(type_name: str, cdr: bytes) -> Any:
+    from rclpy.serialization import deserialize_message
+
+    return deserialize_message(cdr, message_class(type_name))
+
+
+def serialize(msg: Any) -> bytes:
+    from rclpy.serialization import serialize_message
+
+    return serialize_message(msg)  # type: ignore[no-any-return]
