@@ -176,7 +176,8 @@ TEST(DecodeErrors, UnknownOpListsTheKnownOnes)
   EXPECT_EQ(request_outcome(tree),
     "BadRequest: request.op: unknown op 'fly'; known: configure, activate, deactivate, "
     "cleanup, set_parameters, set_plan, compute_velocity_commands, set_speed_limit, cancel, "
-    "reset, create_plan, cancel_plan, smooth, is_goal_reached, get_tolerances, check");
+    "reset, create_plan, cancel_plan, smooth, is_goal_reached, get_tolerances, check, "
+    "update_bounds, update_costs, match_size");
 }
 
 TEST(DecodeErrors, VersionIsCheckedFirst)
