@@ -21,8 +21,9 @@ SPEC = "my_planners.go_to:GoTo"
 @pytest.fixture
 def user_dir(tmp_path: Path) -> Path:
     """A directory holding README's my_planners/go_to.py, outside the repository."""
-    (block,) = [b for b in blocks(ROOT / "README.md", ROOT) if b.user_file]
-    assert block.user_file == "my_planners/go_to.py"
+    (block,) = [
+        b for b in blocks(ROOT / "README.md", ROOT) if b.user_file == "my_planners/go_to.py"
+    ]
     target = tmp_path / "project" / block.user_file
     target.parent.mkdir(parents=True)
     target.write_text(block.text)
