@@ -16,15 +16,14 @@ from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import blocks
 
 SPEC = "my_planners.go_to:GoTo"
+USER_FILE = "my_planners/go_to.py"
 
 
 @pytest.fixture
 def user_dir(tmp_path: Path) -> Path:
     """A directory holding README's my_planners/go_to.py, outside the repository."""
-    (block,) = [
-        b for b in blocks(ROOT / "README.md", ROOT) if b.user_file == "my_planners/go_to.py"
-    ]
-    target = tmp_path / "project" / block.user_file
+    (block,) = [b for b in blocks(ROOT / "README.md", ROOT) if b.user_file == USER_FILE]
+    target = tmp_path / "project" / USER_FILE
     target.parent.mkdir(parents=True)
     target.write_text(block.text)
     return tmp_path / "project"
