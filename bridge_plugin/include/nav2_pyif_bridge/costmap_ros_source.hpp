@@ -5,6 +5,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 
 #include "nav2_costmap_2d/costmap_2d_ros.hpp"
 
@@ -12,6 +13,10 @@
 
 namespace nav2_pyif_bridge
 {
+
+// The grid, its geometry and `frame_id` of a Nav2 costmap, as the session sends them (no
+// footprint). The caller holds the costmap's mutex while the view is read: data points into it.
+client::CostmapView costmap_view(const nav2_costmap_2d::Costmap2D & costmap, std::string frame_id);
 
 class CostmapRosSource : public client::CostmapSource
 {

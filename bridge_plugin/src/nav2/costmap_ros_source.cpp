@@ -26,6 +26,19 @@ double robot_radius(T &, long)
 
 }  // namespace
 
+client::CostmapView costmap_view(const nav2_costmap_2d::Costmap2D & costmap, std::string frame_id)
+{
+  client::CostmapView view;
+  view.frame_id = std::move(frame_id);
+  view.size_x = costmap.getSizeInCellsX();
+  view.size_y = costmap.getSizeInCellsY();
+  view.resolution = costmap.getResolution();
+  view.origin_x = costmap.getOriginX();
+  view.origin_y = costmap.getOriginY();
+  view.data = costmap.getCharMap();
+  return view;
+}
+
 CostmapRosSource::CostmapRosSource(std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
 : costmap_ros_(std::move(costmap_ros))
 {
@@ -42,14 +55,7 @@ client::CostmapRead CostmapRosSource::read(std::optional<std::uint64_t> known)
   }
   nav2_costmap_2d::Costmap2D * costmap = costmap_ros_->getCostmap();
   std::unique_lock<nav2_costmap_2d::Costmap2D::mutex_t> lock(*costmap->getMutex());
-  client::CostmapView view;
-  view.frame_id = frame;
-  view.size_x = costmap->getSizeInCellsX();
-  view.size_y = costmap->getSizeInCellsY();
-  view.resolution = costmap->getResolution();
-  view.origin_x = costmap->getOriginX();
-  view.origin_y = costmap->getOriginY();
-  view.data = costmap->getCharMap();
+  client::CostmapView view = costmap_view(*costmap, frame);
   view.footprint = std::move(footprint);
   view.robot_radius = robot_radius(*costmap_ros_, 0);
   return client::read_costmap(view, version_, known);

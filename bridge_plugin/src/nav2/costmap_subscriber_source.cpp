@@ -1,5 +1,7 @@
 #include "nav2_pyif_bridge/costmap_subscriber_source.hpp"
 
+#include "nav2_pyif_bridge/costmap_ros_source.hpp"
+
 #include <stdexcept>
 #include <utility>
 
@@ -25,15 +27,7 @@ client::CostmapRead CostmapSubscriberSource::read(std::optional<std::uint64_t> k
     return client::read_costmap(none_.view(), version_, known);
   }
   std::unique_lock<nav2_costmap_2d::Costmap2D::mutex_t> lock(*costmap->getMutex());
-  client::CostmapView view;
-  view.frame_id = frame_id_;
-  view.size_x = costmap->getSizeInCellsX();
-  view.size_y = costmap->getSizeInCellsY();
-  view.resolution = costmap->getResolution();
-  view.origin_x = costmap->getOriginX();
-  view.origin_y = costmap->getOriginY();
-  view.data = costmap->getCharMap();
-  return client::read_costmap(view, version_, known);
+  return client::read_costmap(costmap_view(*costmap, frame_id_), version_, known);
 }
 
 }  // namespace nav2_pyif_bridge
