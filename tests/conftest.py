@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 import zenoh
 from nav2_pyif import Costmap
-from nav2_pyif.host_process import PlannerHostProcess, free_port
-from nav2_pyif.zenoh_config import connect_to
+from nav2_pyif.common.host_process import PlannerHostProcess, free_port
+from nav2_pyif.common.zenoh_config import connect_to
 
 __all__ = ["free_port"]  # tests import it from here
 
@@ -150,7 +150,7 @@ def survivors(tree: dict[int, tuple[str, str]]) -> dict[int, str]:
 def nav2_pyif_tool(*args: str, timeout: float = 90) -> subprocess.CompletedProcess[str]:
     """``nav2-pyif ARGS`` (this Python's), its output captured."""
     return subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.tool", *args],
+        [sys.executable, "-m", "nav2_pyif.tools.main", *args],
         capture_output=True,
         text=True,
         timeout=timeout,

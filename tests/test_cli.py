@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from nav2_pyif.cli import build_parser
+from nav2_pyif.server.cli import build_parser
 
 from tests.conftest import FIXTURES
 from tests.test_env_and_router import parse
@@ -21,7 +21,7 @@ def run(*args: str, timeout: float = 30) -> subprocess.CompletedProcess[str]:
     import os
 
     return subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.cli", *args],
+        [sys.executable, "-m", "nav2_pyif.server.cli", *args],
         capture_output=True,
         text=True,
         timeout=timeout,

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 import yaml
-from nav2_pyif.cli import build_parser
-from nav2_pyif.env_defaults import variable_name
+from nav2_pyif.common.env_defaults import variable_name
+from nav2_pyif.server.cli import build_parser
 
 DOCKER = Path(__file__).resolve().parents[1] / "docker"
 

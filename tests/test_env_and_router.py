@@ -11,9 +11,9 @@ from typing import Any
 
 import pytest
 from geometry_msgs.msg import Twist
-from nav2_pyif.cli import build_parser
 from nav2_pyif.client import ControllerClient
-from nav2_pyif.env_defaults import apply_environment
+from nav2_pyif.common.env_defaults import apply_environment
+from nav2_pyif.server.cli import build_parser
 
 from tests.conftest import FIXTURES, free_port, make_costmap, wait_until
 from tests.test_host_e2e import GENEROUS, pose
@@ -69,7 +69,7 @@ def test_empty_variables_count_as_unset() -> None:
 )
 def test_a_bad_variable_is_a_usage_error_naming_it(variable: str, value: str, words: str) -> None:
     result = subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.cli"],
+        [sys.executable, "-m", "nav2_pyif.server.cli"],
         capture_output=True,
         text=True,
         timeout=30,
@@ -85,7 +85,7 @@ def test_help_names_the_variables() -> None:
 
 def test_help_works_whatever_the_environment_holds() -> None:
     result = subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.cli", "--help"],
+        [sys.executable, "-m", "nav2_pyif.server.cli", "--help"],
         capture_output=True,
         text=True,
         timeout=30,
@@ -99,7 +99,7 @@ def start_router(
 ) -> subprocess.Popen[str]:
     """``nav2-pyif router`` (``where``: --listen or --zenoh-config), once it listens; its
     output (Zenoh's log after the first line) in ``log`` if given."""
-    command = [sys.executable, "-m", "nav2_pyif.tool", "router", *where]
+    command = [sys.executable, "-m", "nav2_pyif.tools.main", "router", *where]
     environ = {**os.environ, **(env or {})}
     if log is None:
         router = subprocess.Popen(command, stdout=subprocess.PIPE, text=True, env=environ)
@@ -130,7 +130,7 @@ def test_router_routes_between_a_host_and_a_client(
     host_log = open(tmp_path / "host.log", "wb")  # noqa: SIM115 - closed below
     # The host is configured only through the environment, as in the container.
     host = subprocess.Popen(
-        [sys.executable, "-m", "nav2_pyif.cli"],
+        [sys.executable, "-m", "nav2_pyif.server.cli"],
         stdout=host_log,
         stderr=subprocess.STDOUT,
         env=dict(
@@ -166,7 +166,7 @@ def test_a_host_that_reaches_nothing_keeps_saying_so_until_it_reaches_a_router(
     router_at = f"tcp/127.0.0.1:{free_port()}"  # nothing there yet
     key, planner = "nav2_pyif/lonely/FollowPath", "echo_planners:EchoController"
     host = start_host("--key", key, "--planner", planner, "--connect", router_at)
-    warning = "[WARNING] [nav2_pyif.host] Zenoh: nothing reached yet; "
+    warning = "[WARNING] [nav2_pyif.server.host] Zenoh: nothing reached yet; "
     assert wait_until(
         lambda: (
             (
@@ -181,7 +181,7 @@ def test_a_host_that_reaches_nothing_keeps_saying_so_until_it_reaches_a_router(
     assert wait_until(lambda: host.log().count(warning) >= 2, 15), host.log()  # repeated
     router = start_router("--listen", router_at)
     try:
-        reached = "[INFO] [nav2_pyif.host] Zenoh: reached router "
+        reached = "[INFO] [nav2_pyif.server.host] Zenoh: reached router "
         assert wait_until(lambda: reached in host.log(), 20), host.log()
     finally:
         router.terminate()

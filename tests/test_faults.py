@@ -23,7 +23,7 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 from nav2_pyif.client.admin import NoPlannerHost, request_reload
-from nav2_pyif.host_process import PlannerHostProcess
+from nav2_pyif.common.host_process import PlannerHostProcess
 
 from tests.conftest import (
     CONTROLLER_ERRORS,

@@ -7,8 +7,8 @@ import math
 
 import numpy as np
 import pytest
-from nav2_pyif.sim.laser import Laser, LaserSpec
-from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
+from nav2_pyif.runner.laser import Laser, LaserSpec
+from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
 
 RES = 0.05
 

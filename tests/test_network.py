@@ -54,7 +54,7 @@ def start_remote_host(link: Link, log_path: Path, *args: str) -> subprocess.Pope
     )
     with open(log_path, "wb") as log:
         return subprocess.Popen(
-            ["ip", "netns", "exec", link.ns, sys.executable, "-m", "nav2_pyif.cli", *args],
+            ["ip", "netns", "exec", link.ns, sys.executable, "-m", "nav2_pyif.server.cli", *args],
             stdout=log,
             stderr=subprocess.STDOUT,
             env=env,

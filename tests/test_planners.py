@@ -14,11 +14,11 @@ import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif import Costmap, Parameters, Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
-from nav2_pyif.sim.inflation import inflate
-from nav2_pyif.sim.mapfile import load_map
-from nav2_pyif.sim.runner import pose_msg
+from nav2_pyif.runner.inflation import inflate
+from nav2_pyif.runner.mapfile import load_map
+from nav2_pyif.runner.maps import map_path
+from nav2_pyif.runner.run import pose_msg
 from nav2_pyif_planners.astar import AStar
-from nav2_pyif_planners.maps import map_path
 from nav2_pyif_planners.mppi import MPPI
 from nav2_pyif_planners.pure_pursuit import RegulatedPurePursuit
 

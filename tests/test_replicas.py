@@ -12,7 +12,7 @@ import numpy as np
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
-from nav2_pyif.zenoh_config import connect_to
+from nav2_pyif.common.zenoh_config import connect_to
 
 from tests.conftest import free_port, host_process, make_costmap
 from tests.test_host_e2e import pose

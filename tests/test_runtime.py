@@ -10,10 +10,11 @@ from typing import Any
 import msgpack
 import nav2_pyif as api
 import pytest
-from nav2_pyif.delegates import delegate_class, parse_delegates
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.loader import load_class
-from nav2_pyif.runtime import PlannerRuntime
+from nav2_pyif.roles import parse_delegates
+from nav2_pyif.server.delegates import delegate_class
+from nav2_pyif.server.loader import load_class
+from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif_protocol.arrays import pack_poses
 from nav2_pyif_protocol.codec import Reply, Request, decode_reply, encode_request
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, Op
@@ -90,7 +91,7 @@ def test_nav2_named_exceptions_keep_their_type(
     driver: Driver, name: str, caplog: pytest.LogCaptureFixture
 ) -> None:
     set_fault(driver, name)
-    with caplog.at_level(logging.ERROR, logger="nav2_pyif.host"):
+    with caplog.at_level(logging.ERROR, logger="nav2_pyif.server.host"):
         reply = driver.cycle()
     assert not reply.ok and reply.error is not None
     assert reply.error.type == name

@@ -32,8 +32,8 @@ from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient
 from nav2_pyif.client.admin import NoPlannerHost, request_reload
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.reload_policy import ReloadPolicy
-from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.server.reload_policy import ReloadPolicy
+from nav2_pyif.server.spec import PlannerSpec
 from nav2_pyif_bench.pki import CertificateAuthority
 
 from tests.conftest import free_port, make_costmap, wait_until
@@ -153,7 +153,7 @@ class Fleet:
         config = str(self.config("operator-secure.json5"))
         return subprocess.run(
             [
-                *(sys.executable, "-m", "nav2_pyif.tool", *args),
+                *(sys.executable, "-m", "nav2_pyif.tools.main", *args),
                 *("--zenoh-config", config, "--connect", self.endpoint),
             ],
             capture_output=True,
@@ -349,7 +349,7 @@ def test_a_host_refuses_remote_reloads_by_default(start_host: Any, zsession_fact
 
 def test_reload_allow_needs_allow_remote_reload() -> None:
     result = subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.cli", "--reload-allow", "x.*", "--key", "a/b"],
+        [sys.executable, "-m", "nav2_pyif.server.cli", "--reload-allow", "x.*", "--key", "a/b"],
         capture_output=True,
         text=True,
         timeout=30,

@@ -18,9 +18,9 @@ import pytest
 import zenoh
 from geometry_msgs.msg import Twist
 from nav2_pyif.client import ControllerClient, Timeouts
+from nav2_pyif.common.zenoh_config import ZenohOptions, open_session
 from nav2_pyif.exceptions import ControllerTimedOut
 from nav2_pyif.params import ParamValue
-from nav2_pyif.zenoh_config import ZenohOptions, open_session
 from PIL import Image
 
 from tests.conftest import (
@@ -108,11 +108,13 @@ def test_sim_stops_its_host_and_writes_the_run_so_far(
 ) -> None:
     out = tmp_path / "out"
     prefix = (
-        [str(ROOT / "scripts/sim.sh")] if via != "nav2-pyif" else python("nav2_pyif.tool", "sim")
+        [str(ROOT / "scripts/sim.sh")]
+        if via != "nav2-pyif"
+        else python("nav2_pyif.tools.main", "sim")
     )
     sim = Command(tmp_path, *prefix, "--realtime", "--no-progress", "--out", str(out))
     # the host, a worker per planner and the resource tracker; then let it drive a while
-    sim.wait_for(children={"nav2_pyif.cli": 1, WORKER: 2, TRACKER: 1}, words="driving with")
+    sim.wait_for(children={"nav2_pyif.server.cli": 1, WORKER: 2, TRACKER: 1}, words="driving with")
     time.sleep(1.0)
     sim.assert_ended_cleanly(sim.signal_and_wait(signum), signum)
     name = signal.Signals(signum).name
@@ -129,7 +131,7 @@ KEY = "nav2_pyif/sig/FollowPath"
 
 def host_command(endpoint: str, planner: str = "EchoController", *extra: str) -> list[str]:
     return python(
-        "nav2_pyif.cli",
+        "nav2_pyif.server.cli",
         *("--listen", endpoint, "--log-level", "INFO"),
         *("--key", KEY, "--planner", f"echo_planners:{planner}", *extra),
     )
@@ -176,7 +178,8 @@ def test_a_busy_worker_dies_with_a_killed_host(tmp_path: Path, zsession_factory:
 @pytest.mark.parametrize("signum", SIGNALS, ids=lambda s: s.name)
 def test_router_exits_on_signals(tmp_path: Path, signum: int) -> None:
     router = Command(
-        tmp_path, *python("nav2_pyif.tool", "router", "--listen", f"tcp/127.0.0.1:{free_port()}")
+        tmp_path,
+        *python("nav2_pyif.tools.main", "router", "--listen", f"tcp/127.0.0.1:{free_port()}"),
     )
     router.wait_for(children={}, words="listening on")
     router.assert_ended_cleanly(router.signal_and_wait(signum), signum)
@@ -192,7 +195,7 @@ def test_reload_waiting_for_an_answer_exits_on_signals(tmp_path: Path, signum: i
     try:
         reload = Command(
             tmp_path,
-            *python("nav2_pyif.tool", "reload", "--key", "nav2_pyif/sig/FollowPath"),
+            *python("nav2_pyif.tools.main", "reload", "--key", "nav2_pyif/sig/FollowPath"),
             *("--connect", endpoint),
         )
         assert wait_until(lambda: held, 20), reload.text()
@@ -210,6 +213,6 @@ def test_bench_stops_its_host_and_client_processes(tmp_path: Path, signum: int) 
         tmp_path, *python("nav2_pyif_bench.cli", "fleet", "--robots", "1", "--seconds", "30")
     )
     # the host and its worker, one client process, the bench's resource tracker and the host's
-    bench.wait_for(children={"nav2_pyif.cli": 1, WORKER: 2, TRACKER: 2})
+    bench.wait_for(children={"nav2_pyif.server.cli": 1, WORKER: 2, TRACKER: 2})
     bench.assert_ended_cleanly(bench.signal_and_wait(signum), signum)
     assert f"stopped by {signal.Signals(signum).name}" in bench.text()

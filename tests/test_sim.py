@@ -16,8 +16,9 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
-from nav2_pyif.sim.inflation import inflate, window
-from nav2_pyif.sim.mapfile import (
+from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.inflation import inflate, window
+from nav2_pyif.runner.mapfile import (
     FREE,
     OCCUPIED,
     UNKNOWN,
@@ -26,12 +27,11 @@ from nav2_pyif.sim.mapfile import (
     load_map,
     read_pgm,
 )
-from nav2_pyif.sim.plot import figure
-from nav2_pyif.sim.report import format_report, summary
-from nav2_pyif.sim.runner import SimConfig, prepare
+from nav2_pyif.runner.maps import BUNDLED, map_path
+from nav2_pyif.runner.plot import figure
+from nav2_pyif.runner.report import format_report, summary
+from nav2_pyif.runner.run import SimConfig, prepare
 from nav2_pyif.testing import assert_reaches_goal, drive
-from nav2_pyif_planners import ALIASES
-from nav2_pyif_planners.maps import BUNDLED, map_path
 
 from tests.conftest import FIXTURES
 from tests.test_host_e2e import controller
@@ -63,7 +63,7 @@ def test_the_main_command_writes_png_and_json(tmp_path: Path) -> None:
         [
             sys.executable,
             "-m",
-            "nav2_pyif.tool",
+            "nav2_pyif.tools.main",
             "sim",
             "--map",
             "office",
@@ -89,7 +89,7 @@ def test_the_main_command_writes_png_and_json(tmp_path: Path) -> None:
 
 def run_cli(*args: str, env: dict[str, str] | None = None) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        [sys.executable, "-m", "nav2_pyif.tool", "sim", "--no-progress", *args],
+        [sys.executable, "-m", "nav2_pyif.tools.main", "sim", "--no-progress", *args],
         capture_output=True,
         text=True,
         timeout=120,
@@ -246,7 +246,7 @@ def test_bundled_maps_have_their_tasks() -> None:
 
 def run_sim_command(out: Path, *args: str) -> subprocess.CompletedProcess[str]:
     """``nav2-pyif sim`` on the office map, planners from the test fixtures, output in ``out``."""
-    sim = [sys.executable, "-m", "nav2_pyif.tool", "sim", "--no-progress", "--out", str(out)]
+    sim = [sys.executable, "-m", "nav2_pyif.tools.main", "sim", "--no-progress", "--out", str(out)]
     return subprocess.run(
         [*sim, "--path", str(FIXTURES), *args], capture_output=True, text=True, timeout=120
     )
@@ -281,7 +281,7 @@ def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
 
 def test_built_in_zenoh_configs_make_no_shared_memory_pool_on_the_first_large_message() -> None:
     # eclipse-zenoh's default made the first message above 3 kB (the first plan) cost 10-20 ms
-    from nav2_pyif.zenoh_config import ZenohOptions, build_config
+    from nav2_pyif.common.zenoh_config import ZenohOptions, build_config
 
     for options in (ZenohOptions(use_environment=False), ZenohOptions(listen=["tcp/[::1]:0"])):
         config = build_config(options)
@@ -291,7 +291,15 @@ def test_built_in_zenoh_configs_make_no_shared_memory_pool_on_the_first_large_me
 def test_a_misspelt_controller_parameter_is_a_warning(tmp_path: Path) -> None:
     result = subprocess.run(
         [
-            *(sys.executable, "-m", "nav2_pyif.tool", "sim", "--timeout", "1", "--no-progress"),
+            *(
+                sys.executable,
+                "-m",
+                "nav2_pyif.tools.main",
+                "sim",
+                "--timeout",
+                "1",
+                "--no-progress",
+            ),
             *("--param", "desired_linear_velocity=0.4", "--out", str(tmp_path)),
         ],
         capture_output=True,

@@ -34,7 +34,7 @@ import pytest
 import yaml
 from geometry_msgs.msg import Twist
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient
-from nav2_pyif.zenoh_config import connect_to
+from nav2_pyif.common.zenoh_config import connect_to
 
 from tests.conftest import free_port, make_costmap, wait_until
 from tests.conftest import nav2_pyif_tool as tool
@@ -91,7 +91,9 @@ def planner_host(log: Path, *args: str) -> subprocess.Popen[bytes]:
     """``planner-host ARGS`` on this machine, its output in ``log``."""
     with open(log, "wb") as out:
         return subprocess.Popen(
-            [sys.executable, "-m", "nav2_pyif.cli", *args], stdout=out, stderr=subprocess.STDOUT
+            [sys.executable, "-m", "nav2_pyif.server.cli", *args],
+            stdout=out,
+            stderr=subprocess.STDOUT,
         )
 
 
@@ -265,11 +267,11 @@ def test_router_host_and_reload_in_quick_succession(
     before the router listened or before the host's queryable existed, it found nothing to
     answer. It now waits, up to its timeout, for the router and then for the host's token."""
     at = f"tcp/127.0.0.1:{free_port()}"
-    tool_ = [sys.executable, "-m", "nav2_pyif.tool"]
+    tool_ = [sys.executable, "-m", "nav2_pyif.tools.main"]
     host = ["--connect", at, "--key", CONTROLLER_KEY, "--planner", CONTROLLER, *HOST_ARGS]
     commands = {
         "router": [*tool_, "router", "--listen", at],
-        "host": [sys.executable, "-m", "nav2_pyif.cli", *host],
+        "host": [sys.executable, "-m", "nav2_pyif.server.cli", *host],
         "reload": [*tool_, "reload", "--key", CONTROLLER_KEY, "--connect", at],
     }
     procs: dict[str, subprocess.Popen[str]] = {}

@@ -26,7 +26,7 @@ from nav2_pyif.client import (
     ProgressCheckerClient,
     Timeouts,
 )
-from nav2_pyif.host_process import PlannerHostProcess
+from nav2_pyif.common.host_process import PlannerHostProcess
 from nav2_pyif.messages import ns_to_stamp
 
 from nav2_pyif_bench.protocol_bench import costmap, open_session, progress

@@ -19,7 +19,7 @@ import json
 import sys
 from pathlib import Path
 
-from nav2_pyif.signals import Interrupted, raise_on_signals
+from nav2_pyif.common.signals import Interrupted, raise_on_signals
 
 from nav2_pyif_bench import (
     checkers_bench,

@@ -93,7 +93,7 @@ def _cpu_seconds(pid: int) -> float:
 
 
 def run_one(robots: int, seconds: float, isolation: str) -> dict[str, Any]:
-    from nav2_pyif.host_process import PlannerHostProcess
+    from nav2_pyif.common.host_process import PlannerHostProcess
 
     entries = [{"key": key(i), "planner": PLANNER} for i in range(robots)]
     host = PlannerHostProcess(entries, args=["--isolation", isolation])

@@ -26,7 +26,7 @@ from multiprocessing.connection import Connection
 from typing import Any
 
 import zenoh
-from nav2_pyif.zenoh_config import connect_to
+from nav2_pyif.common.zenoh_config import connect_to
 
 from nav2_pyif_bench.processes import free_port, peer_processes
 from nav2_pyif_bench.protocol_bench import interleaved, progress

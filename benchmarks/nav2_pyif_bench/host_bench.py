@@ -21,7 +21,7 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.client.hosts import visible_hosts
-from nav2_pyif.zenoh_config import ZenohOptions, open_session
+from nav2_pyif.common.zenoh_config import ZenohOptions, open_session
 
 from nav2_pyif_bench.protocol_bench import costmap, progress
 from nav2_pyif_bench.stats import Summary, header_row
@@ -40,7 +40,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 
 def _pose(x: float, y: float) -> Any:
-    from nav2_pyif.sim.runner import pose_msg
+    from nav2_pyif.runner.run import pose_msg
 
     return pose_msg(x, y, 0.0, frame="odom")
 

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from nav2_pyif import Costmap, LayerWindow
 from nav2_pyif.client import CostmapLayerClient, Timeouts
-from nav2_pyif.host_process import PlannerHostProcess
+from nav2_pyif.common.host_process import PlannerHostProcess
 
 from nav2_pyif_bench.protocol_bench import open_session, progress
 from nav2_pyif_bench.stats import Summary, header_row

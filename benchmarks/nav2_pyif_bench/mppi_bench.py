@@ -9,7 +9,7 @@ from importlib.util import find_spec
 from typing import Any
 
 import numpy as np
-from nav2_pyif.sim.report import summary
+from nav2_pyif.runner.report import summary
 from nav2_pyif.testing import drive
 
 

@@ -11,8 +11,8 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from nav2_pyif.host_process import free_port
-from nav2_pyif.signals import deferred
+from nav2_pyif.common.host_process import free_port
+from nav2_pyif.common.signals import deferred
 
 __all__ = ["free_port", "peer_processes", "ros_localhost_env"]
 

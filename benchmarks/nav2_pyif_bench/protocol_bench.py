@@ -20,7 +20,7 @@ import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif import Costmap, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
-from nav2_pyif.zenoh_config import connect_to
+from nav2_pyif.common.zenoh_config import connect_to
 from nav2_pyif_protocol.codec import Request, encode_request
 from nav2_pyif_protocol.constants import Op
 from nav_msgs.msg import Odometry
@@ -126,7 +126,7 @@ def peer_commands(host_port: int, inproc_port: int, bare_port: int) -> dict[str,
     def host(port: int, key: str, *extra: str) -> list[str]:
         return [
             "-m",
-            "nav2_pyif.cli",
+            "nav2_pyif.server.cli",
             "--listen",
             f"tcp/127.0.0.1:{port}",
             "--key",

@@ -139,10 +139,10 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         commands: dict[str, list[str]] = {}
         for variant, paths in files.items():
             commands[f"{variant}-router"] = [
-                *("-m", "nav2_pyif.tool", "router", "--zenoh-config", str(paths["router"]))
+                *("-m", "nav2_pyif.tools.main", "router", "--zenoh-config", str(paths["router"]))
             ]
             commands[f"{variant}-host"] = [
-                *("-m", "nav2_pyif.cli", "--zenoh-config", str(paths["host"]), "--key", KEY),
+                *("-m", "nav2_pyif.server.cli", "--zenoh-config", str(paths["host"]), "--key", KEY),
                 *("--planner", "nav2_pyif_bench.planners:TrivialController"),
                 *("--log-level", "WARNING"),
             ]

@@ -7,7 +7,7 @@
         assert_reaches_goal(result, min_clearance=0.05)
 
 ``drive`` takes the runner's options (``start``, ``goal``, ``rate``, ``timeout``,
-``controller_params``, ...; see ``nav2_pyif.sim.runner.SimConfig``) and returns a SimResult
+``controller_params``, ...; see ``nav2_pyif.runner.run.SimConfig``) and returns a SimResult
 with the outcome, the trajectory, the plan and every call's timing.
 """
 
@@ -16,10 +16,9 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-from nav2_pyif_planners.maps import map_path
-
-from nav2_pyif.sim.report import format_report
-from nav2_pyif.sim.runner import SimConfig, SimResult, run_sim
+from nav2_pyif.runner.maps import map_path
+from nav2_pyif.runner.report import format_report
+from nav2_pyif.runner.run import SimConfig, SimResult, run_sim
 
 
 def drive(

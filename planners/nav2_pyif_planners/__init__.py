@@ -7,12 +7,3 @@ mppi_jax.MPPIJax                controller: the same in JAX (GPU when present; n
 apf                             controller: the seed paper's artificial potential field, in
                                 its function-delegate style (module functions)
 """
-
-#: Short names the offline runner accepts for the reference planners.
-ALIASES = {
-    "astar": "nav2_pyif_planners.astar:AStar",
-    "pure_pursuit": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
-    "mppi": "nav2_pyif_planners.mppi:MPPI",
-    "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
-    "apf": "nav2_pyif_planners.apf",  # function-delegate style: see apf.DELEGATES
-}

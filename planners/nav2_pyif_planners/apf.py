@@ -1,9 +1,9 @@
 """The seed paper's artificial potential field controller, in its function-delegate style:
 plain module functions named in the plugin YAML (``python_module`` / ``python_delegates``).
 
-    planner-host --key nav2_pyif/robot1/FollowPath --module nav2_pyif_planners.apf \\
-        --delegate configure=configure,set_plan=set_plan,set_speed_limit=set_speed_limit \\
-        --delegate compute_velocity_commands=compute_velocity_commands
+    planner-host --key nav2_pyif/robot1/FollowPath --module nav2_pyif_planners.apf
+
+(its functions are named after the roles, so no ``--delegate`` map is needed).
 
 The robot is pulled towards a point ``lookahead`` metres down the plan and pushed away from
 every costmap cell within ``influence_radius`` whose cost is at least ``obstacle_cost``.
@@ -28,14 +28,6 @@ from nav2_pyif_planners.geometry import (
     pose_xy_yaw,
     wrap,
 )
-
-#: The delegate map the runner and the example YAML use.
-DELEGATES = {
-    "configure": "configure",
-    "set_plan": "set_plan",
-    "set_speed_limit": "set_speed_limit",
-    "compute_velocity_commands": "compute_velocity_commands",
-}
 
 DEFAULTS: dict[str, float] = {
     "max_linear_vel": 0.45,  # [m/s]

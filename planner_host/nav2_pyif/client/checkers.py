@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from nav2_pyif_protocol.constants import Op, PluginType
@@ -9,7 +10,6 @@ from nav2_pyif_protocol.constants import Op, PluginType
 from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.messages import pose_to_wire, twist_to_list
-from nav2_pyif.results import tolerances_from_wire
 
 
 class GoalCheckerClient(PluginClient):
@@ -58,3 +58,12 @@ def pose7(pose: Any) -> list[float]:
     """geometry_msgs/Pose -> x, y, z, qx, qy, qz, qw."""
     p, q = pose.position, pose.orientation
     return [p.x, p.y, p.z, q.x, q.y, q.z, q.w]
+
+
+def tolerances_from_wire(body: dict[str, Any]) -> GoalChecker | None:
+    """A get_tolerances reply's tolerances (the inverse of the host's tolerances_to_wire)."""
+    if not body["available"]:
+        return None
+    pose, velocity = body["pose_tolerance"], body["velocity_tolerance"]
+    yaw = 2.0 * math.atan2(pose[5], pose[6])
+    return GoalChecker(pose[0], yaw, velocity[0], velocity[5])

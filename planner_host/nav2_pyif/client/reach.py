@@ -14,7 +14,7 @@ import threading
 
 import zenoh
 
-from nav2_pyif.zenoh_config import ZenohOptions, build_config, configured_endpoints
+from nav2_pyif.common.zenoh_config import ZenohOptions, build_config, configured_endpoints
 
 #: After this long without a router (or host), a tool says what it is waiting for.
 SAY_AFTER = 3.0

@@ -1,6 +1,6 @@
 """Draw the bundled maps. Deterministic: re-running gives the committed files.
 
-python -m nav2_pyif_planners.maps.generate
+python -m nav2_pyif.runner.maps.generate
 """
 
 from __future__ import annotations
@@ -9,7 +9,8 @@ import math
 from pathlib import Path
 
 import numpy as np
-from nav2_pyif.sim.mapfile import FREE, OCCUPIED, save_map
+
+from nav2_pyif.runner.mapfile import FREE, OCCUPIED, save_map
 
 RESOLUTION = 0.05
 

@@ -6,11 +6,11 @@ import argparse
 import logging
 import sys
 
-from nav2_pyif.host_list import add_hosts_parser
-from nav2_pyif.router import add_router_parser
-from nav2_pyif.signals import Interrupted, raise_on_signals
-from nav2_pyif.sim.cli import add_sim_parser
-from nav2_pyif.zenoh_config import add_zenoh_arguments
+from nav2_pyif.common.signals import Interrupted, raise_on_signals
+from nav2_pyif.common.zenoh_config import add_zenoh_arguments
+from nav2_pyif.runner.cli import add_sim_parser
+from nav2_pyif.tools.hosts import add_hosts_parser
+from nav2_pyif.tools.router import add_router_parser
 
 
 def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -40,9 +40,9 @@ def run_reload(args: argparse.Namespace) -> int:
     from nav2_pyif.client.admin import NoPlannerHost, request_reload
     from nav2_pyif.client.hosts import reached
     from nav2_pyif.client.reach import open_tool_session, unreachable
-    from nav2_pyif.delegates import parse_delegates
+    from nav2_pyif.common.zenoh_config import options_from_args
     from nav2_pyif.exceptions import PlannerLoadError
-    from nav2_pyif.zenoh_config import options_from_args
+    from nav2_pyif.roles import parse_delegates
 
     def say(message: str) -> None:
         print(f"nav2-pyif reload: {message}", file=sys.stderr, flush=True)

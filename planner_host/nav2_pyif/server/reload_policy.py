@@ -14,7 +14,7 @@ from __future__ import annotations
 import fnmatch
 from dataclasses import dataclass
 
-from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.server.spec import PlannerSpec
 
 
 @dataclass(frozen=True)

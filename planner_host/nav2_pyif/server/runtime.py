@@ -47,7 +47,7 @@ from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
 from nav2_pyif.progress_checker import ProgressCheckerPlugin
-from nav2_pyif.results import (
+from nav2_pyif.server.results import (
     checked_bool,
     checked_bounds,
     checked_layer_costs,
@@ -112,7 +112,7 @@ class PlannerRuntime:
         self.plugin_type: PluginType = planner_class.plugin_type
         self.host_id = host_id
         self.label = label or planner_class.__qualname__
-        self.log = logger or logging.getLogger("nav2_pyif.host")
+        self.log = logger or logging.getLogger("nav2_pyif.server.host")
         self.sessions: dict[str, Session] = {}
         # cancel_plan has its own key (handle_cancel), never a call.
         self._served_ops = OPS_BY_PLUGIN[self.plugin_type] - {Op.CANCEL_PLAN}

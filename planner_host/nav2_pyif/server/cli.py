@@ -17,21 +17,21 @@ import yaml
 import zenoh
 from nav2_pyif_protocol.keys import validate_prefix
 
-from nav2_pyif.delegates import check_roles, parse_delegates
-from nav2_pyif.env_defaults import apply_environment, document_environment
-from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.host import PlannerHost, ReachWatch, new_host_id
-from nav2_pyif.reload_policy import ReloadPolicy
-from nav2_pyif.service import InProcessPlanner, PlannerService
-from nav2_pyif.signals import TERMINATING, exit_code
-from nav2_pyif.spec import PlannerSpec
-from nav2_pyif.supervisor import Deadlines, SupervisedPlanner
-from nav2_pyif.zenoh_config import (
+from nav2_pyif.common.env_defaults import apply_environment, document_environment
+from nav2_pyif.common.signals import TERMINATING, exit_code
+from nav2_pyif.common.zenoh_config import (
     add_zenoh_arguments,
     configured_endpoints,
     open_session,
     options_from_args,
 )
+from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.roles import check_roles, parse_delegates
+from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
+from nav2_pyif.server.reload_policy import ReloadPolicy
+from nav2_pyif.server.service import InProcessPlanner, PlannerService
+from nav2_pyif.server.spec import PlannerSpec
+from nav2_pyif.server.supervisor import Deadlines, SupervisedPlanner
 
 EPILOG = """\
 examples:
@@ -253,7 +253,7 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
     )
-    log = logging.getLogger("nav2_pyif.host")
+    log = logging.getLogger("nav2_pyif.server.host")
     for name, value in sorted(from_environment.items()):
         log.info("from the environment: %s=%s", name, value)
     for directory in [os.getcwd(), *args.path][::-1]:

@@ -16,25 +16,26 @@ from typing import Any
 import numpy as np
 import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
-from nav2_pyif_planners.maps import BUNDLED
 from tqdm import tqdm
 
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import visible_hosts
 from nav2_pyif.client.reach import open_tool_session
+from nav2_pyif.common.host_process import PlannerHostProcess, wait_alive
+from nav2_pyif.common.signals import Interrupted
+from nav2_pyif.common.zenoh_config import ZenohOptions, connect_to
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.host_process import PlannerHostProcess, wait_alive
 from nav2_pyif.params import ParamValue
-from nav2_pyif.signals import Interrupted
-from nav2_pyif.sim.inflation import inflate, window
-from nav2_pyif.sim.mapfile import MapError, OccupancyMap, load_map
-from nav2_pyif.sim.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
-from nav2_pyif.zenoh_config import ZenohOptions, connect_to
+from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.inflation import inflate, window
+from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
+from nav2_pyif.runner.maps import BUNDLED
+from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 
-log = logging.getLogger("nav2_pyif.sim")
+log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
 Pose3 = tuple[float, float, float]
@@ -136,8 +137,6 @@ class SimResult:
 
 def short_name(spec: str) -> str:
     """A reference planner's alias for its spec or host label, else the spec itself."""
-    from nav2_pyif_planners import ALIASES
-
     target = spec.split(" ")[0]  # a host labels a delegates module "module (delegates)"
     return next((alias for alias, t in ALIASES.items() if t == target), target)
 
@@ -145,11 +144,9 @@ def short_name(spec: str) -> str:
 def planner_entry(key: str, spec: str) -> dict[str, Any]:
     """A host config entry for a planner name: a reference alias, ``module:Class``, or the
     APF module (function-delegate style)."""
-    from nav2_pyif_planners import ALIASES, apf
-
     resolved = ALIASES.get(spec, spec)
-    if resolved == "nav2_pyif_planners.apf":
-        return {"key": key, "module": resolved, "delegates": apf.DELEGATES}
+    if spec in ALIASES and ":" not in resolved:  # a reference module of functions (the APF)
+        return {"key": key, "module": resolved}
     if ":" not in resolved:
         raise SimError(
             f"unknown planner {spec!r}: give one of {', '.join(ALIASES)} "
@@ -217,7 +214,7 @@ def prepare(config: SimConfig) -> SimResult:
 
 def run_sim(config: SimConfig) -> SimResult:
     """Run one navigation task; raises SimError for bad input, returns the outcome. A
-    terminating signal (``nav2_pyif.signals``) stops the run: the host is stopped and
+    terminating signal (``nav2_pyif.common.signals``) stops the run: the host is stopped and
     RunInterrupted carries the result so far."""
     result = prepare(config)
     entries = [

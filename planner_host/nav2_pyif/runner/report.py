@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from nav2_pyif.sim.runner import SimResult
+from nav2_pyif.runner.run import SimResult
 
 
 def latency_rows(result: SimResult) -> list[dict[str, Any]]:

@@ -24,10 +24,9 @@ Signatures (the seed's, with the costmap first where the seed passed the occupan
 
 from __future__ import annotations
 
-import difflib
 import logging
 from collections.abc import Callable, Mapping
-from typing import Any
+from typing import Any, TypeVar
 
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap_layer import Bounds, CostmapLayer, LayerWindow
@@ -35,31 +34,12 @@ from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
-from nav2_pyif.loader import import_module
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.roles import ALL_ROLES, KIND_ROLES, LIFECYCLE_ROLES, check_roles
+from nav2_pyif.server.loader import import_module
 from nav2_pyif.smoother import Smoother
-
-CONTROLLER_ROLES = frozenset(
-    {"compute_velocity_commands", "set_plan", "set_speed_limit", "cancel", "reset"}
-)
-PLANNER_ROLES = frozenset({"create_plan"})
-SMOOTHER_ROLES = frozenset({"smooth"})
-GOAL_CHECKER_ROLES = frozenset({"is_goal_reached", "get_tolerances", "reset"})
-PROGRESS_CHECKER_ROLES = frozenset({"check", "reset"})
-LAYER_ROLES = frozenset({"update_costs", "update_bounds", "match_size", "reset"})
-LIFECYCLE_ROLES = frozenset({"configure", "activate", "deactivate", "cleanup"})
-#: The role whose function makes a module a plugin of that kind -> the kind's other roles.
-KIND_ROLES = {
-    "compute_velocity_commands": CONTROLLER_ROLES,
-    "create_plan": PLANNER_ROLES,
-    "smooth": SMOOTHER_ROLES,
-    "is_goal_reached": GOAL_CHECKER_ROLES,
-    "check": PROGRESS_CHECKER_ROLES,
-    "update_costs": LAYER_ROLES,
-}
-ALL_ROLES = frozenset().union(*KIND_ROLES.values()) | LIFECYCLE_ROLES
 
 #: What Nav2's call does when a role has no function (logged as a warning at load).
 WITHOUT_DELEGATE = {
@@ -80,31 +60,8 @@ WITHOUT_DELEGATE = {
     "cleanup": "Nav2's cleanup does nothing",
 }
 
-log = logging.getLogger("nav2_pyif.delegates")
-
-
-def check_roles(delegates: Mapping[str, str]) -> None:
-    """Refuse unknown roles, naming the closest known one and every valid role."""
-    for role in sorted(set(delegates) - ALL_ROLES):
-        close = difflib.get_close_matches(role, ALL_ROLES, n=1)
-        raise PlannerLoadError(
-            f"unknown delegate role {role!r}"
-            + (f" (did you mean {close[0]}?)" if close else "")
-            + f"; roles: {', '.join(sorted(ALL_ROLES))}"
-        )
-
-
-def parse_delegates(items: list[str]) -> dict[str, str]:
-    """["role=function", "role2=function2,role3=f3"] -> {role: function}, roles checked."""
-    out: dict[str, str] = {}
-    for item in items:
-        for pair in filter(None, (p.strip() for p in item.split(","))):
-            role, sep, func = pair.partition("=")
-            if not sep or not role or not func:
-                raise PlannerLoadError(f"delegate {pair!r} is not of the form role=function")
-            out[role.strip()] = func.strip()
-    check_roles(out)
-    return out
+log = logging.getLogger("nav2_pyif.server.delegates")
+P = TypeVar("P", bound=PlannerPlugin)
 
 
 def delegate_class(
@@ -190,6 +147,16 @@ class _DelegateLifecycle(PlannerPlugin):
         if "cleanup" in self._funcs:
             self._funcs["cleanup"]()
 
+    def reset(self) -> None:  # a role of controllers, checkers and layers; others never get it
+        if "reset" in self._funcs:
+            self._funcs["reset"]()
+
+
+def _named(cls: type[P], module_name: str) -> type[P]:
+    """Log and error messages name a delegate plugin after its module."""
+    cls.__qualname__ = cls.__name__ = f"Delegates[{module_name}]"
+    return cls
+
 
 def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[Controller]:
     class DelegateController(_DelegateLifecycle, Controller):
@@ -213,12 +180,7 @@ def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) ->
         def cancel(self) -> bool:
             return bool(funcs["cancel"]()) if "cancel" in funcs else True
 
-        def reset(self) -> None:
-            if "reset" in funcs:
-                funcs["reset"]()
-
-    DelegateController.__qualname__ = DelegateController.__name__ = f"Delegates[{module_name}]"
-    return DelegateController
+    return _named(DelegateController, module_name)
 
 
 def _planner_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[GlobalPlanner]:
@@ -228,8 +190,7 @@ def _planner_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> ty
         def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
             return funcs["create_plan"](self.costmap, start, goal)
 
-    DelegatePlanner.__qualname__ = DelegatePlanner.__name__ = f"Delegates[{module_name}]"
-    return DelegatePlanner
+    return _named(DelegatePlanner, module_name)
 
 
 def _smoother_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[Smoother]:
@@ -239,8 +200,7 @@ def _smoother_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> t
         def smooth(self, path: Plan, max_time: float) -> Any:
             return funcs["smooth"](self.costmap, path, max_time)
 
-    DelegateSmoother.__qualname__ = DelegateSmoother.__name__ = f"Delegates[{module_name}]"
-    return DelegateSmoother
+    return _named(DelegateSmoother, module_name)
 
 
 def _goal_checker_class(
@@ -255,12 +215,7 @@ def _goal_checker_class(
         def get_tolerances(self) -> GoalChecker | None:
             return funcs["get_tolerances"]() if "get_tolerances" in funcs else None
 
-        def reset(self) -> None:
-            if "reset" in funcs:
-                funcs["reset"]()
-
-    DelegateGoalChecker.__qualname__ = DelegateGoalChecker.__name__ = f"Delegates[{module_name}]"
-    return DelegateGoalChecker
+    return _named(DelegateGoalChecker, module_name)
 
 
 def _progress_checker_class(
@@ -272,13 +227,7 @@ def _progress_checker_class(
         def check(self, pose: Any) -> bool:
             return funcs["check"](pose)  # type: ignore[no-any-return]
 
-        def reset(self) -> None:
-            if "reset" in funcs:
-                funcs["reset"]()
-
-    DelegateProgressChecker.__qualname__ = f"Delegates[{module_name}]"
-    DelegateProgressChecker.__name__ = DelegateProgressChecker.__qualname__
-    return DelegateProgressChecker
+    return _named(DelegateProgressChecker, module_name)
 
 
 def _layer_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[CostmapLayer]:
@@ -302,9 +251,4 @@ def _layer_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type
             if "match_size" in funcs:
                 funcs["match_size"](size_x, size_y, resolution, origin_x, origin_y)
 
-        def reset(self) -> None:
-            if "reset" in funcs:
-                funcs["reset"]()
-
-    DelegateLayer.__qualname__ = DelegateLayer.__name__ = f"Delegates[{module_name}]"
-    return DelegateLayer
+    return _named(DelegateLayer, module_name)

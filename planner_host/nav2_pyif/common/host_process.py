@@ -15,7 +15,7 @@ from typing import Any
 
 import yaml
 
-from nav2_pyif.signals import deferred
+from nav2_pyif.common.signals import deferred
 
 
 def free_port() -> int:
@@ -57,7 +57,7 @@ class PlannerHostProcess:
         return f"tcp/127.0.0.1:{self.port}"
 
     def start(self) -> PlannerHostProcess:
-        command = [sys.executable, "-m", "nav2_pyif.cli", "--listen", self.endpoint]
+        command = [sys.executable, "-m", "nav2_pyif.server.cli", "--listen", self.endpoint]
         if self.planners:
             config = Path(self._dir.name) / "planners.yaml"
             config.write_text(yaml.safe_dump({"planners": self.planners}))

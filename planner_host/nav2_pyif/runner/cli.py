@@ -8,10 +8,10 @@ import math
 import sys
 from pathlib import Path
 
-from nav2_pyif_planners.maps import BUNDLED
-
 from nav2_pyif.exceptions import Nav2Error
-from nav2_pyif.sim.runner import (
+from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.maps import BUNDLED
+from nav2_pyif.runner.run import (
     CONTROLLER_KEY,
     DEFAULTS,
     PLANNER_KEY,
@@ -24,8 +24,6 @@ from nav2_pyif.sim.runner import (
 
 
 def _reference_planners() -> str:
-    from nav2_pyif_planners import ALIASES
-
     width = max(map(len, ALIASES)) + 2
     return "\n".join(
         f"  {name:<{width}}{target}{'' if ':' in target else ' (function delegates)'}"
@@ -134,10 +132,9 @@ def _params(items: list[str]) -> dict[str, object]:
 
 
 def run_command(args: argparse.Namespace) -> int:
-    logging.getLogger("nav2_pyif.sim").setLevel(logging.INFO)  # what runs, on stderr
-    from nav2_pyif_planners.maps import map_path
-
-    from nav2_pyif.sim.report import format_report
+    logging.getLogger("nav2_pyif.runner").setLevel(logging.INFO)  # what runs, on stderr
+    from nav2_pyif.runner.maps import map_path
+    from nav2_pyif.runner.report import format_report
 
     try:
         config = SimConfig(
@@ -180,8 +177,8 @@ def run_command(args: argparse.Namespace) -> int:
 
 def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
     """The run's PNG and JSON record under --out."""
-    from nav2_pyif.sim.plot import draw
-    from nav2_pyif.sim.report import write_json
+    from nav2_pyif.runner.plot import draw
+    from nav2_pyif.runner.report import write_json
 
     args.out.mkdir(parents=True, exist_ok=True)
     controller = result.name_of("controller")  # what the host served, with --connect too

@@ -16,7 +16,7 @@ from typing import Any
 import msgpack
 from nav2_pyif_protocol.constants import ErrorType, Op
 
-from nav2_pyif.runtime import error_reply, peek_seq
+from nav2_pyif.server.runtime import error_reply, peek_seq
 
 #: (key prefix, op, request bytes) -> reply bytes, or None when this host does not serve it
 Route = Callable[[str, str, bytes], bytes | None]

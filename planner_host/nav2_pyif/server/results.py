@@ -130,15 +130,6 @@ def tolerances_to_wire(tolerances: Any) -> dict[str, Any]:
     }
 
 
-def tolerances_from_wire(body: dict[str, Any]) -> GoalChecker | None:
-    """The inverse of tolerances_to_wire (the client's side)."""
-    if not body["available"]:
-        return None
-    pose, velocity = body["pose_tolerance"], body["velocity_tolerance"]
-    yaw = 2.0 * math.atan2(pose[5], pose[6])
-    return GoalChecker(pose[0], yaw, velocity[0], velocity[5])
-
-
 def checked_bounds(result: Any) -> tuple[float, float, float, float]:
     """update_bounds' (min_x, min_y, max_x, max_y): four numbers, none NaN (infinite is what
     Nav2 starts from: no bounds yet)."""

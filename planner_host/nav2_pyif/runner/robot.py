@@ -10,7 +10,7 @@ import numpy as np
 import numpy.typing as npt
 
 from nav2_pyif.costmap import Costmap
-from nav2_pyif.sim.mapfile import OCCUPIED, OccupancyMap
+from nav2_pyif.runner.mapfile import OCCUPIED, OccupancyMap
 
 #: A 0.4 x 0.3 m rectangle (x forward), Nav2-style footprint, metres in the robot frame.
 DEFAULT_FOOTPRINT = ((0.2, 0.15), (0.2, -0.15), (-0.2, -0.15), (-0.2, 0.15))

@@ -16,9 +16,9 @@ from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 
 from nav2_pyif.costmap import Costmap
-from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN
-from nav2_pyif.sim.report import summary
-from nav2_pyif.sim.runner import SimResult
+from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN
+from nav2_pyif.runner.report import summary
+from nav2_pyif.runner.run import SimResult
 
 
 def draw(result: SimResult, path: Path) -> None:

@@ -20,7 +20,7 @@ from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.client.hosts import ALL_HOSTS, collect_tokens
 from nav2_pyif.client.reach import open_tool_session, unreachable
-from nav2_pyif.zenoh_config import ZenohOptions, add_zenoh_arguments, options_from_args
+from nav2_pyif.common.zenoh_config import ZenohOptions, add_zenoh_arguments, options_from_args
 
 
 @dataclass

@@ -10,11 +10,11 @@ from typing import Protocol
 from nav2_pyif_protocol.constants import PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.journal import Journal
-from nav2_pyif.runtime import PlannerRuntime
-from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.server.journal import Journal
+from nav2_pyif.server.runtime import PlannerRuntime
+from nav2_pyif.server.spec import PlannerSpec
 
-log = logging.getLogger("nav2_pyif.host")
+log = logging.getLogger("nav2_pyif.server.host")
 
 
 class PlannerService(Protocol):

@@ -19,13 +19,13 @@ import zenoh
 from nav2_pyif_protocol.constants import Op
 from nav2_pyif_protocol.keys import KeySpace
 
-from nav2_pyif.carried import Route, carry_on
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.reload_policy import ReloadPolicy
-from nav2_pyif.service import PlannerService
-from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.server.carried import Route, carry_on
+from nav2_pyif.server.reload_policy import ReloadPolicy
+from nav2_pyif.server.service import PlannerService
+from nav2_pyif.server.spec import PlannerSpec
 
-log = logging.getLogger("nav2_pyif.host")
+log = logging.getLogger("nav2_pyif.server.host")
 
 
 _IS_GOAL_REACHED = Op.IS_GOAL_REACHED.value

@@ -14,7 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from nav2_pyif.costmap import Costmap
-from nav2_pyif.sim.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
+from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
 
 
 def obstacle_distance(

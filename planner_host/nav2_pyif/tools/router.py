@@ -4,7 +4,7 @@ On a robot the router is usually rmw_zenoh's ``zenohd``; this one is for a GPU b
 container compose file that should route between planner hosts and robots with nothing else
 installed. It is an ordinary Zenoh session in router mode (eclipse-zenoh, the same version as
 the host), running until SIGINT, SIGTERM or SIGHUP (then it exits with 128 + the signal's
-number, as every nav2-pyif command: ``nav2_pyif.tool`` turns signals into Interrupted).
+number, as every nav2-pyif command: ``nav2_pyif.tools.main`` turns signals into Interrupted).
 
 Zenoh's own warnings are logged (to stdout, after the "listening on" line): with TLS, every
 refused link (no client certificate, one from another CA, plain TCP on a TLS port) says so.
@@ -20,7 +20,7 @@ import threading
 
 import zenoh
 
-from nav2_pyif.zenoh_config import ZenohOptions, add_endpoint_arguments, open_session
+from nav2_pyif.common.zenoh_config import ZenohOptions, add_endpoint_arguments, open_session
 
 DEFAULT_LISTEN = "tcp/0.0.0.0:7447"
 

@@ -30,12 +30,12 @@ import msgpack
 from nav2_pyif_protocol.constants import TIMED_OUT_ERROR, ErrorType, Op, PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.journal import Journal, Snapshot, replay
-from nav2_pyif.runtime import error_reply, peek_seq
-from nav2_pyif.spec import PlannerSpec
-from nav2_pyif.worker import LOAD_ERROR, worker_main
+from nav2_pyif.server.journal import Journal, Snapshot, replay
+from nav2_pyif.server.runtime import error_reply, peek_seq
+from nav2_pyif.server.spec import PlannerSpec
+from nav2_pyif.server.worker import LOAD_ERROR, worker_main
 
-log = logging.getLogger("nav2_pyif.supervisor")
+log = logging.getLogger("nav2_pyif.server.supervisor")
 _SPAWN = multiprocessing.get_context("spawn")  # never fork a process that runs Zenoh threads
 
 

@@ -13,7 +13,7 @@ import numpy as np
 import numpy.typing as npt
 
 from nav2_pyif.messages import ns_to_stamp
-from nav2_pyif.sim.mapfile import OCCUPIED, OccupancyMap
+from nav2_pyif.runner.mapfile import OCCUPIED, OccupancyMap
 
 FloatArray = npt.NDArray[np.float32]
 

@@ -16,8 +16,8 @@ from multiprocessing.connection import Connection
 
 import msgpack
 
-from nav2_pyif.runtime import PlannerRuntime
-from nav2_pyif.spec import PlannerSpec
+from nav2_pyif.server.runtime import PlannerRuntime
+from nav2_pyif.server.spec import PlannerSpec
 
 LOADED, LOAD_ERROR = "loaded", "load_error"
 

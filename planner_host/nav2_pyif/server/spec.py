@@ -17,8 +17,8 @@ class PlannerSpec:
 
     def load(self, *, reload: bool = False, quiet: bool = False) -> type[PlannerPlugin]:
         """The planner class; ``quiet``: no load-time warnings (a worker restart)."""
-        from nav2_pyif.delegates import delegate_class
-        from nav2_pyif.loader import load_class
+        from nav2_pyif.server.delegates import delegate_class
+        from nav2_pyif.server.loader import load_class
 
         if self.planner:
             return load_class(self.planner, reload=reload)

@@ -1,0 +1,10 @@
+"""Short names the runner accepts for the reference planners (nav2_pyif_planners). Only their
+import paths: the runner never imports a planner; the planner host it starts does."""
+
+ALIASES = {
+    "astar": "nav2_pyif_planners.astar:AStar",
+    "pure_pursuit": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
+    "mppi": "nav2_pyif_planners.mppi:MPPI",
+    "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
+    "apf": "nav2_pyif_planners.apf",  # function-delegate style: its functions are the roles
+}
