@@ -7,11 +7,10 @@ import math
 
 import numpy as np
 import pytest
+from nav2_pyif import Combine
 from nav2_pyif_planners.checkers import ProgressCheck, StoppedGoalCheck
 from nav2_pyif_planners.keepout import (
     NO_INFORMATION,
-    Combine,
-    combine,
     parse_polygons,
     polygon_mask,
 )
@@ -96,14 +95,14 @@ def test_a_polygon_covers_the_cells_whose_centres_are_inside() -> None:
 def test_combine_modes_as_nav2s_costmap_layer() -> None:
     master = np.array([[0, 100, NO_INFORMATION, 200]], np.uint8)
     layer = np.array([[50, 50, 50, NO_INFORMATION]], np.uint8)
-    assert combine(master, layer, Combine.MAX).tolist() == [[50, 100, 50, 200]]
-    assert combine(master, layer, Combine.MAX_KEEP_UNKNOWN).tolist() == [
+    assert Combine.MAX.apply(master, layer).tolist() == [[50, 100, 50, 200]]
+    assert Combine.MAX_KEEP_UNKNOWN.apply(master, layer).tolist() == [
         [50, 100, NO_INFORMATION, 200]
     ]
-    assert combine(master, layer, Combine.OVERWRITE).tolist() == [[50, 50, 50, 200]]
-    assert combine(master, layer, Combine.TRUE_OVERWRITE).tolist() == [[50, 50, 50, NO_INFORMATION]]
+    assert Combine.OVERWRITE.apply(master, layer).tolist() == [[50, 50, 50, 200]]
+    assert Combine.TRUE_OVERWRITE.apply(master, layer).tolist() == [[50, 50, 50, NO_INFORMATION]]
     with pytest.raises(ValueError, match="does not match"):
-        combine(master, layer[:, :2], Combine.MAX)
+        Combine.MAX.apply(master, layer[:, :2])
 
 
 def test_a_sub_window_sees_exactly_the_cells_of_the_whole_grid() -> None:

@@ -55,6 +55,19 @@ class Costmap:
         self.robot_radius = float(robot_radius)
         self.version = version
 
+    def with_costs(self, data: npt.ArrayLike, version: int | None = None) -> Costmap:
+        """Another grid of costs over this costmap's cells (same geometry and robot)."""
+        return Costmap(
+            data,
+            self.resolution,
+            self.origin_x,
+            self.origin_y,
+            self.frame_id,
+            footprint=self.footprint,
+            robot_radius=self.robot_radius,
+            version=self.version if version is None else version,
+        )
+
     # --- wire ---------------------------------------------------------------------------
     @classmethod
     def from_wire(cls, wire: dict[str, Any]) -> Costmap:

@@ -20,6 +20,8 @@ from nav2_pyif_protocol.constants import PluginType
 from nav2_pyif.plugin import PlannerPlugin
 
 Bounds = tuple[float, float, float, float]  # min_x, min_y, max_x, max_y [m]
+ByteArray = npt.NDArray[np.uint8]
+NO_INFORMATION = 255  # nav2_costmap_2d::NO_INFORMATION
 
 
 class Combine(str, Enum):
@@ -31,6 +33,23 @@ class Combine(str, Enum):
     MAX_KEEP_UNKNOWN = "max_keep_unknown"  # updateWithMaxWithoutUnknownOverwrite
     OVERWRITE = "overwrite"  # updateWithOverwrite: the layer's, wherever it knows one
     TRUE_OVERWRITE = "true_overwrite"  # updateWithTrueOverwrite: the layer's, unknown too
+
+    def apply(self, master: npt.NDArray[np.uint8], layer: npt.NDArray[np.uint8]) -> ByteArray:
+        """The master window after the layer's window of costs is applied in this mode (what
+        the C++ plugin leaves to Nav2's functions; the offline runner and tests use this)."""
+        if master.shape != layer.shape:
+            raise ValueError(
+                f"layer window {layer.shape} does not match the master's {master.shape}"
+            )
+        if self is Combine.TRUE_OVERWRITE:
+            return np.array(layer, dtype=np.uint8, copy=True)
+        if self is Combine.OVERWRITE:
+            return np.where(layer == NO_INFORMATION, master, layer).astype(np.uint8)
+        known = layer != NO_INFORMATION
+        higher = known & (layer > master) & (master != NO_INFORMATION)
+        if self is Combine.MAX:
+            higher |= known & (master == NO_INFORMATION)
+        return np.where(higher, layer, master).astype(np.uint8)
 
 
 @dataclass(frozen=True)

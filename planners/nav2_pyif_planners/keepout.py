@@ -1,5 +1,5 @@
-"""Keep-out polygons on a costmap window, in NumPy: which cells a set of polygons covers, and
-how a layer's costs combine with the master grid's (Nav2's costmap layer modes)."""
+"""Keep-out polygons on a costmap window, in NumPy: which cells a set of polygons covers (how
+a layer's costs then combine with the master grid's is ``nav2_pyif.Combine.apply``)."""
 
 from __future__ import annotations
 
@@ -7,9 +7,8 @@ import ast
 
 import numpy as np
 import numpy.typing as npt
-from nav2_pyif.costmap_layer import Combine
 
-__all__ = ["NO_INFORMATION", "Combine", "combine", "parse_polygons", "polygon_mask"]
+__all__ = ["NO_INFORMATION", "parse_polygons", "polygon_mask"]
 
 FloatArray = npt.NDArray[np.float64]
 ByteArray = npt.NDArray[np.uint8]
@@ -68,18 +67,3 @@ def polygon_mask(
             inside ^= crosses & (px < at_x)
         mask[r0:r1, c0:c1] |= inside
     return mask
-
-
-def combine(master: ByteArray, layer: ByteArray, mode: Combine) -> ByteArray:
-    """The master window after the layer's costs are applied in ``mode``."""
-    if master.shape != layer.shape:
-        raise ValueError(f"layer window {layer.shape} does not match the master's {master.shape}")
-    if mode is Combine.TRUE_OVERWRITE:
-        return np.array(layer, dtype=np.uint8, copy=True)
-    if mode is Combine.OVERWRITE:
-        return np.where(layer == NO_INFORMATION, master, layer).astype(np.uint8)
-    known = layer != NO_INFORMATION
-    higher = known & (layer > master) & (master != NO_INFORMATION)
-    if mode is Combine.MAX:
-        higher |= known & (master == NO_INFORMATION)
-    return np.where(higher, layer, master).astype(np.uint8)

@@ -7,4 +7,9 @@ ALIASES = {
     "mppi": "nav2_pyif_planners.mppi:MPPI",
     "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
     "apf": "nav2_pyif_planners.apf",  # function-delegate style: its functions are the roles
+    # Nav2's other plugins (--smoother, --goal-checker, --progress-checker, --layer)
+    "simple_smoother": "nav2_pyif_planners.simple_smoother:SimpleSmoother",
+    "stopped_goal_checker": "nav2_pyif_planners.checker_plugins:StoppedGoalChecker",
+    "simple_progress_checker": "nav2_pyif_planners.checker_plugins:SimpleProgressChecker",
+    "keepout": "nav2_pyif_planners.keepout_layer:KeepOutLayer",
 }

@@ -32,8 +32,9 @@ def _reference_planners() -> str:
 
 
 EPILOG = f"""\
-planners (--controller, --planner): a reference one by name, or your own as
-package.module:ClassName. The reference planners:
+planners (--controller, --planner) and Nav2's other plugins (--smoother,
+--goal-checker, --progress-checker, --layer): a reference one by name, or your
+own as package.module:ClassName. The reference ones:
 {_reference_planners()}
 
 examples:
@@ -41,7 +42,19 @@ examples:
   nav2-pyif sim --map cluttered --controller mppi
   nav2-pyif sim --map my_map.yaml --start 1 1 0 --goal 8 4 1.57 --controller my.mod:Ctl
   nav2-pyif sim --connect tcp/127.0.0.1:7447        # use a planner host already running
+  nav2-pyif sim --smoother simple_smoother --goal-checker stopped_goal_checker \\
+      --progress-checker simple_progress_checker --layer keepout \\
+      --layer-param "polygons=[[[4.5, 2.5], [5.5, 2.5], [5.5, 3.5], [4.5, 3.5]]]"
 """
+
+
+#: The runner's flags for Nav2's other plugins (extras.KEYS' roles), what each does.
+PLUGIN_FLAGS = {
+    "smoother": "smooth the plan before the controller follows it (e.g. simple_smoother)",
+    "goal_checker": "the goal checker of every control cycle (e.g. stopped_goal_checker)",
+    "progress_checker": "end the run when no progress is made (e.g. simple_progress_checker)",
+    "layer": "a costmap layer applied to the costmap before planning (e.g. keepout)",
+}
 
 
 def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
@@ -87,6 +100,17 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         help="controller parameter (YAML value), repeatable",
     )
     p.add_argument("--planner-param", action="append", default=[], metavar="NAME=VALUE")
+    for role, what in PLUGIN_FLAGS.items():
+        flag = role.replace("_", "-")
+        p.add_argument(f"--{flag}", metavar="NAME", help=what)
+        p.add_argument(f"--{flag}-param", action="append", default=[], metavar="NAME=VALUE")
+    p.add_argument(
+        "--smoother-max-time",
+        type=float,
+        default=1.0,
+        metavar="SECONDS",
+        help="the smoother's time budget (smoother_server's max_smoothing_duration; default 1)",
+    )
     p.add_argument(
         "--path",
         action="append",
@@ -127,7 +151,11 @@ def _params(items: list[str]) -> dict[str, object]:
         name, sep, value = item.partition("=")
         if not sep:
             raise SimError(f"parameter {item!r} is not NAME=VALUE")
-        out[name] = yaml.safe_load(value)
+        parsed = yaml.safe_load(value)
+        # A parameter is a scalar or an array of scalars; nested lists (polygons, footprints)
+        # are written as text, as Nav2's YAML writes footprints
+        nested = isinstance(parsed, list) and any(isinstance(v, list | dict) for v in parsed)
+        out[name] = value.strip() if nested or isinstance(parsed, dict) else parsed
     return out
 
 
@@ -155,6 +183,9 @@ def run_command(args: argparse.Namespace) -> int:
             planner_key=args.planner_key,
             path=args.path,
             progress=not args.no_progress and sys.stderr.isatty(),
+            plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
+            plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
+            smoother_max_time=args.smoother_max_time,
         )
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")

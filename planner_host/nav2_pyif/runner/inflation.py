@@ -47,18 +47,22 @@ def inflate(
     frame_id: str = "map",
     version: int = 1,
 ) -> Costmap:
-    """The inflated costmap of a whole occupancy map."""
-    lethal = occupancy.occupancy == OCCUPIED
-    # cell distances are multiples of the resolution: round away float noise (3 * 0.05 m)
-    distance = np.round(obstacle_distance(lethal, occupancy.resolution, inflation_radius), 9)
-    costs = np.zeros(lethal.shape, np.uint8)
-    ramp = (distance > inscribed_radius) & (distance <= inflation_radius)
-    costs[ramp] = np.floor(
-        252.0 * np.exp(-cost_scaling_factor * (distance[ramp] - inscribed_radius))
-    ).astype(np.uint8)
-    costs[distance <= inscribed_radius] = Costmap.INSCRIBED
-    costs[lethal] = Costmap.LETHAL
-    costs[(occupancy.occupancy == UNKNOWN) & ~lethal & (costs == 0)] = Costmap.NO_INFORMATION
+    """The inflated costmap of a whole occupancy map: the static layer, then inflation."""
+    static = static_layer(occupancy, footprint, robot_radius, frame_id, version)
+    return inflation_layer(static, inscribed_radius, inflation_radius, cost_scaling_factor)
+
+
+def static_layer(
+    occupancy: OccupancyMap,
+    footprint: npt.ArrayLike | None = None,
+    robot_radius: float = 0.0,
+    frame_id: str = "map",
+    version: int = 1,
+) -> Costmap:
+    """Nav2's static layer: LETHAL where occupied, NO_INFORMATION where unknown, else free."""
+    costs = np.zeros(occupancy.occupancy.shape, np.uint8)
+    costs[occupancy.occupancy == UNKNOWN] = Costmap.NO_INFORMATION
+    costs[occupancy.occupancy == OCCUPIED] = Costmap.LETHAL
     return Costmap(
         costs,
         occupancy.resolution,
@@ -69,6 +73,30 @@ def inflate(
         robot_radius=robot_radius,
         version=version,
     )
+
+
+def inflation_layer(
+    master: Costmap,
+    inscribed_radius: float = 0.22,
+    inflation_radius: float = 0.55,
+    cost_scaling_factor: float = 3.0,
+) -> Costmap:
+    """Nav2's inflation layer over the layers before it: costs around every lethal cell,
+    raising the master's (an unknown cell takes an inflation cost when it gets one)."""
+    lethal = master.data == Costmap.LETHAL
+    # cell distances are multiples of the resolution: round away float noise (3 * 0.05 m)
+    distance = np.round(obstacle_distance(lethal, master.resolution, inflation_radius), 9)
+    costs = np.zeros(lethal.shape, np.uint8)
+    ramp = (distance > inscribed_radius) & (distance <= inflation_radius)
+    costs[ramp] = np.floor(
+        252.0 * np.exp(-cost_scaling_factor * (distance[ramp] - inscribed_radius))
+    ).astype(np.uint8)
+    costs[distance <= inscribed_radius] = Costmap.INSCRIBED
+    costs[lethal] = Costmap.LETHAL
+    unknown = master.data == Costmap.NO_INFORMATION
+    merged = np.where(unknown & (costs == 0), master.data, np.maximum(costs, master.data))
+    merged[unknown & (costs > 0)] = costs[unknown & (costs > 0)]
+    return master.with_costs(merged.astype(np.uint8))
 
 
 def window(costmap: Costmap, x: float, y: float, size_m: float, version: int) -> Costmap:

@@ -65,6 +65,26 @@ def figure(result: SimResult) -> Figure:
         vmin=1,
         vmax=253,
     )
+    if result.layer is not None and result.layer.cells.any():
+        ax.imshow(
+            np.ma.masked_where(~result.layer.cells, np.ones(result.layer.cells.shape)),
+            cmap=ListedColormap(["tab:cyan"]),
+            origin="lower",
+            extent=extent,
+            alpha=0.6,
+        )
+        ax.plot([], [], "s", color="tab:cyan", alpha=0.6, label=f"{result.name_of('layer')} cells")
+    planner = "A*" if result.name_of("planner") == "astar" else result.name_of("planner")
+    if result.raw_plan is not None and len(result.raw_plan):
+        ax.plot(
+            result.raw_plan[:, 0],
+            result.raw_plan[:, 1],
+            "--",
+            color="0.35",
+            lw=1.0,
+            label=f"plan ({planner})",
+        )
+        planner = f"smoothed by {result.name_of('smoother')}"
     if len(result.plan):
         ax.plot(
             result.plan[:, 0],
@@ -72,7 +92,7 @@ def figure(result: SimResult) -> Figure:
             "-",
             color="tab:blue",
             lw=1.5,
-            label="plan (A*)" if result.name_of("planner") == "astar" else "plan",
+            label=f"plan ({planner})",
         )
     if result.trajectory:
         t = np.array(result.trajectory)
@@ -120,12 +140,16 @@ def figure(result: SimResult) -> Figure:
     speed.set_title(_wrapped("commanded motion", 45), fontsize=10)
 
     latency = fig.add_subplot(grid[1, 2])
-    cycles = [r for r in result.records if r.op == "compute_velocity_commands" and r.ok]
+    # with a Python goal checker the goal check's query carries the cycle (PROTOCOL.md §15)
+    op = "is_goal_reached" if result.carried[0] else "compute_velocity_commands"
+    cycles = [r for r in result.records if r.op == op and r.ok]
     if cycles:
         total = np.array([r.total_ns for r in cycles]) / 1e6
         compute = np.array([r.compute_ns for r in cycles]) / 1e6
         latency.plot(total, lw=0.8, label="round trip")
-        latency.plot(compute, lw=0.8, label="host compute")
+        latency.plot(
+            compute, lw=0.8, label="host compute" + (" (goal check)" if result.carried[0] else "")
+        )
         period = 1000.0 / result.config.rate
         latency.axhline(period, color="red", ls="--", lw=0.8, label="control period")
         latency.set_yscale("log")
@@ -133,7 +157,8 @@ def figure(result: SimResult) -> Figure:
         latency.legend(fontsize=8, loc="upper right", ncols=3)
     latency.set_xlabel("control cycle")
     latency.set_ylabel("ms")
-    latency.set_title(_wrapped("compute_velocity_commands latency", 45), fontsize=10)
+    what = "control cycle (one query)" if result.carried[0] else op
+    latency.set_title(_wrapped(f"{what} latency", 45), fontsize=10)
     return fig
 
 

@@ -67,7 +67,32 @@ def summary(result: SimResult) -> dict[str, Any]:
         "min_clearance_m": round(result.min_clearance, 3),
         "collisions": result.collisions,
         "controller_errors": len(result.controller_errors),
+        "plugins": {role: result.name_of(role) for role in c.plugins},
+        "carried_calls": list(result.carried),
+        "layer_cells": int(result.layer.cells.sum()) if result.layer is not None else 0,
+        "raw_plan_length_m": round(_length(result.raw_plan), 3),
     }
+
+
+def _length(plan: Any) -> float:
+    if plan is None or len(plan) < 2:
+        return 0.0
+    d = np.diff(plan[:, :2], axis=0)
+    return float(np.hypot(d[:, 0], d[:, 1]).sum())
+
+
+def _plugins_line(s: dict[str, Any]) -> list[str]:
+    """Nav2's other plugins of the run, and how many cycles the goal check carried."""
+    if not s["plugins"]:
+        return []
+    named = ", ".join(f"{role.replace('_', ' ')} {name}" for role, name in s["plugins"].items())
+    carried, alone = s["carried_calls"]
+    if carried or alone:
+        named += (
+            f"; {carried} checker/controller calls answered inside the goal check's query, "
+            f"{alone} sent on their own"
+        )
+    return [f"  {named}"]
 
 
 def format_report(result: SimResult) -> str:
@@ -82,6 +107,7 @@ def format_report(result: SimResult) -> str:
         f"  plan {s['plan_length_m']:.2f} m, driven {s['driven_distance_m']:.2f} m, "
         f"minimum clearance {s['min_clearance_m']:.3f} m, collisions {s['collisions']}, "
         f"controller errors {s['controller_errors']}",
+        *_plugins_line(s),
         "",
         "latency per call (µs)                  calls   round trip         host compute       "
         "transport",

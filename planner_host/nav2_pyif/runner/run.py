@@ -18,7 +18,7 @@ import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
 from tqdm import tqdm
 
-from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
+from nav2_pyif.client import ControllerClient, GlobalPlannerClient, PluginClient, Timeouts
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import visible_hosts
 from nav2_pyif.client.reach import open_tool_session
@@ -30,7 +30,8 @@ from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import ALIASES
-from nav2_pyif.runner.inflation import inflate, window
+from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
+from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
@@ -39,6 +40,8 @@ log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
 Pose3 = tuple[float, float, float]
+#: The simulated ROS time [s] when a run starts: not zero, which a stamp reads as "no time".
+CLOCK_START = 1.0
 
 
 class SimError(Exception):
@@ -83,6 +86,11 @@ class SimConfig:
     controller_key: str = CONTROLLER_KEY
     planner_key: str = PLANNER_KEY
     progress: bool = False
+    # Nav2's other plugins (extras.KEYS' roles: smoother, goal_checker, progress_checker,
+    # layer) -> a reference name or module:Class, and their parameters
+    plugins: dict[str, str] = field(default_factory=dict)
+    plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
+    smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
 
     def spec(self, role: str) -> str:
         """The planner asked for as ``role`` ("controller", "planner"), else the default."""
@@ -110,6 +118,9 @@ class SimResult:
     controller_errors: list[str] = field(default_factory=list)
     traceback: str = ""  # the planner's own traceback of the error that ended the run
     records: list[CallRecord] = field(default_factory=list)
+    raw_plan: np.ndarray | None = None  # the planner's plan, when a smoother smoothed it
+    layer: LayerEffect | None = None  # what the costmap layer changed
+    carried: tuple[int, int] = (0, 0)  # checker cycle: calls answered carried / sent alone
 
     @property
     def path_length(self) -> float:
@@ -131,6 +142,8 @@ class SimResult:
         said it serves, else what was asked for."""
         if role in self.served:
             return short_name(self.served[role])
+        if role in self.config.plugins:
+            return short_name(self.config.plugins[role])
         asked: str | None = getattr(self.config, role)
         return asked or ("unknown" if self.config.endpoint else DEFAULTS[role])
 
@@ -161,7 +174,7 @@ def import_path(config: SimConfig) -> list[str]:
     directory, pytest's rootdir, ...) that holds each planner's top-level package. The host
     is a child process that sees neither on its own."""
     roots = [str(Path(d).resolve()) for d in config.path]
-    for spec in (config.spec("controller"), config.spec("planner")):
+    for spec in (config.spec("controller"), config.spec("planner"), *config.plugins.values()):
         top = spec.partition(":")[0].split(".")[0]
         for entry in sys.path:
             base = Path(entry or ".").resolve()
@@ -194,15 +207,7 @@ def prepare(config: SimConfig) -> SimResult:
     if start is None or goal is None:
         raise SimError(f"no start/goal given and {config.map} has no default task")
     footprint = np.array(config.footprint)
-    inscribed = float(np.min(np.abs(footprint).max(axis=0)))  # half the narrower side
-    costmap = inflate(
-        world,
-        inscribed,
-        config.inflation_radius,
-        config.cost_scaling_factor,
-        footprint=footprint,
-        frame_id="map",
-    )
+    costmap = inflated(config, static_layer(world, footprint=footprint, frame_id="map"))
     checker = WorldChecker(world, footprint)
     for what, (x, y, yaw) in (("start", start), ("goal", goal)):
         if costmap.world_to_map(x, y) is None:
@@ -210,6 +215,12 @@ def prepare(config: SimConfig) -> SimResult:
         if checker.collides(x, y, yaw):
             raise SimError(f"{what} ({x}, {y}) is inside an obstacle")
     return SimResult(config, world, costmap, start, goal)
+
+
+def inflated(config: SimConfig, master: Costmap) -> Costmap:
+    """The master grid after Nav2's inflation layer, for the run's robot."""
+    inscribed = float(np.min(np.abs(np.array(config.footprint)).max(axis=0)))  # half its width
+    return inflation_layer(master, inscribed, config.inflation_radius, config.cost_scaling_factor)
 
 
 def run_sim(config: SimConfig) -> SimResult:
@@ -220,6 +231,7 @@ def run_sim(config: SimConfig) -> SimResult:
     entries = [
         planner_entry(config.controller_key, config.spec("controller")),
         planner_entry(config.planner_key, config.spec("planner")),
+        *(planner_entry(KEYS[role], spec) for role, spec in config.plugins.items()),
     ]
     started = time.perf_counter()
     try:
@@ -271,50 +283,94 @@ def _drive(
         params=config.controller_params,
         record_calls=True,
     )
+    extras_started = extra_clients(session, config.plugins, config.plugin_params, costmap, timeouts)
     try:
-        for client, role in ((planner, "planner"), (controller, "controller")):
-            if host is not None:
-                wait_alive(host, client.wait_for_host)
-            elif not client.wait_for_host(config.wait):
-                raise SimError(
-                    f"no planner host on {client.keys.prefix} at {config.endpoint} within "
-                    f"{config.wait:g} s; {visible_hosts(session)}"
-                )
+        with extras_started as extras:
+            roles = {"planner": planner, "controller": controller, **extras.clients}
             try:
-                client.configure()
-                client.activate()
-            except Nav2Error as exc:
-                # As Nav2's server would: the plugin fails to start, so the run stops here.
-                what = result.name_of(role)
-                _ended_by(result, f"{what} could not start, so the run stopped", exc)
+                _start(config, result, roles, host)
+                if extras.layer is not None:  # between the static and the inflation layer
+                    static = static_layer(result.world, costmap.footprint, frame_id="map")
+                    master, result.layer = apply_layer(extras.layer, static, start)
+                    costmap = result.global_costmap = inflated(config, master)
+                    planner.update_costmap(costmap)
+                    local_version += 1
+                    controller.update_costmap(
+                        window(
+                            costmap, start[0], start[1], config.local_costmap_size, local_version
+                        )
+                    )
+            except _Ended:
                 return
-        _note_served(config, result, {"planner": planner.served, "controller": controller.served})
-        try:
-            plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
-        except Nav2Error as exc:
-            _ended_by(result, "no plan", exc)
-            return
-        result.plan = plan.xy_yaw.copy()
-        try:
-            controller.set_plan(plan)
-        except Nav2Error as exc:  # Nav2's controller server aborts the goal: a result too
-            _ended_by(result, "set_plan failed", exc)
-            return
-        log.info(
-            "plan of %.2f m by %s; driving with %s at %g Hz",
-            result.path_length,
-            result.name_of("planner"),
-            result.name_of("controller"),
-            config.rate,
-        )
-        _control_loop(config, result, controller, local_version)
-        for client in (controller, planner):
-            client.deactivate()
-            client.cleanup()
+            finally:
+                result.records = [r for client in roles.values() for r in client.records or []]
+            _note_served(
+                config, result, {"planner": planner.served, "controller": controller.served}
+            )
+            try:
+                plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
+                result.plan = plan.xy_yaw.copy()
+                if extras.smoother is not None:
+                    result.raw_plan = result.plan
+                    plan = extras.smoother.smooth(plan, config.smoother_max_time)
+                    result.plan = plan.xy_yaw.copy()
+            except Nav2Error as exc:
+                _ended_by(result, "no smoothed plan" if len(result.plan) else "no plan", exc)
+                return
+            try:
+                controller.set_plan(plan)
+            except Nav2Error as exc:  # Nav2's controller server aborts the goal: a result too
+                _ended_by(result, "set_plan failed", exc)
+                return
+            log.info(
+                "plan of %.2f m by %s%s; driving with %s at %g Hz",
+                result.path_length,
+                result.name_of("planner"),
+                f", smoothed by {result.name_of('smoother')}" if extras.smoother else "",
+                result.name_of("controller"),
+                config.rate,
+            )
+            calls = CycleCalls(controller, extras, config.goal_checker)
+            try:
+                _control_loop(config, result, calls, local_version)
+            finally:
+                result.carried = calls.carried
+                result.records = [r for client in roles.values() for r in client.records or []]
+            for client in reversed(roles.values()):
+                client.deactivate()
+                client.cleanup()
     finally:
-        result.records = (planner.records or []) + (controller.records or [])
         planner.close()
         controller.close()
+
+
+class _Ended(Exception):
+    """A plugin could not start: the result says why, and the run stops there."""
+
+
+def _start(
+    config: SimConfig,
+    result: SimResult,
+    roles: dict[str, PluginClient],
+    host: PlannerHostProcess | None,
+) -> None:
+    """Each client: its host alive, then configure and activate, as Nav2's servers do."""
+    for role, client in roles.items():
+        if host is not None:
+            wait_alive(host, client.wait_for_host)
+        elif not client.wait_for_host(config.wait):
+            raise SimError(
+                f"no planner host on {client.keys.prefix} at {config.endpoint} within "
+                f"{config.wait:g} s; {visible_hosts(client.session)}"
+            )
+        try:
+            client.configure()
+            client.activate()
+        except Nav2Error as exc:
+            # As Nav2's server would: the plugin fails to start, so the run stops here.
+            what = result.name_of(role)
+            _ended_by(result, f"{what} could not start, so the run stopped", exc)
+            raise _Ended from exc
 
 
 def _ended_by(result: SimResult, what: str, exc: Nav2Error) -> None:
@@ -342,8 +398,11 @@ def _note_served(config: SimConfig, result: SimResult, served: dict[str, str | N
 
 
 def _control_loop(
-    config: SimConfig, result: SimResult, controller: ControllerClient, local_version: int
+    config: SimConfig, result: SimResult, calls: CycleCalls, local_version: int
 ) -> None:
+    controller = calls.controller
+    goal_msg = pose_msg(*result.goal)
+    calls.start()
     robot = DiffDrive(*result.start)
     checker = WorldChecker(result.world, np.array(config.footprint))
     dt, goal = 1.0 / config.rate, result.goal
@@ -372,12 +431,21 @@ def _control_loop(
                 )
             velocity = Twist()
             velocity.linear.x, velocity.angular.z = robot.v, robot.w
+            pose = pose_msg(robot.x, robot.y, robot.yaw, stamp_s=CLOCK_START + result.sim_time)
+            try:  # the checkers' failures abort the goal in Nav2: no retry
+                if calls.goal_reached(pose, goal_msg, velocity):
+                    result.reached = True
+                    result.outcome = f"goal reached (said {result.name_of('goal_checker')})"
+                    return
+                if not calls.making_progress(pose):
+                    progress = result.name_of("progress_checker")
+                    result.outcome = f"failed to make progress (said {progress})"
+                    return
+            except Nav2Error as exc:
+                _ended_by(result, "a checker failed", exc)
+                return
             try:
-                cmd = controller.compute_velocity_commands(
-                    pose_msg(robot.x, robot.y, robot.yaw, stamp_s=result.sim_time),
-                    velocity,
-                    config.goal_checker,
-                )
+                cmd = calls.compute(pose, velocity)
                 cmd_v, cmd_w = cmd.twist.linear.x, cmd.twist.angular.z
                 failing_since = None
             except Nav2Error as exc:
@@ -403,7 +471,9 @@ def _control_loop(
                 result.outcome = f"collision at ({robot.x:.2f}, {robot.y:.2f})"
                 return
             distance = math.hypot(goal[0] - robot.x, goal[1] - robot.y)
-            if config.goal_checker.is_goal_reached(robot.x, robot.y, robot.yaw, *goal):
+            if calls.cycle is None and config.goal_checker.is_goal_reached(
+                robot.x, robot.y, robot.yaw, *goal
+            ):
                 result.reached = True
                 result.outcome = "goal reached"
                 return
