@@ -4,7 +4,7 @@ nav2_pyif_cycle_bench against the very peers of `protocol` (planner hosts, bare 
 rclpy node), all rows in one run with interleaved rounds.
 
     scripts/build_cpp_bench.sh          # once; NAV2_PYIF_NAV2_SETUP: ROS 2, Nav2, zenoh-cpp
-    nav2-pyif-bench cpp-cycle           # well under a minute
+    nav2-pyif-bench cpp-cycle           # about three minutes: back to back, then at 20 Hz
     nav2-pyif-bench cpp-cycle --quick   # a smoke run
 
 The binary runs in the ROS environment of --setup (default $NAV2_PYIF_NAV2_SETUP); the peers
@@ -12,6 +12,10 @@ run in this Python's. Each nav2_pyif cycle is split into the C++ client's own wo
 minus its Zenoh get: costmap check, encode, decode, command check), the get, and within that
 the host's compute_ns (decoded request to reply body: session look-up, rclpy messages, the
 planner, the checks; decode, encode and the Zenoh side are outside it).
+
+Then the same rows at a real control rate (--rate, default 20 Hz): each call starts on a fixed
+schedule, so every process sleeps between calls as under Nav2, and p99 is compared with the
+median.
 """
 
 from __future__ import annotations
@@ -28,7 +32,7 @@ from typing import Any
 
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
 from nav2_pyif_bench.protocol_bench import BARE_KEY, INPROC_KEY, KEY, peer_commands, progress
-from nav2_pyif_bench.stats import Summary, cycle_target_lines, header_row
+from nav2_pyif_bench.stats import Summary, header_row
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_BINARY = ROOT / "build" / "cpp_bench" / "nav2_pyif_cycle_bench"
@@ -90,30 +94,42 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         *("--host", f"tcp/127.0.0.1:{host_port}", "--key", KEY),
         *("--inproc", f"tcp/127.0.0.1:{inproc_port}", "--inproc-key", INPROC_KEY),
         "--rclcpp",
-        *("--rounds", str(args.rounds), "--calls", str(args.calls)),
     ]
-    script = f"source {shlex.quote(setup)} >/dev/null && exec {shlex.join(command)}"
+    results: dict[str, Any] = {"rate_hz": args.rate, "load": [os.getloadavg()[0]]}
     with peer_processes(peer_commands(host_port, inproc_port, bare_port), env):
         progress(f"running {binary.name} in the environment of {setup}")
-        # stderr passes through: the binary's progress and its reason when it fails.
-        result = subprocess.run(
-            ["bash", "-c", script],
-            env=ros_environment(env),
-            stdout=subprocess.PIPE,
-            text=True,
-            timeout=args.timeout,
-        )
+        tight = ["--rounds", str(args.rounds), "--calls", str(args.calls)]
+        results["backend"], results["cycle"] = _run_binary(command + tight, setup, env, args)
+        if args.rate > 0:
+            progress(f"the same rows at {args.rate:g} Hz")
+            paced = ["--rounds", str(args.paced_rounds), "--calls", str(args.paced_calls)]
+            paced += ["--period-ms", f"{1000.0 / args.rate:g}"]
+            _, results["paced"] = _run_binary(command + paced, setup, env, args)
+    results["load"].append(os.getloadavg()[0])
+    return results
+
+
+def _run_binary(
+    command: list[str], setup: str, env: dict[str, str], args: argparse.Namespace
+) -> tuple[str, dict[str, Any]]:
+    """The binary's backend and each row's summary."""
+    script = f"source {shlex.quote(setup)} >/dev/null && exec {shlex.join(command)}"
+    # stderr passes through: the binary's progress and its reason when it fails.
+    result = subprocess.run(
+        ["bash", "-c", script],
+        env=ros_environment(env),
+        stdout=subprocess.PIPE,
+        text=True,
+        timeout=args.timeout,
+    )
     if result.returncode != 0:
-        raise RuntimeError(f"{binary.name} failed (exit {result.returncode}); see above")
+        raise RuntimeError(f"{Path(command[0]).name} failed (exit {result.returncode}); see above")
     output = json.loads(result.stdout)
     rows: dict[str, list[int]] = output["rows"]
     for name in ("pyif", "pyif_inproc"):  # the client's own work: the call minus its get
         pairs = zip(rows[name], rows[f"{name}.query"], strict=True)
         rows[f"{name}.client"] = [total - query for total, query in pairs]
-    return {
-        "backend": output["backend"],
-        "cycle": {k: asdict(Summary.of_ns(v)) for k, v in rows.items()},
-    }
+    return str(output["backend"]), {k: asdict(Summary.of_ns(v)) for k, v in rows.items()}
 
 
 def report(results: dict[str, Any]) -> str:
@@ -121,6 +137,19 @@ def report(results: dict[str, Any]) -> str:
     lines = [
         "control cycle, C++ client (the plugin's ControllerSession + ZenohTransport, "
         f"{results['backend']}): PoseStamped + Twist in, TwistStamped out (trivial planner)",
+        f"load average {results['load'][0]:.2f} at the start, {results['load'][1]:.2f} at the end",
+        *_table(c),
+    ]
+    paced = {k: Summary(**v) for k, v in results.get("paced", {}).items()}
+    if paced:
+        lines += [f"the same rows at {results['rate_hz']:g} Hz (one call every period)"]
+        lines += _table(paced)
+    lines += cycle_targets(c, paced)
+    return "\n".join(lines)
+
+
+def _table(c: dict[str, Summary]) -> list[str]:
+    lines = [
         header_row(),
         c["bare"].row("bare Zenoh get -> empty reply"),
         c["host_floor"].row("host's cheapest reply (SessionUnknown)"),
@@ -136,12 +165,36 @@ def report(results: dict[str, Any]) -> str:
             c[f"{name}.handler"].row("    of which planner call (compute_ns)"),
         ]
     lines.append(c["rclcpp"].row("rclpy node via rclcpp client (workaround)"))
-    lines += cycle_target_lines(
-        c["bare"].median_us,
-        c["rclcpp"].median_us,
-        {"--isolation none": c["pyif_inproc"].median_us, "worker process": c["pyif"].median_us},
-    )
-    return "\n".join(lines)
+    return lines
+
+
+def cycle_targets(c: dict[str, Summary], paced: dict[str, Summary]) -> list[str]:
+    """Issue 15's targets for the default (worker process) cycle, as ratios within one run."""
+    worker, inproc, bare, ros = c["pyif"], c["pyif_inproc"], c["bare"], c["rclcpp"]
+    checks = [
+        ("median over bare Zenoh's", worker.median_us / bare.median_us, "<= 1.5", 1.5, False),
+        (
+            "median over --isolation none's",
+            worker.median_us / inproc.median_us,
+            "<= 1.1",
+            1.1,
+            False,
+        ),
+        ("rclpy node's median over it", ros.median_us / worker.median_us, ">= 1.2", 1.2, True),
+        ("rclpy node's p99 over it", ros.p99_us / worker.p99_us, ">= 2 (loaded)", 2.0, True),
+    ]
+    if paced:
+        w = paced["pyif"]
+        checks.append(
+            ("p99 over median at the paced rate", w.p99_us / w.median_us, "<= 2", 2.0, False)
+        )
+    lines = []
+    for label, ratio, wanted, bound, at_least in checks:
+        met = ratio >= bound if at_least else ratio <= bound
+        lines.append(
+            f"  worker cycle {label}: {ratio:.2f}x (target {wanted}): {'MET' if met else 'NOT MET'}"
+        )
+    return lines
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -154,10 +207,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
     parser.add_argument("--calls", type=int, default=300, help="calls per row and round")
     parser.add_argument("--timeout", type=float, default=900.0, help="seconds for the binary")
+    parser.add_argument(
+        "--rate", type=float, default=20.0, help="then the same rows at this rate [Hz]; 0: skip"
+    )
+    parser.add_argument("--paced-rounds", type=int, default=4, help="rounds at --rate")
+    parser.add_argument("--paced-calls", type=int, default=100, help="calls per row and round")
     parser.add_argument("--quick", action="store_true", help="a short smoke run")
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:
     if args.quick:
         args.rounds, args.calls = 2, 50
+        args.paced_rounds, args.paced_calls = 1, 10
     return args

@@ -7,6 +7,8 @@
 //   pyif         ControllerSession::compute_velocity_commands -> planner-host (worker process)
 //   pyif_inproc  the same -> planner-host --isolation none
 //   rclcpp       nav_msgs/Odometry -> rclpy_node.py -> geometry_msgs/TwistStamped
+// With --period-ms, each call starts on a fixed schedule (a real control rate: every process
+// sleeps between calls and each call pays for waking them), not back to back.
 // The peers are started by `nav2-pyif-bench cpp-cycle`, which reads the samples this prints
 // on stdout as JSON (progress goes to stderr):
 //   {"backend": "...", "rows": {"bare": [ns, ...], "pyif": [...], "pyif.query": [...], ...}}
@@ -19,6 +21,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "pyif_rows.hpp"
@@ -34,9 +37,10 @@ using namespace std::chrono_literals;
 constexpr const char * kUsage =
   "usage: nav2_pyif_cycle_bench [--bare ENDPOINT --bare-key KEY] [--host ENDPOINT --key KEY]\n"
   "         [--inproc ENDPOINT --inproc-key KEY] [--rclcpp] [--rounds N] [--calls N]\n"
-  "         [--warmup N] [--wait SECONDS]\n"
+  "         [--warmup N] [--wait SECONDS] [--period-ms MS]\n"
   "  ENDPOINT: where the peer listens (tcp/127.0.0.1:PORT); each row has its own session.\n"
-  "  --host also measures host_floor. --rclcpp needs rclpy_node.py on the same ROS domain.\n";
+  "  --host also measures host_floor. --rclcpp needs rclpy_node.py on the same ROS domain.\n"
+  "  --period-ms: start a call every MS milliseconds (50: 20 Hz); 0, the default: back to back.\n";
 
 struct Options
 {
@@ -48,6 +52,7 @@ struct Options
   int calls{300};
   int warmup{50};
   double wait_s{30.0};
+  double period_ms{0.0};
 };
 
 Options parse(int argc, char ** argv)
@@ -74,12 +79,14 @@ Options parse(int argc, char ** argv)
       *n->second = std::stoi(value);
     } else if (arg == "--wait") {
       o.wait_s = std::stod(value);
+    } else if (arg == "--period-ms") {
+      o.period_ms = std::stod(value);
     } else {
       throw std::invalid_argument("unknown option " + arg);
     }
   }
-  if (o.rounds < 1 || o.calls < 1 || o.warmup < 0) {
-    throw std::invalid_argument("--rounds and --calls must be >= 1, --warmup >= 0");
+  if (o.rounds < 1 || o.calls < 1 || o.warmup < 0 || o.period_ms < 0) {
+    throw std::invalid_argument("--rounds and --calls must be >= 1, --warmup and --period-ms >= 0");
   }
   return o;
 }
@@ -113,11 +120,18 @@ Samples interleaved(const std::vector<Row> & rows, const Options & o)
       row.run();
     }
   }
+  const auto period = std::chrono::duration_cast<BenchClock::duration>(
+    std::chrono::duration<double, std::milli>(o.period_ms));
+  auto next_start = BenchClock::now();
   Samples samples;
   for (int r = 0; r < o.rounds; ++r) {
     progress("control cycle: round " + std::to_string(r + 1) + "/" + std::to_string(o.rounds));
     for (const auto & row : rows) {
       for (int i = 0; i < o.calls; ++i) {
+        if (period.count() > 0) {  // on schedule, not "period after the last call ended"
+          next_start += period;
+          std::this_thread::sleep_until(next_start);
+        }
         const Sample s = row.run();
         samples[row.name].push_back(s.total_ns);
         if (s.query_ns >= 0) {

@@ -32,6 +32,10 @@ STATE_OPS = frozenset(
     }
 )
 
+# As strings: worth_recording runs on every call, and building an Op from a string costs more.
+_STATE_OP_NAMES = frozenset(op.value for op in STATE_OPS)
+_OP_NAMES = frozenset(op.value for op in Op)
+
 
 @dataclass
 class SessionRecord:
@@ -73,11 +77,9 @@ class Journal:
     @staticmethod
     def worth_recording(key_op: str, payload: bytes) -> bool:
         """Cheap pre-check (no decoding) for the hot path: state ops, or a costmap update."""
-        try:
-            op = Op(key_op)
-        except ValueError:
-            return False
-        return op in STATE_OPS or b"costmap" in payload
+        if key_op in _STATE_OP_NAMES:
+            return True
+        return key_op in _OP_NAMES and b"costmap" in payload
 
     def note(self, key_op: str, payload: bytes, reply: bytes) -> None:
         """Record a request the planner accepted (its reply was ok), leaving out parameter
