@@ -83,6 +83,22 @@ def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
     )
 
 
+@pytest.mark.timeout(300)
+def test_isolation_hop_benchmark_prints_the_three_ways_a_query_is_answered() -> None:
+    binary = ROOT / "build" / "cpp_bench" / "nav2_pyif_cycle_bench"
+    if not (os.environ.get("NAV2_PYIF_NAV2_SETUP") and binary.is_file()):
+        pytest.skip(
+            "isolation-hop skipped: it needs NAV2_PYIF_NAV2_SETUP and the C++ bench built by "
+            "test_cpp_cycle_benchmark_builds_and_prints_its_table (scripts/build_cpp_bench.sh)"
+        )
+    assert_prints(
+        bench("isolation-hop", "--rounds", "1", "--calls", "20"),
+        "answered in the listening process (the floor)",
+        "handed to a worker over a pipe (the supervisor)",
+        "answered by a worker's own Zenoh session",
+    )
+
+
 def test_fleet_benchmark_prints_its_table_and_draws_it(tmp_path: Path) -> None:
     png = tmp_path / "fleet.png"
     result = bench("fleet", "--robots", "1", "--seconds", "1", "--plot", str(png))

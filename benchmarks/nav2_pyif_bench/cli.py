@@ -2,6 +2,7 @@
 
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
+nav2-pyif-bench isolation-hop                  a query answered by a second process, two ways
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers' rate through a host
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
@@ -21,6 +22,7 @@ from nav2_pyif.signals import Interrupted, raise_on_signals
 from nav2_pyif_bench import (
     cpp_cycle_bench,
     fleet_bench,
+    hop_bench,
     host_bench,
     mppi_bench,
     protocol_bench,
@@ -43,6 +45,10 @@ def main(argv: list[str] | None = None) -> int:
         "cpp-cycle", help="the control cycle with the C++ plugin's client code (built apart)"
     )
     cpp_cycle_bench.add_arguments(cpp_cycle)
+    hop = sub.add_parser(
+        "isolation-hop", help="a query answered by a worker: its own session, or a pipe (C++)"
+    )
+    hop_bench.add_arguments(hop)
     mppi = sub.add_parser("mppi", help="the MPPI controller's rate through a planner host")
     mppi.add_argument("--batch-sizes", type=int, nargs="+", default=[1000, 2000])
     mppi.add_argument("--map", default="office")
@@ -67,7 +73,7 @@ def main(argv: list[str] | None = None) -> int:
         "host", help="the control cycle against a planner host already running (--connect)"
     )
     host_bench.add_arguments(host)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host):
+    for p in (protocol, cpp_cycle, hop, mppi, reliability, fleet, tls, host):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -80,13 +86,14 @@ def main(argv: list[str] | None = None) -> int:
 
 def run(args: argparse.Namespace) -> int:
     print(f"machine: {machine_description()}\n", flush=True)
-    if args.bench == "cpp-cycle":
+    if args.bench in ("cpp-cycle", "isolation-hop"):
+        bench = cpp_cycle_bench if args.bench == "cpp-cycle" else hop_bench
         try:
-            results = cpp_cycle_bench.run(cpp_cycle_bench.apply_quick(args))
+            results = bench.run(cpp_cycle_bench.apply_quick(args))
         except cpp_cycle_bench.BenchSetupError as exc:
-            print(f"nav2-pyif-bench cpp-cycle: {exc}", file=sys.stderr)
+            print(f"nav2-pyif-bench {args.bench}: {exc}", file=sys.stderr)
             return 2
-        text = cpp_cycle_bench.report(results)
+        text = bench.report(results)
     elif args.bench == "protocol":
         results = protocol_bench.run(protocol_bench.apply_quick(args))
         text = protocol_bench.report(results)

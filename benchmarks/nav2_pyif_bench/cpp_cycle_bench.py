@@ -113,6 +113,17 @@ def _run_binary(
     command: list[str], setup: str, env: dict[str, str], args: argparse.Namespace
 ) -> tuple[str, dict[str, Any]]:
     """The binary's backend and each row's summary."""
+    backend, rows = run_binary(command, setup, env, args.timeout)
+    for name in ("pyif", "pyif_inproc"):  # the client's own work: the call minus its get
+        pairs = zip(rows[name], rows[f"{name}.query"], strict=True)
+        rows[f"{name}.client"] = [total - query for total, query in pairs]
+    return backend, {k: asdict(Summary.of_ns(v)) for k, v in rows.items()}
+
+
+def run_binary(
+    command: list[str], setup: str, env: dict[str, str], timeout: float
+) -> tuple[str, dict[str, list[int]]]:
+    """Run the C++ bench in the ROS environment of ``setup``: its backend and samples [ns]."""
     script = f"source {shlex.quote(setup)} >/dev/null && exec {shlex.join(command)}"
     # stderr passes through: the binary's progress and its reason when it fails.
     result = subprocess.run(
@@ -120,16 +131,12 @@ def _run_binary(
         env=ros_environment(env),
         stdout=subprocess.PIPE,
         text=True,
-        timeout=args.timeout,
+        timeout=timeout,
     )
     if result.returncode != 0:
         raise RuntimeError(f"{Path(command[0]).name} failed (exit {result.returncode}); see above")
     output = json.loads(result.stdout)
-    rows: dict[str, list[int]] = output["rows"]
-    for name in ("pyif", "pyif_inproc"):  # the client's own work: the call minus its get
-        pairs = zip(rows[name], rows[f"{name}.query"], strict=True)
-        rows[f"{name}.client"] = [total - query for total, query in pairs]
-    return str(output["backend"]), {k: asdict(Summary.of_ns(v)) for k, v in rows.items()}
+    return str(output["backend"]), output["rows"]
 
 
 def report(results: dict[str, Any]) -> str:
@@ -216,7 +223,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:
-    if args.quick:
+    if getattr(args, "quick", False):
         args.rounds, args.calls = 2, 50
         args.paced_rounds, args.paced_calls = 1, 10
     return args
