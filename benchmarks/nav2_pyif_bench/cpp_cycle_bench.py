@@ -195,13 +195,26 @@ def cycle_targets(c: dict[str, Summary], paced: dict[str, Summary]) -> list[str]
         checks.append(
             ("p99 over median at the paced rate", w.p99_us / w.median_us, "<= 2", 2.0, False)
         )
+    # What a target compares against, measured the same way: the floor no host can go below.
+    context = [
+        "  for comparison: host's cheapest reply over bare Zenoh's median "
+        f"{c['host_floor'].median_us / bare.median_us:.2f}x, --isolation none's "
+        f"{inproc.median_us / bare.median_us:.2f}x"
+    ]
+    if paced:
+        context.append(
+            "  for comparison, p99 over median at the paced rate: bare Zenoh get "
+            f"{paced['bare'].p99_us / paced['bare'].median_us:.2f}x, --isolation none "
+            f"{paced['pyif_inproc'].p99_us / paced['pyif_inproc'].median_us:.2f}x, rclpy node "
+            f"{paced['rclcpp'].p99_us / paced['rclcpp'].median_us:.2f}x"
+        )
     lines = []
     for label, ratio, wanted, bound, at_least in checks:
         met = ratio >= bound if at_least else ratio <= bound
         lines.append(
             f"  worker cycle {label}: {ratio:.2f}x (target {wanted}): {'MET' if met else 'NOT MET'}"
         )
-    return lines
+    return lines + context
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
