@@ -18,8 +18,8 @@ _CHUNK = 1 << 16
 
 
 class FramedPipe:
-    """One end of a duplex ``multiprocessing.Pipe``, read and written as whole messages.
-    Raises EOFError when the other end is gone (also for a write, as BrokenPipeError)."""
+    """One end of a duplex ``multiprocessing.Pipe``, read and written as whole messages. When
+    the other end is gone, recv raises EOFError and send BrokenPipeError (an OSError)."""
 
     def __init__(self, connection: Connection) -> None:
         self.connection = connection  # owns the file descriptor
