@@ -27,6 +27,7 @@ from typing import Any
 
 import zenoh
 from nav2_pyif.common.zenoh_config import connect_to
+from nav2_pyif.server.frames import FramedPipe
 
 from nav2_pyif_bench.processes import free_port, peer_processes
 from nav2_pyif_bench.protocol_bench import interleaved, progress
@@ -34,7 +35,8 @@ from nav2_pyif_bench.stats import Summary, header_row
 
 REQUEST = b"r" * 300
 ROWS = {
-    "pipe": "pipe to a worker process and back",
+    "pipe": "pipe to a worker process and back (FramedPipe)",
+    "connection": "  the same, multiprocessing.Connection both ends",
     "channel": "Zenoh get -> FIFO-channel queryable (the host's way)",
     "callback": "Zenoh get -> callback queryable",
     "relayed": "Zenoh get -> queryable behind a listening peer",
@@ -42,27 +44,35 @@ ROWS = {
 }
 
 
-def _echo(conn: Connection) -> None:
-    while message := conn.recv_bytes():
-        conn.send_bytes(message)
+def _echo(conn: Connection, framed: bool) -> None:
+    end: Any = FramedPipe(conn) if framed else conn
+    receive, send = (end.recv, end.send) if framed else (end.recv_bytes, end.send_bytes)
+    while message := receive():
+        send(message)
 
 
 class PipeEcho:
-    def __init__(self) -> None:
+    """A worker process echoing over a pipe: framed as the host's call pipe (FramedPipe), or
+    with multiprocessing.Connection's own framing (what the host used before)."""
+
+    def __init__(self, framed: bool) -> None:
         context = multiprocessing.get_context("spawn")  # as the host starts its workers
-        self.conn, child = context.Pipe()
-        self.process = context.Process(target=_echo, args=(child,), daemon=True)
+        conn, child = context.Pipe()
+        self.process = context.Process(target=_echo, args=(child, framed), daemon=True)
         self.process.start()
         child.close()
+        self.end: Any = FramedPipe(conn) if framed else conn
+        self.send = self.end.send if framed else conn.send_bytes
+        self.receive = self.end.recv if framed else conn.recv_bytes
 
     def __call__(self) -> int:
         start = time.perf_counter_ns()
-        self.conn.send_bytes(REQUEST)
-        self.conn.recv_bytes()
+        self.send(REQUEST)
+        self.receive()
         return time.perf_counter_ns() - start
 
     def close(self) -> None:
-        self.conn.send_bytes(b"")
+        self.send(b"")
         self.process.join(5)
 
 
@@ -125,7 +135,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         "relay": _bare("hop/relay", "--listen", relay),
         "relayed": _bare("hop/relayed", "--connect", relay),
     }
-    pipe = PipeEcho()
+    pipe, connection = PipeEcho(framed=True), PipeEcho(framed=False)
     sessions: list[zenoh.Session] = []
     try:
         with peer_processes(peers, {}):
@@ -136,6 +146,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             sessions.append(_open(relay, "peer"))
             rows: dict[str, Callable[[], int]] = {
                 "pipe": pipe,
+                "connection": connection,
                 "channel": _answered(sessions[0], "hop/channel"),
                 "callback": _answered(sessions[1], "hop/callback"),
                 "relayed": _answered(sessions[2], "hop/relayed"),
@@ -145,6 +156,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             at_rate = paced(rows, args.paced_calls, args.rate)
     finally:
         pipe.close()
+        connection.close()
         for session in sessions:
             session.close()
     return {

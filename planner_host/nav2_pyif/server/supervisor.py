@@ -30,6 +30,7 @@ import msgpack
 from nav2_pyif_protocol.constants import TIMED_OUT_ERROR, ErrorType, Op, PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.server.frames import FramedPipe
 from nav2_pyif.server.journal import Journal, Snapshot, replay
 from nav2_pyif.server.runtime import error_reply, peek_seq
 from nav2_pyif.server.spec import PlannerSpec
@@ -84,7 +85,7 @@ def describe_exit(code: int | None) -> str:
 
 
 class Worker:
-    """One worker process and its two pipes."""
+    """One worker process and its two pipes: calls (framed, the hot path) and cancels."""
 
     def __init__(
         self,
@@ -94,7 +95,8 @@ class Worker:
         log_level: str,
         quiet: bool = False,
     ) -> None:
-        self.calls, child_calls = _SPAWN.Pipe()
+        calls, child_calls = _SPAWN.Pipe()
+        self.calls = FramedPipe(calls)
         self.cancels, child_cancels = _SPAWN.Pipe()
         self.process = _SPAWN.Process(
             target=worker_main,
@@ -133,28 +135,28 @@ class Worker:
     def call(self, op: str, payload: bytes, timeout: float) -> bytes | None:
         """The reply, or None when ``timeout`` passed first. Raises WorkerDied."""
         try:
-            self.calls.send_bytes(op.encode() + b"\0" + payload)
-        except (BrokenPipeError, OSError) as exc:
+            self.calls.send(op.encode() + b"\0" + payload)
+        except OSError as exc:  # BrokenPipeError: the worker is gone
             raise WorkerDied(self.exit_description()) from exc
         return self._receive(timeout)
 
     def _receive(self, timeout: float) -> bytes | None:
         # The pipe alone (not pipe + process sentinel): one fd, cheaper on every call; a dead
         # worker's pipe reads EOF (POLLHUP), so deaths are still seen at once.
-        if not self._replies.poll(max(0, math.ceil(timeout * 1000))):
+        if not self.calls.pending() and not self._replies.poll(max(0, math.ceil(timeout * 1000))):
             if not self.process.is_alive():
                 raise WorkerDied(self.exit_description())
             return None
         try:
-            return self.calls.recv_bytes()
+            return self.calls.recv()
         except (EOFError, OSError):
             raise WorkerDied(self.exit_description()) from None
 
     def drain(self) -> bool:
         """Consume a late reply, if one arrived; True when the worker is free again."""
         try:
-            if self.calls.poll(0):
-                self.calls.recv_bytes()
+            if self.calls.pending() or self._replies.poll(0):
+                self.calls.recv()
                 return True
         except (EOFError, OSError):
             pass
@@ -176,7 +178,7 @@ class Worker:
     def stop(self, grace: float = 2.0) -> None:
         if self.process.is_alive():
             with contextlib.suppress(OSError):
-                self.calls.send_bytes(b"")
+                self.calls.send(b"")
             self.process.join(grace)
         if self.process.is_alive():
             self.process.kill()

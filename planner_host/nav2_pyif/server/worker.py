@@ -1,9 +1,10 @@
 """The worker process: loads one planner and answers calls from its supervisor over a pipe.
 
-Pipe messages: supervisor -> worker ``op NUL request-bytes`` (empty: exit); worker ->
-supervisor, first a load report (msgpack ``["loaded", plugin_type]`` or ``["load_error",
-message]``), then one reply per call. Cancellations arrive on a second pipe and are answered
-by a thread, while the main thread may be busy in the planner.
+Call-pipe messages (frames.FramedPipe, length-prefixed): supervisor -> worker ``op NUL
+request-bytes`` (empty: exit); worker -> supervisor, first a load report (msgpack ``["loaded",
+plugin_type]`` or ``["load_error", message]``), then one reply per call. Cancellations arrive
+on a second pipe and are answered by a thread, while the main thread may be busy in the
+planner.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from multiprocessing.connection import Connection
 
 import msgpack
 
+from nav2_pyif.server.frames import FramedPipe
 from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif.server.spec import PlannerSpec
 
@@ -59,23 +61,26 @@ def worker_main(
     # act on (stop, reload), and it stops its workers itself.
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGHUP, signal.SIG_IGN)
+    pipe = FramedPipe(calls)
     runtime: list[PlannerRuntime] = []  # set once loaded; cancels only come after that
     threading.Thread(target=_serve_cancels, args=(cancels, runtime), daemon=True).start()
     _limit_memory(memory_limit)
     try:
         planner_class = spec.load(quiet=quiet)
     except BaseException as exc:  # import errors, syntax errors, SystemExit at import...
-        calls.send_bytes(msgpack.packb([LOAD_ERROR, str(exc)]))
+        pipe.send(msgpack.packb([LOAD_ERROR, str(exc)]))
         return
-    runtime.append(PlannerRuntime(planner_class, host_id, label=spec.describe()))
-    calls.send_bytes(msgpack.packb([LOADED, runtime[0].plugin_type.value]))
+    served = PlannerRuntime(planner_class, host_id, label=spec.describe())
+    runtime.append(served)
+    pipe.send(msgpack.packb([LOADED, served.plugin_type.value]))
+    handle, send, recv = served.handle, pipe.send, pipe.recv  # bound once: the hot loop
     while True:
         try:
-            message = calls.recv_bytes()
+            message = recv()
         except (EOFError, OSError):
             break
         if not message:
             break
         op, _, payload = message.partition(b"\0")
-        calls.send_bytes(runtime[0].handle(payload, key_op=op.decode()))
-    runtime[0].close()
+        send(handle(payload, op.decode()))
+    served.close()
