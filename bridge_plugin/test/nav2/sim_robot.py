@@ -11,7 +11,8 @@ With --drift-step DY, odometry drifts as a real robot's does: every --drift-peri
 driving, until --drift-max, the odom frame moves DY metres along the map's y axis against the
 true pose, and map -> odom (now published at 50 Hz) jumps by as much, as AMCL's corrections do.
 /cmd_vel is read as geometry_msgs/Twist (Jazzy's controller_server default); a command older
-than 0.5 s stops the robot.
+than 0.5 s stops the robot. With --scan, a laser on base_link publishes /scan
+(sensor_msgs/LaserScan, 20 Hz, 181 beams over the front half, 4 m) ray-cast on the wall.
 
     python sim_robot.py [--x X --y Y --yaw YAW]
 """
@@ -28,6 +29,7 @@ from geometry_msgs.msg import PoseStamped, TransformStamped, Twist
 from nav_msgs.msg import OccupancyGrid, Odometry
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+from sensor_msgs.msg import LaserScan
 from tf2_ros import StaticTransformBroadcaster, TransformBroadcaster
 
 RATE_HZ = 50.0
@@ -56,6 +58,21 @@ def make_map(stamp: object, size_m: float = MAP_SIZE_M) -> OccupancyGrid:
     return grid
 
 
+SCAN_BEAMS, SCAN_RANGE = 181, 4.0
+
+
+def wall_range(x: float, y: float, heading: float) -> float:
+    """Distance along a ray from (x, y) to the wall's near face (x = WALL_X, the robot's side),
+    +inf when the ray misses it or is longer than SCAN_RANGE."""
+    face = WALL_X if x < WALL_X else WALL_X + 2 * RESOLUTION
+    dx = math.cos(heading)
+    if abs(dx) < 1e-9 or (face - x) / dx <= 0:
+        return math.inf
+    distance = (face - x) / dx
+    hit_y = y + distance * math.sin(heading)
+    return distance if WALL_Y[0] <= hit_y <= WALL_Y[1] and distance <= SCAN_RANGE else math.inf
+
+
 def transform(parent: str, child: str, stamp: object, x: float, y: float, yaw: float) -> Any:
     t = TransformStamped()
     t.header.frame_id, t.child_frame_id, t.header.stamp = parent, child, stamp
@@ -72,6 +89,7 @@ class SimRobot(Node):
         yaw: float,
         drift: tuple[float, float, float] = (0, 1, 0),
         map_size_m: float = MAP_SIZE_M,
+        scan: bool = False,
     ) -> None:
         super().__init__("sim_robot")
         self.x, self.y, self.yaw = x, y, yaw  # the true pose, in the map
@@ -96,6 +114,21 @@ class SimRobot(Node):
         self.odom_pub = self.create_publisher(Odometry, "odom", 10)
         self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
         self.create_timer(1.0 / RATE_HZ, self.step)
+        if scan:
+            self.scan_pub = self.create_publisher(LaserScan, "scan", 10)
+            self.create_timer(1.0 / 20.0, self.publish_scan)
+
+    def publish_scan(self) -> None:
+        scan = LaserScan()
+        scan.header.frame_id, scan.header.stamp = "base_link", self.get_clock().now().to_msg()
+        scan.angle_min, scan.angle_max = -math.pi / 2, math.pi / 2
+        scan.angle_increment = math.pi / (SCAN_BEAMS - 1)
+        scan.range_min, scan.range_max = 0.05, SCAN_RANGE
+        scan.ranges = [
+            wall_range(self.x, self.y, self.yaw + scan.angle_min + i * scan.angle_increment)
+            for i in range(SCAN_BEAMS)
+        ]
+        self.scan_pub.publish(scan)
 
     def on_cmd(self, msg: Twist) -> None:
         self.cmd = msg
@@ -142,10 +175,11 @@ def main() -> None:
     parser.add_argument("--drift-period", type=float, default=1.5, help="[s] of driving")
     parser.add_argument("--drift-max", type=float, default=0.4, help="[m] in all")
     parser.add_argument("--map-size", type=float, default=MAP_SIZE_M, help="[m] square")
+    parser.add_argument("--scan", action="store_true", help="publish /scan (LaserScan)")
     args = parser.parse_args()
     rclpy.init()
     drift = (args.drift_step, args.drift_period, args.drift_max)
-    node = SimRobot(args.x, args.y, args.yaw, drift, args.map_size)
+    node = SimRobot(args.x, args.y, args.yaw, drift, args.map_size, args.scan)
     signal.signal(signal.SIGTERM, lambda *_: rclpy.try_shutdown())
     try:
         rclpy.spin(node)
