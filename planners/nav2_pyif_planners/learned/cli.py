@@ -37,6 +37,7 @@ def parser(prog: str = "nav2-pyif learn") -> argparse.ArgumentParser:
 def main(argv: list[str] | None = None, prog: str = "nav2-pyif learn") -> int:
     from nav2_pyif.runner.plot import draw
     from nav2_pyif.runner.report import write_json
+    from nav2_pyif.runner.run import SimError
 
     from nav2_pyif_planners.learned.pipeline import LearnConfig, Task, learn
 
@@ -56,7 +57,7 @@ def main(argv: list[str] | None = None, prog: str = "nav2-pyif learn") -> int:
     )
     try:
         result = learn(config)
-    except (RuntimeError, ValueError) as exc:
+    except (RuntimeError, ValueError, ImportError, SimError) as exc:
         print(f"{prog}: error: {exc}", file=sys.stderr)
         return 2
     assert result.drive is not None

@@ -13,7 +13,7 @@ from nav2_pyif import GoalChecker, NoValidControl
 from nav2_pyif_planners.follower import PathFollower
 from nav2_pyif_planners.geometry import limit_speed
 from nav2_pyif_planners.learned.features import features
-from nav2_pyif_planners.learned.policy import Policy, default_weights, forward
+from nav2_pyif_planners.learned.policy import Policy, default_weights, forward, import_jax
 
 
 class LearnedController(PathFollower):
@@ -22,8 +22,7 @@ class LearnedController(PathFollower):
     ``nav2-pyif learn`` (default: the user's data directory)."""
 
     def configure(self) -> None:
-        import jax
-
+        jax = import_jax()
         p = self.params
         path = Path(str(p.declare("weights", str(default_weights()), "policy .npz")))
         if not path.is_file():

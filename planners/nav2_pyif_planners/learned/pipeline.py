@@ -88,16 +88,19 @@ def collect(config: LearnConfig, directory: Path) -> tuple[np.ndarray, np.ndarra
             result = run_sim(sim_config(config, task, RECORDER, params))
             runs.append(result)
             samples = 0
-            if record.is_file():
+            if result.reached and record.is_file():  # a failed run teaches how to fail
                 with np.load(record) as data:
                     xs.append(data["x"])
                     ys.append(data["y"])
                     samples = len(data["x"])
             log.info(
-                "  %s in %.1f s simulated: %d samples", result.outcome, result.sim_time, samples
+                "  %s in %.1f s: %s",
+                result.outcome,
+                result.sim_time,
+                f"{samples} samples" if samples else "left out",
             )
     if not xs:
-        raise RuntimeError("no demonstration recorded anything (did the expert drive at all?)")
+        raise RuntimeError("no demonstration reached its goal: nothing to learn from")
     return np.concatenate(xs), np.concatenate(ys), runs
 
 

@@ -16,6 +16,21 @@ import numpy as np
 HIDDEN = (128, 128)
 
 
+def import_jax() -> Any:
+    """JAX, or an ImportError that says how to install it."""
+    try:
+        import jax
+    except ImportError as exc:
+        import sys
+
+        raise ImportError(
+            f"the learned controller needs JAX, which {sys.executable} lacks: "
+            f"{sys.executable} -m pip install 'jax>=0.4.30' (CPU; 'jax[cuda12]' for NVIDIA "
+            "GPUs); in a checkout, NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh"
+        ) from exc
+    return jax
+
+
 def default_weights() -> Path:
     """Where ``nav2-pyif learn`` keeps weights: the user's data directory."""
     base = os.environ.get("XDG_DATA_HOME") or Path.home() / ".local" / "share"
@@ -73,7 +88,7 @@ def train(
 ) -> tuple[Policy, Training]:
     """Fit the MLP to (x (N, F), y (N, 2) v, w) on JAX's default device (a GPU where JAX
     has one); ``progress``: a progress bar on stderr."""
-    import jax
+    jax = import_jax()
     import jax.numpy as jnp
     from tqdm import tqdm
 
@@ -93,8 +108,7 @@ def train(
     def loss_fn(p: Any, xb: Any, yb: Any) -> Any:
         return jnp.mean((forward(p, xb) - yb) ** 2)
 
-    @jax.jit
-    def step(state: Any, i: Any, key: Any) -> Any:
+    def adam_step(state: Any, i: Any, key: Any) -> Any:
         p, m, v = state
         idx = jax.random.randint(key, (batch,), 0, xn.shape[0])
         loss, g = jax.value_and_grad(loss_fn)(p, xn[idx], yn[idx])
@@ -110,6 +124,7 @@ def train(
         )
         return (p, m, v), loss
 
+    step = jax.jit(adam_step)
     zeros = jax.tree_util.tree_map(jnp.zeros_like, params)
     state = (params, zeros, zeros)
     keys = jax.random.split(key, steps)
