@@ -132,3 +132,14 @@ def test_layer_benchmark_quick_run_prints_both_windows() -> None:
         "60 x 60 window (3 m x 3 m)",
         "of the 200 ms update period at p99",
     )
+
+
+def test_inputs_benchmark_quick_run_prints_each_message_beside_the_topic() -> None:
+    assert_prints(
+        bench("inputs", "--quick"),
+        "(no input: the control cycle alone)",
+        "LaserScan, 720 beams",
+        "PointCloud2, 30 000 points",
+        "Image, 640 x 480 rgb8",
+        "rclpy topic + ack (ms)",
+    )

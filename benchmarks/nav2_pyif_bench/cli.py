@@ -10,6 +10,7 @@ nav2-pyif-bench host --connect E --key K        the control cycle against a runn
 nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progress checkers
 nav2-pyif-bench hops [--quick]                  one more hop's cost: pipe, Zenoh thread, relay
 nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
+nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from nav2_pyif_bench import (
     fleet_bench,
     hop_bench,
     host_bench,
+    inputs_bench,
     layer_bench,
     mppi_bench,
     protocol_bench,
@@ -81,7 +83,12 @@ def main(argv: list[str] | None = None) -> int:
     hop_bench.add_arguments(hops)
     layer = sub.add_parser("layer", help="a Python costmap layer on a 400 x 400 grid at 5 Hz")
     layer_bench.add_arguments(layer)
-    for p in (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers, hops, layer):
+    inputs = sub.add_parser(
+        "inputs", help="a scan, a cloud, an image with each cycle, beside an rclpy topic"
+    )
+    inputs_bench.add_arguments(inputs)
+    benches = (protocol, cpp_cycle, mppi, reliability, fleet, tls, host, checkers, hops, layer)
+    for p in (*benches, inputs):
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     args = parser.parse_args(argv)
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
@@ -110,6 +117,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "checkers":
         results = checkers_bench.run(args)
         text = checkers_bench.report(results)
+    elif args.bench == "inputs":
+        results = inputs_bench.run(args)
+        text = inputs_bench.report(results)
     elif args.bench == "layer":
         results = layer_bench.run(args)
         text = layer_bench.report(results)

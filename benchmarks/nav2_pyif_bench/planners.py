@@ -32,3 +32,15 @@ class TrivialControllerV2(TrivialController):
         cmd = super().compute_velocity_commands(pose, velocity, goal_checker)
         cmd.twist.angular.x = 2.0
         return cmd
+
+
+class InputReader(TrivialController):
+    """Reads every input that arrived with the call in its NumPy form (nav2_pyif.inputs does
+    the conversion when the call arrives): what a learned controller pays, and no more."""
+
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
+        for name in self.inputs.updated:
+            self.inputs[name]
+        return super().compute_velocity_commands(pose, velocity, goal_checker)

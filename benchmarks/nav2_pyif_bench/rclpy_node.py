@@ -49,7 +49,11 @@ class PlannerNode(Node):
 
 def main() -> None:
     rclpy.init()
-    node = PlannerNode()
+    serve(PlannerNode())
+
+
+def serve(node: Node) -> None:
+    """Spin ``node`` until SIGINT/SIGTERM, then shut rclpy down (rclpy.init() done)."""
     print("ready", flush=True)
     try:
         rclpy.spin(node)

@@ -7,10 +7,11 @@ from typing import Any, ClassVar
 
 from nav2_pyif_protocol.constants import PluginType
 
+from nav2_pyif.debug import DebugOutputs
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.inputs import Inputs
 from nav2_pyif.plan import Plan
-from nav2_pyif.plugin import PlannerPlugin
+from nav2_pyif.plugin import PlannerPlugin, PluginContext
 
 
 class Controller(PlannerPlugin):
@@ -44,6 +45,11 @@ class Controller(PlannerPlugin):
     plan: Plan | None = None
     #: The latest speed limit: (value, is_percentage), None when unlimited.
     speed_limit: tuple[float, bool] | None = None
+
+    def _attach(self, context: PluginContext) -> None:
+        super()._attach(context)
+        # wanted by nobody until a call says otherwise: publish_debug is a no-op offline too
+        context.debug = DebugOutputs(self.debug_outputs)
 
     @property
     def inputs(self) -> Inputs:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import math
 import time
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from nav2_pyif import Costmap, GoalChecker, NoValidControl
@@ -26,9 +26,18 @@ from nav2_pyif_planners.follower import PathFollower
 from nav2_pyif_planners.geometry import limit_speed
 
 LOCAL_POINTS = 24  # local plan points the path cost compares rollouts with, at most
+DRAWN = 40  # sampled rollouts returned as the "trajectories" debug output, at most
 
 
 class MPPI(PathFollower):
+    """Debug outputs, as Nav2's MPPI publishes them: ``trajectories`` (a sample of the
+    rollouts) and ``local_plan`` (the optimal trajectory)."""
+
+    debug_outputs: ClassVar[dict[str, str]] = {
+        "trajectories": "visualization_msgs/msg/MarkerArray",
+        "local_plan": "nav_msgs/msg/Path",
+    }
+
     def configure(self) -> None:
         p = self.params
         self.batch_size = p.declare("batch_size", 1000, "rollouts per cycle")
@@ -88,6 +97,8 @@ class MPPI(PathFollower):
         noise = controls - self.optimal[None]
 
         rollouts = self._rollout(state, controls, dt)  # (k, t, 3)
+        if self.debug_wanted("trajectories"):  # every (k / DRAWN)-th: enough to see
+            self.publish_debug("trajectories", rollouts[:: max(1, k // DRAWN), :, :2])
         costs = self._score(rollouts, path_xy, vx_top)
         costs += (
             self.temperature * self.gamma * np.einsum("tc,ktc->k", self.optimal / sigma**2, noise)
@@ -97,9 +108,15 @@ class MPPI(PathFollower):
         weights /= weights.sum()
         self.optimal = self.optimal + np.einsum("k,ktc->tc", weights, noise)
         command = self.optimal[0].copy()
+        self._publish_optimal(state, self.optimal)
         self.optimal = np.roll(self.optimal, -1, axis=0)  # warm start for the next cycle
         self.optimal[-1] = self.optimal[-2]
         return float(command[0]), float(command[1])
+
+    def _publish_optimal(self, state: np.ndarray, optimal: np.ndarray) -> None:
+        """The ``local_plan`` debug output: the optimum (T, 2) rolled out from ``state``."""
+        if self.debug_wanted("local_plan"):
+            self.publish_debug("local_plan", self._rollout(state, optimal[None], self.model_dt)[0])
 
     @staticmethod
     def _rollout(state: np.ndarray, controls: np.ndarray, dt: float) -> np.ndarray:

@@ -12,7 +12,7 @@ the bootstrap's default extras (dev) include it.
 from __future__ import annotations
 
 from functools import partial
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -105,7 +105,10 @@ def mppi_step(
 
 
 class MPPIJax(MPPI):
-    """``MPPI`` with the optimisation in JAX. Parameters: those of ``MPPI``."""
+    """``MPPI`` with the optimisation in JAX. Parameters: those of ``MPPI``. Debug output:
+    ``local_plan`` (the rollouts stay on the device)."""
+
+    debug_outputs: ClassVar[dict[str, str]] = {"local_plan": "nav_msgs/msg/Path"}
 
     def configure(self) -> None:
         super().configure()
@@ -160,4 +163,7 @@ class MPPIJax(MPPI):
             batch_size=self.batch_size,
         )
         vx, wz = np.asarray(command, dtype=np.float64)
+        if self.debug_wanted("local_plan"):  # the optimum before its shift for the warm start
+            shifted = np.asarray(self._optimal, dtype=np.float64)
+            self._publish_optimal(state, np.vstack([[vx, wz], shifted[:-1]]))
         return float(vx), float(wz)

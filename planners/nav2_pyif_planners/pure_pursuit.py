@@ -11,7 +11,7 @@ arc forward and refuses (NoValidControl) to drive into a lethal cell.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from nav2_pyif import Costmap, GoalChecker, NoValidControl
@@ -25,6 +25,10 @@ from nav2_pyif_planners.geometry import (
 
 
 class RegulatedPurePursuit(PathFollower):
+    """Debug output ``lookahead_point``: the carrot, as Nav2's controller publishes it."""
+
+    debug_outputs: ClassVar[dict[str, str]] = {"lookahead_point": "geometry_msgs/msg/PointStamped"}
+
     def configure(self) -> None:
         p = self.params
         self.desired_linear_vel = p.declare("desired_linear_vel", 0.5, "[m/s]")
@@ -61,6 +65,7 @@ class RegulatedPurePursuit(PathFollower):
             np.clip(speed * self.lookahead_time, self.min_lookahead, self.max_lookahead)
         )
         carrot = point_at_distance(path[:, :2], self.index, lookahead)
+        self.publish_debug("lookahead_point", carrot[:2])
         dx, dy = carrot[0] - x, carrot[1] - y
         cx = math.cos(yaw) * dx + math.sin(yaw) * dy  # carrot in the robot frame
         cy = -math.sin(yaw) * dx + math.cos(yaw) * dy

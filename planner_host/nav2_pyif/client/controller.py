@@ -45,6 +45,18 @@ class ControllerClient(PluginClient):
         inputs: new input messages, name -> (rclpy message, receive time [ns]), serialized
         as the plugin sends them; debug_wanted: debug outputs to return (into ``self.debug``).
         """
+        body = self.compute_body(pose, velocity, goal_checker, inputs, debug_wanted)
+        return self.command_of(self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True))
+
+    @staticmethod
+    def compute_body(
+        pose: Any,
+        velocity: Any,
+        goal_checker: GoalChecker | None = None,
+        inputs: Mapping[str, tuple[Any, int]] | None = None,
+        debug_wanted: Iterable[str] = (),
+    ) -> dict[str, Any]:
+        """The compute_velocity_commands request body (without the costmap)."""
         body: dict[str, Any] = {"pose": pose_to_wire(pose), "velocity": twist_to_list(velocity)}
         if goal_checker is not None:
             body["goal_checker"] = goal_checker.to_wire()
@@ -56,7 +68,11 @@ class ControllerClient(PluginClient):
         wanted = list(debug_wanted)
         if wanted:
             body["debug_wanted"] = wanted
-        reply = self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+        return body
+
+    def command_of(self, reply: dict[str, Any]) -> Any:
+        """A compute_velocity_commands reply body -> its TwistStamped; its debug outputs into
+        ``self.debug``."""
         self.debug = {d["name"]: deserialize(d["type"], d["cdr"]) for d in reply.get("debug", [])}
         return twist_stamped_from_wire(reply["cmd_vel"])
 

@@ -13,6 +13,7 @@ goes on its own, so the results are always those of Nav2's order.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -22,14 +23,13 @@ from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient, 
 from nav2_pyif.client.controller import ControllerClient
 from nav2_pyif.client.plugin_client import Carried
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
+from nav2_pyif.messages import pose_to_wire, twist_to_list
 
 
 @dataclass
 class _Pending:
     pose: dict[str, Any]
-    velocity: list[float]
-    tolerances: GoalChecker | None
+    compute_body: dict[str, Any]
     check: tuple[Carried, bytes | None] | None
     compute: tuple[Carried, bytes | None] | None
 
@@ -51,10 +51,17 @@ class ControlCycle:
         self.sent_alone = 0  # calls that went on their own
 
     def is_goal_reached(
-        self, pose: Any, goal: Any, velocity: Any, tolerances: GoalChecker | None = None
+        self,
+        pose: Any,
+        goal: Any,
+        velocity: Any,
+        tolerances: GoalChecker | None = None,
+        inputs: Mapping[str, tuple[Any, int]] | None = None,
+        debug_wanted: Iterable[str] = (),
     ) -> bool:
         """``pose``: PoseStamped (the robot, global frame), ``goal``: Pose, ``velocity``:
-        Twist; ``tolerances``: what the controller will be given (getTolerances)."""
+        Twist; ``tolerances``: what the controller will be given (getTolerances); ``inputs``
+        and ``debug_wanted``: what the controller's call will carry (ControllerClient's)."""
         wire_pose, speed = pose_to_wire(pose), twist_to_list(velocity)
         body: dict[str, Any] = {"pose": pose7(pose.pose), "goal": pose7(goal), "velocity": speed}
         check = None
@@ -63,9 +70,9 @@ class ControlCycle:
             if check is not None:
                 body["then_check_key"] = self.progress_checker.keys.prefix
                 body["then_check"] = check.payload
-        compute_body: dict[str, Any] = {"pose": wire_pose, "velocity": speed}
-        if tolerances is not None:
-            compute_body["goal_checker"] = tolerances.to_wire()
+        compute_body = self.controller.compute_body(
+            pose, velocity, tolerances, inputs, debug_wanted
+        )
         compute = self.controller._prepare(
             Op.COMPUTE_VELOCITY_COMMANDS, compute_body, with_costmap=True
         )
@@ -76,8 +83,7 @@ class ControlCycle:
         reply = self.goal_checker._call(Op.IS_GOAL_REACHED, body)
         self._pending = _Pending(
             wire_pose,
-            speed,
-            tolerances,
+            compute_body,
             None if check is None else (check, reply.get("then_check")),
             None if compute is None else (compute, reply.get("then_compute")),
         )
@@ -100,23 +106,29 @@ class ControlCycle:
         return progress
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, tolerances: GoalChecker | None = None
+        self,
+        pose: Any,
+        velocity: Any,
+        tolerances: GoalChecker | None = None,
+        inputs: Mapping[str, tuple[Any, int]] | None = None,
+        debug_wanted: Iterable[str] = (),
     ) -> Any:
         """The controller's ``compute_velocity_commands``."""
         pending, self._pending = self._pending, None
         carried = None
+        body = self.controller.compute_body(pose, velocity, tolerances, inputs, debug_wanted)
         if (
             pending is not None
-            and pose_to_wire(pose) == pending.pose
-            and twist_to_list(velocity) == pending.velocity
-            and tolerances == pending.tolerances
+            and body == pending.compute_body
             and pending.compute is not None
             and pending.compute[0].costmap_version == self.controller.costmap.version
         ):
             carried = pending.compute
-        body = self.controller._settle(*carried) if carried else None
-        if body is None:
+        reply = self.controller._settle(*carried) if carried else None
+        if reply is None:
             self.sent_alone += 1
-            return self.controller.compute_velocity_commands(pose, velocity, tolerances)
+            return self.controller.compute_velocity_commands(
+                pose, velocity, tolerances, inputs, debug_wanted
+            )
         self.carried_used += 1
-        return twist_stamped_from_wire(body["cmd_vel"])
+        return self.controller.command_of(reply)

@@ -10,6 +10,7 @@ from pathlib import Path
 
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.laser import LaserSpec
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.run import (
     CONTROLLER_KEY,
@@ -21,6 +22,7 @@ from nav2_pyif.runner.run import (
     SimResult,
     run_sim,
 )
+from nav2_pyif.runner.sensing import SensingConfig
 
 
 def _reference_planners() -> str:
@@ -42,6 +44,7 @@ examples:
   nav2-pyif sim --map cluttered --controller mppi
   nav2-pyif sim --map my_map.yaml --start 1 1 0 --goal 8 4 1.57 --controller my.mod:Ctl
   nav2-pyif sim --connect tcp/127.0.0.1:7447        # use a planner host already running
+  nav2-pyif sim --controller my.mod:ScanCtl --scan  # a simulated LaserScan as input 'scan'
   nav2-pyif sim --smoother simple_smoother --goal-checker stopped_goal_checker \\
       --progress-checker simple_progress_checker --layer keepout \\
       --layer-param "polygons=[[[4.5, 2.5], [5.5, 2.5], [5.5, 3.5], [4.5, 3.5]]]"
@@ -137,10 +140,43 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         help="with --connect: how long to wait for a router at ENDPOINT, then for a host on "
         "each key (default 10)",
     )
+    p.add_argument(
+        "--scan",
+        action="store_true",
+        help="simulate a laser scanner on the map and feed it to the controller as input "
+        "'scan' (a sensor_msgs/LaserScan, as the plugin's inputs parameter ships a topic)",
+    )
+    p.add_argument("--scan-beams", type=int, default=360, help="beams over a full turn (360)")
+    p.add_argument("--scan-range", type=float, default=8.0, help="range_max [m] (8)")
+    p.add_argument("--scan-noise", type=float, default=0.01, help="noise std dev [m] (0.01)")
+    p.add_argument("--scan-rate", type=float, default=20.0, help="scans per second (20)")
+    p.add_argument(
+        "--debug-every",
+        type=float,
+        default=0.5,
+        metavar="SECONDS",
+        help="ask for the controller's debug outputs (and draw them) every SECONDS of "
+        "simulated time; 0: never (default 0.5)",
+    )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
     p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
     p.add_argument("--no-progress", action="store_true")
     p.set_defaults(func=run_command)
+
+
+def sensing_config(args: argparse.Namespace) -> SensingConfig:
+    """The --scan* and --debug-every flags: ``--scan-beams`` evenly over a full turn."""
+    try:
+        beams = args.scan_beams
+        laser = LaserSpec(
+            beams=beams,
+            angle_max=math.pi * (1 - 2 / beams) if beams > 1 else -math.pi,
+            range_max=args.scan_range,
+            noise=args.scan_noise,
+        )
+        return SensingConfig(laser if args.scan else None, args.scan_rate, args.debug_every)
+    except ValueError as exc:
+        raise SimError(f"--scan-*/--debug-every: {exc}") from exc
 
 
 def _params(items: list[str]) -> dict[str, object]:
@@ -186,6 +222,7 @@ def run_command(args: argparse.Namespace) -> int:
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
             plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
             smoother_max_time=args.smoother_max_time,
+            sensing=sensing_config(args),
         )
         if not (math.isfinite(config.rate) and config.rate > 0):
             raise SimError("--rate must be > 0")

@@ -143,6 +143,11 @@ def _cells_of(bounds: tuple[float, float, float, float], costmap: Costmap) -> La
     return LayerWindow(i0, j0, i1, j1, costmap.origin_x, costmap.origin_y, res)
 
 
+#: What a cycle's controller call carries besides pose and velocity: the new input messages
+#: (name -> (message, receive time [ns])) and the debug outputs asked for.
+Sensed = tuple[dict[str, tuple[Any, int]], list[str]]
+
+
 class CycleCalls:
     """One control cycle's calls in Nav2's order (controller_server's computeControl): the
     goal check, the progress check, the command; with Python checkers through ControlCycle."""
@@ -166,11 +171,11 @@ class CycleCalls:
         if self.extras.goal_checker is not None:
             self.tolerances = self.extras.goal_checker.get_tolerances() or self.tolerances
 
-    def goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool | None:
+    def goal_reached(self, pose: Any, goal: Any, velocity: Any, sensed: Sensed) -> bool | None:
         """The Python goal checker's answer; None without one (the runner checks itself)."""
         if self.cycle is None:
             return None
-        return self.cycle.is_goal_reached(pose, goal.pose, velocity, self.tolerances)
+        return self.cycle.is_goal_reached(pose, goal.pose, velocity, self.tolerances, *sensed)
 
     def making_progress(self, pose: Any) -> bool:
         if self.cycle is not None and self.cycle.progress_checker is not None:
@@ -178,10 +183,10 @@ class CycleCalls:
         checker = self.extras.progress_checker
         return True if checker is None else checker.check(pose)
 
-    def compute(self, pose: Any, velocity: Any) -> Any:
+    def compute(self, pose: Any, velocity: Any, sensed: Sensed) -> Any:
         if self.cycle is not None:
-            return self.cycle.compute_velocity_commands(pose, velocity, self.tolerances)
-        return self.controller.compute_velocity_commands(pose, velocity, self.tolerances)
+            return self.cycle.compute_velocity_commands(pose, velocity, self.tolerances, *sensed)
+        return self.controller.compute_velocity_commands(pose, velocity, self.tolerances, *sensed)
 
     @property
     def carried(self) -> tuple[int, int]:

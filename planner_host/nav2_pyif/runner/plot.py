@@ -1,10 +1,11 @@
-"""The run as a picture: map, inflated costmap, plan and driven trajectory; speed and
-controller compute time over the run."""
+"""The run as a picture: map, inflated costmap, plan, the controller's debug outputs and the
+driven trajectory; speed and controller compute time over the run."""
 
 from __future__ import annotations
 
 import textwrap
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -12,6 +13,7 @@ matplotlib.use("Agg")  # files only, no display needed
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.collections import LineCollection
 from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 
@@ -94,6 +96,7 @@ def figure(result: SimResult) -> Figure:
             lw=1.5,
             label=f"plan ({planner})",
         )
+    _draw_debug(ax, result)
     if result.trajectory:
         t = np.array(result.trajectory)
         ax.plot(t[:, 1], t[:, 2], "-", color="tab:green", lw=2.0, label="driven")
@@ -160,6 +163,34 @@ def figure(result: SimResult) -> Figure:
     what = "control cycle (one query)" if result.carried[0] else op
     latency.set_title(_wrapped(f"{what} latency", 45), fontsize=10)
     return fig
+
+
+#: How each debug output is drawn (lines; one-point outputs as dots), by name.
+_DEBUG_STYLE: dict[str, dict[str, Any]] = {
+    "trajectories": {"color": "tab:cyan", "lw": 0.3, "alpha": 0.3},
+    "local_plan": {"color": "tab:purple", "lw": 1.0, "alpha": 0.8},
+}
+_DEBUG_LINE = {"color": "tab:gray", "lw": 0.6, "alpha": 0.5}
+_DEBUG_POINT = {"color": "tab:red", "ls": "none", "marker": ".", "ms": 3, "alpha": 0.7}
+
+
+def _draw_debug(ax: Any, result: SimResult) -> None:
+    """The controller's debug outputs over the run, as RViz shows them: MPPI's sampled
+    trajectories and optimal one, pure pursuit's carrot, ... (one legend entry each)."""
+    lines: dict[str, list[np.ndarray]] = {}
+    for _, name, kept in result.debug:
+        lines.setdefault(name, []).extend(kept)
+    for name, kept in lines.items():
+        label: str | None = f"{name} (debug output)"
+        points = [line for line in kept if len(line) == 1]
+        if points:
+            xy = np.concatenate(points)
+            ax.plot(xy[:, 0], xy[:, 1], label=label, **_DEBUG_POINT)
+            label = None
+        strips = [line for line in kept if len(line) > 1]
+        if strips:
+            style = _DEBUG_STYLE.get(name, _DEBUG_LINE)
+            ax.add_collection(LineCollection(strips, label=label, **style))
 
 
 def _wrapped(text: str, width: int) -> str:

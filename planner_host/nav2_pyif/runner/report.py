@@ -71,7 +71,33 @@ def summary(result: SimResult) -> dict[str, Any]:
         "carried_calls": list(result.carried),
         "layer_cells": int(result.layer.cells.sum()) if result.layer is not None else 0,
         "raw_plan_length_m": round(_length(result.raw_plan), 3),
+        "scans": result.scans,
+        "debug_outputs": _debug_counts(result),
     }
+
+
+def _debug_counts(result: SimResult) -> dict[str, int]:
+    """Debug output name -> how many cycles returned it."""
+    counts: dict[str, int] = {}
+    for _, name, _ in result.debug:
+        counts[name] = counts.get(name, 0) + 1
+    return counts
+
+
+def _sensing_line(result: SimResult, s: dict[str, Any]) -> list[str]:
+    """The simulated laser fed to the controller, and the debug outputs kept."""
+    lines = []
+    laser = result.config.sensing.scan
+    if laser is not None:
+        lines.append(
+            f"  simulated scans: {laser.beams} beams, {laser.range_max:g} m, noise "
+            f"{laser.noise:g} m, {s['scans']} sent as input 'scan' at "
+            f"{result.config.sensing.scan_rate:g} Hz"
+        )
+    if s["debug_outputs"]:
+        kept = ", ".join(f"{name} x{n}" for name, n in s["debug_outputs"].items())
+        lines.append(f"  debug outputs drawn: {kept}")
+    return lines
 
 
 def _length(plan: Any) -> float:
@@ -108,6 +134,7 @@ def format_report(result: SimResult) -> str:
         f"minimum clearance {s['min_clearance_m']:.3f} m, collisions {s['collisions']}, "
         f"controller errors {s['controller_errors']}",
         *_plugins_line(s),
+        *_sensing_line(result, s),
         "",
         "latency per call (µs)                  calls   round trip         host compute       "
         "transport",

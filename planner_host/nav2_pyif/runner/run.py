@@ -35,6 +35,7 @@ from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
+from nav2_pyif.runner.sensing import DebugLines, Sensing, SensingConfig, lines_of
 
 log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
@@ -91,6 +92,8 @@ class SimConfig:
     plugins: dict[str, str] = field(default_factory=dict)
     plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
     smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
+    # the simulated laser fed to the controller as input "scan", and the debug outputs kept
+    sensing: SensingConfig = field(default_factory=SensingConfig)
 
     def spec(self, role: str) -> str:
         """The planner asked for as ``role`` ("controller", "planner"), else the default."""
@@ -121,6 +124,8 @@ class SimResult:
     raw_plan: np.ndarray | None = None  # the planner's plan, when a smoother smoothed it
     layer: LayerEffect | None = None  # what the costmap layer changed
     carried: tuple[int, int] = (0, 0)  # checker cycle: calls answered carried / sent alone
+    debug: list[DebugLines] = field(default_factory=list)  # the controller's, every few cycles
+    scans: int = 0  # simulated scans sent to the controller
 
     @property
     def path_length(self) -> float:
@@ -407,6 +412,7 @@ def _control_loop(
     checker = WorldChecker(result.world, np.array(config.footprint))
     dt, goal = 1.0 / config.rate, result.goal
     local_every = max(1, round(config.rate / config.local_costmap_rate))
+    sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
     bar = tqdm(
         total=round(config.timeout, 1),
@@ -431,9 +437,13 @@ def _control_loop(
                 )
             velocity = Twist()
             velocity.linear.x, velocity.angular.z = robot.v, robot.w
-            pose = pose_msg(robot.x, robot.y, robot.yaw, stamp_s=CLOCK_START + result.sim_time)
+            stamp_s = CLOCK_START + result.sim_time
+            pose = pose_msg(robot.x, robot.y, robot.yaw, stamp_s=stamp_s)
+            inputs = sensing.inputs(cycle, stamp_s, robot.x, robot.y, robot.yaw)
+            sensed = (inputs, sensing.wanted(cycle, controller.debug_outputs))
+            result.scans += len(inputs)
             try:  # the checkers' failures abort the goal in Nav2: no retry
-                if calls.goal_reached(pose, goal_msg, velocity):
+                if calls.goal_reached(pose, goal_msg, velocity, sensed):
                     result.reached = True
                     result.outcome = f"goal reached (said {result.name_of('goal_checker')})"
                     return
@@ -445,9 +455,11 @@ def _control_loop(
                 _ended_by(result, "a checker failed", exc)
                 return
             try:
-                cmd = calls.compute(pose, velocity)
+                cmd = calls.compute(pose, velocity, sensed)
                 cmd_v, cmd_w = cmd.twist.linear.x, cmd.twist.angular.z
                 failing_since = None
+                for name, msg in controller.debug.items():
+                    result.debug.append((result.sim_time, name, lines_of(msg)))
             except Nav2Error as exc:
                 result.controller_errors.append(
                     f"t={result.sim_time:.2f}s {type(exc).__name__}: {exc}"

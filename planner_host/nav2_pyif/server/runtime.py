@@ -32,7 +32,7 @@ from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.costmap_layer import CostmapLayer, LayerWindow
-from nav2_pyif.debug import DebugOutputs, check_declared
+from nav2_pyif.debug import check_declared
 from nav2_pyif.exceptions import (
     NAV2_EXCEPTIONS,
     InvalidPath,
@@ -273,8 +273,7 @@ class PlannerRuntime:
         )
         planner._attach(context)
         if isinstance(planner, Controller) and planner.debug_outputs:
-            check_declared(planner.debug_outputs)
-            context.debug = DebugOutputs(planner.debug_outputs)
+            check_declared(planner.debug_outputs)  # context.debug: set by _attach
         planner.configure()
         context.params.on_change(planner.on_parameters_changed)
         self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)

@@ -79,14 +79,49 @@ def run_reload(args: argparse.Namespace) -> int:
         session.close()
 
 
+#: Commands that live with the reference planners, named by import path (nav2_pyif never
+#: imports nav2_pyif_planners): name -> (module whose main(argv, prog) runs it, help).
+PLANNERS_COMMANDS = {
+    "learn": (
+        "nav2_pyif_planners.learned.cli",
+        "train a learned controller on MPPI demonstrations offline, and drive it",
+    ),
+}
+
+
+def add_planners_commands(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
+    for name, (module, what) in PLANNERS_COMMANDS.items():
+        p = subparsers.add_parser(name, help=what, add_help=False)  # its own parser helps
+        p.set_defaults(func=run_by_path, command=(name, module))
+
+
+def run_by_path(args: argparse.Namespace) -> int:
+    """Run the command's module's ``main`` with the command's own arguments."""
+    import importlib
+
+    name, module = args.command
+    try:
+        command = importlib.import_module(module)
+    except ImportError as exc:
+        print(f"nav2-pyif {name}: needs the reference planners ({module}): {exc}", file=sys.stderr)
+        return 2
+    code: int = command.main(args.rest, prog=f"nav2-pyif {name}")
+    return code
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(prog="nav2-pyif", description="nav2_pyif tools")
     subparsers = parser.add_subparsers(required=True, metavar="COMMAND")
     add_sim_parser(subparsers)
+    add_planners_commands(subparsers)
     add_reload_parser(subparsers)
     add_router_parser(subparsers)
     add_hosts_parser(subparsers)
-    args = parser.parse_args(argv)
+    args, rest = parser.parse_known_args(argv)
+    if args.func is run_by_path:  # a planners' command parses its own arguments
+        args.rest = rest
+    elif rest:
+        parser.error(f"unrecognized arguments: {' '.join(rest)}")
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
     raise_on_signals()  # every command cleans up and exits 128 + signum on a signal
     try:
