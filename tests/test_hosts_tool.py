@@ -64,15 +64,17 @@ def test_hosts_lists_both_hosts_their_sessions_and_not_a_killed_one(
         client = ControllerClient(session, CONTROLLER_KEY, make_costmap(), timeouts=GENEROUS)
         assert client.wait_for_host(20)
         client.configure()
+        client.activate()
         table = hosts_tool("--connect", router_at)
         assert table.returncode == 0, table.stderr
         router_zid = json.loads(hosts_tool("--connect", router_at, "--json").stdout)["via"]
         assert table.stdout.startswith(f"via router {router_zid['routers'][0]}"), table.stdout
         rows = {line.split()[0]: line.split() for line in table.stdout.splitlines() if line}
+        # one session; two queries answered (configure, activate)
         assert rows[CONTROLLER_KEY][1:] == ["echo_planners:EchoController", "controller",
-                                            "process", "1"], table.stdout  # fmt: skip
+                                            "process", "1", "2"], table.stdout  # fmt: skip
         assert rows[PLANNER_KEY][1:] == ["echo_planners:LinePlanner", "global_planner",
-                                         "none", "0"], table.stdout  # fmt: skip
+                                         "none", "0", "0"], table.stdout  # fmt: skip
         assert table.stdout.count("\nhost ") == 2, table.stdout
 
         planner.kill()  # SIGKILL: its token goes when the router sees the link drop

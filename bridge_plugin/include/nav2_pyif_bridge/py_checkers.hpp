@@ -1,8 +1,9 @@
 // nav2_pyif_bridge::PyGoalChecker and PyProgressChecker: controller_server's goal and progress
 // checkers answered by Python checkers in a planner host, over Zenoh. Nav2 only initializes
 // checkers: the session is configured at initialize and ends when the checker is destroyed.
-// Each call is one query (the carried cycle of PROTOCOL.md section 15 is the reference
-// client's only).
+// With a Python controller and progress checker in the same controller_server, each goal
+// check's query carries their calls of the cycle (PROTOCOL.md section 15, carried_cycle.hpp):
+// one round trip per cycle.
 #pragma once
 
 #include <memory>
@@ -14,8 +15,10 @@
 #include "geometry_msgs/msg/twist.hpp"
 #include "nav2_core/goal_checker.hpp"
 #include "nav2_core/progress_checker.hpp"
+#include "nav2_costmap_2d/costmap_2d_ros.hpp"
 
 #include "nav2_pyif_bridge/bridged_session.hpp"
+#include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/client/checker_sessions.hpp"
 
 namespace nav2_pyif_bridge
@@ -39,6 +42,10 @@ public:
 private:
   BridgedSession<client::GoalCheckerSession> plugin_;
   std::optional<protocol::GetTolerancesReply> tolerances_;
+  // The robot's pose as controller_server looks it up (header included): what the carried
+  // progress check and command are prepared with.
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
+  std::shared_ptr<client::CarriedCycle> cycle_;
 };
 
 class PyProgressChecker : public nav2_core::ProgressChecker

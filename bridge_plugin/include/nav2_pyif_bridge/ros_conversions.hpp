@@ -12,6 +12,7 @@
 #include "geometry_msgs/msg/transform_stamped.hpp"
 #include "geometry_msgs/msg/twist.hpp"
 #include "geometry_msgs/msg/twist_stamped.hpp"
+#include "nav2_core/goal_checker.hpp"
 #include "nav_msgs/msg/path.hpp"
 #include "rclcpp/parameter_value.hpp"
 #include "tf2_ros/buffer.h"
@@ -27,6 +28,8 @@ std::int64_t to_ns(const builtin_interfaces::msg::Time & stamp) noexcept;
 builtin_interfaces::msg::Time from_ns(std::int64_t ns) noexcept;
 
 protocol::PoseStamped to_wire(const geometry_msgs::msg::PoseStamped & pose);
+// The goal checker's tolerances, as the protocol carries them (std::nullopt without one).
+std::optional<protocol::GoalChecker> tolerances(nav2_core::GoalChecker * goal_checker);
 std::array<double, 6> to_wire(const geometry_msgs::msg::Twist & twist) noexcept;
 // The plan's header frame and stamp, and every pose (their own headers are not sent).
 protocol::Path to_wire(const nav_msgs::msg::Path & path);

@@ -13,6 +13,7 @@ void ControllerSession::set_plan(const proto::Path & path)
   std::lock_guard<std::recursive_mutex> lock(mutex());
   call(proto::SetPlanRequest{path}, {});
   plan_ = path;
+  ++plan_generation_;
 }
 
 proto::TwistStamped ControllerSession::compute_velocity_commands(
@@ -20,37 +21,104 @@ proto::TwistStamped ControllerSession::compute_velocity_commands(
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
+  std::vector<std::pair<std::string, std::uint64_t>> attached;
+  const proto::ComputeVelocityCommandsRequest body =
+    command_body(pose, velocity, goal_checker, attached);
+  CallOptions options;
+  options.costmap = CostmapMode::IfChanged;
+  return command_of(call_for<proto::ComputeVelocityCommandsReply>(body, options), attached);
+}
+
+std::optional<PreparedCommand> ControllerSession::prepare_command(
+  const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
+  const std::optional<proto::GoalChecker> & goal_checker)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  PreparedCommand prepared;
+  auto carried = prepare(
+    command_body(pose, velocity, goal_checker, prepared.inputs), CostmapMode::IfChanged);
+  if (!carried) {
+    return std::nullopt;
+  }
+  prepared.carried = std::move(*carried);
+  prepared.pose = pose;
+  prepared.velocity = velocity;
+  prepared.goal_checker = goal_checker;
+  prepared.plan_generation = plan_generation_;
+  return prepared;
+}
+
+namespace
+{
+
+bool same(const std::optional<proto::GoalChecker> & a, const std::optional<proto::GoalChecker> & b)
+{
+  if (!a || !b) {
+    return a.has_value() == b.has_value();
+  }
+  return a->xy_goal_tolerance == b->xy_goal_tolerance &&
+         a->yaw_goal_tolerance == b->yaw_goal_tolerance &&
+         a->trans_stopped_velocity == b->trans_stopped_velocity &&
+         a->rot_stopped_velocity == b->rot_stopped_velocity;
+}
+
+}  // namespace
+
+std::optional<proto::TwistStamped> ControllerSession::settle_command(
+  const PreparedCommand & prepared, const std::optional<proto::Bytes> & reply,
+  const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
+  const std::optional<proto::GoalChecker> & goal_checker)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  if (!same_pose(pose, prepared.pose) || velocity != prepared.velocity ||
+    !same(goal_checker, prepared.goal_checker) || prepared.plan_generation != plan_generation_ ||
+    !costmap_unchanged_since(prepared.carried))
+  {
+    return std::nullopt;
+  }
+  auto body = settle(prepared.carried, reply);
+  if (!body) {
+    return std::nullopt;
+  }
+  return command_of(
+    std::get<proto::ComputeVelocityCommandsReply>(std::move(*body)), prepared.inputs);
+}
+
+proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
+  const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
+  const std::optional<proto::GoalChecker> & goal_checker,
+  std::vector<std::pair<std::string, std::uint64_t>> & attached)
+{
   proto::ComputeVelocityCommandsRequest body;
   body.pose = pose;
   body.velocity = velocity;
   body.goal_checker = goal_checker;
-  std::vector<std::pair<std::string, std::uint64_t>> attached;  // name, generation
-  {
-    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
-    for (const auto & [name, latest] : inputs_) {
-      if (latest.sent != latest.generation) {
-        if (!body.inputs) {
-          body.inputs.emplace();
-        }
-        body.inputs->push_back(latest.input);
-        attached.emplace_back(name, latest.generation);
+  std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
+  for (const auto & [name, latest] : inputs_) {
+    if (latest.sent != latest.generation) {
+      if (!body.inputs) {
+        body.inputs.emplace();
       }
-    }
-    if (!debug_wanted_.empty()) {
-      body.debug_wanted = debug_wanted_;
+      body.inputs->push_back(latest.input);
+      attached.emplace_back(name, latest.generation);
     }
   }
-  CallOptions options;
-  options.costmap = CostmapMode::IfChanged;
-  auto reply = call_for<proto::ComputeVelocityCommandsReply>(body, options);
+  if (!debug_wanted_.empty()) {
+    body.debug_wanted = debug_wanted_;
+  }
+  return body;
+}
+
+proto::TwistStamped ControllerSession::command_of(
+  proto::ComputeVelocityCommandsReply reply,
+  const std::vector<std::pair<std::string, std::uint64_t>> & attached)
+{
   check_command(reply.cmd_vel, last_host());
-  {
-    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
-    for (const auto & [name, generation] : attached) {
-      inputs_[name].sent = generation;
-    }
-    debug_ = reply.debug ? std::move(*reply.debug) : std::vector<proto::DebugOutput>{};
+  std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
+  for (const auto & [name, generation] : attached) {
+    inputs_[name].sent = generation;
   }
+  debug_ = reply.debug ? std::move(*reply.debug) : std::vector<proto::DebugOutput>{};
   return std::move(reply.cmd_vel);
 }
 

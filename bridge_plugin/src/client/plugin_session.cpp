@@ -6,6 +6,8 @@
 #include <utility>
 #include <variant>
 
+#include "nav2_pyif_bridge/client/carried_cycle.hpp"
+
 namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
@@ -321,6 +323,94 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     return call(body, again);
   }
   throw error_from_reply(error, config_.kind);
+}
+
+PluginSession::~PluginSession()
+{
+  if (cycle_) {
+    cycle_->forget(*this);
+  }
+}
+
+void PluginSession::join(std::shared_ptr<CarriedCycle> cycle)
+{
+  if (cycle_ && cycle_ != cycle) {
+    cycle_->forget(*this);
+  }
+  cycle_ = std::move(cycle);
+}
+
+std::optional<Carried> PluginSession::prepare(proto::RequestBody body, CostmapMode costmap)
+{
+  if (!configured_ || !established_) {
+    return std::nullopt;
+  }
+  Carried carried;
+  carried.request.sid = sid_;
+  carried.request.epoch = epoch_;
+  carried.request.body = std::move(body);
+  if (costmap != CostmapMode::None) {
+    CostmapRead read = costmap_.read(
+      costmap == CostmapMode::Always ? std::nullopt : delivered_costmap_);
+    carried.costmap_version = read.version;
+    if (read.costmap) {
+      attach_costmap(carried.request.body, std::move(*read.costmap));
+      carried.costmap_sent = true;
+    }
+  }
+  try {
+    carried.request.seq = seq_ + 1;
+    carried.payload = proto::encode_request(carried.request);
+  } catch (const proto::EncodeError &) {
+    return std::nullopt;  // the call on its own reports it
+  }
+  next_seq();
+  return carried;
+}
+
+std::optional<proto::ReplyBody> PluginSession::settle(
+  const Carried & carried, const std::optional<proto::Bytes> & answer)
+{
+  if (!answer) {
+    return std::nullopt;
+  }
+  const proto::Op op = carried.request.op();
+  const std::string op_text(proto::op_name(op));
+  proto::Reply reply;
+  try {
+    reply = proto::decode_reply(*answer, op);
+  } catch (const proto::DecodeError & error) {
+    fail(
+      generic_error(config_.kind), Cause::BadReply,
+      "bad carried reply to " + op_text + ": " + error.what());
+  }
+  if (reply.seq != carried.request.seq) {
+    fail(
+      generic_error(config_.kind), Cause::BadReply,
+      "carried reply to " + op_text + " has seq " + std::to_string(reply.seq) + ", expected " +
+      std::to_string(carried.request.seq));
+  }
+  if (reply.ok()) {
+    last_host_ = reply.host;
+    if (carried.costmap_sent) {
+      delivered_costmap_ = carried.costmap_version;
+    }
+    return std::get<proto::ReplyBody>(std::move(reply.outcome));
+  }
+  const proto::Error & error = reply.error();
+  if (error.type == proto::error_type::kSessionUnknown ||
+    error.type == proto::error_type::kUnavailable)
+  {
+    return std::nullopt;
+  }
+  last_host_ = reply.host;
+  throw error_from_reply(error, config_.kind);
+}
+
+bool PluginSession::costmap_unchanged_since(const Carried & carried)
+{
+  // Reading with the prepared version as the known one copies nothing when it is current.
+  return costmap_.read(carried.costmap_version).version == carried.costmap_version;
 }
 
 proto::Reply PluginSession::exchange(const proto::Request & request, const CallOptions & options)

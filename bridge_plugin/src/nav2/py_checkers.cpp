@@ -25,7 +25,12 @@ void PyGoalChecker::initialize(
   const std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
 {
   tolerances_.reset();
+  costmap_ros_ = costmap_ros;
   plugin_.start(parent, plugin_name, bind_costmap(costmap_ros));
+  if (auto node = parent.lock()) {
+    cycle_ = client::CarriedCycle::of(node->get_fully_qualified_name());
+    plugin_.session().join(cycle_);
+  }
 }
 
 void PyGoalChecker::reset()
@@ -41,8 +46,20 @@ bool PyGoalChecker::isGoalReached(
   const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
   const geometry_msgs::msg::Twist & velocity)
 {
+  // controller_server's pose lookup once more: the same message (its stamp included) when
+  // TF has not moved on, which the cycle's other calls then get.
+  geometry_msgs::msg::PoseStamped robot;
+  const bool carry = cycle_ && costmap_ros_ && costmap_ros_->getRobotPose(robot) &&
+    robot.pose == query_pose;
+  const std::optional<protocol::GoalChecker> tolerances =
+    carry ? ros::tolerances(this) : std::nullopt;
   return plugin_.bridge().forward(
     [&]() {
+      if (carry) {
+        return cycle_->is_goal_reached(
+          plugin_.session(), ros::to_wire(robot), pose7(goal_pose), ros::to_wire(velocity),
+          tolerances);
+      }
       return plugin_.session().is_goal_reached(
         pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity));
     });
@@ -81,17 +98,36 @@ void PyProgressChecker::initialize(
   CostmapBinding none;  // Nav2 gives a progress checker no costmap
   none.source = std::make_unique<client::NoCostmap>();
   plugin_.start(parent, plugin_name, std::move(none));
+  if (auto node = parent.lock()) {
+    auto cycle = client::CarriedCycle::of(node->get_fully_qualified_name());
+    plugin_.session().join(cycle);
+    cycle->use_progress_checker(plugin_.session());
+  }
 }
 
 bool PyProgressChecker::check(geometry_msgs::msg::PoseStamped & current_pose)
 {
   return plugin_.bridge().forward(
-    [&]() {return plugin_.session().check(ros::to_wire(current_pose));});
+    [&]() {
+      const protocol::PoseStamped pose = ros::to_wire(current_pose);
+      client::ProgressCheckerSession & session = plugin_.session();
+      // The answer the goal check's query carried, when it was prepared for this pose
+      client::CarriedCycle * cycle = session.cycle();
+      const std::optional<bool> carried =
+        cycle ? cycle->take_check(session, pose) : std::nullopt;
+      return carried ? *carried : session.check(pose);
+    });
 }
 
 void PyProgressChecker::reset()
 {
-  plugin_.bridge().forward([this]() {plugin_.session().reset();});
+  plugin_.bridge().forward(
+    [this]() {
+      if (client::CarriedCycle * cycle = plugin_.session().cycle()) {
+        cycle->use_progress_checker(plugin_.session());  // the new goal's progress checker
+      }
+      plugin_.session().reset();
+    });
 }
 
 }  // namespace nav2_pyif_bridge

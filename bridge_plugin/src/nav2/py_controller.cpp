@@ -1,37 +1,17 @@
 #include "nav2_pyif_bridge/py_controller.hpp"
 
+#include <array>
 #include <cstring>
 #include <optional>
 #include <utility>
 
 #include "pluginlib/class_list_macros.hpp"
-#include "tf2/utils.h"
 
+#include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/ros_conversions.hpp"
 
 namespace nav2_pyif_bridge
 {
-
-namespace
-{
-
-// The goal checker's tolerances, as the protocol carries them (std::nullopt without one).
-std::optional<protocol::GoalChecker> tolerances(nav2_core::GoalChecker * goal_checker)
-{
-  if (goal_checker == nullptr) {
-    return std::nullopt;
-  }
-  geometry_msgs::msg::Pose pose_tolerance;
-  geometry_msgs::msg::Twist velocity_tolerance;
-  if (!goal_checker->getTolerances(pose_tolerance, velocity_tolerance)) {
-    return std::nullopt;
-  }
-  return protocol::GoalChecker{
-    pose_tolerance.position.x, tf2::getYaw(pose_tolerance.orientation),
-    velocity_tolerance.linear.x, velocity_tolerance.angular.z};
-}
-
-}  // namespace
 
 void PyController::configure(
   const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
@@ -41,6 +21,7 @@ void PyController::configure(
   PyPlugin::configure(parent, std::move(name), std::move(tf), std::move(costmap_ros));
   node_ = parent;
   auto node = parent.lock();
+  session_->join(client::CarriedCycle::of(node->get_fully_qualified_name()));
   for (const client::InputSpec & spec : bridge_->settings().inputs) {
     // Best effort with a short queue (SensorDataQoS) matches reliable publishers too; only
     // the latest message matters.
@@ -123,6 +104,9 @@ void PyController::setPlan(const nav_msgs::msg::Path & path)
       }
       session_->set_plan(ros::to_wire(plan_.set(
         path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
+      if (client::CarriedCycle * cycle = session_->cycle()) {
+        cycle->use_controller(*session_);  // the next goal checks prepare for this plan
+      }
     });
 }
 
@@ -141,9 +125,17 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
         session_->set_plan(ros::to_wire(*fresh));  // localisation moved the plan's frame
       }
       sync_debug_publishers();
+      const protocol::PoseStamped wire_pose = ros::to_wire(global);
+      const std::array<double, 6> wire_velocity = ros::to_wire(velocity);
+      const std::optional<protocol::GoalChecker> wire_tolerances = ros::tolerances(goal_checker);
       try {
-        const protocol::TwistStamped cmd = session_->compute_velocity_commands(
-          ros::to_wire(global), ros::to_wire(velocity), tolerances(goal_checker));
+        // The command the goal check's query carried, when it was prepared for this call
+        client::CarriedCycle * cycle = session_->cycle();
+        std::optional<protocol::TwistStamped> carried = cycle ?
+          cycle->take_compute(*session_, wire_pose, wire_velocity, wire_tolerances) :
+          std::nullopt;
+        const protocol::TwistStamped cmd = carried ? std::move(*carried) :
+          session_->compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
         host_silent_ = false;
         publish_debug();
         return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);

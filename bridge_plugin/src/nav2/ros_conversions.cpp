@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "tf2/exceptions.h"
+#include "tf2/utils.h"
 #include "tf2/time.h"
 #include "tf2_geometry_msgs/tf2_geometry_msgs.hpp"
 
@@ -170,6 +171,21 @@ geometry_msgs::msg::PoseStamped in_frame(
     pose, out,
     latest_transform(frame, pose.header.frame_id, tf, timeout_s, tf_error, "a pose"));
   return out;
+}
+
+std::optional<proto::GoalChecker> tolerances(nav2_core::GoalChecker * goal_checker)
+{
+  if (goal_checker == nullptr) {
+    return std::nullopt;
+  }
+  geometry_msgs::msg::Pose pose_tolerance;
+  geometry_msgs::msg::Twist velocity_tolerance;
+  if (!goal_checker->getTolerances(pose_tolerance, velocity_tolerance)) {
+    return std::nullopt;
+  }
+  return proto::GoalChecker{
+    pose_tolerance.position.x, tf2::getYaw(pose_tolerance.orientation),
+    velocity_tolerance.linear.x, velocity_tolerance.angular.z};
 }
 
 }  // namespace nav2_pyif_bridge::ros

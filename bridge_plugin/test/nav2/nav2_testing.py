@@ -3,6 +3,7 @@ process group, stopped by pid), and an rclpy client of Nav2's lifecycle and acti
 
 from __future__ import annotations
 
+import json
 import math
 import os
 import random
@@ -43,6 +44,25 @@ def project_command(name: str) -> list[str] | None:
         return [*shlex.split(wrapper), name]
     found = shutil.which(name)
     return [found] if found else None
+
+
+def host_queries(endpoint: str) -> dict[str, int]:
+    """Per served key, the queries the planner host has answered (`nav2-pyif hosts`)."""
+    command = project_command("nav2-pyif")
+    assert command is not None, "nav2-pyif is not on PATH (or $NAV2_PYIF_RUN)"
+    done = subprocess.run(
+        [*command, "hosts", "--json", "--connect", endpoint],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert done.returncode == 0, done.stderr
+    return {
+        k["key"]: k["queries"]
+        for host in json.loads(done.stdout)["hosts"]
+        for k in host["keys"]
+        if k["queries"] is not None
+    }
 
 
 def host_command() -> list[str] | None:
@@ -252,7 +272,13 @@ def bring_up(
     rclpy.init()
     client = Nav2Client()
     try:
-        yield {"client": client, "procs": procs, "start_host": start_host, "logs": logs}
+        yield {
+            "client": client,
+            "procs": procs,
+            "start_host": start_host,
+            "logs": logs,
+            "endpoint": endpoint,
+        }
     finally:
         client.destroy_node()
         rclpy.try_shutdown()

@@ -146,12 +146,25 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     assert "simple_smoother.refinement_num" in names  # declared by the Python smoother
 
     # 2. FollowPath ends by the Python goal checker, the only one controller_server has
+    before = nav2_testing.host_queries(nav2["endpoint"])
     handle = client.follow(path)
     result = client.wait(handle.get_result_async(), 90.0)
     logs = _logs(nav2, "controller_server", "planner_host")
     assert result is not None and result.status == SUCCEEDED, f"FollowPath: {result}\n{logs}"
     x, y = client.pose
     assert math.hypot(x - GOAL_A[0], y - GOAL_A[1]) < 0.35, f"robot at {(x, y)}"
+    # Each goal check's query carried the progress check and the command (PROTOCOL.md section
+    # 15): three calls a cycle in about one query. The command goes on its own when Nav2 calls
+    # it with another velocity than the goal check got (its odometry smoother moved on between
+    # the two reads), or after set_plan.
+    after = nav2_testing.host_queries(nav2["endpoint"])
+    sent = {key.rsplit("/", 1)[1]: after[key] - before.get(key, 0) for key in after}
+    cycles = sent["general_goal_checker"]
+    assert cycles > 40, sent  # 20 Hz for a few seconds
+    assert sent["progress_checker"] <= 2 + cycles // 10, sent  # its reset, and rare misses
+    queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
+    assert queries < 1.5 * cycles, sent  # 3 a cycle without carrying
+    print(f"queries during FollowPath: {sent}, {queries / cycles:.2f} per control cycle")
     assert "general_goal_checker.stateful" in client.list_parameters(
         "controller_server", "general_goal_checker"
     )  # declared by the Python goal checker

@@ -60,6 +60,7 @@ class ServedPlanner:
         self.host_id = host_id
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
+        self.queries = 0  # calls that came on this key's own queries (not carried in another)
         self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
         # Reading the channel (not the queryable) lets close() undeclare from another thread.
         self._receiver = self._calls.handler
@@ -82,6 +83,7 @@ class ServedPlanner:
             if self._addressed_elsewhere(query):
                 query.drop()  # a replica's query: its pinned host answers
                 continue
+            self.queries += 1
             try:
                 op = str(query.key_expr).rsplit("/", 1)[-1]
                 payload = _payload(query)
@@ -119,6 +121,7 @@ class ServedPlanner:
             "plugin_type": self.runtime.plugin_type.value,
             "isolation": self.runtime.isolation,
             "sessions": len(self.runtime.journal),
+            "queries": self.queries,
             "started": self.started,
             "pid": os.getpid(),
             "hostname": socket.gethostname(),

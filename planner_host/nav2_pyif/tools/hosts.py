@@ -47,6 +47,7 @@ class HostView:
                     "plugin_type": self.info.get(prefix, {}).get("plugin_type"),
                     "isolation": self.info.get(prefix, {}).get("isolation"),
                     "sessions": self.info.get(prefix, {}).get("sessions"),
+                    "queries": self.info.get(prefix, {}).get("queries"),
                     "answered": prefix in self.info,
                 }
                 for prefix in sorted(self.prefixes)
@@ -126,7 +127,7 @@ def _uptime(seconds: float | None) -> str:
 
 def render(found: Survey) -> str:
     """The table, grouped by host."""
-    header = ("KEY", "PLANNER", "TYPE", "ISOLATION", "SESSIONS")
+    header = ("KEY", "PLANNER", "TYPE", "ISOLATION", "SESSIONS", "QUERIES")
     lines = [f"via {via(found)}" if via(found) else "via nothing"]
     for item in found.as_json()["hosts"]:
         where = f"pid {item['pid']} on {item['hostname']}" if item["pid"] is not None else "?"
@@ -138,6 +139,7 @@ def render(found: Survey) -> str:
                 k["plugin_type"] or "",
                 k["isolation"] or "",
                 "" if k["sessions"] is None else str(k["sessions"]),
+                "" if k["queries"] is None else str(k["queries"]),
             )
             for k in item["keys"]
         ]
@@ -161,10 +163,11 @@ def nothing_found(found: Survey, options: ZenohOptions, wait: float) -> str:
 def add_hosts_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ignore[type-arg]
     p = subparsers.add_parser(
         "hosts",
-        help="list the live planner hosts: keys, planners, sessions, uptime",
+        help="list the live planner hosts: keys, planners, sessions, queries, uptime",
         description="List every live planner host this tool can see through its Zenoh "
-        "router or peers: the keys each serves, the planner, plugin type, isolation and "
-        "number of live sessions per key, its uptime, and the router or peer the tool went "
+        "router or peers: the keys each serves, the planner, plugin type, isolation, "
+        "number of live sessions and of queries answered per key (a call carried in another "
+        "key's query is not one), its uptime, and the router or peer the tool went "
         "through. Exit code 0 when it found a host, 1 when none.",
     )
     p.add_argument(

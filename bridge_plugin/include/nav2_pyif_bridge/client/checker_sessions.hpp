@@ -4,11 +4,28 @@
 #pragma once
 
 #include <array>
+#include <optional>
+#include <string>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge::client
 {
+
+// A request the goal check's query carries for another key (PROTOCOL.md section 15).
+struct CarriedCall
+{
+  std::string key;        // the key prefix of the plugin it is for
+  protocol::Bytes payload;
+};
+
+// The goal check's answer and the encoded replies of the calls it carried, those that ran.
+struct GoalCheckReplies
+{
+  bool reached{false};
+  std::optional<protocol::Bytes> check;
+  std::optional<protocol::Bytes> compute;
+};
 
 class GoalCheckerSession : public KindSession<PluginKind::GoalChecker>
 {
@@ -20,6 +37,12 @@ public:
   bool is_goal_reached(
     const std::array<double, 7> & pose, const std::array<double, 7> & goal,
     const std::array<double, 6> & velocity);
+  // The same, carrying the progress check and the command of the cycle (either may be
+  // absent); the host runs them in Nav2's order, as far as Nav2 would go.
+  GoalCheckReplies is_goal_reached(
+    const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+    const std::array<double, 6> & velocity, std::optional<CarriedCall> then_check,
+    std::optional<CarriedCall> then_compute);
   protocol::GetTolerancesReply get_tolerances();
   void reset();
 };
@@ -31,6 +54,14 @@ public:
 
   // False when the robot failed to make progress.
   bool check(const protocol::PoseStamped & pose);
+  // The same call prepared for the goal check's query to carry; std::nullopt when the
+  // session cannot prepare one now.
+  std::optional<Carried> prepare_check(const protocol::PoseStamped & pose);
+  // The answer from the carried reply, when Nav2's call is the prepared one (the same pose,
+  // header included) and it ran; else std::nullopt: the call goes on its own.
+  std::optional<bool> settle_check(
+    const Carried & carried, const std::optional<protocol::Bytes> & reply,
+    const protocol::PoseStamped & pose);
   void reset();
 };
 

@@ -9,12 +9,24 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge::client
 {
+
+// A control cycle's command request prepared for the goal check's query to carry.
+struct PreparedCommand
+{
+  Carried carried;
+  protocol::PoseStamped pose;
+  std::array<double, 6> velocity{};
+  std::optional<protocol::GoalChecker> goal_checker;
+  std::vector<std::pair<std::string, std::uint64_t>> inputs;  // attached: name, generation
+  std::uint64_t plan_generation{0};
+};
 
 class ControllerSession : public KindSession<PluginKind::Controller>
 {
@@ -36,6 +48,19 @@ public:
   protocol::TwistStamped compute_velocity_commands(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
+  // The same call prepared for another plugin's query to carry (PROTOCOL.md section 15);
+  // std::nullopt when the session cannot prepare one now.
+  std::optional<PreparedCommand> prepare_command(
+    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
+    const std::optional<protocol::GoalChecker> & goal_checker);
+  // The command from the carried reply, when Nav2's call is the prepared one (the same pose,
+  // velocity and tolerances, the costmap and plan unchanged since) and the call ran; else
+  // std::nullopt, and the call goes on its own. Errors throw as compute_velocity_commands.
+  std::optional<protocol::TwistStamped> settle_command(
+    const PreparedCommand & prepared, const std::optional<protocol::Bytes> & reply,
+    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
+    const std::optional<protocol::GoalChecker> & goal_checker);
+
   // Remembered after an ok reply, and also when no host could be reached (the reference
   // client forgets it then), so a host that comes back drives at the latest limit.
   void set_speed_limit(double speed_limit, bool percentage);
@@ -51,7 +76,18 @@ protected:
   void forget_state() override;
 
 private:
+  // The request body of a cycle (inputs not yet acknowledged attached, with their generations).
+  protocol::ComputeVelocityCommandsRequest command_body(
+    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
+    const std::optional<protocol::GoalChecker> & goal_checker,
+    std::vector<std::pair<std::string, std::uint64_t>> & attached);
+  // The reply's command, checked; the inputs acknowledged, the debug outputs kept.
+  protocol::TwistStamped command_of(
+    protocol::ComputeVelocityCommandsReply reply,
+    const std::vector<std::pair<std::string, std::uint64_t>> & attached);
+
   std::optional<protocol::Path> plan_;
+  std::uint64_t plan_generation_{0};  // set_plan calls: a prepared command is for one plan
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
   // The latest message of each input; `sent` is the generation the host acknowledged.

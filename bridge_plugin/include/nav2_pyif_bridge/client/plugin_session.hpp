@@ -32,6 +32,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -75,6 +76,18 @@ struct SessionConfig
   Timeouts timeouts;
 };
 
+class CarriedCycle;
+
+// A request prepared to travel inside another plugin's query (PROTOCOL.md section 15): the
+// goal check's query carries the progress check and the command of the same control cycle.
+struct Carried
+{
+  protocol::Request request;
+  protocol::Bytes payload;                      // the encoded request
+  std::optional<std::uint64_t> costmap_version;  // the costmap it was prepared with
+  bool costmap_sent{false};
+};
+
 class PluginSession
 {
 public:
@@ -83,7 +96,8 @@ public:
   PluginSession(
     PluginKind kind, SessionConfig config, Transport & transport, CostmapSource & costmap,
     Logger logger = {});
-  virtual ~PluginSession() = default;
+  // Leaves its carried cycle (the cycle then prepares nothing more for it).
+  virtual ~PluginSession();
   PluginSession(const PluginSession &) = delete;
   PluginSession & operator=(const PluginSession &) = delete;
 
@@ -102,6 +116,11 @@ public:
   // join the parameters re-sent by a later configure. Before the session is established,
   // the changes are only kept for configure (nothing rejects them).
   protocol::StringMap set_parameters(const protocol::Params & changes);
+
+  // The carried cycle of the controller_server this plugin is in (carried_cycle.hpp);
+  // nullptr until joined.
+  void join(std::shared_ptr<CarriedCycle> cycle);
+  CarriedCycle * cycle() const noexcept {return cycle_.get();}
 
   // Block until a host is alive (the transport's liveliness watch); false on timeout.
   bool wait_for_host(Duration timeout);
@@ -138,6 +157,20 @@ protected:
     // Runs about every 5 ms while waiting for the reply, with the request's seq.
     std::function<void(std::uint64_t)> while_waiting;
   };
+
+  // A request for another plugin's query to carry, numbered and with the costmap as call()
+  // would send them; std::nullopt when this session cannot send one now (not established:
+  // its call on its own establishes it). The caller holds mutex().
+  std::optional<Carried> prepare(protocol::RequestBody body, CostmapMode costmap);
+  // The body of the reply to a carried request, as call() would return it; std::nullopt when
+  // the call must go on its own: it did not run, or its host does not serve this key or know
+  // this session (Unavailable, SessionUnknown: the call on its own re-establishes it). Other
+  // errors throw as call() does. The caller holds mutex().
+  std::optional<protocol::ReplyBody> settle(
+    const Carried & carried, const std::optional<protocol::Bytes> & reply);
+  // Whether the costmap is the one `carried` was prepared with (else Nav2's call is not the
+  // prepared one). The caller holds mutex().
+  bool costmap_unchanged_since(const Carried & carried);
 
   // One call, following rules 1-6. The caller holds mutex().
   protocol::ReplyBody call(const protocol::RequestBody & body, const CallOptions & options);
@@ -189,6 +222,7 @@ private:
   std::string pinned_host_;
   std::uint64_t failovers_{0};
   std::optional<std::uint64_t> delivered_costmap_;
+  std::shared_ptr<CarriedCycle> cycle_;
 };
 
 // The base of the sessions of one plugin type: ControllerSession, PlannerSession,
@@ -204,6 +238,13 @@ public:
     SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {})
   : PluginSession(Kind, std::move(config), transport, costmap, std::move(logger)) {}
 };
+
+// The same pose message, header included: whether Nav2's call is the one a carried request
+// was prepared for.
+inline bool same_pose(const protocol::PoseStamped & a, const protocol::PoseStamped & b) noexcept
+{
+  return a.frame_id == b.frame_id && a.stamp_ns == b.stamp_ns && a.pose == b.pose;
+}
 
 // A random UUID4 as 32 lowercase hex digits (Python's uuid.uuid4().hex).
 std::string new_session_id();

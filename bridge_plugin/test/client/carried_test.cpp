@@ -1,0 +1,186 @@
+// Requests carried in the goal check's query (PROTOCOL.md section 15), plugin side: the
+// controller's and the progress checker's prepared calls answered by a fake host, then used
+// only when Nav2's call is the prepared one, and their sessions leaving the carried cycle.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "fakes.hpp"
+#include "nav2_pyif_bridge/client/carried_cycle.hpp"
+#include "nav2_pyif_bridge/client/checker_sessions.hpp"
+#include "nav2_pyif_bridge/client/controller_session.hpp"
+
+namespace nav2_pyif_bridge::client::test
+{
+namespace
+{
+
+namespace proto = protocol;
+const char * const kKey = "nav2_pyif/test_robot/FollowPath";
+const std::array<double, 6> kVelocity{0.3, 0.0, 0.0, 0.0, 0.0, 0.1};
+const proto::GoalChecker kTolerances{0.25, 0.3, 0.05, 0.1};
+
+class CarriedTest : public ::testing::Test
+{
+protected:
+  void SetUp() override
+  {
+    SessionConfig config;
+    config.key_prefix = kKey;
+    config.name = "FollowPath";
+    config.node = "controller_server";
+    config.global_frame = "odom";
+    config.timeouts.call = 2s;
+    session = std::make_unique<ControllerSession>(config, host, costmap, log.logger());
+    session->configure();
+    session->activate();
+    session->set_plan(straight_path(40, 3.0, 0.0));
+  }
+
+  // What the goal check's host does with a carried request: answers it as if it had come on
+  // its own key.
+  std::optional<proto::Bytes> run(const Carried & carried)
+  {
+    const proto::Op op = carried.request.op();
+    return host.query(Target{session->keys().call(op), ""}, carried.payload, 2s, nullptr);
+  }
+
+  PreparedCommand prepare()
+  {
+    auto prepared = session->prepare_command(pose_at(1.0, 1.0), kVelocity, kTolerances);
+    EXPECT_TRUE(prepared.has_value());
+    return *prepared;
+  }
+
+  FakeClock clock;
+  FakeHost host{clock};
+  GridCostmap costmap;
+  LogSink log;
+  std::unique_ptr<ControllerSession> session;
+};
+
+TEST_F(CarriedTest, ThePreparedCommandIsUsedWhenNav2CallsWithTheSameInputs)
+{
+  const PreparedCommand prepared = prepare();
+  const auto reply = run(prepared.carried);
+  const std::size_t queries = host.received.size();
+  const auto cmd =
+    session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
+  ASSERT_TRUE(cmd.has_value());
+  // the fake host echoes: plan size, default gain, no speed limit, costmap v1, tolerances, call 1
+  EXPECT_EQ(cmd->twist, (std::array<double, 6>{40.0, 1.5, -1.0, 1.0, 1.0, 1.0}));
+  EXPECT_EQ(host.received.size(), queries);  // nothing more sent
+  // the costmap it carried counts as delivered: the next cycle sends none
+  session->compute_velocity_commands(pose_at(1.0, 1.0), kVelocity, kTolerances);
+  EXPECT_FALSE(host.last_had_costmap());
+  EXPECT_GT(host.last().seq, prepared.carried.request.seq);
+}
+
+TEST_F(CarriedTest, AnyOtherInputMakesTheCallGoOnItsOwn)
+{
+  auto other_stamp = pose_at(1.0, 1.0);
+  other_stamp.stamp_ns += 1;
+  auto other_frame = pose_at(1.0, 1.0, "map");
+  std::array<double, 6> faster = kVelocity;
+  faster[0] += 0.01;
+  proto::GoalChecker looser = kTolerances;
+  looser.xy_goal_tolerance = 0.5;
+  for (const auto & [pose, velocity, tolerances] :
+    {std::tuple{other_stamp, kVelocity, std::optional{kTolerances}},
+      std::tuple{other_frame, kVelocity, std::optional{kTolerances}},
+      std::tuple{pose_at(1.0, 1.0), faster, std::optional{kTolerances}},
+      std::tuple{pose_at(1.0, 1.0), kVelocity, std::optional{looser}},
+      std::tuple{pose_at(1.0, 1.0), kVelocity, std::optional<proto::GoalChecker>{}}})
+  {
+    const PreparedCommand prepared = prepare();
+    EXPECT_FALSE(session->settle_command(prepared, run(prepared.carried), pose, velocity,
+      tolerances).has_value());
+  }
+}
+
+TEST_F(CarriedTest, ACostmapOrPlanChangedSinceMakesTheCallGoOnItsOwn)
+{
+  PreparedCommand prepared = prepare();
+  auto reply = run(prepared.carried);
+  costmap.data[5] = 99;
+  EXPECT_FALSE(
+    session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
+
+  prepared = prepare();
+  reply = run(prepared.carried);
+  session->set_plan(straight_path(10, 1.0, 0.0));  // localisation moved the plan's frame
+  EXPECT_FALSE(
+    session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
+}
+
+TEST_F(CarriedTest, NoReplyUnavailableOrSessionUnknownMakeTheCallGoOnItsOwn)
+{
+  PreparedCommand prepared = prepare();
+  EXPECT_FALSE(session->settle_command(
+    prepared, std::nullopt, pose_at(1.0, 1.0), kVelocity, kTolerances));  // did not run
+
+  prepared = prepare();
+  host.restart();  // the new host knows no session
+  EXPECT_FALSE(session->settle_command(
+    prepared, run(prepared.carried), pose_at(1.0, 1.0), kVelocity, kTolerances));
+
+  prepared = prepare();
+  host.error_once = proto::Error{"Unavailable", "restarting", "", ""};
+  EXPECT_FALSE(session->settle_command(
+    prepared, run(prepared.carried), pose_at(1.0, 1.0), kVelocity, kTolerances));
+}
+
+TEST_F(CarriedTest, AnErrorReplyIsTheCallsError)
+{
+  PreparedCommand prepared = prepare();
+  host.error_once = proto::Error{"NoValidControl", "blocked", "Traceback ...", "x.Y"};
+  const auto reply = run(prepared.carried);
+  const CallError e = error_of([&] {
+        session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
+      });
+  EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
+  EXPECT_EQ(std::string(e.what()), "blocked");
+
+  prepared = prepare();
+  const CallError bad = error_of([&] {
+        session->settle_command(
+          prepared, proto::Bytes{1, 2, 3}, pose_at(1.0, 1.0), kVelocity, kTolerances);
+      });
+  EXPECT_EQ(bad.cause(), Cause::BadReply);
+}
+
+TEST_F(CarriedTest, ANonFiniteCarriedCommandIsRefusedAsOnItsOwn)
+{
+  const PreparedCommand prepared = prepare();
+  host.nan_once = true;
+  const auto reply = run(prepared.carried);
+  const CallError e = error_of([&] {
+        session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
+      });
+  EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
+}
+
+TEST_F(CarriedTest, NothingIsPreparedBeforeTheSessionIsEstablished)
+{
+  session->cleanup();
+  EXPECT_FALSE(session->prepare_command(pose_at(1.0, 1.0), kVelocity, kTolerances));
+}
+
+TEST_F(CarriedTest, TheCycleUsesACarriedAnswerOnceAndForgetsALeavingSession)
+{
+  auto cycle = CarriedCycle::of("/carried_test_controller_server");
+  EXPECT_EQ(cycle, CarriedCycle::of("/carried_test_controller_server"));
+  EXPECT_NE(cycle, CarriedCycle::of("/another_controller_server"));
+  session->join(cycle);
+  cycle->use_controller(*session);
+  // Nothing pending: the controller calls on its own.
+  EXPECT_FALSE(cycle->take_compute(*session, pose_at(1.0, 1.0), kVelocity, kTolerances));
+  session.reset();  // destroyed: leaves the cycle, which then prepares nothing for it
+  EXPECT_EQ(cycle->carried_used(), 0u);
+}
+
+}  // namespace
+}  // namespace nav2_pyif_bridge::client::test
