@@ -11,8 +11,15 @@ import sys
 from pathlib import Path
 
 import pytest
-from nav2_pyif_protocol import cpp_codec, generate, schema
-from nav2_pyif_protocol.constants import Op
+from nav2_pyif_protocol import cpp_codec, cpp_errors, generate, schema
+from nav2_pyif_protocol.constants import (
+    ERRORS_BY_PLUGIN,
+    GENERIC_ERROR,
+    INVALID_ERROR,
+    TIMED_OUT_ERROR,
+    Op,
+    PluginType,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 COMMAND = "python -m nav2_pyif_protocol.generate"
@@ -60,7 +67,7 @@ def test_check_names_the_stale_file_and_the_command(tmp_path: Path) -> None:
         text=True,
         check=True,
     )
-    assert "1 of 8 generated files changed" in fresh.stdout
+    assert f"1 of {len(generate.render(ROOT))} generated files changed" in fresh.stdout
     assert generate.stale(tmp_path) == []
 
 
@@ -100,3 +107,26 @@ def test_an_envelope_change_asks_for_the_hand_written_envelope(
     monkeypatch.setattr(cpp_codec, "REPLY_ENVELOPE", (*schema.REPLY_ENVELOPE, extra))
     with pytest.raises(SystemExit, match=r"encode\.cpp and decode\.cpp"):
         cpp_codec.files()
+
+
+def test_the_cpp_error_tables_say_what_constants_py_says() -> None:
+    """Each plugin type's own-error mask, read back from the generated header, is the set
+    ERRORS_BY_PLUGIN gives it; the generic, timed-out and invalid rows likewise."""
+    text = cpp_errors.nav2_errors_hpp()
+    names = [e.value for e in cpp_errors.NAV2_ERRORS]
+
+    def rows(table: str) -> list[str]:
+        block = text.split(f" {table} = {{\n", 1)[1].split("\n};", 1)[0]
+        return [line.strip().split(",")[0] for line in block.splitlines()]
+
+    for plugin, mask in zip(PluginType, rows("kOwnErrors"), strict=True):
+        bits = int(mask.rstrip("u"), 16)
+        own = {names[i] for i in range(len(names)) if bits >> i & 1}
+        assert own == {e.value for e in ERRORS_BY_PLUGIN[plugin]}, plugin
+    for table, expected in (
+        ("kGenericError", GENERIC_ERROR),
+        ("kTimedOutError", TIMED_OUT_ERROR),
+        ("kInvalidError", INVALID_ERROR),
+    ):
+        assert rows(table) == [f"ErrorKind::{expected[p].value}" for p in PluginType], table
+    assert "InvalidPath" in names and "SessionUnknown" not in names  # protocol errors: no

@@ -70,10 +70,10 @@ _READ_PARAMS = "const Object & object, const FieldPath & where"
 _NAMED_KINDS = {STR, PARAMS, STR_MAP}
 
 
-def header(purpose: str) -> str:
+def header(purpose: str, source: str = "schema.py") -> str:
     """The first lines of every generated file: where it comes from, and what it is."""
     lines = [
-        "// Generated from protocol/nav2_pyif_protocol/schema.py by",
+        f"// Generated from protocol/nav2_pyif_protocol/{source} by",
         f"// `{COMMAND}`: do not edit.",
         "//",
         *comment(purpose, ""),
@@ -88,11 +88,16 @@ def cpp_file(
     *,
     namespace: str = NAMESPACE,
     source_of: str = "",
+    source: str = "schema.py",
 ) -> str:
     """A generated C++ file: the header comment, then ``#pragma once`` (a header) or the
     include of ``source_of`` (a source file), the includes (system ones first), and ``body``
     inside ``namespace``."""
-    out = [header(purpose), f'#include "{source_of}"' if source_of else "#pragma once", ""]
+    out = [
+        header(purpose, source),
+        f'#include "{source_of}"' if source_of else "#pragma once",
+        "",
+    ]
     for group in (
         sorted(i for i in includes if i.startswith("<")),
         [i for i in includes if not i.startswith("<")],

@@ -1,5 +1,6 @@
-"""Generate, from the one description of the protocol (``schema``), the files that repeat it:
-the C++ message structs and their codec (bridge_plugin/) and PROTOCOL.md's field tables.
+"""Generate, from the one description of the protocol (``schema``, ``constants``), the files
+that repeat it: the C++ message structs and their codec, the plugin types and nav2_core error
+tables (bridge_plugin/), and PROTOCOL.md's field tables.
 
     python -m nav2_pyif_protocol.generate            # rewrite them after editing schema.py
     python -m nav2_pyif_protocol.generate --check    # exit 1, naming each file, if stale
@@ -16,7 +17,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from nav2_pyif_protocol import cpp_codec, spec_tables
+from nav2_pyif_protocol import cpp_codec, cpp_errors, spec_tables
 
 #: The repository this package lives in (protocol/nav2_pyif_protocol/ -> the repository).
 REPOSITORY = Path(__file__).resolve().parents[2]
@@ -27,7 +28,7 @@ COMMAND = cpp_codec.COMMAND
 def render(repository: Path = REPOSITORY) -> dict[str, str]:
     """Path (from the repository root) -> its generated text. PROTOCOL.md keeps its prose:
     only the part between its schema-table markers is generated."""
-    out = cpp_codec.files()
+    out = cpp_codec.files() | cpp_errors.files()
     out[PROTOCOL_MD] = spec_tables.splice((repository / PROTOCOL_MD).read_text())
     return out
 

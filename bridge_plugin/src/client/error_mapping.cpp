@@ -1,47 +1,31 @@
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 
-#include <array>
+#include <cstddef>
 
 namespace nav2_pyif_bridge::client
 {
 namespace
 {
 
-constexpr std::array<std::string_view, kErrorKindCount> kNames = {
-  "ControllerException", "InvalidController", "ControllerTFError", "FailedToMakeProgress",
-  "PatienceExceeded", "InvalidPath", "NoValidControl", "ControllerTimedOut",
-  "PlannerException", "InvalidPlanner", "StartOccupied", "GoalOccupied",
-  "StartOutsideMapBounds", "GoalOutsideMapBounds", "NoValidPathCouldBeFound",
-  "PlannerTimedOut", "PlannerTFError", "NoViapointsGiven", "PlannerCancelled",
-  "SmootherException", "InvalidSmoother", "SmootherTimedOut", "SmoothedPathInCollision",
-  "FailedToSmoothPath",
-};
-static_assert(static_cast<std::size_t>(ErrorKind::FailedToSmoothPath) + 1 == kErrorKindCount);
+constexpr std::size_t index(PluginKind kind) noexcept {return static_cast<std::size_t>(kind);}
+constexpr std::size_t index(ErrorKind kind) noexcept {return static_cast<std::size_t>(kind);}
 
 }  // namespace
 
 std::string_view plugin_type_name(PluginKind kind) noexcept
 {
-  switch (kind) {
-    case PluginKind::Controller: return "controller";
-    case PluginKind::GlobalPlanner: return "global_planner";
-    case PluginKind::Smoother: return "smoother";
-    case PluginKind::GoalChecker: return "goal_checker";
-    case PluginKind::ProgressChecker: return "progress_checker";
-    case PluginKind::CostmapLayer: return "costmap_layer";
-  }
-  return "controller";
+  return protocol::kPluginKindNames[index(kind)];
 }
 
 std::string_view error_kind_name(ErrorKind kind) noexcept
 {
-  return kNames[static_cast<std::size_t>(kind)];
+  return protocol::kErrorKindNames[index(kind)];
 }
 
 std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept
 {
-  for (std::size_t i = 0; i < kNames.size(); ++i) {
-    if (kNames[i] == name) {
+  for (std::size_t i = 0; i < kErrorKindCount; ++i) {
+    if (protocol::kErrorKindNames[i] == name) {
       return static_cast<ErrorKind>(i);
     }
   }
@@ -50,54 +34,27 @@ std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept
 
 PluginKind plugin_kind_of(ErrorKind kind) noexcept
 {
-  if (kind < ErrorKind::PlannerException) {
-    return PluginKind::Controller;
-  }
-  return kind < ErrorKind::SmootherException ? PluginKind::GlobalPlanner : PluginKind::Smoother;
+  return protocol::kErrorFamily[index(kind)];
 }
 
 bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept
 {
-  switch (plugin) {
-    case PluginKind::Controller:
-    case PluginKind::GlobalPlanner:
-      return plugin_kind_of(kind) == plugin;
-    case PluginKind::Smoother:
-      return kind == ErrorKind::InvalidPath || plugin_kind_of(kind) == PluginKind::Smoother;
-    case PluginKind::GoalChecker:
-    case PluginKind::ProgressChecker:
-    case PluginKind::CostmapLayer:
-      return kind == ErrorKind::ControllerException;
-  }
-  return false;
+  return (protocol::kOwnErrors[index(plugin)] >> index(kind)) & 1u;
 }
 
 ErrorKind generic_error(PluginKind kind) noexcept
 {
-  switch (kind) {
-    case PluginKind::GlobalPlanner: return ErrorKind::PlannerException;
-    case PluginKind::Smoother: return ErrorKind::SmootherException;
-    default: return ErrorKind::ControllerException;
-  }
+  return protocol::kGenericError[index(kind)];
 }
 
 ErrorKind timed_out_error(PluginKind kind) noexcept
 {
-  switch (kind) {
-    case PluginKind::GlobalPlanner: return ErrorKind::PlannerTimedOut;
-    case PluginKind::Smoother: return ErrorKind::SmootherTimedOut;
-    default: return ErrorKind::ControllerTimedOut;
-  }
+  return protocol::kTimedOutError[index(kind)];
 }
 
 ErrorKind invalid_error(PluginKind kind) noexcept
 {
-  switch (kind) {
-    case PluginKind::Controller: return ErrorKind::InvalidController;
-    case PluginKind::GlobalPlanner: return ErrorKind::InvalidPlanner;
-    case PluginKind::Smoother: return ErrorKind::InvalidSmoother;
-    default: return ErrorKind::ControllerException;
-  }
+  return protocol::kInvalidError[index(kind)];
 }
 
 ErrorKind for_api(ErrorKind kind, Nav2Api api) noexcept

@@ -10,13 +10,17 @@
 #include <string>
 #include <string_view>
 
+#include "nav2_pyif_bridge/protocol/nav2_errors.hpp"
 #include "nav2_pyif_bridge/protocol/types.hpp"
 
 namespace nav2_pyif_bridge::client
 {
 
-enum class PluginKind : std::uint8_t
-{Controller, GlobalPlanner, Smoother, GoalChecker, ProgressChecker, CostmapLayer};
+// The plugin types and the nav2_core exception classes (Jazzy / Kilted), whose names are also
+// the wire's error.type values: generated from constants.py (protocol/nav2_errors.hpp).
+using protocol::ErrorKind;
+using protocol::kErrorKindCount;
+using protocol::PluginKind;
 
 // The wire's configure.plugin_type: "controller", "global_planner", "smoother",
 // "goal_checker", "progress_checker" or "costmap_layer".
@@ -24,43 +28,8 @@ std::string_view plugin_type_name(PluginKind kind) noexcept;
 
 // Which nav2_core exception classes exist: Humble has only PlannerException (its controllers
 // and smoothers throw it too); Jazzy and Kilted have the controller, planner and smoother
-// classes below.
+// classes of ErrorKind.
 enum class Nav2Api : std::uint8_t {Humble, Jazzy};
-
-// The nav2_core exception classes of Jazzy / Kilted, by name; the names are also the wire's
-// error.type values (PROTOCOL.md section 7).
-enum class ErrorKind : std::uint8_t
-{
-  // controller
-  ControllerException,
-  InvalidController,
-  ControllerTFError,
-  FailedToMakeProgress,
-  PatienceExceeded,
-  InvalidPath,
-  NoValidControl,
-  ControllerTimedOut,
-  // global planner
-  PlannerException,
-  InvalidPlanner,
-  StartOccupied,
-  GoalOccupied,
-  StartOutsideMapBounds,
-  GoalOutsideMapBounds,
-  NoValidPathCouldBeFound,
-  PlannerTimedOut,
-  PlannerTFError,
-  NoViapointsGiven,
-  PlannerCancelled,
-  // smoother (InvalidPath above is one too: nav2_core has a smoother class of that name)
-  SmootherException,
-  InvalidSmoother,
-  SmootherTimedOut,
-  SmoothedPathInCollision,
-  FailedToSmoothPath,
-};
-
-inline constexpr std::size_t kErrorKindCount = 24;
 
 std::string_view error_kind_name(ErrorKind kind) noexcept;
 // std::nullopt for a name that is no nav2_core exception (protocol errors included).

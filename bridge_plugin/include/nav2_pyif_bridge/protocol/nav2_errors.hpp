@@ -1,0 +1,169 @@
+// Generated from protocol/nav2_pyif_protocol/constants.py by
+// `python -m nav2_pyif_protocol.generate`: do not edit.
+//
+// The plugin types and the nav2_core exceptions each throws (constants.py's ERRORS_BY_PLUGIN,
+// GENERIC_ERROR, TIMED_OUT_ERROR and INVALID_ERROR), as tables the plugin's error mapping
+// (client/error_mapping.cpp) looks up.
+
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+
+namespace nav2_pyif_bridge::protocol
+{
+
+// The plugin types, as configure's plugin_type names them.
+enum class PluginKind : std::uint8_t
+{
+  Controller,
+  GlobalPlanner,
+  Smoother,
+  GoalChecker,
+  ProgressChecker,
+  CostmapLayer,
+};
+inline constexpr std::size_t kPluginKindCount = 6;
+
+// Wire names, by PluginKind.
+inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames = {
+  "controller",
+  "global_planner",
+  "smoother",
+  "goal_checker",
+  "progress_checker",
+  "costmap_layer",
+};
+
+// The nav2_core exception classes of Jazzy and Kilted, by name; the names are also the wire's
+// error.type values (PROTOCOL.md section 7).
+enum class ErrorKind : std::uint8_t
+{
+  ControllerException,
+  InvalidController,
+  ControllerTFError,
+  FailedToMakeProgress,
+  PatienceExceeded,
+  InvalidPath,
+  NoValidControl,
+  ControllerTimedOut,
+  PlannerException,
+  InvalidPlanner,
+  StartOccupied,
+  GoalOccupied,
+  StartOutsideMapBounds,
+  GoalOutsideMapBounds,
+  NoValidPathCouldBeFound,
+  PlannerTimedOut,
+  PlannerTFError,
+  NoViapointsGiven,
+  PlannerCancelled,
+  SmootherException,
+  InvalidSmoother,
+  SmootherTimedOut,
+  SmoothedPathInCollision,
+  FailedToSmoothPath,
+};
+inline constexpr std::size_t kErrorKindCount = 24;
+
+// Wire names, by ErrorKind.
+inline constexpr std::array<std::string_view, kErrorKindCount> kErrorKindNames = {
+  "ControllerException",
+  "InvalidController",
+  "ControllerTFError",
+  "FailedToMakeProgress",
+  "PatienceExceeded",
+  "InvalidPath",
+  "NoValidControl",
+  "ControllerTimedOut",
+  "PlannerException",
+  "InvalidPlanner",
+  "StartOccupied",
+  "GoalOccupied",
+  "StartOutsideMapBounds",
+  "GoalOutsideMapBounds",
+  "NoValidPathCouldBeFound",
+  "PlannerTimedOut",
+  "PlannerTFError",
+  "NoViapointsGiven",
+  "PlannerCancelled",
+  "SmootherException",
+  "InvalidSmoother",
+  "SmootherTimedOut",
+  "SmoothedPathInCollision",
+  "FailedToSmoothPath",
+};
+
+// The plugin type whose exceptions each ErrorKind is one of (InvalidPath: the controller's), by
+// ErrorKind.
+inline constexpr std::array<PluginKind, kErrorKindCount> kErrorFamily = {
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::Controller,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::GlobalPlanner,
+  PluginKind::Smoother,
+  PluginKind::Smoother,
+  PluginKind::Smoother,
+  PluginKind::Smoother,
+  PluginKind::Smoother,
+};
+
+// The ErrorKinds a plugin of each type (by PluginKind) throws under their own name, bit i for
+// ErrorKind i; any other error type becomes the type's generic error.
+inline constexpr std::array<std::uint32_t, kPluginKindCount> kOwnErrors = {
+  0x000000ffu,  // controller
+  0x0007ff00u,  // global_planner
+  0x00f80020u,  // smoother
+  0x00000001u,  // goal_checker
+  0x00000001u,  // progress_checker
+  0x00000001u,  // costmap_layer
+};
+
+// Each plugin type's catch-all exception, by PluginKind.
+inline constexpr std::array<ErrorKind, kPluginKindCount> kGenericError = {
+  ErrorKind::ControllerException,
+  ErrorKind::PlannerException,
+  ErrorKind::SmootherException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+};
+
+// Each plugin type's exception for a call that got no reply in time, by PluginKind.
+inline constexpr std::array<ErrorKind, kPluginKindCount> kTimedOutError = {
+  ErrorKind::ControllerTimedOut,
+  ErrorKind::PlannerTimedOut,
+  ErrorKind::SmootherTimedOut,
+  ErrorKind::ControllerTimedOut,
+  ErrorKind::ControllerTimedOut,
+  ErrorKind::ControllerTimedOut,
+};
+
+// Each plugin type's exception when it cannot be configured, by PluginKind.
+inline constexpr std::array<ErrorKind, kPluginKindCount> kInvalidError = {
+  ErrorKind::InvalidController,
+  ErrorKind::InvalidPlanner,
+  ErrorKind::InvalidSmoother,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+};
+
+}  // namespace nav2_pyif_bridge::protocol
