@@ -148,3 +148,27 @@ def test_undeclared_debug_output_is_a_controller_error(
     client.activate()
     with pytest.raises(ControllerException, match="'carrot' is not declared"):
         client.compute_velocity_commands(pose(), Twist())
+
+
+def test_a_host_beside_a_nav2_on_another_rmw_still_reads_its_inputs(
+    monkeypatch: pytest.MonkeyPatch, start_host: Any, zsession_factory: Any
+) -> None:
+    """A host inherits RMW_IMPLEMENTATION=rmw_zenoh_cpp from a Nav2 on rmw_zenoh but has only
+    the default rmw: rcl would end its worker (exit 102) when rclpy loads one to deserialize.
+    It serializes with the default rmw instead, and says so."""
+    monkeypatch.setenv("RMW_IMPLEMENTATION", "rmw_not_installed_here_cpp")
+    host = start_host("--key", KEY, "--planner", "sensor_planners:ScanEcho")
+    monkeypatch.delenv("RMW_IMPLEMENTATION")  # the host's only: this process serializes too
+    client = controller(zsession_factory, host)
+    client.configure()
+    client.activate()
+    cmd = client.compute_velocity_commands(
+        pose(),
+        Twist(),
+        inputs={"scan": (laser_scan(720, 0.75), 1)},
+        debug_wanted=["lookahead_point"],
+    )
+    assert cmd.twist.linear.x == 0.75
+    assert client.debug["lookahead_point"].point.x == 2.0
+    assert "RMW_IMPLEMENTATION=rmw_not_installed_here_cpp is not installed" in host.log()
+    assert "exited with code 102" not in host.log()

@@ -6,8 +6,12 @@ travel between the C++ plugin, which handles them as bytes of a named type only
 from __future__ import annotations
 
 import importlib
+import logging
+import os
 from functools import cache
 from typing import Any
+
+log = logging.getLogger("nav2_pyif.ros_types")
 
 
 class MessageTypeError(ValueError):
@@ -41,13 +45,41 @@ def type_name_of(msg: Any) -> str:
     return f"{package}/msg/{cls.__name__}"
 
 
+@cache
+def _serialization_rmw() -> None:
+    """rclpy's serialization loads an rmw implementation, and rcl ends the process (exit code
+    102) when $RMW_IMPLEMENTATION names one this environment lacks: a planner host started
+    beside a Nav2 on rmw_zenoh, from a Python environment that has only the default rmw. The
+    host makes no ROS node and every rmw writes the same CDR, so it serializes with the
+    default one then, and says so."""
+    wanted = os.environ.get("RMW_IMPLEMENTATION")
+    if not wanted:
+        return
+    try:
+        from ament_index_python import get_resources
+
+        installed = set(get_resources("rmw_typesupport")) - {"rmw_implementation"}
+    except Exception:  # no ament index: leave the choice to rcl
+        return
+    if wanted not in installed:
+        log.warning(
+            "RMW_IMPLEMENTATION=%s is not installed in this Python environment (it has %s); "
+            "serializing ROS messages with the default rmw instead (the CDR is the same)",
+            wanted,
+            ", ".join(sorted(installed)) or "none",
+        )
+        del os.environ["RMW_IMPLEMENTATION"]
+
+
 def deserialize(type_name: str, cdr: bytes) -> Any:
+    _serialization_rmw()
     from rclpy.serialization import deserialize_message
 
     return deserialize_message(cdr, message_class(type_name))
 
 
 def serialize(msg: Any) -> bytes:
+    _serialization_rmw()
     from rclpy.serialization import serialize_message
 
     return serialize_message(msg)  # type: ignore[no-any-return]
