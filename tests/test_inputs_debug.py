@@ -170,5 +170,5 @@ def test_a_host_beside_a_nav2_on_another_rmw_still_reads_its_inputs(
     )
     assert cmd.twist.linear.x == 0.75
     assert client.debug["lookahead_point"].point.x == 2.0
-    assert "RMW_IMPLEMENTATION=rmw_not_installed_here_cpp is not installed" in host.log()
+    assert "RMW_IMPLEMENTATION=rmw_not_installed_here_cpp cannot be loaded" in host.log()
     assert "exited with code 102" not in host.log()

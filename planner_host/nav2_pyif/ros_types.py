@@ -8,6 +8,8 @@ from __future__ import annotations
 import importlib
 import logging
 import os
+import subprocess
+import sys
 from functools import cache
 from typing import Any
 
@@ -46,40 +48,42 @@ def type_name_of(msg: Any) -> str:
 
 
 @cache
-def _serialization_rmw() -> None:
+def check_serialization_rmw() -> None:
     """rclpy's serialization loads an rmw implementation, and rcl ends the process (exit code
-    102) when $RMW_IMPLEMENTATION names one this environment lacks: a planner host started
-    beside a Nav2 on rmw_zenoh, from a Python environment that has only the default rmw. The
-    host makes no ROS node and every rmw writes the same CDR, so it serializes with the
-    default one then, and says so."""
+    102) when $RMW_IMPLEMENTATION names one this Python environment cannot load: a planner
+    host started beside a Nav2 on rmw_zenoh, from an environment that has only the default
+    rmw (an ament index may still list the other one, from the ROS install sourced beside).
+    So a child process tries first, once; when it fails, the host serializes with the default
+    rmw (it makes no ROS node, and every rmw writes the same CDR) and says so."""
     wanted = os.environ.get("RMW_IMPLEMENTATION")
     if not wanted:
         return
-    try:
-        from ament_index_python import get_resources
-
-        installed = set(get_resources("rmw_typesupport")) - {"rmw_implementation"}
-    except Exception:  # no ament index: leave the choice to rcl
-        return
-    if wanted not in installed:
+    probe = subprocess.run(
+        [sys.executable, "-c", "import rclpy.serialization"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        check=False,
+    )
+    if probe.returncode != 0:
         log.warning(
-            "RMW_IMPLEMENTATION=%s is not installed in this Python environment (it has %s); "
+            "RMW_IMPLEMENTATION=%s cannot be loaded in this Python environment (%s); "
             "serializing ROS messages with the default rmw instead (the CDR is the same)",
             wanted,
-            ", ".join(sorted(installed)) or "none",
+            (probe.stderr.strip().splitlines() or [f"exit code {probe.returncode}"])[-1][:300],
         )
         del os.environ["RMW_IMPLEMENTATION"]
 
 
 def deserialize(type_name: str, cdr: bytes) -> Any:
-    _serialization_rmw()
+    check_serialization_rmw()
     from rclpy.serialization import deserialize_message
 
     return deserialize_message(cdr, message_class(type_name))
 
 
 def serialize(msg: Any) -> bytes:
-    _serialization_rmw()
+    check_serialization_rmw()
     from rclpy.serialization import serialize_message
 
     return serialize_message(msg)  # type: ignore[no-any-return]

@@ -27,6 +27,7 @@ from nav2_pyif.common.zenoh_config import (
 )
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import check_roles, parse_delegates
+from nav2_pyif.ros_types import check_serialization_rmw
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
@@ -256,6 +257,7 @@ def main(argv: list[str] | None = None) -> int:
     log = logging.getLogger("nav2_pyif.server.host")
     for name, value in sorted(from_environment.items()):
         log.info("from the environment: %s=%s", name, value)
+    check_serialization_rmw()  # before any worker starts: they inherit the environment
     for directory in [os.getcwd(), *args.path][::-1]:
         if directory not in sys.path:
             sys.path.insert(0, directory)
