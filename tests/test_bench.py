@@ -53,6 +53,9 @@ def test_hop_benchmark_quick_run_prints_each_hop_tight_and_at_20_hz() -> None:
         "direct by gossip",
         "(at 20 Hz)",
         "a worker's own queryable behind a listening host adds",
+        "router -> host -> pipe -> worker (today's isolation)",
+        "router -> worker's own queryable, host guarding",
+        "behind a router, against today's isolation",
     )
 
 

@@ -8,7 +8,7 @@ nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long r
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
 nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progress checkers
-nav2-pyif-bench hops [--quick]                  one more hop's cost: pipe, Zenoh thread, relay
+nav2-pyif-bench hops [--quick]                  one more hop: pipe, Zenoh thread, relay, router
 nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
 nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
 """
@@ -79,7 +79,9 @@ def main(argv: list[str] | None = None) -> int:
         "checkers", help="the control cycle with Python goal and progress checkers"
     )
     checkers_bench.add_arguments(checkers)
-    hops = sub.add_parser("hops", help="what one more hop costs: worker pipe, Zenoh thread, relay")
+    hops = sub.add_parser(
+        "hops", help="what one more hop costs: worker pipe, Zenoh thread, relay, router"
+    )
     hop_bench.add_arguments(hops)
     layer = sub.add_parser("layer", help="a Python costmap layer on a 400 x 400 grid at 5 Hz")
     layer_bench.add_arguments(layer)

@@ -9,7 +9,15 @@
   client through a first process's listening session — the route a worker's own Zenoh
   queryable would take behind a host the plugin connects to. The client is in client mode,
   as the C++ plugin's zenoh-pico is (and as every other row's client); ``gossip``: the same
-  with a peer client, which learns the second process's own endpoint and connects to it.
+  with a peer client, which learns the second process's own endpoint and connects to it;
+- behind a Zenoh router (the default deployment: the host a peer of the router, the plugin a
+  client of it; ``routed_peer`` has the two serving processes): ``routed``, a queryable
+  replying in its own process (the cycle with the planner in the host, or a worker owning
+  the call path with no supervisor watching); ``routed_pipe``, the host's queryable relaying
+  through the call pipe to a worker process (today's crash isolation); ``routed_guard``, the
+  worker's own queryable replying while the host's queryable holds each query until the
+  worker's done-notice (issue 15 item 1 with the supervisor still able to answer a query the
+  worker dies on), the client asking with consolidation NONE and taking the first reply.
 
 Each in a tight loop and at a real control rate (rows spread over the period), with a
 300-byte request like compute_velocity_commands'.
@@ -41,7 +49,13 @@ ROWS = {
     "callback": "Zenoh get -> callback queryable",
     "relayed": "Zenoh get -> queryable behind a listening peer",
     "gossip": "  the same from a peer client (direct by gossip)",
+    "routed": "router -> queryable replying in its own process",
+    "routed_pipe": "router -> host -> pipe -> worker (today's isolation)",
+    "routed_guard": "router -> worker's own queryable, host guarding",
 }
+
+
+ROUTED = ("routed", "routed_pipe", "routed_guard")
 
 
 def _echo(conn: Connection, framed: bool) -> None:
@@ -93,9 +107,17 @@ def _open(endpoint: str, mode: str, wait: float = 30.0) -> zenoh.Session:
 
 
 def _timed_get(session: zenoh.Session, key: str) -> int:
-    """Round trip [ns] of one get; raises TimeoutError unless a reply came."""
+    """Round trip [ns] of one get until its first reply (consolidation NONE, every
+    queryable asked, as a guarded worker needs); raises TimeoutError unless a reply came."""
     start = time.perf_counter_ns()
-    for reply in session.get(key, payload=REQUEST, timeout=2.0):
+    replies = session.get(
+        key,
+        payload=REQUEST,
+        timeout=2.0,
+        target=zenoh.QueryTarget.ALL,
+        consolidation=zenoh.ConsolidationMode.NONE,
+    )
+    for reply in replies:
         if reply.ok is not None:
             return time.perf_counter_ns() - start
     raise TimeoutError(f"nothing answered {key}")
@@ -128,12 +150,17 @@ def paced(rows: dict[str, Callable[[], int]], calls: int, rate: float) -> dict[s
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    channel, callback, relay = (f"tcp/127.0.0.1:{free_port()}" for _ in range(3))
+    channel, callback, relay, router = (f"tcp/127.0.0.1:{free_port()}" for _ in range(4))
+    routed = ["-m", "nav2_pyif_bench.routed_peer", "--connect", router]
     peers = {
+        "router": ["-m", "nav2_pyif.tools.main", "router", "--listen", router],
         "channel": _bare("hop/channel", "--listen", channel),
         "callback": _bare("hop/callback", "--listen", callback, "--callback"),
         "relay": _bare("hop/relay", "--listen", relay),
         "relayed": _bare("hop/relayed", "--connect", relay),
+        "routed": _bare("hop/routed", "--connect", router),
+        "routed_pipe": [*routed, "--key", "hop/routed_pipe", "--way", "pipe"],
+        "routed_guard": [*routed, "--key", "hop/routed_guard", "--way", "guard"],
     }
     pipe, connection = PipeEcho(framed=True), PipeEcho(framed=False)
     sessions: list[zenoh.Session] = []
@@ -144,6 +171,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
             for endpoint, mode in ((channel, "client"), (callback, "client"), (relay, "client")):
                 sessions.append(_open(endpoint, mode))
             sessions.append(_open(relay, "peer"))
+            sessions.append(_open(router, "client"))
             rows: dict[str, Callable[[], int]] = {
                 "pipe": pipe,
                 "connection": connection,
@@ -151,6 +179,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                 "callback": _answered(sessions[1], "hop/callback"),
                 "relayed": _answered(sessions[2], "hop/relayed"),
                 "gossip": _answered(sessions[3], "hop/relayed"),
+                **{k: _answered(sessions[4], f"hop/{k}") for k in ROUTED},
             }
             tight = interleaved(rows, args.rounds, args.calls, "tight loop")
             at_rate = paced(rows, args.paced_calls, args.rate)
@@ -179,8 +208,17 @@ def report(results: dict[str, Any]) -> str:
         f"{t['relayed'].median_us - t['channel'].median_us:+.1f} µs median tight, "
         f"{p['relayed'].median_us - p['channel'].median_us:+.1f} µs at the rate; the pipe "
         f"hop it would replace: {t['pipe'].median_us:.1f} / {p['pipe'].median_us:.1f} µs",
+        "  behind a router, against today's isolation (routed_pipe): a worker owning the call "
+        f"path guarded {_ratio(t, 'routed_guard')} tight, {_ratio(p, 'routed_guard')} at the "
+        f"rate; unguarded {_ratio(t, 'routed')} tight, {_ratio(p, 'routed')} at the rate",
     ]
     return "\n".join(lines)
+
+
+def _ratio(rows: dict[str, Summary], name: str) -> str:
+    """``name``'s median and p99 as fractions of routed_pipe's."""
+    base, row = rows["routed_pipe"], rows[name]
+    return f"{row.median_us / base.median_us:.2f}x median, {row.p99_us / base.p99_us:.2f}x p99"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
