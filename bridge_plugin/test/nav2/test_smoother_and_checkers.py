@@ -161,7 +161,11 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     sent = {key.rsplit("/", 1)[1]: after[key] - before.get(key, 0) for key in after}
     cycles = sent["general_goal_checker"]
     assert cycles > 40, sent  # 20 Hz for a few seconds
-    assert sent["progress_checker"] <= 2 + cycles // 10, sent  # its reset, and rare misses
+    # The progress check goes alone at its reset and when TF moved on between the goal
+    # check's pose lookup and the next one: 1-3 of 162 in some runs, 22-36 in others, as the
+    # sim's 50 Hz TF and the 20 Hz loop lock in phase (BENCHMARKS.md, "Goal and progress
+    # checkers"). Without carrying, it goes alone every cycle.
+    assert sent["progress_checker"] < cycles // 4, sent
     queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
     assert queries < 1.5 * cycles, sent  # 3 a cycle without carrying
     print(f"queries during FollowPath: {sent}, {queries / cycles:.2f} per control cycle")
