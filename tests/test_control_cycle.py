@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import msgpack
+import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif.client import (
     ControlCycle,
@@ -12,6 +14,7 @@ from nav2_pyif.client import (
     GoalCheckerClient,
     ProgressCheckerClient,
 )
+from nav2_pyif_protocol.keys import KeySpace
 
 from tests.conftest import make_costmap
 from tests.test_smoother_and_checker_hosts import GENEROUS, no_costmap, pose, stamped
@@ -54,6 +57,15 @@ def one_host(start_host: Any) -> dict[str, Any]:
     return dict.fromkeys((CONTROLLER, GOAL, PROGRESS), host)
 
 
+def queries_by_key(session: Any) -> dict[str, int]:
+    """The queries the host answered on each of the three keys (what `nav2-pyif hosts` shows)."""
+    counts = {}
+    for key in (CONTROLLER, GOAL, PROGRESS):
+        replies = list(session.get(KeySpace(key).admin_info, timeout=5.0))
+        counts[key] = msgpack.unpackb(replies[0].ok.payload.to_bytes())["queries"]
+    return counts
+
+
 def calls(cmd: Any) -> int:
     return int(cmd.twist.angular.z)  # EchoController counts its compute_velocity_commands
 
@@ -79,19 +91,25 @@ def test_one_query_per_cycle_when_one_host_serves_all_three(
     assert calls(alone) == 4
 
 
+@pytest.mark.parametrize("lag", [0.0, 0.01], ids=["same pose", "TF moved on"])
 def test_no_progress_stops_the_cycle_before_the_controller(
-    start_host: Any, zsession_factory: Any
+    start_host: Any, zsession_factory: Any, lag: float
 ) -> None:
+    """``lag``: Nav2's second pose lookup is that much newer than the goal check's, so the
+    check goes on its own carrying the command (which ran only when making progress)."""
     cycle = cycle_on(zsession_factory, one_host(start_host))
     goal = pose(3.0, 0.5)
+    extra = 1 if lag else 0  # the command carried by the goal check, run and unused
     robot = stamped(0.5, 0.5, 100.0)
     assert not cycle.is_goal_reached(robot, goal, Twist())
+    robot = stamped(0.5, 0.5, 100.0 + lag)
     assert cycle.check(robot)
-    assert calls(cycle.compute_velocity_commands(robot, Twist())) == 1
-    stuck = stamped(0.6, 0.5, 111.0)  # 11 s later, 0.1 m on: no progress
-    assert not cycle.is_goal_reached(stuck, goal, Twist())
+    assert calls(cycle.compute_velocity_commands(robot, Twist())) == 1 + extra
+    assert not cycle.is_goal_reached(stamped(0.6, 0.5, 111.0), goal, Twist())
+    stuck = stamped(0.6, 0.5, 111.0 + lag)  # 11 s later, 0.1 m on: no progress
     assert not cycle.check(stuck)  # controller_server throws FailedToMakeProgress here
-    assert calls(cycle.controller.compute_velocity_commands(stuck, Twist())) == 2
+    # no command ran in this cycle: the controller's next call follows the first cycle's
+    assert calls(cycle.controller.compute_velocity_commands(stuck, Twist())) == 2 + extra
 
 
 def test_other_inputs_or_another_host_fall_back_to_calls_of_their_own(
@@ -110,9 +128,34 @@ def test_other_inputs_or_another_host_fall_back_to_calls_of_their_own(
     assert cycle.check(robot)
     assert calls(cycle.compute_velocity_commands(robot, Twist())) == 1
     assert (cycle.carried_used, cycle.sent_alone) == (1, 1)
-    # Nav2 looked the pose up again and it moved: both calls go on their own
+    # Nav2 looked the pose up again and it moved: the check goes on its own, carrying the
+    # command prepared for the moved pose, which its host (not the controller's) cannot run
     assert not cycle.is_goal_reached(robot, goal, Twist())
     moved = stamped(0.7, 0.5, 100.1)
     assert cycle.check(moved)
     assert calls(cycle.compute_velocity_commands(moved, Twist())) == 2
     assert (cycle.carried_used, cycle.sent_alone) == (1, 3)
+
+
+def test_a_pose_that_moved_after_the_goal_check_costs_two_queries_not_three(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    hosts = one_host(start_host)
+    cycle = cycle_on(zsession_factory, hosts)
+    goal = pose(3.0, 0.5)
+    tolerances = cycle.goal_checker.get_tolerances()
+    session = zsession_factory(hosts[CONTROLLER].endpoint)
+    before = queries_by_key(session)
+    for step in range(3):
+        robot = stamped(0.5 + 0.3 * step, 0.5, 100.0 + step)
+        moved = stamped(0.55 + 0.3 * step, 0.5, 100.02 + step)  # TF moved on meanwhile
+        assert not cycle.is_goal_reached(robot, goal, Twist(), tolerances)
+        assert cycle.check(moved)
+        cmd = cycle.compute_velocity_commands(moved, Twist(), tolerances)
+        # the controller ran for the goal check's pose (carried, unused) and for the moved
+        # one (carried by the check): the command is the moved pose's, in Nav2's order
+        assert calls(cmd) == 2 * (step + 1)
+    # each cycle: the goal check's query and the check's, the command answered from the latter
+    assert (cycle.carried_used, cycle.sent_alone) == (3, 3)
+    sent = {k: v - before[k] for k, v in queries_by_key(session).items()}
+    assert sent == {GOAL: 3, PROGRESS: 3, CONTROLLER: 0}, sent

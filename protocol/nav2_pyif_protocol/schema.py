@@ -192,6 +192,18 @@ _CONFIGURE_REQUEST = (
 )
 
 #: op -> (request body fields, reply body fields)
+# The controller's call carried in a goal check's or a progress check's request
+# (PROTOCOL.md section 15).
+_THEN_COMPUTE = (
+    _f("then_compute_key", STR, "key prefix of the controller to run next", False),
+    _f(
+        "then_compute",
+        BIN,
+        "an encoded compute_velocity_commands request for then_compute_key",
+        False,
+    ),
+)
+
 BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     Op.CONFIGURE: (
         _CONFIGURE_REQUEST,
@@ -304,13 +316,7 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             # The rest of the control cycle, carried along (PROTOCOL.md section 15).
             _f("then_check_key", STR, "key prefix of the progress checker to run next", False),
             _f("then_check", BIN, "an encoded check request for then_check_key", False),
-            _f("then_compute_key", STR, "key prefix of the controller to run next", False),
-            _f(
-                "then_compute",
-                BIN,
-                "an encoded compute_velocity_commands request for then_compute_key",
-                False,
-            ),
+            *_THEN_COMPUTE,
         ),
         (
             _f("reached", BOOL, "the goal is reached"),
@@ -332,8 +338,16 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         ),
     ),
     Op.CHECK: (
-        (_f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),),
-        (_f("making_progress", BOOL, "check()'s return: false = failed to make progress"),),
+        (
+            _f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),
+            # The command, carried when the goal check's carried calls did not fit
+            # (PROTOCOL.md section 15).
+            *_THEN_COMPUTE,
+        ),
+        (
+            _f("making_progress", BOOL, "check()'s return: false = failed to make progress"),
+            _f("then_compute", BIN, "the encoded reply to then_compute, when it ran", False),
+        ),
     ),
     Op.UPDATE_BOUNDS: (
         (

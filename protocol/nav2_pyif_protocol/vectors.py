@@ -250,6 +250,19 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     )
     yield "get_tolerances_request", req(Op.GET_TOLERANCES, {}, seq=14), "empty body"
     yield "check_request", req(Op.CHECK, {"pose": pose(3.0, -1.0, 1.0, "odom")}, seq=15), ""
+    yield (
+        "check_carrying_the_command",
+        req(
+            Op.CHECK,
+            {
+                "pose": pose(1.0, 2.0, 0.5, "odom"),
+                "then_compute_key": "nav2_pyif/robot1/FollowPath",
+                "then_compute": compute,
+            },
+            seq=92,
+        ),
+        "TF moved on since the goal check: the check carries the command (encoded request)",
+    )
     bounds = {"robot_x": 1.5, "robot_y": -0.5, "robot_yaw": 0.25}
     bounds.update(min_x=1e30, min_y=1e30, max_x=-1e30, max_y=-1e30)
     yield "update_bounds_request", req(Op.UPDATE_BOUNDS, bounds, seq=17), "no bounds yet"
@@ -380,6 +393,12 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         Op.CHECK,
         ok(Op.CHECK, {"making_progress": False}, seq=15),
         "failed to make progress",
+    )
+    yield (
+        "check_reply_carrying_the_command",
+        Op.CHECK,
+        ok(Op.CHECK, {"making_progress": True, "then_compute": carried["then_compute"]}, seq=92),
+        "making progress: the carried command's reply (encoded)",
     )
     errors = [
         (

@@ -62,6 +62,7 @@ bool CarriedCycle::is_goal_reached(
     std::lock_guard<std::mutex> lock(mutex_);
     check_.reset();  // a previous cycle's, unused: Nav2 went another way
     compute_.reset();
+    command_inputs_ = CommandInputs{velocity, tolerances};
     if (progress_checker_ != nullptr) {
       if (auto carried = progress_checker_->prepare_check(pose)) {
         then_check = CarriedCall{progress_checker_->keys().prefix(), carried->payload};
@@ -105,6 +106,38 @@ std::optional<bool> CarriedCycle::take_check(
   std::lock_guard<std::mutex> lock(mutex_);
   ++(answer ? carried_used_ : sent_alone_);
   return answer;
+}
+
+bool CarriedCycle::check(ProgressCheckerSession & session, const proto::PoseStamped & pose)
+{
+  if (const std::optional<bool> carried = take_check(session, pose)) {
+    return *carried;
+  }
+  std::optional<PendingCompute> compute;
+  std::optional<CarriedCall> then_compute;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::optional<CommandInputs> inputs = std::exchange(command_inputs_, std::nullopt);
+    const bool still_fits = compute_ && same_pose(compute_->prepared.pose, pose);
+    if (inputs && controller_ != nullptr && !still_fits) {
+      compute_.reset();  // prepared for the goal check's pose
+      if (auto prepared = controller_->prepare_command(pose, inputs->velocity, inputs->tolerances))
+      {
+        then_compute = CarriedCall{controller_->keys().prefix(), prepared->carried.payload};
+        compute = PendingCompute{controller_, std::move(*prepared), std::nullopt};
+      }
+    }
+  }
+  if (!then_compute) {
+    return session.check(pose);
+  }
+  CheckReplies replies = session.check(pose, std::move(then_compute));
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (compute && compute->session == controller_) {
+    compute->reply = std::move(replies.compute);
+    compute_ = std::move(compute);
+  }
+  return replies.making_progress;
 }
 
 std::optional<proto::TwistStamped> CarriedCycle::take_compute(

@@ -60,6 +60,20 @@ bool ProgressCheckerSession::check(const proto::PoseStamped & pose)
   return call_for<proto::CheckReply>(body).making_progress;
 }
 
+CheckReplies ProgressCheckerSession::check(
+  const proto::PoseStamped & pose, std::optional<CarriedCall> then_compute)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::CheckRequest body;
+  body.pose = pose;
+  if (then_compute) {
+    body.then_compute_key = std::move(then_compute->key);
+    body.then_compute = std::move(then_compute->payload);
+  }
+  auto reply = call_for<proto::CheckReply>(body);
+  return {reply.making_progress, std::move(reply.then_compute)};
+}
+
 std::optional<Carried> ProgressCheckerSession::prepare_check(const proto::PoseStamped & pose)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());

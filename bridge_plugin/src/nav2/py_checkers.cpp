@@ -111,11 +111,10 @@ bool PyProgressChecker::check(geometry_msgs::msg::PoseStamped & current_pose)
     [&]() {
       const protocol::PoseStamped pose = ros::to_wire(current_pose);
       client::ProgressCheckerSession & session = plugin_.session();
-      // The answer the goal check's query carried, when it was prepared for this pose
+      // The answer the goal check's query carried, when it was prepared for this pose;
+      // else a check that carries the command
       client::CarriedCycle * cycle = session.cycle();
-      const std::optional<bool> carried =
-        cycle ? cycle->take_check(session, pose) : std::nullopt;
-      return carried ? *carried : session.check(pose);
+      return cycle ? cycle->check(session, pose) : session.check(pose);
     });
 }
 

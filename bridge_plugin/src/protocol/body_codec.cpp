@@ -407,16 +407,28 @@ void write(Writer & w, const GetTolerancesReply & value, const FieldPath &)
 
 void write(Writer & w, const CheckRequest & value, const FieldPath & where)
 {
-  w.map(1);
+  w.map(std::size_t{1} + (value.then_compute_key ? 1u : 0u) + (value.then_compute ? 1u : 0u));
   w.key("pose");
   write(w, value.pose, where.key("pose"));
+  if (value.then_compute_key) {
+    w.key("then_compute_key");
+    w.str(*value.then_compute_key, where.key("then_compute_key"));
+  }
+  if (value.then_compute) {
+    w.key("then_compute");
+    w.bin(*value.then_compute);
+  }
 }
 
 void write(Writer & w, const CheckReply & value, const FieldPath &)
 {
-  w.map(1);
+  w.map(std::size_t{1} + (value.then_compute ? 1u : 0u));
   w.key("making_progress");
   w.boolean(value.making_progress);
+  if (value.then_compute) {
+    w.key("then_compute");
+    w.bin(*value.then_compute);
+  }
 }
 
 void write(Writer & w, const UpdateBoundsRequest & value, const FieldPath &)
@@ -861,6 +873,8 @@ CheckRequest read_check_request(const Object & object, const FieldPath & where)
   const MapReader m(object, where);
   CheckRequest out;
   out.pose = m.required("pose", read_pose_stamped);
+  out.then_compute_key = m.optional("then_compute_key", read_str);
+  out.then_compute = m.optional("then_compute", read_bin);
   return out;
 }
 
@@ -869,6 +883,7 @@ CheckReply read_check_reply(const Object & object, const FieldPath & where)
   const MapReader m(object, where);
   CheckReply out;
   out.making_progress = m.required("making_progress", read_bool);
+  out.then_compute = m.optional("then_compute", read_bin);
   return out;
 }
 
@@ -1176,10 +1191,14 @@ std::size_t payload_size(const GetTolerancesReply &) {return 0;}
 
 std::size_t payload_size(const CheckRequest & value)
 {
-  return payload_size(value.pose);
+  return payload_size(value.pose) + (value.then_compute_key ? (*value.then_compute_key).size() : 0)
+           + (value.then_compute ? (*value.then_compute).size() : 0);
 }
 
-std::size_t payload_size(const CheckReply &) {return 0;}
+std::size_t payload_size(const CheckReply & value)
+{
+  return (value.then_compute ? (*value.then_compute).size() : 0);
+}
 
 std::size_t payload_size(const UpdateBoundsRequest &) {return 0;}
 

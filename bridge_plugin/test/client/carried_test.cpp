@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "fakes.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
@@ -180,6 +181,73 @@ TEST_F(CarriedTest, TheCycleUsesACarriedAnswerOnceAndForgetsALeavingSession)
   EXPECT_FALSE(cycle->take_compute(*session, pose_at(1.0, 1.0), kVelocity, kTolerances));
   session.reset();  // destroyed: leaves the cycle, which then prepares nothing for it
   EXPECT_EQ(cycle->carried_used(), 0u);
+}
+
+TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
+{
+  SessionConfig config;
+  config.node = "controller_server";
+  config.global_frame = "odom";
+  config.timeouts.call = 2s;
+  config.key_prefix = "nav2_pyif/test_robot/goal_checker";
+  config.name = "goal_checker";
+  GoalCheckerSession goal_checker(config, host, costmap, log.logger());
+  config.key_prefix = "nav2_pyif/test_robot/progress_checker";
+  config.name = "progress_checker";
+  ProgressCheckerSession progress_checker(config, host, costmap, log.logger());
+  goal_checker.configure();
+  progress_checker.configure();
+  auto cycle = CarriedCycle::of("/carried_test_moved_pose");
+  session->join(cycle);
+  progress_checker.join(cycle);
+  cycle->use_controller(*session);
+  cycle->use_progress_checker(progress_checker);
+  const std::array<double, 7> goal{3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  auto moved = pose_at(1.05, 1.0);  // TF moved on between Nav2's two pose lookups
+  moved.stamp_ns += 20000000;
+
+  std::size_t before = host.received.size();
+  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
+    kTolerances));
+  EXPECT_TRUE(cycle->check(progress_checker, moved));
+  const auto cmd = cycle->take_compute(*session, moved, kVelocity, kTolerances);
+  ASSERT_TRUE(cmd.has_value());
+  EXPECT_EQ(cmd->twist[5], 2.0);  // its second run: the first was for the goal check's pose
+  // two queries, not three: the command came in the check's reply
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"is_goal_reached", "check"}));
+  EXPECT_EQ(host.carried_ops, (std::vector<std::string>{"check", "compute_velocity_commands",
+    "compute_velocity_commands"}));
+  const proto::Request & check = host.last();
+  ASSERT_TRUE(std::get<proto::CheckRequest>(check.body).then_compute_key.has_value());
+  EXPECT_EQ(*std::get<proto::CheckRequest>(check.body).then_compute_key, kKey);
+
+  // Another velocity than the goal check's (odometry moved on too): the command goes alone.
+  before = host.received.size();
+  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
+    kTolerances));
+  EXPECT_TRUE(cycle->check(progress_checker, moved));
+  std::array<double, 6> faster = kVelocity;
+  faster[0] += 0.01;
+  EXPECT_FALSE(cycle->take_compute(*session, moved, faster, kTolerances));
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"is_goal_reached", "check"}));
+
+  // No progress: Nav2 stops there, and so did the host: the carried command did not run.
+  host.making_progress = false;
+  host.carried_ops.clear();
+  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
+    kTolerances));
+  EXPECT_FALSE(cycle->check(progress_checker, moved));
+  EXPECT_EQ(host.carried_ops, (std::vector<std::string>{"check"}));
+  EXPECT_FALSE(cycle->take_compute(*session, moved, kVelocity, kTolerances));
+
+  // The same pose as the goal check's: its carried answers are used, nothing more is sent.
+  host.making_progress = true;
+  before = host.received.size();
+  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
+    kTolerances));
+  EXPECT_TRUE(cycle->check(progress_checker, pose_at(1.0, 1.0)));
+  EXPECT_TRUE(cycle->take_compute(*session, pose_at(1.0, 1.0), kVelocity, kTolerances));
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"is_goal_reached"}));
 }
 
 }  // namespace

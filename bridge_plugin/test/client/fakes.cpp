@@ -280,6 +280,13 @@ proto::Reply FakeHost::error(
   return reply;
 }
 
+proto::Bytes FakeHost::carried(Replica & replica, const std::string & id, const proto::Bytes & bytes)
+{
+  const proto::Request request = proto::decode_request(bytes);
+  carried_ops.emplace_back(proto::op_name(request.op()));
+  return proto::encode_reply(handle(replica, id, request, Duration{0}));
+}
+
 proto::Reply FakeHost::handle(
   Replica & replica, const std::string & id, const proto::Request & request, Duration elapsed)
 {
@@ -383,6 +390,28 @@ proto::Reply FakeHost::handle(
           nan_once = false;
         }
         reply.outcome = proto::ReplyBody{proto::ComputeVelocityCommandsReply{cmd, std::nullopt}};
+        break;
+      }
+    case proto::Op::IsGoalReached: {
+        const auto & body = std::get<proto::IsGoalReachedRequest>(request.body);
+        proto::IsGoalReachedReply out;
+        if (body.then_check) {
+          out.then_check = carried(replica, id, *body.then_check);
+        }
+        if (body.then_compute && making_progress) {
+          out.then_compute = carried(replica, id, *body.then_compute);
+        }
+        reply.outcome = proto::ReplyBody{out};
+        break;
+      }
+    case proto::Op::Check: {
+        const auto & body = std::get<proto::CheckRequest>(request.body);
+        proto::CheckReply out;
+        out.making_progress = making_progress;
+        if (body.then_compute && making_progress) {
+          out.then_compute = carried(replica, id, *body.then_compute);
+        }
+        reply.outcome = proto::ReplyBody{out};
         break;
       }
     case proto::Op::Cancel:

@@ -111,6 +111,7 @@ public:
     std::string answered_by;
   };
   std::vector<Received> received;
+  std::vector<std::string> carried_ops;  // op names of the requests other queries carried
   std::vector<std::string> ops() const;  // op names of `received`, in order
   std::vector<std::string> ops_since(std::size_t index) const;
   const protocol::Request & last() const {return received.back().request;}
@@ -125,6 +126,7 @@ public:
   bool nan_once{false};                      // the next command has vx = NaN (host not checking)
   std::optional<protocol::Bytes> raw_reply_once;  // the next reply is these bytes
   bool transport_error_once{false};          // the next query throws (a broken Zenoh session)
+  bool making_progress{true};                // what progress checks answer (goals: not reached)
 
   // What one session knows, echoed by compute_velocity_commands.
   struct Session
@@ -153,6 +155,8 @@ private:
   protocol::Reply error(
     const std::string & id, const protocol::Request & request, std::string type,
     std::string message);
+  // A request carried in another's query (PROTOCOL.md section 15), answered as on its own.
+  protocol::Bytes carried(Replica & replica, const std::string & id, const protocol::Bytes & bytes);
 
   FakeClock & clock_;
   HostWatcher watcher_;

@@ -8,7 +8,9 @@ pose and velocity; the host runs them in that order, as far as Nav2 would go. Wh
 makes those calls with the inputs they were prepared for (it looks the pose up again, which
 is nearly always the same), their carried replies are used: one round trip per cycle. With
 other inputs, or when a carried call did not run (another host, an unknown session), the call
-goes on its own, so the results are always those of Nav2's order.
+goes on its own, so the results are always those of Nav2's order. When TF moved on between
+the goal check's pose and the progress check's, the progress check goes on its own carrying
+the command, prepared for its pose (Nav2 gives both the same pose): two round trips.
 """
 
 from __future__ import annotations
@@ -32,6 +34,9 @@ class _Pending:
     compute_body: dict[str, Any]
     check: tuple[Carried, bytes | None] | None
     compute: tuple[Carried, bytes | None] | None
+    # The goal check's velocity, tolerances, inputs and debug_wanted: the command's inputs
+    # other than the pose, for a command the progress check carries instead.
+    compute_inputs: tuple[Any, ...]
 
 
 class ControlCycle:
@@ -70,15 +75,8 @@ class ControlCycle:
             if check is not None:
                 body["then_check_key"] = self.progress_checker.keys.prefix
                 body["then_check"] = check.payload
-        compute_body = self.controller.compute_body(
-            pose, velocity, tolerances, inputs, debug_wanted
-        )
-        compute = self.controller._prepare(
-            Op.COMPUTE_VELOCITY_COMMANDS, compute_body, with_costmap=True
-        )
-        if compute is not None:
-            body["then_compute_key"] = self.controller.keys.prefix
-            body["then_compute"] = compute.payload
+        compute_inputs = (velocity, tolerances, inputs, debug_wanted)
+        compute_body, compute = self._carry_compute(body, pose, compute_inputs)
         self._pending = None
         reply = self.goal_checker._call(Op.IS_GOAL_REACHED, body)
         self._pending = _Pending(
@@ -86,9 +84,23 @@ class ControlCycle:
             compute_body,
             None if check is None else (check, reply.get("then_check")),
             None if compute is None else (compute, reply.get("then_compute")),
+            compute_inputs,
         )
         reached: bool = reply["reached"]
         return reached
+
+    def _carry_compute(
+        self, body: dict[str, Any], pose: Any, compute_inputs: tuple[Any, ...]
+    ) -> tuple[dict[str, Any], Carried | None]:
+        """The command's body for ``pose``, and its request added to ``body`` to be carried."""
+        compute_body = self.controller.compute_body(pose, *compute_inputs)
+        compute = self.controller._prepare(
+            Op.COMPUTE_VELOCITY_COMMANDS, compute_body, with_costmap=True
+        )
+        if compute is not None:
+            body["then_compute_key"] = self.controller.keys.prefix
+            body["then_compute"] = compute.payload
+        return compute_body, compute
 
     def check(self, pose: Any) -> bool:
         """The progress checker's ``check(pose)``."""
@@ -100,9 +112,23 @@ class ControlCycle:
         body = self.progress_checker._settle(*carried) if carried else None
         if body is None:
             self.sent_alone += 1
-            return self.progress_checker.check(pose)
+            if pending is None:
+                return self.progress_checker.check(pose)
+            return self._check_carrying_the_command(pose, pending)
         self.carried_used += 1
         progress: bool = body["making_progress"]
+        return progress
+
+    def _check_carrying_the_command(self, pose: Any, pending: _Pending) -> bool:
+        """The check on its own, carrying the command prepared for its pose."""
+        assert self.progress_checker is not None
+        body: dict[str, Any] = {"pose": pose_to_wire(pose)}
+        pending.compute_body, compute = self._carry_compute(body, pose, pending.compute_inputs)
+        pending.compute = None
+        reply = self.progress_checker._call(Op.CHECK, body)
+        if compute is not None:
+            pending.compute = (compute, reply.get("then_compute"))
+        progress: bool = reply["making_progress"]
         return progress
 
     def compute_velocity_commands(

@@ -16,19 +16,15 @@ from typing import Any
 
 import msgpack
 import zenoh
-from nav2_pyif_protocol.constants import Op
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.server.carried import Route, carry_on
+from nav2_pyif.server.carried import CARRIERS, Route, carry_on
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 
 log = logging.getLogger("nav2_pyif.server.host")
-
-
-_IS_GOAL_REACHED = Op.IS_GOAL_REACHED.value
 
 
 def new_host_id() -> str:
@@ -88,8 +84,8 @@ class ServedPlanner:
                 op = str(query.key_expr).rsplit("/", 1)[-1]
                 payload = _payload(query)
                 reply = self.runtime.handle(payload, key_op=op)
-                if op == _IS_GOAL_REACHED and self.route is not None and b"then_" in payload:
-                    reply = carry_on(payload, reply, self.route, self.host_id)
+                if op in CARRIERS and self.route is not None and b"then_" in payload:
+                    reply = carry_on(op, payload, reply, self.route, self.host_id)
                 query.reply(query.key_expr, reply)
             except Exception:
                 log.exception("%s: could not answer a query", self.keys.prefix)

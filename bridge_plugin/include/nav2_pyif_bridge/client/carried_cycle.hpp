@@ -48,6 +48,11 @@ public:
   // call on your own.
   std::optional<bool> take_check(
     ProgressCheckerSession & session, const protocol::PoseStamped & pose);
+  // The progress check of this cycle: the carried answer when it was prepared for `pose`;
+  // else the check on its own, carrying the command prepared for `pose` with the goal check's
+  // velocity and tolerances when TF moved on since the goal check (Nav2 gives the progress
+  // checker and the controller the same pose): two round trips that cycle, not three.
+  bool check(ProgressCheckerSession & session, const protocol::PoseStamped & pose);
   std::optional<protocol::TwistStamped> take_compute(
     ControllerSession & session, const protocol::PoseStamped & pose,
     const std::array<double, 6> & velocity,
@@ -74,8 +79,16 @@ private:
   mutable std::mutex mutex_;
   ControllerSession * controller_{nullptr};
   ProgressCheckerSession * progress_checker_{nullptr};
+  // The goal check's velocity and tolerances: the command's inputs besides the pose.
+  struct CommandInputs
+  {
+    std::array<double, 6> velocity{};
+    std::optional<protocol::GoalChecker> tolerances;
+  };
+
   std::optional<PendingCheck> check_;
   std::optional<PendingCompute> compute_;
+  std::optional<CommandInputs> command_inputs_;  // this cycle's, until the progress check
   std::uint64_t carried_used_{0};
   std::uint64_t sent_alone_{0};
 };

@@ -27,6 +27,13 @@ struct GoalCheckReplies
   std::optional<protocol::Bytes> compute;
 };
 
+// The progress check's answer and the encoded reply of the command it carried, if that ran.
+struct CheckReplies
+{
+  bool making_progress{false};
+  std::optional<protocol::Bytes> compute;
+};
+
 class GoalCheckerSession : public KindSession<PluginKind::GoalChecker>
 {
 public:
@@ -54,6 +61,8 @@ public:
 
   // False when the robot failed to make progress.
   bool check(const protocol::PoseStamped & pose);
+  // The same, carrying the command of the cycle; the host runs it when Nav2 would (progress).
+  CheckReplies check(const protocol::PoseStamped & pose, std::optional<CarriedCall> then_compute);
   // The same call prepared for the goal check's query to carry; std::nullopt when the
   // session cannot prepare one now.
   std::optional<Carried> prepare_check(const protocol::PoseStamped & pose);

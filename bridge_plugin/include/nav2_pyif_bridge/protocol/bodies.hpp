@@ -238,12 +238,18 @@ struct CheckRequest
 {
   // robot pose, in the costmap's global frame
   PoseStamped pose;
+  // optional: key prefix of the controller to run next
+  std::optional<std::string> then_compute_key;
+  // optional: an encoded compute_velocity_commands request for then_compute_key
+  std::optional<std::vector<std::uint8_t>> then_compute;
 };
 
 struct CheckReply
 {
   // check()'s return: false = failed to make progress
   bool making_progress{false};
+  // optional: the encoded reply to then_compute, when it ran
+  std::optional<std::vector<std::uint8_t>> then_compute;
 };
 
 // --- update_bounds -------------------------------------------------------------------------------

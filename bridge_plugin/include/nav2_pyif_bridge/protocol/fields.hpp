@@ -266,12 +266,15 @@ template<class Visit>
 void for_each_field(const CheckRequest & value, Visit && visit)
 {
   visit("pose", value.pose);
+  visit("then_compute_key", value.then_compute_key);
+  visit("then_compute", value.then_compute);
 }
 
 template<class Visit>
 void for_each_field(const CheckReply & value, Visit && visit)
 {
   visit("making_progress", value.making_progress);
+  visit("then_compute", value.then_compute);
 }
 
 template<class Visit>
