@@ -18,7 +18,9 @@ from __future__ import annotations
 
 import argparse
 import collections
+import contextlib
 import multiprocessing
+import os
 import signal
 import threading
 from multiprocessing.connection import Connection
@@ -31,13 +33,23 @@ from nav2_pyif.server.frames import FramedPipe
 
 def _echo_worker(conn: Connection) -> None:
     pipe = FramedPipe(conn)
-    while message := pipe.recv():
-        pipe.send(message[:0])
+    with contextlib.suppress(EOFError, OSError):  # the host is gone: so is its worker
+        while message := pipe.recv():
+            pipe.send(message[:0])
+
+
+def _exit_with_the_host(pipe: FramedPipe) -> None:
+    """The host never writes to its owning worker: a read ends only when the host is gone
+    (even by SIGKILL, which leaves it no time to stop its children)."""
+    with contextlib.suppress(EOFError, OSError):
+        pipe.recv()
+    os._exit(0)
 
 
 def _owning_worker(conn: Connection, endpoint: str, key: str) -> None:
     """The worker's own queryable: reply, then tell the guard the query is done."""
     pipe = FramedPipe(conn)
+    threading.Thread(target=_exit_with_the_host, args=(pipe,), daemon=True).start()
     session = connect_to([endpoint], mode="peer")
     queryable = session.declare_queryable(key, zenoh.handlers.FifoChannel(256))
     pipe.send(b"ready")
