@@ -128,9 +128,6 @@ bool CarriedCycle::check(ProgressCheckerSession & session, const proto::PoseStam
       }
     }
   }
-  if (!then_compute) {
-    return session.check(pose);
-  }
   CheckReplies replies = session.check(pose, std::move(then_compute));
   std::lock_guard<std::mutex> lock(mutex_);
   if (compute && compute->session == controller_) {

@@ -10,12 +10,7 @@ bool GoalCheckerSession::is_goal_reached(
   const std::array<double, 7> & pose, const std::array<double, 7> & goal,
   const std::array<double, 6> & velocity)
 {
-  std::lock_guard<std::recursive_mutex> lock(mutex());
-  proto::IsGoalReachedRequest body;
-  body.pose = pose;
-  body.goal = goal;
-  body.velocity = velocity;
-  return call_for<proto::IsGoalReachedReply>(body).reached;
+  return is_goal_reached(pose, goal, velocity, std::nullopt, std::nullopt).reached;
 }
 
 GoalCheckReplies GoalCheckerSession::is_goal_reached(
@@ -54,10 +49,7 @@ void GoalCheckerSession::reset()
 
 bool ProgressCheckerSession::check(const proto::PoseStamped & pose)
 {
-  std::lock_guard<std::recursive_mutex> lock(mutex());
-  proto::CheckRequest body;
-  body.pose = pose;
-  return call_for<proto::CheckReply>(body).making_progress;
+  return check(pose, std::nullopt).making_progress;
 }
 
 CheckReplies ProgressCheckerSession::check(
