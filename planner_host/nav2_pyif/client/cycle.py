@@ -106,13 +106,14 @@ class ControlCycle:
         """The progress checker's ``check(pose)``."""
         assert self.progress_checker is not None
         pending = self._pending
-        carried = pending.check if pending and pose_to_wire(pose) == pending.pose else None
+        same_pose = pending is not None and pose_to_wire(pose) == pending.pose
+        carried = pending.check if pending and same_pose else None
         if pending is not None:
             pending.check = None
         body = self.progress_checker._settle(*carried) if carried else None
         if body is None:
             self.sent_alone += 1
-            if pending is None:
+            if pending is None or same_pose:  # the goal check's command still fits
                 return self.progress_checker.check(pose)
             return self._check_carrying_the_command(pose, pending)
         self.carried_used += 1
