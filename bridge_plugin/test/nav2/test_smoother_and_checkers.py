@@ -162,7 +162,7 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     cycles = sent["general_goal_checker"]
     assert cycles > 40, sent  # 20 Hz for a few seconds
     # The progress check goes on its own at its reset and in cycles where TF moved on between
-    # the goal check's pose lookup and the next one (2-32 % of them here: BENCHMARKS.md, "Goal
+    # the goal check's pose lookup and the next one (2-35 % of them here: BENCHMARKS.md, "Goal
     # and progress checkers"). Then it carries the command, so those cycles cost two queries.
     # The mechanism is tested call by call in test/client/carried_test.cpp.
     queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
