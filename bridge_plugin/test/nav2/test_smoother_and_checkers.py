@@ -162,9 +162,10 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     cycles = sent["general_goal_checker"]
     assert cycles > 40, sent  # 20 Hz for a few seconds
     # The progress check goes on its own at its reset and in cycles where TF moved on between
-    # the goal check's pose lookup and the next one (2-35 % of them here: BENCHMARKS.md, "Goal
-    # and progress checkers"). Then it carries the command, so those cycles cost two queries.
-    # The mechanism is tested call by call in test/client/carried_test.cpp.
+    # the goal check's pose lookup and the next one (1-50 % of them here, as the sim's 50 Hz TF
+    # and the 20 Hz loop lock in phase: BENCHMARKS.md, "Goal and progress checkers"). Then it
+    # carries the command, so those cycles cost two queries; a fully locked phase (50 %) costs
+    # 1.51 and fails this target. The mechanism is tested call by call in carried_test.cpp.
     queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
     assert queries < 1.5 * cycles, sent  # 3 a cycle without carrying
     print(f"queries during FollowPath: {sent}, {queries / cycles:.2f} per control cycle")
