@@ -15,8 +15,8 @@ from nav2_pyif_protocol import cpp_codec, cpp_errors, generate, schema
 from nav2_pyif_protocol.constants import (
     ERRORS_BY_PLUGIN,
     GENERIC_ERROR,
+    HOST_FAILURE_ERROR,
     INVALID_ERROR,
-    TIMED_OUT_ERROR,
     Op,
     PluginType,
 )
@@ -125,7 +125,7 @@ def test_the_cpp_error_tables_say_what_constants_py_says() -> None:
         assert own == {e.value for e in ERRORS_BY_PLUGIN[plugin]}, plugin
     for table, expected in (
         ("kGenericError", GENERIC_ERROR),
-        ("kTimedOutError", TIMED_OUT_ERROR),
+        ("kHostFailureError", HOST_FAILURE_ERROR),
         ("kInvalidError", INVALID_ERROR),
     ):
         assert rows(table) == [f"ErrorKind::{expected[p].value}" for p in PluginType], table

@@ -261,7 +261,7 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
   }
   if (!transport_.hosts_alive()) {
     fail(
-      generic_error(config_.kind), Cause::NoHost,
+      host_failure_error(config_.kind), Cause::NoHost,
       "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +
       keys_.prefix() + " ...); " + op_text + " not sent");
   }
@@ -437,12 +437,12 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
     throw;
   } catch (const std::exception & error) {
     fail(
-      generic_error(config_.kind), Cause::Transport,
+      host_failure_error(config_.kind), Cause::Transport,
       op_text + " on " + keys_.prefix() + ": Zenoh query failed: " + error.what());
   }
   if (!answer) {
     fail(
-      timed_out_error(config_.kind), Cause::TimedOut,
+      host_failure_error(config_.kind), Cause::TimedOut,
       op_text + " got no reply from " + keys_.prefix() + " within " + milliseconds(timeout) +
       " ms");
   }

@@ -35,7 +35,7 @@ from nav2_pyif_protocol.schema import BODIES
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import HostWatcher
 from nav2_pyif.costmap import Costmap
-from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, timed_out_error
+from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, host_failure_error
 from nav2_pyif.params import ParamValue
 
 log = logging.getLogger("nav2_pyif.client")
@@ -56,9 +56,16 @@ class Timeouts:
 
 def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
     """The exception a plugin raises for an error reply: the named nav2_core class when it
-    belongs to this plugin type, the generic one otherwise (protocol errors included)."""
+    belongs to this plugin type; for ``Unavailable`` (the host's worker crashed, is restarting
+    or overran its deadline) the host-failure one, which Nav2 recovers from; the generic one
+    otherwise (the other protocol errors included)."""
     named = {e.value for e in ERRORS_BY_PLUGIN[plugin_type]}
-    cls = NAV2_EXCEPTIONS[error.type] if error.type in named else generic_error(plugin_type)
+    if error.type in named:
+        cls = NAV2_EXCEPTIONS[error.type]
+    elif error.type == ErrorType.UNAVAILABLE.value:
+        cls = host_failure_error(plugin_type)
+    else:
+        cls = generic_error(plugin_type)
     message = error.message if error.type in named else f"[{error.type}] {error.message}"
     return cls(message, remote_traceback=error.traceback, python_type=error.python_type)
 
@@ -285,7 +292,7 @@ class PluginClient:
             )
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
         if not alive:
-            raise generic_error(self.plugin_type)(
+            raise host_failure_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
                 f"--key {self.keys.prefix} ...); {op.value} not sent"
             )
@@ -349,7 +356,7 @@ class PluginClient:
         elapsed = time.perf_counter_ns() - start
         if sample is None:
             self._record(request, elapsed, 0, len(payload), False)
-            raise timed_out_error(self.plugin_type)(
+            raise host_failure_error(self.plugin_type)(
                 f"{request.op.value} got no reply from {self.keys.prefix} within "
                 f"{timeout * 1000:.0f} ms"
             )

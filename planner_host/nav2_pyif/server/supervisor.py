@@ -27,7 +27,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import msgpack
-from nav2_pyif_protocol.constants import TIMED_OUT_ERROR, ErrorType, Op, PluginType
+from nav2_pyif_protocol.constants import ErrorType, Op, PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.frames import FramedPipe
@@ -286,9 +286,13 @@ class SupervisedPlanner:
                     f"restarted unless it returns within {self.deadlines.hang_grace:g} s"
                 )
                 self._wake.set()
+                # Unavailable, not the plugin type's TimedOut: the hang is the host's to
+                # handle (it restarts the worker), and the plugin turns Unavailable into
+                # the exception Nav2 recovers from; ControllerTimedOut would end the
+                # navigation (constants.HOST_FAILURE_ERROR).
                 return self._error(
                     payload,
-                    TIMED_OUT_ERROR[self.plugin_type],
+                    ErrorType.UNAVAILABLE,
                     f"{self.label}.{op} overran its {deadline:g} s deadline",
                 )
             self.journal.note(op, payload, reply)
