@@ -2,7 +2,8 @@
 
 Rules (PROTOCOL.md, "Client behaviour"):
 1. No host alive on the prefix (liveliness): fail at once, no query is sent.
-2. No reply within the op's timeout: ControllerTimedOut / PlannerTimedOut.
+2. No reply within the op's timeout, no host alive, or Unavailable: the plugin type's
+   host-failure exception (NoValidControl for a controller), which Nav2 recovers from.
 3. SessionUnknown: the host restarted (or another replica answered). Bump the epoch, re-send
    configure (with the costmap), activate if active, then the subclass's state (plan, speed
    limit), then retry the call once.

@@ -132,7 +132,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=float,
         default=1.0,
         metavar="SECONDS",
-        help="control-loop calls running longer are answered with ControllerTimedOut (default 1.0)",
+        help="control-loop calls running longer are answered Unavailable, which the plugin "
+        "throws as NoValidControl (default 1.0)",
     )
     safety.add_argument(
         "--plan-deadline",

@@ -4,7 +4,7 @@
   session is restored on the new one from the journal; meanwhile calls are answered at once
   with a typed ``Unavailable`` error naming the cause, never left hanging.
 - A worker that crash-loops is restarted with exponential back-off, and says so.
-- A call that overruns its deadline is answered with ControllerTimedOut / PlannerTimedOut; a
+- A call that overruns its deadline is answered with Unavailable (the plugin's host failure); a
   worker that does not come back within the grace period (stuck in native code) is killed
   and restarted.
 - ``reload`` swaps in a new planner (or a fresh import of the same one) on a live key: the
