@@ -180,42 +180,27 @@ def test_a_killed_and_restarted_controller_host_costs_at_most_one_recovery(
     assert max(r.recoveries for r in runs) <= 1, runs
 
 
-def _set_fault(stack: dict[str, Any], kind: str, seconds: float = 1.0) -> Callable[[], None]:
+def _fault_once(stack: dict[str, Any], kind: str, seconds: float = 1.0) -> Callable[[], None]:
+    """Start FaultPursuit's ``kind`` for ``seconds`` through `ros2 param set`, then set the
+    fault back to none (so that the next run's set is a change again)."""
     client = stack["client"]
 
     def fault() -> None:
-        for name, value in (("fault_for", seconds), ("fault", kind)):
+        for name, value in (("fault_for", seconds), ("fault", kind), ("fault", "none")):
             ok, reason = client.set_parameter("controller_server", f"FollowPath.{name}", value)
             assert ok, reason
 
     return fault
 
 
-def _clear_fault(stack: dict[str, Any]) -> None:
-    ok, reason = stack["client"].set_parameter("controller_server", "FollowPath.fault", "none")
-    assert ok, reason
-
-
 def test_a_controller_hanging_past_its_deadline(stack: dict[str, Any]) -> None:
-    fault = _set_fault(stack, "hang")
-
-    def hang_once() -> None:
-        fault()
-        _clear_fault(stack)  # the next run's set is a change again
-
-    runs = _runs(stack, hang_once)
+    runs = _runs(stack, _fault_once(stack, "hang"))
     _record("hang", runs)
     assert max(r.recoveries for r in runs) <= 1, runs
 
 
 def test_a_controller_raising_no_valid_control_for_a_second(stack: dict[str, Any]) -> None:
-    fault = _set_fault(stack, "no_valid_control", 1.0)
-
-    def one_second() -> None:
-        fault()
-        _clear_fault(stack)
-
-    runs = _runs(stack, one_second)
+    runs = _runs(stack, _fault_once(stack, "no_valid_control", 1.0))
     _record("no_valid_control", runs)
     # inside failure_tolerance: controller_server holds the robot and keeps the goal
     assert max(r.recoveries for r in runs) == 0, runs
