@@ -38,26 +38,17 @@ std::string milliseconds(Duration d)
 
 Duration Timeouts::for_op(proto::Op op) const noexcept
 {
-  switch (op) {
-    case proto::Op::Configure:
+  switch (proto::timeout_class(op)) {  // schema.py OP_TIMEOUT, generated
+    case proto::TimeoutClass::Configure:
       return configure;
-    case proto::Op::ComputeVelocityCommands:
-    case proto::Op::SetPlan:
-    case proto::Op::SetSpeedLimit:
-    case proto::Op::Cancel:
-    case proto::Op::IsGoalReached:  // the checkers: every control cycle
-    case proto::Op::GetTolerances:
-    case proto::Op::Check:
-    case proto::Op::UpdateBounds:  // the costmap layer: every costmap update
-    case proto::Op::UpdateCosts:
-    case proto::Op::MatchSize:
+    case proto::TimeoutClass::Call:
       return call;
-    case proto::Op::CreatePlan:
-    case proto::Op::Smooth:
+    case proto::TimeoutClass::Plan:
       return plan;
-    default:
-      return lifecycle;
+    case proto::TimeoutClass::Lifecycle:
+      break;
   }
+  return lifecycle;
 }
 
 std::string new_session_id()

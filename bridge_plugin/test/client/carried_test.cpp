@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -181,6 +182,33 @@ TEST_F(CarriedTest, TheCycleUsesACarriedAnswerOnceAndForgetsALeavingSession)
   EXPECT_FALSE(cycle->take_compute(*session, pose_at(1.0, 1.0), kVelocity, kTolerances));
   session.reset();  // destroyed: leaves the cycle, which then prepares nothing for it
   EXPECT_EQ(cycle->carried_used(), 0u);
+}
+
+TEST_F(CarriedTest, TheCheckersResetIsAControlLoopCallNotALifecycleOne)
+{
+  // Nav2 resets the checkers after every goal, inside controller_server's loop: a silent
+  // host may hold it up for the call timeout, never the 5 s lifecycle one (schema.py
+  // OP_TIMEOUT, the same table the reference client and the host read).
+  SessionConfig config;
+  config.node = "controller_server";
+  config.timeouts.call = 40ms;
+  config.timeouts.lifecycle = 5s;
+  config.key_prefix = "nav2_pyif/test_robot/goal_checker";
+  config.name = "goal_checker";
+  GoalCheckerSession goal_checker(config, host, costmap, log.logger());
+  config.key_prefix = "nav2_pyif/test_robot/progress_checker";
+  config.name = "progress_checker";
+  ProgressCheckerSession progress_checker(config, host, costmap, log.logger());
+  goal_checker.configure();
+  progress_checker.configure();
+  host.call_time = 100s;
+  for (const auto & reset : std::vector<std::function<void()>>{
+      [&] {goal_checker.reset();}, [&] {progress_checker.reset();}})
+  {
+    const Duration before = clock.elapsed();
+    EXPECT_THROW(reset(), CallError);
+    EXPECT_EQ(clock.elapsed() - before, Duration{40ms});
+  }
 }
 
 TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)

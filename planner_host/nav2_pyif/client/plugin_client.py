@@ -31,7 +31,7 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
-from nav2_pyif_protocol.schema import BODIES
+from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT
 
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import HostWatcher
@@ -183,25 +183,9 @@ class PluginClient:
         }
 
     def _timeout(self, op: Op) -> float:
-        if op is Op.CONFIGURE:
-            return self.timeouts.configure
-        if op in (
-            Op.COMPUTE_VELOCITY_COMMANDS,
-            Op.SET_PLAN,
-            Op.SET_SPEED_LIMIT,
-            Op.CANCEL,
-            Op.RESET,
-            Op.IS_GOAL_REACHED,
-            Op.GET_TOLERANCES,
-            Op.CHECK,
-            Op.UPDATE_BOUNDS,
-            Op.UPDATE_COSTS,
-            Op.MATCH_SIZE,
-        ):  # Nav2 calls reset after every goal: it must not stall an abort
-            return self.timeouts.call
-        if op in (Op.CREATE_PLAN, Op.SMOOTH):
-            return self.timeouts.plan
-        return self.timeouts.lifecycle
+        # Timeouts' fields are named after the classes of schema.py's one table.
+        timeout: float = getattr(self.timeouts, OP_TIMEOUT[op].value)
+        return timeout
 
     # --- replicas: several hosts may serve one key; this plugin talks to exactly one ------
     def _pin_host(self, alive: frozenset[str]) -> None:

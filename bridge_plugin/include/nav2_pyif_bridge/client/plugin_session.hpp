@@ -48,13 +48,14 @@
 namespace nav2_pyif_bridge::client
 {
 
-// How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults).
+// How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults). Which
+// one bounds an op is schema.py's OP_TIMEOUT (protocol::timeout_class).
 struct Timeouts
 {
-  // compute_velocity_commands, set_plan, set_speed_limit, cancel, and the checkers'
-  // is_goal_reached, get_tolerances, check: below the control period.
+  // The control loop's ops (compute_velocity_commands, set_plan, set_speed_limit, cancel,
+  // reset, the checkers' and the costmap layer's): below the control period.
   Duration call{std::chrono::milliseconds(40)};
-  // activate, deactivate, cleanup, set_parameters, reset, cancel_plan.
+  // activate, deactivate, cleanup, set_parameters, cancel_plan.
   Duration lifecycle{std::chrono::seconds(5)};
   // configure: imports, JIT compilation.
   Duration configure{std::chrono::seconds(10)};
