@@ -197,6 +197,7 @@ class PluginClient:
             Op.UPDATE_BOUNDS,
             Op.UPDATE_COSTS,
             Op.MATCH_SIZE,
+            Op.ON_CYCLE_UPDATE,
         ):  # Nav2 calls reset after every goal: it must not stall an abort
             return self.timeouts.call
         if op in (Op.CREATE_PLAN, Op.SMOOTH):
