@@ -111,9 +111,10 @@ def arc(
     x: float, y: float, yaw: float, vx: float, wz: float, duration: float, dt: float
 ) -> FloatArray:
     """Poses (N, 3) — x, y [m], yaw [rad] — of a robot driving ``vx`` [m/s], ``wz`` [rad/s]
-    from (x, y, yaw) for ``duration`` [s], every ``dt`` [s] from ``dt`` on (DriveOnHeading's
-    simulate-ahead, exact for arcs)."""
-    t = np.arange(1, max(1, math.ceil(duration / dt - 1e-9)) + 1) * dt
+    from (x, y, yaw), every ``dt`` [s] from ``dt`` on, the last one at ``duration`` [s]
+    (DriveOnHeading's simulate-ahead; exact for arcs)."""
+    n = max(1, math.ceil(duration / dt - 1e-9))
+    t = np.minimum(np.arange(1, n + 1) * dt, max(duration, dt))
     heading = yaw + wz * t
     if abs(wz) < 1e-9:
         xs, ys = x + vx * t * math.cos(yaw), y + vx * t * math.sin(yaw)
