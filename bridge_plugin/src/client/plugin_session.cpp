@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <random>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -15,16 +16,22 @@ namespace proto = protocol;
 namespace
 {
 
-// The costmap rides in these three requests only.
+template<class T, class = void>
+struct HasCostmap : std::false_type {};
+template<class T>
+struct HasCostmap<T, std::void_t<decltype(std::declval<T &>().costmap)>> : std::true_type {};
+
+// The costmap rides in every request schema.py gives a costmap field (configure,
+// compute_velocity_commands, create_plan, smooth, on_run, on_cycle_update): found from the
+// generated structs, not listed here (a hand list had left out smooth's).
 void attach_costmap(proto::RequestBody & body, proto::Costmap costmap)
 {
-  if (auto * configure = std::get_if<proto::ConfigureRequest>(&body)) {
-    configure->costmap = std::move(costmap);
-  } else if (auto * compute = std::get_if<proto::ComputeVelocityCommandsRequest>(&body)) {
-    compute->costmap = std::move(costmap);
-  } else if (auto * plan = std::get_if<proto::CreatePlanRequest>(&body)) {
-    plan->costmap = std::move(costmap);
-  }
+  std::visit(
+    [&costmap](auto & request) {
+      if constexpr (HasCostmap<std::decay_t<decltype(request)>>::value) {
+        request.costmap = std::move(costmap);
+      }
+    }, body);
 }
 
 std::string milliseconds(Duration d)

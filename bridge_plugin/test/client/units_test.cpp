@@ -12,6 +12,7 @@
 #include "nav2_pyif_bridge/client/command_check.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 #include "nav2_pyif_bridge/client/keys.hpp"
+#include "nav2_pyif_bridge/client/smoother_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
 {
@@ -349,6 +350,27 @@ TEST(HostWatcher, WakesARealWaiterFromAnotherThread)
   EXPECT_TRUE(watcher.wait_for_any(10s));
   EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);
   zenoh.join();
+}
+
+// --- The costmap rides in every request that has the field ------------------------------------
+
+TEST(CostmapDelivery, AChangedCostmapRidesInTheSmoothersRequest)
+{
+  // smooth's costmap was left out of a hand-written list: smoother_server's costmap reached
+  // the Python smoother only at configure.
+  FakeClock clock;
+  FakeHost host{clock};  // answers smooth with BadRequest: only the request matters here
+  GridCostmap costmap;
+  SessionConfig config;
+  config.key_prefix = "nav2_pyif/test_robot/simple_smoother";
+  config.name = "simple_smoother";
+  SmootherSession session(config, host, costmap);
+  session.configure();
+  costmap.resolution = 0.1;
+  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 0.1);});
+  const auto & smooth = std::get<proto::SmoothRequest>(host.last().body);
+  ASSERT_TRUE(smooth.costmap.has_value());
+  EXPECT_EQ(smooth.costmap->resolution, 0.1);
 }
 
 }  // namespace

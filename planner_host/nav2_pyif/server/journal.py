@@ -29,6 +29,8 @@ STATE_OPS = frozenset(
         Op.SET_PARAMETERS,
         Op.SET_PLAN,
         Op.SET_SPEED_LIMIT,
+        Op.ON_RUN,
+        Op.ON_ACTION_COMPLETION,
     }
 )
 
@@ -47,6 +49,8 @@ class SessionRecord:
     params: dict[str, Any] = field(default_factory=dict)
     plan: dict[str, Any] | None = None
     speed_limit: dict[str, Any] | None = None
+    # A behaviour's running action: its on_run, replayed so a new worker goes on with it.
+    behavior_run: dict[str, Any] | None = None
     version: int = 0  # bumped on every change: a hot swap replays what changed meanwhile
 
     def replay(self) -> list[Request]:
@@ -60,6 +64,8 @@ class SessionRecord:
             requests.append(Request(Op.SET_PLAN, self.sid, self.epoch, 0, self.plan))
         if self.speed_limit is not None:
             requests.append(Request(Op.SET_SPEED_LIMIT, self.sid, self.epoch, 0, self.speed_limit))
+        if self.behavior_run is not None:
+            requests.append(Request(Op.ON_RUN, self.sid, self.epoch, 0, self.behavior_run))
         return requests
 
 
@@ -92,11 +98,12 @@ class Journal:
             request = decode_request(payload)
         except Exception:
             return
-        rejected = (answer.get("body") or {}).get("rejected") or {}
+        reply_body = answer.get("body") or {}
+        rejected = reply_body.get("rejected") or {}
         with self._lock:
-            self._apply(request, rejected)
+            self._apply(request, rejected, reply_body.get("status"))
 
-    def _apply(self, request: Request, rejected: dict[str, str]) -> None:
+    def _apply(self, request: Request, rejected: dict[str, str], status: Any = None) -> None:
         op, body = request.op, request.body
         if op is Op.CONFIGURE:
             self._sessions[request.sid] = SessionRecord(request.sid, request.epoch, dict(body))
@@ -115,6 +122,10 @@ class Journal:
             record.plan = body
         elif op is Op.SET_SPEED_LIMIT:
             record.speed_limit = body
+        elif op is Op.ON_RUN:
+            record.behavior_run = body if status == "succeeded" else None
+        elif op is Op.ON_ACTION_COMPLETION:
+            record.behavior_run = None
         if "costmap" in body:
             record.configure["costmap"] = body["costmap"]
 

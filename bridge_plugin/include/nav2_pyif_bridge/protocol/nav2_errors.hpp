@@ -24,8 +24,9 @@ enum class PluginKind : std::uint8_t
   GoalChecker,
   ProgressChecker,
   CostmapLayer,
+  Behavior,
 };
-inline constexpr std::size_t kPluginKindCount = 6;
+inline constexpr std::size_t kPluginKindCount = 7;
 
 // Wire names, by PluginKind.
 inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames = {
@@ -35,6 +36,7 @@ inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames
   "goal_checker",
   "progress_checker",
   "costmap_layer",
+  "behavior",
 };
 
 // The nav2_core exception classes of Jazzy and Kilted, by name; the names are also the wire's
@@ -134,6 +136,7 @@ inline constexpr std::array<std::uint32_t, kPluginKindCount> kOwnErrors = {
   0x00000001u,  // goal_checker
   0x00000001u,  // progress_checker
   0x00000001u,  // costmap_layer
+  0x00000001u,  // behavior
 };
 
 // Each plugin type's catch-all exception, by PluginKind.
@@ -141,6 +144,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kGenericError = {
   ErrorKind::ControllerException,
   ErrorKind::PlannerException,
   ErrorKind::SmootherException,
+  ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
@@ -155,6 +159,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kHostFailureError = {
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
 };
 
 // Each plugin type's exception when it cannot be configured, by PluginKind.
@@ -162,6 +167,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kInvalidError = {
   ErrorKind::InvalidController,
   ErrorKind::InvalidPlanner,
   ErrorKind::InvalidSmoother,
+  ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,

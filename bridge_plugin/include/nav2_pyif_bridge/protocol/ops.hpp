@@ -38,9 +38,12 @@ enum class Op : std::uint8_t
   UpdateBounds,  // costmap_layer
   UpdateCosts,  // costmap_layer
   MatchSize,  // costmap_layer
+  OnRun,  // behavior
+  OnCycleUpdate,  // behavior
+  OnActionCompletion,  // behavior
 };
 
-inline constexpr std::size_t kOpCount = 19;
+inline constexpr std::size_t kOpCount = 22;
 
 inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "configure",
@@ -62,6 +65,9 @@ inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "update_bounds",
   "update_costs",
   "match_size",
+  "on_run",
+  "on_cycle_update",
+  "on_action_completion",
 };
 
 constexpr std::string_view op_name(Op op) noexcept
@@ -99,6 +105,9 @@ inline constexpr std::array<TimeoutClass, kOpCount> kOpTimeout = {
   TimeoutClass::Call,  // update_bounds
   TimeoutClass::Call,  // update_costs
   TimeoutClass::Call,  // match_size
+  TimeoutClass::Lifecycle,  // on_run
+  TimeoutClass::Call,  // on_cycle_update
+  TimeoutClass::Lifecycle,  // on_action_completion
 };
 
 constexpr TimeoutClass timeout_class(Op op) noexcept
