@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import subprocess
 import time
 from pathlib import Path
@@ -21,7 +22,7 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 
-from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.conftest import FIXTURES, child_pids, free_port, make_costmap
 from tests.podman.support import (
     ROOT,
     Unavailable,
@@ -149,7 +150,10 @@ def test_compose_router_and_host_serve_the_mounted_planners(
         # Crash the host process from outside: the restart policy brings the container back.
         container = f"{project}_planner-host_1"
         pid = podman("inspect", "--format", "{{.State.Pid}}", container).stdout.strip()
-        subprocess.run(["pkill", "-KILL", "-P", pid], check=True)
+        children = child_pids(int(pid))  # the host under the container's init
+        assert children, f"no process under the container's init {pid}"
+        for child in children:
+            os.kill(child, signal.SIGKILL)
         assert controller.hosts.wait_for(lambda alive: not alive, 20)
         assert controller.wait_for_host(60), _logs(container)
         cmd = controller.compute_velocity_commands(pose(0.5, 0.5), Twist())
