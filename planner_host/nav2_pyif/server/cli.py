@@ -29,6 +29,7 @@ from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import check_roles, parse_delegates
 from nav2_pyif.ros_types import check_serialization_rmw
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
+from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
 from nav2_pyif.server.spec import PlannerSpec
@@ -62,7 +63,7 @@ examples:
   NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
       NAV2_PYIF_CONNECT=tcp/router:7447 planner-host
 
-signals:
+signals (to this host only: --pid-file FILE, then kill -HUP "$(cat FILE)"):
   SIGHUP          re-import every planner (fresh workers; sessions carry over)
   SIGINT, SIGTERM stop: workers and the Zenoh session are closed, exit code 130 / 143
                   (SIGHUP before the host serves stops it too: 129)
@@ -174,6 +175,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     add_zenoh_arguments(parser)
     parser.add_argument(
+        "--pid-file",
+        type=Path,
+        metavar="FILE",
+        help="write the host's process id to FILE once it serves, for a signal sent to this "
+        'host only (kill -HUP "$(cat FILE)": reload every planner); removed on exit',
+    )
+    parser.add_argument(
         "--log-level",
         default="INFO",
         choices=["DEBUG", "INFO", "WARNING", "ERROR"],
@@ -280,6 +288,8 @@ def main(argv: list[str] | None = None) -> int:
         signal.signal(signum, on_signal)
     if args.reload_allow and not args.allow_remote_reload:
         parser.error("--reload-allow needs --allow-remote-reload")
+    if args.pid_file and not os.access(args.pid_file.parent, os.W_OK):
+        parser.error(f"--pid-file {args.pid_file}: its directory is missing or not writable")
     try:
         specs = collect_specs(args, parser)
         services = start_services(specs, host_id, args)
@@ -310,6 +320,8 @@ def main(argv: list[str] | None = None) -> int:
                 "s"[: len(services) > 1],
                 args.isolation,
             )
+            if args.pid_file:
+                write_pid_file(args.pid_file)
         reach = ReachWatch(session, *configured_endpoints(options))
         while not stopped_by:
             if not stop.wait(1.0):
@@ -323,6 +335,8 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         # Close explicitly on every path: an open session keeps the process alive. Services
         # not yet served (a signal during start-up) are closed too: no worker outlives us.
+        if args.pid_file:
+            remove_pid_file(args.pid_file)
         host.close()
         for service in services:
             service.close()

@@ -123,8 +123,8 @@ def main(argv: list[str] | None = None) -> int:
     elif rest:
         parser.error(f"unrecognized arguments: {' '.join(rest)}")
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
-    raise_on_signals()  # every command cleans up and exits 128 + signum on a signal
     try:
+        raise_on_signals()  # every command cleans up and exits 128 + signum on a signal
         code: int = args.func(args)
     except Interrupted as exc:
         print(f"nav2-pyif: stopped by {exc.name}", file=sys.stderr)
