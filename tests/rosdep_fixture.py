@@ -58,7 +58,7 @@ DEPENDENCY_TAGS = (
 #: What every build machine has anyway (build-essential's C library); not listed.
 TOOLCHAIN_PACKAGES = {"libc6-dev", "libc-dev"}
 UBUNTU_UNAVAILABLE = (
-    "Ubuntu's archive (archive.ubuntu.com, packages.ubuntu.com) is not reachable from the "
+    "Ubuntu's archive is not reachable from the "
     "machine this was recorded on, and no file list of these Ubuntu packages was found in the "
     "searchable copies of public pages; none is recorded rather than one guessed from Debian's"
 )
