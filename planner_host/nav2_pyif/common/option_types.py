@@ -81,8 +81,8 @@ def endpoint(text: str) -> str:
         match = _HOST_PORT.match(address)
         if match is None or int(match.group(2)) > 65535:
             raise argparse.ArgumentTypeError(
-                f"{text!r}: the address of a {protocol} endpoint is HOST:PORT with a port "
-                f"in 0-65535, e.g. {protocol}/127.0.0.1:7447 or {protocol}/[::1]:7447"
+                f"{text!r}: expected {protocol}/HOST:PORT with a port in 0-65535, e.g. "
+                f"{protocol}/127.0.0.1:7447 or {protocol}/[::1]:7447"
             )
     return text.strip()
 
