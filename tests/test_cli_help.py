@@ -121,13 +121,29 @@ def tool(*args: str) -> subprocess.CompletedProcess[str]:
     )
 
 
-@pytest.mark.parametrize("command", ["sim", "reload --key k/a", "hosts", "router"])
+@pytest.mark.parametrize(
+    "command",
+    [
+        "nav2-pyif sim",
+        "nav2-pyif reload --key k/a",
+        "nav2-pyif hosts",
+        "nav2-pyif router",
+        "nav2-pyif-bench fleet",
+        "nav2-pyif-bench host --key k/a",
+    ],
+)
 def test_an_unknown_option_shows_the_command_s_own_usage(command: str) -> None:
-    done = tool(*command.split(), "--bogus")
-    name = command.split()[0]
+    module = {"nav2-pyif": "nav2_pyif.tools.main", "nav2-pyif-bench": "nav2_pyif_bench.cli"}
+    program, name, *args = command.split()
+    done = subprocess.run(
+        [sys.executable, "-m", module[program], name, *args, "--bogus"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert done.returncode == 2, done.stderr
-    assert done.stderr.startswith(f"usage: nav2-pyif {name} "), done.stderr
-    assert f"nav2-pyif {name}: error: unrecognized arguments: --bogus" in done.stderr
+    assert done.stderr.startswith(f"usage: {program} {name} "), done.stderr
+    assert f"{program} {name}: error: unrecognized arguments: --bogus" in done.stderr
 
 
 def test_sim_help_explains_the_goal_and_each_plugin_s_parameters() -> None:

@@ -131,7 +131,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args, rest = parser.parse_known_args(argv)
+    if rest:  # the benchmark's own usage: the options it does take
+        benchmarks = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+        benchmarks.choices[args.bench].error(f"unrecognized arguments: {' '.join(rest)}")
     raise_on_signals()  # SIGINT/SIGTERM/SIGHUP: every peer process stopped, exit 128 + signum
     try:
         return run(args)
