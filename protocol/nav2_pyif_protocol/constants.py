@@ -162,7 +162,7 @@ ERRORS_BY_PLUGIN = {
     # the error and keeps its last costs. ControllerException only names the failure here.
     PluginType.COSTMAP_LAYER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
 }
-#: The catch-all exception of each plugin type, its timeout and its configure failure.
+#: The catch-all exception of each plugin type, its host failure and its configure failure.
 GENERIC_ERROR = {
     PluginType.CONTROLLER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_EXCEPTION,
@@ -171,13 +171,23 @@ GENERIC_ERROR = {
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
 }
-TIMED_OUT_ERROR = {
-    PluginType.CONTROLLER: ErrorType.CONTROLLER_TIMED_OUT,
-    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_TIMED_OUT,
-    PluginType.SMOOTHER: ErrorType.SMOOTHER_TIMED_OUT,
-    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
-    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
-    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_TIMED_OUT,
+#: What a plugin throws when its host failed it rather than the planner: no host alive, no
+#: reply in time, a broken connection, or an ``Unavailable`` reply (the worker crashed and is
+#: restarting, or overran its deadline). Chosen so that Nav2's own behaviour-tree conditions
+#: send the navigation to a recovery (RELIABILITY.md, "Which exception a host failure
+#: becomes"): Jazzy, Kilted and Lyrical's WouldAControllerRecoveryHelp accepts
+#: NO_VALID_CONTROL and UNKNOWN but not CONTROLLER_TIMED_OUT, and controller_server's
+#: ``failure_tolerance`` holds the robot still and retries through NoValidControl only;
+#: WouldAPlannerRecoveryHelp and WouldASmootherRecoveryHelp accept UNKNOWN (the generic
+#: exceptions). On Humble every one of them is PlannerException, which its BT always recovers.
+#: A planner's own typed errors (a planner raising ControllerTimedOut) pass through as raised.
+HOST_FAILURE_ERROR = {
+    PluginType.CONTROLLER: ErrorType.NO_VALID_CONTROL,
+    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_EXCEPTION,
+    PluginType.SMOOTHER: ErrorType.SMOOTHER_EXCEPTION,
+    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
 }
 INVALID_ERROR = {
     PluginType.CONTROLLER: ErrorType.INVALID_CONTROLLER,

@@ -11,6 +11,7 @@ the C++ message structs and their codec (bridge_plugin/) and as PROTOCOL.md's fi
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 from typing import Final
 
 from nav2_pyif_protocol.constants import Op
@@ -402,4 +403,40 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         ),
         (),
     ),
+}
+
+
+class Timeout(str, Enum):
+    """Which of a plugin's timeouts (and of a host's deadlines) bounds an op: the values are
+    the parameter names of both (PROTOCOL.md section 8)."""
+
+    CALL = "call"  # the control loop's: below the controller period
+    LIFECYCLE = "lifecycle"
+    CONFIGURE = "configure"  # imports, JIT compilation
+    PLAN = "plan"  # create_plan and smooth may take seconds
+
+
+#: Each op's timeout class: the one table the Python client, the C++ client (generated into
+#: ops.hpp) and the host's deadlines read. ``reset`` is a control-loop call for every plugin
+#: type: Nav2 calls it after every goal, and an abort must not wait on it.
+OP_TIMEOUT: dict[Op, Timeout] = {
+    Op.CONFIGURE: Timeout.CONFIGURE,
+    Op.ACTIVATE: Timeout.LIFECYCLE,
+    Op.DEACTIVATE: Timeout.LIFECYCLE,
+    Op.CLEANUP: Timeout.LIFECYCLE,
+    Op.SET_PARAMETERS: Timeout.LIFECYCLE,
+    Op.SET_PLAN: Timeout.CALL,
+    Op.COMPUTE_VELOCITY_COMMANDS: Timeout.CALL,
+    Op.SET_SPEED_LIMIT: Timeout.CALL,
+    Op.CANCEL: Timeout.CALL,
+    Op.RESET: Timeout.CALL,
+    Op.CREATE_PLAN: Timeout.PLAN,
+    Op.CANCEL_PLAN: Timeout.LIFECYCLE,
+    Op.SMOOTH: Timeout.PLAN,
+    Op.IS_GOAL_REACHED: Timeout.CALL,
+    Op.GET_TOLERANCES: Timeout.CALL,
+    Op.CHECK: Timeout.CALL,
+    Op.UPDATE_BOUNDS: Timeout.CALL,
+    Op.UPDATE_COSTS: Timeout.CALL,
+    Op.MATCH_SIZE: Timeout.CALL,
 }

@@ -133,8 +133,8 @@ def build_parser() -> argparse.ArgumentParser:
         type=positive_float,
         default=1.0,
         metavar="SECONDS",
-        help="control-loop calls running longer are answered with ControllerTimedOut, > 0 "
-        "(default 1.0)",
+        help="control-loop calls running longer are answered Unavailable, which the plugin "
+        "throws as NoValidControl, > 0 (default 1.0)",
     )
     safety.add_argument(
         "--plan-deadline",

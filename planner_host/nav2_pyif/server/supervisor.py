@@ -4,7 +4,7 @@
   session is restored on the new one from the journal; meanwhile calls are answered at once
   with a typed ``Unavailable`` error naming the cause, never left hanging.
 - A worker that crash-loops is restarted with exponential back-off, and says so.
-- A call that overruns its deadline is answered with ControllerTimedOut / PlannerTimedOut; a
+- A call that overruns its deadline is answered with Unavailable (the plugin's host failure); a
   worker that does not come back within the grace period (stuck in native code) is killed
   and restarted.
 - ``reload`` swaps in a new planner (or a fresh import of the same one) on a live key: the
@@ -27,7 +27,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import msgpack
-from nav2_pyif_protocol.constants import TIMED_OUT_ERROR, ErrorType, Op, PluginType
+from nav2_pyif_protocol.constants import ErrorType, PluginType
+from nav2_pyif_protocol.schema import OP_TIMEOUT
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.frames import FramedPipe
@@ -40,13 +41,10 @@ log = logging.getLogger("nav2_pyif.server.supervisor")
 _SPAWN = multiprocessing.get_context("spawn")  # never fork a process that runs Zenoh threads
 
 
-# Op names as plain strings: Deadlines.of runs on every call, and Enum.value costs an
-# attribute lookup through a descriptor each time.
-_CONFIGURE = Op.CONFIGURE.value
-_PLAN_OPS = frozenset({Op.CREATE_PLAN.value, Op.SMOOTH.value})  # may take seconds
-_LIFECYCLE_OPS = frozenset(
-    op.value for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS)
-)
+# Each op's deadline field by its plain name: Deadlines.of runs on every call, and Enum.value
+# costs an attribute lookup through a descriptor each time (schema.py OP_TIMEOUT: the classes
+# are named after Deadlines' fields).
+_DEADLINE_OF = {op.value: timeout.value for op, timeout in OP_TIMEOUT.items()}
 
 
 @dataclass(frozen=True)
@@ -60,13 +58,8 @@ class Deadlines:
     hang_grace: float = 3.0  # then a worker still busy is killed and restarted
 
     def of(self, op: str) -> float:
-        if op == _CONFIGURE:
-            return self.configure
-        if op in _PLAN_OPS:
-            return self.plan
-        if op in _LIFECYCLE_OPS:
-            return self.lifecycle
-        return self.call
+        deadline: float = getattr(self, _DEADLINE_OF.get(op, "call"))
+        return deadline
 
 
 class WorkerDied(Exception):
@@ -293,9 +286,13 @@ class SupervisedPlanner:
                     f"restarted unless it returns within {self.deadlines.hang_grace:g} s"
                 )
                 self._wake.set()
+                # Unavailable, not the plugin type's TimedOut: the hang is the host's to
+                # handle (it restarts the worker), and the plugin turns Unavailable into
+                # the exception Nav2 recovers from; ControllerTimedOut would end the
+                # navigation (constants.HOST_FAILURE_ERROR).
                 return self._error(
                     payload,
-                    TIMED_OUT_ERROR[self.plugin_type],
+                    ErrorType.UNAVAILABLE,
                     f"{self.label}.{op} overran its {deadline:g} s deadline",
                 )
             self.journal.note(op, payload, reply)

@@ -2,7 +2,7 @@
 // `python -m nav2_pyif_protocol.generate`: do not edit.
 //
 // The plugin types and the nav2_core exceptions each throws (constants.py's ERRORS_BY_PLUGIN,
-// GENERIC_ERROR, TIMED_OUT_ERROR and INVALID_ERROR), as tables the plugin's error mapping
+// GENERIC_ERROR, HOST_FAILURE_ERROR and INVALID_ERROR), as tables the plugin's error mapping
 // (client/error_mapping.cpp) looks up.
 
 #pragma once
@@ -146,14 +146,15 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kGenericError = {
   ErrorKind::ControllerException,
 };
 
-// Each plugin type's exception for a call that got no reply in time, by PluginKind.
-inline constexpr std::array<ErrorKind, kPluginKindCount> kTimedOutError = {
-  ErrorKind::ControllerTimedOut,
-  ErrorKind::PlannerTimedOut,
-  ErrorKind::SmootherTimedOut,
-  ErrorKind::ControllerTimedOut,
-  ErrorKind::ControllerTimedOut,
-  ErrorKind::ControllerTimedOut,
+// Each plugin type's exception when its host failed it (none alive, no reply in time, Unavailable),
+// by PluginKind.
+inline constexpr std::array<ErrorKind, kPluginKindCount> kHostFailureError = {
+  ErrorKind::NoValidControl,
+  ErrorKind::PlannerException,
+  ErrorKind::SmootherException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
 };
 
 // Each plugin type's exception when it cannot be configured, by PluginKind.
