@@ -18,6 +18,7 @@ import zenoh
 from nav2_pyif_protocol.keys import validate_prefix
 
 from nav2_pyif.common.env_defaults import apply_environment, document_environment
+from nav2_pyif.common.option_types import non_negative_float, non_negative_int, positive_float
 from nav2_pyif.common.signals import TERMINATING, exit_code
 from nav2_pyif.common.zenoh_config import (
     add_zenoh_arguments,
@@ -29,6 +30,7 @@ from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import check_roles, parse_delegates
 from nav2_pyif.ros_types import check_serialization_rmw
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
+from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
@@ -84,8 +86,7 @@ def build_parser() -> argparse.ArgumentParser:
     what.add_argument(
         "--planner",
         metavar="MODULE:CLASS",
-        help="a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin or "
-        "ProgressCheckerPlugin subclass, e.g. my_pkg.ctrl:MyController",
+        help=f"a {PLUGIN_BASES_TEXT} subclass, e.g. my_pkg.ctrl:MyController",
     )
     what.add_argument(
         "--module", metavar="MODULE", help="module of plain functions (the seed's python_module)"
@@ -130,32 +131,33 @@ def build_parser() -> argparse.ArgumentParser:
     )
     safety.add_argument(
         "--deadline",
-        type=float,
+        type=positive_float,
         default=1.0,
         metavar="SECONDS",
         help="control-loop calls running longer are answered Unavailable, which the plugin "
-        "throws as NoValidControl (default 1.0)",
+        "throws as NoValidControl, > 0 (default 1.0)",
     )
     safety.add_argument(
         "--plan-deadline",
-        type=float,
+        type=positive_float,
         default=30.0,
         metavar="SECONDS",
-        help="the same for create_plan (default 30)",
+        help="the same for create_plan and smooth, > 0 (default 30)",
     )
     safety.add_argument(
         "--hang-grace",
-        type=float,
+        type=non_negative_float,
         default=3.0,
         metavar="SECONDS",
-        help="a worker still busy this long after a deadline is killed and restarted (default 3.0)",
+        help="a worker still busy this long after a deadline is killed and restarted, >= 0 "
+        "(default 3.0)",
     )
     safety.add_argument(
         "--memory-limit",
-        type=int,
+        type=non_negative_int,
         default=0,
         metavar="MB",
-        help="address-space limit of each worker process; a planner exceeding it gets "
+        help="address-space limit of each worker process, >= 0; a planner exceeding it gets "
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
     )
     swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")

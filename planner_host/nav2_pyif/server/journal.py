@@ -150,15 +150,27 @@ class Journal:
         serving: PluginType,
         lock: AbstractContextManager[Any],
         swap: Callable[[], None],
+        allow_type_change: bool = False,
     ) -> int:
         """Hot swap, all or nothing: replay every session on the new planner (``new``: its
         label and kind) through ``call``, then, holding ``lock`` so that no call changes them
         meanwhile, the sessions changed since, and ``swap()``. Raises PlannerLoadError naming
         the first session and step that failed (nothing swapped). Returns the number of
-        sessions carried over."""
+        sessions carried over.
+
+        A planner of another kind is refused: the Nav2 YAML names the key for one plugin type
+        (a controller's key turned into a global planner's answers nothing its plugin sends).
+        With ``allow_type_change`` it is taken, but only with no live session."""
         label, kind = new
-        if len(self) and kind is not serving:
-            raise PlannerLoadError(f"{label} is a {kind.value}; this key serves a {serving.value}")
+        if kind is not serving and (len(self) or not allow_type_change):
+            why = (
+                f"{len(self)} live session(s) of the {serving.value} would break"
+                if len(self)
+                else "ask for it explicitly (nav2-pyif reload --allow-type-change)"
+            )
+            raise PlannerLoadError(
+                f"{label} is a {kind.value}; this key serves a {serving.value}: {why}"
+            )
         snapshot = self.snapshot()
         _replay_all_or_refuse(snapshot, call, label)
         with lock:

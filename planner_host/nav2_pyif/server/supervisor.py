@@ -234,8 +234,15 @@ class SupervisedPlanner:
         self.plugin_type = worker.wait_loaded(self.deadlines.configure)
         self.worker, self.reason = worker, ""
         self._monitor.start()
-        log.info("%s: worker %s serving %s", self.spec.key, worker.pid, self.label)
+        # Not "serving" yet: a signal may stop the host before it serves; the host says when.
+        log.debug("%s: worker %s loaded %s", self.spec.key, worker.pid, self.label)
         return self
+
+    @property
+    def where(self) -> str:
+        """Where the planner runs, for the host's log."""
+        worker = self.worker
+        return f"worker {worker.pid}" if worker is not None else "no worker"
 
     def close(self) -> None:
         self._closing = True
@@ -404,7 +411,7 @@ class SupervisedPlanner:
         return lambda op, payload: worker.call(op, payload, self.deadlines.of(op))
 
     # --- hot swap ----------------------------------------------------------------------
-    def reload(self, spec: PlannerSpec | None = None) -> str:
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         """Swap in ``spec`` (default: a fresh import of the current planner) on this live
         key. All or nothing: the new worker must load and take every live session (configure,
         activate, parameters, plan, speed limit); otherwise PlannerLoadError says why and the
@@ -427,6 +434,7 @@ class SupervisedPlanner:
                 self.plugin_type,
                 self._lock,
                 swap,
+                allow_type_change,
             )
         except (PlannerLoadError, WorkerDied) as exc:
             worker.kill()
@@ -437,5 +445,4 @@ class SupervisedPlanner:
             f"{self.spec.key}: now serving {new_spec.describe()} "
             f"(worker {worker.pid}, {carried} session(s) carried over)"
         )
-        log.info("%s", message)
-        return message
+        return message  # the host logs it, once, whoever asked (SIGHUP or a remote reload)
