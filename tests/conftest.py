@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -212,3 +213,16 @@ def wait_until(predicate: object, timeout: float = 10.0) -> bool:
             return True
         time.sleep(0.01)
     return False
+
+
+def worker_pid_in(log: str, key: str) -> int | None:
+    """The pid of the worker serving ``key``, newest first, from a planner host's log: its
+    "serving <planner> on <key>/** (<type>, worker <pid>)" line at start and after a swap,
+    and "<key>: worker <pid> restarted" after a restart."""
+    serving = re.compile(rf" on {re.escape(key)}/\*\* \([\w]+, worker (\d+)\)")
+    restarted = re.compile(rf"{re.escape(key)}: worker (\d+) restarted")
+    for line in reversed(log.splitlines()):
+        found = serving.search(line) or restarted.search(line)
+        if found:
+            return int(found.group(1))
+    return None

@@ -32,6 +32,7 @@ from tests.conftest import (
     host_process,
     make_costmap,
     open_client_session,
+    worker_pid_in,
 )
 from tests.test_host_e2e import pose
 
@@ -260,12 +261,7 @@ def test_kill_9_of_the_worker_from_outside(fresh_rig: Rig) -> None:
 
 def worker_pid(rig: Rig) -> int | None:
     """The controller worker's pid, from the host's log (newest first)."""
-    marker = f"{KEY}: worker "
-    for line in reversed(rig.host.log().splitlines()):
-        for token in (" serving ", " restarted"):
-            if marker in line and token in line:
-                return int(line.split(marker)[1].split()[0])
-    return None
+    return worker_pid_in(rig.host.log(), KEY)
 
 
 def test_crash_loop_is_backed_off_and_reported(fresh_rig: Rig) -> None:

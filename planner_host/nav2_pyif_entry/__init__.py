@@ -44,13 +44,21 @@ def run(target: str, prog: str) -> int:
         return SIGINT_EXIT
 
 
+#: Each command's real main, imported once the signals are held.
+TARGETS = {
+    "planner-host": "nav2_pyif.server.cli:main",
+    "nav2-pyif": "nav2_pyif.tools.main:main",
+    "nav2-pyif-bench": "nav2_pyif_bench.cli:main",
+}
+
+
 def planner_host() -> int:
-    return run("nav2_pyif.server.cli:main", "planner-host")
+    return run(TARGETS["planner-host"], "planner-host")
 
 
 def nav2_pyif() -> int:
-    return run("nav2_pyif.tools.main:main", "nav2-pyif")
+    return run(TARGETS["nav2-pyif"], "nav2-pyif")
 
 
 def nav2_pyif_bench() -> int:
-    return run("nav2_pyif_bench.cli:main", "nav2-pyif-bench")
+    return run(TARGETS["nav2-pyif-bench"], "nav2-pyif-bench")

@@ -60,6 +60,7 @@ PLUGIN_BASES = (
     "GoalCheckerPlugin",
     "ProgressCheckerPlugin",
     "CostmapLayer",
+    "Behavior",
 )
 PLUGIN_BASES_TEXT = f"{', '.join(PLUGIN_BASES[:-1])} or {PLUGIN_BASES[-1]}"
 
