@@ -11,6 +11,7 @@ import contextlib
 import os
 import shutil
 import signal
+import socket
 import subprocess
 import time
 from collections.abc import Iterator
@@ -24,7 +25,7 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 
-from tests.conftest import FIXTURES, child_pids, free_port, make_costmap
+from tests.conftest import FIXTURES, child_pids, free_port, make_costmap, wait_until
 from tests.podman.support import (
     IMAGE,
     LOCAL_BASE,
@@ -143,6 +144,8 @@ def test_compose_router_and_host_serve_the_mounted_planners(
     env = podman_env(NAV2_PYIF_IMAGE=image[0], BASE_IMAGE=image[1], NAV2_PYIF_ROUTER_PORT=str(port))
     try:
         _compose(project, env, "up", "--detach")
+        # `up --detach` returns before the router listens (slower on a loaded machine)
+        assert wait_until(lambda: _accepts(port), 60), _logs(f"{project}_router_1")
         # The robot's side, as the C++ plugin connects: a Zenoh client of the router.
         session = zsession_factory(f"tcp/127.0.0.1:{port}", mode="client")
         controller = ControllerClient(
@@ -184,3 +187,10 @@ def test_compose_router_and_host_serve_the_mounted_planners(
         assert restarts.strip() == "1"
     finally:
         _compose(project, env, "down", check=False)
+
+
+def _accepts(port: int) -> bool:
+    """Whether something listens on 127.0.0.1:port (the compose router's published port)."""
+    with socket.socket() as probe:
+        probe.settimeout(1.0)
+        return probe.connect_ex(("127.0.0.1", port)) == 0

@@ -100,4 +100,4 @@ def test_the_command_takes_the_scan_flags(tmp_path: Path) -> None:
         [sys.executable, "-m", "nav2_pyif.tools.main", "sim", "--scan", "--scan-beams", "0"],
         capture_output=True, text=True, timeout=60,
     )  # fmt: skip
-    assert bad.returncode == 2 and "at least one beam" in bad.stderr
+    assert bad.returncode == 2 and "--scan-beams: expected an integer >= 1" in bad.stderr
