@@ -7,9 +7,10 @@ The planner API (what a planner imports)::
     from nav2_pyif import Smoother, GoalCheckerPlugin, ProgressCheckerPlugin, CostmapLayer
     from nav2_pyif import Behavior, Status, Step, Failure  # behavior_server's plugins
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
+    from nav2_pyif import carrot, pose_xy_yaw, wrap, ...  # geometry (nav2_pyif.geometry)
 """
 
-from nav2_pyif.behavior import Behavior, Command, Failure, Status, Step, arc, pose_xy_yaw
+from nav2_pyif.behavior import Behavior, Command, Failure, Status, Step, arc
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.costmap_layer import Combine, CostmapLayer, LayerWindow
@@ -40,6 +41,17 @@ from nav2_pyif.exceptions import (
     SmootherTimedOut,
     StartOccupied,
     StartOutsideMapBounds,
+)
+from nav2_pyif.geometry import (
+    carrot,
+    closest_index,
+    limit_speed,
+    path_xy_yaw,
+    point_at_distance,
+    pose_xy_yaw,
+    remaining_length,
+    wrap,
+    yaw_of,
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
@@ -99,5 +111,13 @@ __all__ = [
     "Status",
     "Step",
     "arc",
+    "carrot",
+    "closest_index",
+    "limit_speed",
+    "path_xy_yaw",
+    "point_at_distance",
     "pose_xy_yaw",
+    "remaining_length",
+    "wrap",
+    "yaw_of",
 ]

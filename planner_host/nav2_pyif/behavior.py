@@ -99,14 +99,6 @@ class Command(Mapping[str, ParamValue]):
         return f"Command({self.action!r}, {self._fields!r})"
 
 
-def pose_xy_yaw(pose: Any) -> tuple[float, float, float]:
-    """x, y [m] and yaw [rad] of a geometry_msgs Pose or PoseStamped."""
-    p = getattr(pose, "pose", pose)
-    q = p.orientation
-    yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-    return float(p.position.x), float(p.position.y), yaw
-
-
 def arc(
     x: float, y: float, yaw: float, vx: float, wz: float, duration: float, dt: float
 ) -> FloatArray:

@@ -219,6 +219,76 @@ class Costmap:
         worst: ByteArray = costs.max(axis=-1)
         return worst
 
+    def obstacle_points(
+        self,
+        threshold: int = 254,
+        edges_only: bool = True,
+        unknown_is_obstacle: bool = False,
+    ) -> FloatArray:
+        """(N, 2) world x, y [m] of the centres of the cells costing ``threshold`` or more,
+        for planners that take obstacles as points (DWA, potential fields, MPC constraints).
+
+        ``edges_only`` keeps only the cells with a free 4-neighbour (or on the map's edge):
+        what a distance check needs, a fraction of the cells of a large obstacle.
+        NO_INFORMATION cells count only with ``unknown_is_obstacle``."""
+        hit = self.data >= threshold
+        if not unknown_is_obstacle:
+            hit &= self.data != self.NO_INFORMATION
+        if edges_only:
+            padded = np.pad(hit, 1, constant_values=False)
+            inside = padded[:-2, 1:-1] & padded[2:, 1:-1] & padded[1:-1, :-2] & padded[1:-1, 2:]
+            hit &= ~inside
+        my, mx = np.nonzero(hit)
+        return self.map_to_world_array(np.stack([mx, my], axis=1))
+
+    # --- the footprint and the inflation's costs ----------------------------------------
+    @property
+    def inscribed_radius(self) -> float:
+        """[m] the largest circle about the robot's centre inside its footprint (Nav2's
+        ``calculateMinAndMaxDistances``); ``robot_radius`` for a round robot."""
+        if len(self.footprint) < 3:
+            return self.robot_radius
+        a, b = self.footprint, np.roll(self.footprint, -1, axis=0)
+        edge = b - a
+        t = np.clip(-(a * edge).sum(axis=1) / np.maximum((edge * edge).sum(axis=1), 1e-12), 0, 1)
+        nearest = a + t[:, None] * edge
+        return float(np.hypot(nearest[:, 0], nearest[:, 1]).min())
+
+    @property
+    def circumscribed_radius(self) -> float:
+        """[m] the smallest circle about the robot's centre holding its footprint."""
+        if len(self.footprint) < 3:
+            return self.robot_radius
+        return float(np.hypot(self.footprint[:, 0], self.footprint[:, 1]).max())
+
+    @classmethod
+    def inflation_cost(
+        cls, distance: npt.ArrayLike, inscribed_radius: float, cost_scaling_factor: float
+    ) -> ByteArray:
+        """The cost Nav2's InflationLayer gives a cell ``distance`` [m] from an obstacle
+        (``computeCost``): LETHAL on it, INSCRIBED within ``inscribed_radius``, then
+        ``252 * exp(-cost_scaling_factor * (distance - inscribed_radius))``. Any shape."""
+        d = np.asarray(distance, dtype=np.float64)
+        decay = (cls.INSCRIBED_INFLATED_OBSTACLE - 1) * np.exp(
+            -cost_scaling_factor * (d - inscribed_radius)
+        )
+        cost = np.where(d <= inscribed_radius, cls.INSCRIBED_INFLATED_OBSTACLE, decay)
+        cost = np.where(d <= 0.0, cls.LETHAL_OBSTACLE, cost)
+        costs: ByteArray = cost.astype(np.uint8)
+        return costs
+
+    def circumscribed_cost(self, cost_scaling_factor: float) -> int:
+        """The cost at the footprint's circumscribed radius, with the inflation layer's
+        ``cost_scaling_factor`` (your Nav2 YAML's; the offline runner's is in ``nav2-pyif
+        sim --help``): a cell costing less cannot touch the robot whatever its heading, so a
+        global planner for a non-round robot that keeps below it plans paths the controller
+        can follow (Nav2's Smac planners and MPPI use this threshold; 253, INSCRIBED, is
+        only right for a round robot)."""
+        cost = self.inflation_cost(
+            self.circumscribed_radius, self.inscribed_radius, cost_scaling_factor
+        )
+        return int(cost)
+
     # --- ROS ----------------------------------------------------------------------------
     def to_occupancy_grid(self) -> Any:
         """A nav_msgs/OccupancyGrid with the raw costs (cast to int8, as Nav2's costmap

@@ -20,8 +20,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import TwistStamped
 from nav2_pyif import Costmap, NoValidControl, Parameters, Plan
-
-from nav2_pyif_planners.geometry import (
+from nav2_pyif.geometry import (
     closest_index,
     limit_speed,
     point_at_distance,

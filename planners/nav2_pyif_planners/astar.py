@@ -24,8 +24,7 @@ from nav2_pyif import (
     StartOccupied,
     StartOutsideMapBounds,
 )
-
-from nav2_pyif_planners.geometry import pose_xy_yaw
+from nav2_pyif.geometry import pose_xy_yaw
 
 SQRT2 = math.sqrt(2.0)
 MOVES = [

@@ -9,8 +9,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import TwistStamped
 from nav2_pyif import Controller, GoalChecker, NoValidControl, Plan
-
-from nav2_pyif_planners.geometry import closest_index, pose_xy_yaw, wrap
+from nav2_pyif.geometry import closest_index, pose_xy_yaw, wrap
 
 
 class PathFollower(Controller):

@@ -21,9 +21,9 @@ from typing import Any, ClassVar
 
 import numpy as np
 from nav2_pyif import Costmap, GoalChecker, NoValidControl
+from nav2_pyif.geometry import limit_speed
 
 from nav2_pyif_planners.follower import PathFollower
-from nav2_pyif_planners.geometry import limit_speed
 
 LOCAL_POINTS = 24  # local plan points the path cost compares rollouts with, at most
 DRAWN = 40  # sampled rollouts returned as the "trajectories" debug output, at most

@@ -29,8 +29,8 @@ except ImportError as exc:  # a clear reason at load time, not a NameError mid-r
     ) from exc
 
 from nav2_pyif import Costmap
+from nav2_pyif.geometry import limit_speed
 
-from nav2_pyif_planners.geometry import limit_speed
 from nav2_pyif_planners.mppi import LOCAL_POINTS, MPPI
 
 

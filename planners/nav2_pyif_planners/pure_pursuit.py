@@ -15,13 +15,13 @@ from typing import Any, ClassVar
 
 import numpy as np
 from nav2_pyif import Costmap, GoalChecker, NoValidControl
-
-from nav2_pyif_planners.follower import PathFollower
-from nav2_pyif_planners.geometry import (
+from nav2_pyif.geometry import (
     limit_speed,
     point_at_distance,
     remaining_length,
 )
+
+from nav2_pyif_planners.follower import PathFollower
 
 
 class RegulatedPurePursuit(PathFollower):

@@ -86,12 +86,11 @@ def inflation_layer(
     lethal = master.data == Costmap.LETHAL
     # cell distances are multiples of the resolution: round away float noise (3 * 0.05 m)
     distance = np.round(obstacle_distance(lethal, master.resolution, inflation_radius), 9)
+    reached = distance <= inflation_radius  # farther (inf included): no cost
     costs = np.zeros(lethal.shape, np.uint8)
-    ramp = (distance > inscribed_radius) & (distance <= inflation_radius)
-    costs[ramp] = np.floor(
-        252.0 * np.exp(-cost_scaling_factor * (distance[ramp] - inscribed_radius))
-    ).astype(np.uint8)
-    costs[distance <= inscribed_radius] = Costmap.INSCRIBED
+    costs[reached] = Costmap.inflation_cost(
+        distance[reached], inscribed_radius, cost_scaling_factor
+    )
     costs[lethal] = Costmap.LETHAL
     unknown = master.data == Costmap.NO_INFORMATION
     merged = np.where(unknown & (costs == 0), master.data, np.maximum(costs, master.data))

@@ -9,9 +9,9 @@ from typing import Any
 
 import numpy as np
 from nav2_pyif import GoalChecker, NoValidControl
+from nav2_pyif.geometry import limit_speed
 
 from nav2_pyif_planners.follower import PathFollower
-from nav2_pyif_planners.geometry import limit_speed
 from nav2_pyif_planners.learned.features import features
 from nav2_pyif_planners.learned.policy import Policy, default_weights, forward, import_jax
 

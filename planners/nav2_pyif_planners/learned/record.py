@@ -12,8 +12,8 @@ from typing import Any
 
 import numpy as np
 from nav2_pyif import GoalChecker
+from nav2_pyif.geometry import pose_xy_yaw
 
-from nav2_pyif_planners.geometry import pose_xy_yaw
 from nav2_pyif_planners.learned.features import features
 from nav2_pyif_planners.mppi import MPPI
 
