@@ -239,7 +239,8 @@ def run_command(args: argparse.Namespace) -> int:
         return 2
     png, record = _write(result, args)
     print(format_report(result))
-    print(f"\nwrote {png} and {record}")
+    log_file = f", {png.with_suffix('.host.log')}" if result.host_log else ""
+    print(f"\nwrote {png}{log_file} and {record}")
     return 0 if result.reached else 1
 
 
@@ -254,4 +255,6 @@ def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
     png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
     draw(result, png)
     write_json(result, record)
+    if result.host_log:  # the host's own account (where a planner crashed or hung)
+        (args.out / f"{stem}.host.log").write_text(result.host_log)
     return png, record

@@ -31,6 +31,7 @@ from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import ALIASES
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
+from nav2_pyif.runner.host_log import HostLogFollower
 from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.runner.maps import BUNDLED
@@ -120,6 +121,7 @@ class SimResult:
     min_clearance: float = math.inf
     controller_errors: list[str] = field(default_factory=list)
     traceback: str = ""  # the planner's own traceback of the error that ended the run
+    host_log: str = ""  # the log of the planner host the run started (none with an endpoint)
     records: list[CallRecord] = field(default_factory=list)
     raw_plan: np.ndarray | None = None  # the planner's plan, when a smoother smoothed it
     layer: LayerEffect | None = None  # what the costmap layer changed
@@ -243,9 +245,12 @@ def run_sim(config: SimConfig) -> SimResult:
         with contextlib.ExitStack() as cleanup:
             host = None
             if not config.endpoint:
-                host = PlannerHostProcess(entries, extra_path=import_path(config))
+                # INFO: the planners' self.logger.info lines, shown as they come
+                host = PlannerHostProcess(entries, extra_path=import_path(config), log_level="INFO")
                 cleanup.callback(host.close)
                 host.start()
+                follower = HostLogFollower(host.log_path, [e["key"] for e in entries]).start()
+                cleanup.callback(_keep_host_log, result, host, follower)
             if config.endpoint:
                 # A host already running may be behind a router: be a client, as the C++
                 # plugin is, and give a router just started time to listen.
@@ -341,12 +346,28 @@ def _drive(
             finally:
                 result.carried = calls.carried
                 result.records = [r for client in roles.values() for r in client.records or []]
-            for client in reversed(roles.values()):
-                client.deactivate()
-                client.cleanup()
+            for role, client in reversed(roles.items()):
+                try:
+                    client.deactivate()
+                    client.cleanup()
+                except Nav2Error as exc:  # e.g. its worker is restarting after a crash
+                    # (said already when it also ended the run)
+                    log.log(
+                        logging.WARNING if result.reached else logging.DEBUG,
+                        "%s: deactivate/cleanup failed: %s",
+                        result.name_of(role),
+                        exc,
+                    )
     finally:
         planner.close()
         controller.close()
+
+
+def _keep_host_log(result: SimResult, host: PlannerHostProcess, follower: HostLogFollower) -> None:
+    """The host stopped, its last lines shown, its whole log kept in the result."""
+    host.stop()
+    follower.stop()
+    result.host_log = host.log()
 
 
 class _Ended(Exception):
@@ -378,9 +399,11 @@ def _start(
             raise _Ended from exc
 
 
-def _ended_by(result: SimResult, what: str, exc: Nav2Error) -> None:
+def _ended_by(result: SimResult, what: str, exc: Nav2Error, earlier_traceback: str = "") -> None:
+    """The run ends with ``exc``; its traceback is the planner's, else (a call that timed out
+    here, say) the latest one an earlier error of the same failure brought."""
     result.outcome = f"{what}: {type(exc).__name__}: {exc}"
-    result.traceback = exc.remote_traceback
+    result.traceback = exc.remote_traceback or earlier_traceback
 
 
 def _note_served(config: SimConfig, result: SimResult, served: dict[str, str | None]) -> None:
@@ -414,6 +437,7 @@ def _control_loop(
     local_every = max(1, round(config.rate / config.local_costmap_rate))
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
+    failure_traceback = ""  # the latest planner traceback since the controller began failing
     bar = tqdm(
         total=round(config.timeout, 1),
         unit="sim s",
@@ -457,7 +481,7 @@ def _control_loop(
             try:
                 cmd = calls.compute(pose, velocity, sensed)
                 cmd_v, cmd_w = cmd.twist.linear.x, cmd.twist.angular.z
-                failing_since = None
+                failing_since, failure_traceback = None, ""
                 for name, msg in controller.debug.items():
                     result.debug.append((result.sim_time, name, lines_of(msg)))
             except Nav2Error as exc:
@@ -466,8 +490,9 @@ def _control_loop(
                 )
                 cmd_v = cmd_w = 0.0  # as Nav2's controller server: stop, then retry
                 failing_since = result.sim_time if failing_since is None else failing_since
+                failure_traceback = exc.remote_traceback or failure_traceback
                 if result.sim_time - failing_since > config.failure_tolerance:
-                    _ended_by(result, "controller failed", exc)
+                    _ended_by(result, "controller failed", exc, failure_traceback)
                     return
             robot.step(cmd_v, cmd_w, dt)
             result.sim_time += dt

@@ -1,0 +1,106 @@
+"""What a user sees when a planner crashes, exits or hangs: the run still ends with its report,
+PNG and JSON (and the host's log beside them), showing the planner's own line; a standalone
+host logs the same stack. Real processes throughout: ``nav2-pyif sim`` and ``planner-host``."""
+
+from __future__ import annotations
+
+import json
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from geometry_msgs.msg import Twist
+from nav2_pyif import ControllerException, Plan
+from nav2_pyif.client import ControllerClient, Timeouts
+
+from tests.conftest import FIXTURES, free_port, host_process, make_costmap, open_client_session
+from tests.test_host_e2e import pose
+from tests.test_sim import run_sim_command
+
+SOURCE = FIXTURES / "user_faults.py"
+
+
+def line_of(marker: str) -> int:
+    """The line of the fixture planner's crash (marked by a comment) in user_faults.py."""
+    lines = SOURCE.read_text().splitlines()
+    return next(i for i, line in enumerate(lines, 1) if f"# {marker}" in line)
+
+
+def own_frame(marker: str) -> str:
+    """The planner's frame as faulthandler writes it ("... line N in method")."""
+    return f'user_faults.py", line {line_of(marker)}'
+
+
+CASES = [
+    ("Segfaults", "the crash: SIGSEGV", "killed by signal SIGSEGV during compute_velocity"),
+    ("Exits", "the crash: the worker exits", "exited with code 3 during compute_velocity"),
+    ("Hangs", "the hang: never returns", "overran its 1 s deadline"),
+]
+
+
+@pytest.mark.parametrize(("planner", "marker", "cause"), CASES)
+def test_sim_reports_a_crashed_or_hung_planner_with_its_own_line(
+    tmp_path: Path, planner: str, marker: str, cause: str
+) -> None:
+    result = run_sim_command(tmp_path, "--controller", f"user_faults:{planner}")
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert "NOT REACHED: controller failed: " in result.stdout, result.stdout + result.stderr
+    assert cause in result.stdout
+    # the planner's own line, in the report (first) and in the JSON record
+    report = result.stdout.split("NOT REACHED")[0]
+    assert own_frame(marker) in report, result.stdout
+    stem = tmp_path / f"office_user_faults.{planner}"
+    record = json.loads(Path(f"{stem}.json").read_text())
+    assert own_frame(marker) in record["traceback"]
+    assert not record["summary"]["reached"]
+    assert Path(f"{stem}.png").stat().st_size > 10_000
+    # the host's log, kept beside them, has the stack too
+    host_log = Path(f"{stem}.host.log").read_text()
+    assert own_frame(marker) in host_log
+    assert f"{stem}.host.log" in result.stdout
+
+
+def test_a_planners_print_and_logger_lines_are_shown_marked(tmp_path: Path) -> None:
+    result = run_sim_command(tmp_path, "--controller", "user_faults:Segfaults")
+    lines = result.stderr.splitlines()
+    printed = "[nav2_pyif/sim/FollowPath] Segfaults: about to read address 0"
+    assert printed in lines, result.stderr
+    logged = [line for line in lines if "Segfaults: cycle at x=" in line]
+    assert logged and "[INFO]" in logged[0], result.stderr
+    assert "[nav2_pyif.planner.FollowPath]" in logged[0]
+    # the host's own lines stay in its log
+    assert "session" not in result.stderr and "serving" not in result.stderr
+
+
+@pytest.mark.parametrize(("planner", "marker", "cause"), CASES)
+def test_a_standalone_host_logs_the_planners_stack(
+    tmp_path: Path, planner: str, marker: str, cause: str
+) -> None:
+    key = "nav2_pyif/reports/FollowPath"
+    host = host_process(
+        free_port(),
+        ["--serve", f"{key}=user_faults:{planner}", "--deadline", "1", "--hang-grace", "1"],
+        tmp_path / "host.log",
+    ).start()
+    session = open_client_session(host.endpoint)
+    client = ControllerClient(
+        session, key, make_costmap(), timeouts=Timeouts(call=3.0, configure=30.0)
+    )
+    try:
+        assert client.wait_for_host(30), host.log()
+        client.configure()
+        client.activate()
+        client.set_plan(Plan(np.zeros((3, 3)), "odom"))
+        with pytest.raises(ControllerException) as info:
+            client.compute_velocity_commands(pose(), Twist())
+        assert own_frame(marker) in info.value.remote_traceback  # the error carries it
+        deadline = time.monotonic() + 20
+        while own_frame(marker) not in host.log():
+            assert time.monotonic() < deadline, host.log()
+            time.sleep(0.1)
+        assert cause in host.log()
+    finally:
+        client.close()
+        session.close()
+        host.close()
