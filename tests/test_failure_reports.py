@@ -104,3 +104,37 @@ def test_a_standalone_host_logs_the_planners_stack(
         client.close()
         session.close()
         host.close()
+
+
+@pytest.mark.parametrize(
+    ("planner", "marker", "words"),
+    [
+        ("ReturnsNan", "the bad return: NaN", "returned a non-finite velocity: linear.x=nan"),
+        ("ReturnsNone", "the bad return: none at all", "returned NoneType"),
+        ("ReturnsTuple", "the bad return: a tuple", "returned tuple"),
+    ],
+)
+def test_a_refused_return_value_points_at_the_planners_return_line(
+    tmp_path: Path, planner: str, marker: str, words: str
+) -> None:
+    key = "nav2_pyif/returns/FollowPath"
+    host = host_process(
+        free_port(), ["--serve", f"{key}=user_faults:{planner}"], tmp_path / "host.log"
+    ).start()
+    session = open_client_session(host.endpoint)
+    client = ControllerClient(session, key, make_costmap(), timeouts=Timeouts(configure=30.0))
+    try:
+        assert client.wait_for_host(30), host.log()
+        client.configure()
+        client.activate()
+        with pytest.raises(ControllerException, match=words) as info:
+            client.compute_velocity_commands(pose(), Twist())
+        tb = info.value.remote_traceback.splitlines()
+        assert tb[0] == "Traceback (most recent call last):", tb
+        assert tb[1].endswith(f"{own_frame(marker)}, in compute_velocity_commands")
+        text = "\n".join(tb)
+        assert "runtime.py" not in text and "results.py" not in text  # none of the host's
+    finally:
+        client.close()
+        session.close()
+        host.close()
