@@ -4,8 +4,10 @@ host logs the same stack. Real processes throughout: ``nav2-pyif sim`` and ``pla
 
 from __future__ import annotations
 
+import contextlib
 import json
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +15,7 @@ import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif import ControllerException, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
+from nav2_pyif.common.host_process import PlannerHostProcess
 
 from tests.conftest import FIXTURES, free_port, host_process, make_costmap, open_client_session
 from tests.test_host_e2e import pose
@@ -73,24 +76,34 @@ def test_a_planners_print_and_logger_lines_are_shown_marked(tmp_path: Path) -> N
     assert "session" not in result.stderr and "serving" not in result.stderr
 
 
-@pytest.mark.parametrize(("planner", "marker", "cause"), CASES)
-def test_a_standalone_host_logs_the_planners_stack(
-    tmp_path: Path, planner: str, marker: str, cause: str
-) -> None:
+@contextlib.contextmanager
+def served(
+    tmp_path: Path, planner: str, *flags: str
+) -> Iterator[tuple[PlannerHostProcess, ControllerClient]]:
+    """A standalone planner-host serving user_faults' ``planner``, and a client of it past
+    configure and activate."""
     key = "nav2_pyif/reports/FollowPath"
-    host = host_process(
-        free_port(),
-        ["--serve", f"{key}=user_faults:{planner}", "--deadline", "1", "--hang-grace", "1"],
-        tmp_path / "host.log",
-    ).start()
+    args = ["--serve", f"{key}=user_faults:{planner}", *flags]
+    host = host_process(free_port(), args, tmp_path / "host.log").start()
     session = open_client_session(host.endpoint)
-    client = ControllerClient(
-        session, key, make_costmap(), timeouts=Timeouts(call=3.0, configure=30.0)
-    )
+    timeouts = Timeouts(call=3.0, configure=30.0)
+    client = ControllerClient(session, key, make_costmap(), timeouts=timeouts)
     try:
         assert client.wait_for_host(30), host.log()
         client.configure()
         client.activate()
+        yield host, client
+    finally:
+        client.close()
+        session.close()
+        host.close()
+
+
+@pytest.mark.parametrize(("planner", "marker", "cause"), CASES)
+def test_a_standalone_host_logs_the_planners_stack(
+    tmp_path: Path, planner: str, marker: str, cause: str
+) -> None:
+    with served(tmp_path, planner, "--deadline", "1", "--hang-grace", "1") as (host, client):
         client.set_plan(Plan(np.zeros((3, 3)), "odom"))
         with pytest.raises(ControllerException) as info:
             client.compute_velocity_commands(pose(), Twist())
@@ -100,10 +113,6 @@ def test_a_standalone_host_logs_the_planners_stack(
             assert time.monotonic() < deadline, host.log()
             time.sleep(0.1)
         assert cause in host.log()
-    finally:
-        client.close()
-        session.close()
-        host.close()
 
 
 @pytest.mark.parametrize(
@@ -117,16 +126,7 @@ def test_a_standalone_host_logs_the_planners_stack(
 def test_a_refused_return_value_points_at_the_planners_return_line(
     tmp_path: Path, planner: str, marker: str, words: str
 ) -> None:
-    key = "nav2_pyif/returns/FollowPath"
-    host = host_process(
-        free_port(), ["--serve", f"{key}=user_faults:{planner}"], tmp_path / "host.log"
-    ).start()
-    session = open_client_session(host.endpoint)
-    client = ControllerClient(session, key, make_costmap(), timeouts=Timeouts(configure=30.0))
-    try:
-        assert client.wait_for_host(30), host.log()
-        client.configure()
-        client.activate()
+    with served(tmp_path, planner) as (_, client):
         with pytest.raises(ControllerException, match=words) as info:
             client.compute_velocity_commands(pose(), Twist())
         tb = info.value.remote_traceback.splitlines()
@@ -134,7 +134,3 @@ def test_a_refused_return_value_points_at_the_planners_return_line(
         assert tb[1].endswith(f"{own_frame(marker)}, in compute_velocity_commands")
         text = "\n".join(tb)
         assert "runtime.py" not in text and "results.py" not in text  # none of the host's
-    finally:
-        client.close()
-        session.close()
-        host.close()
