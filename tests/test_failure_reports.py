@@ -21,18 +21,18 @@ from tests.conftest import FIXTURES, free_port, host_process, make_costmap, open
 from tests.test_host_e2e import pose
 from tests.test_sim import run_sim_command
 
-SOURCE = FIXTURES / "user_faults.py"
+SOURCE = FIXTURES / "crashing.py"
 
 
 def line_of(marker: str) -> int:
-    """The line of the fixture planner's crash (marked by a comment) in user_faults.py."""
+    """The line of the fixture planner's crash (marked by a comment) in crashing.py."""
     lines = SOURCE.read_text().splitlines()
     return next(i for i, line in enumerate(lines, 1) if f"# {marker}" in line)
 
 
 def own_frame(marker: str) -> str:
     """The planner's frame as faulthandler writes it ("... line N in method")."""
-    return f'user_faults.py", line {line_of(marker)}'
+    return f'crashing.py", line {line_of(marker)}'
 
 
 CASES = [
@@ -46,14 +46,14 @@ CASES = [
 def test_sim_reports_a_crashed_or_hung_planner_with_its_own_line(
     tmp_path: Path, planner: str, marker: str, cause: str
 ) -> None:
-    result = run_sim_command(tmp_path, "--controller", f"user_faults:{planner}")
+    result = run_sim_command(tmp_path, "--controller", f"crashing:{planner}")
     assert result.returncode == 1, result.stdout + result.stderr
     assert "NOT REACHED: controller failed: " in result.stdout, result.stdout + result.stderr
     assert cause in result.stdout
     # the planner's own line, in the report (first) and in the JSON record
     report = result.stdout.split("NOT REACHED")[0]
     assert own_frame(marker) in report, result.stdout
-    stem = tmp_path / f"office_user_faults.{planner}"
+    stem = tmp_path / f"office_crashing.{planner}"
     record = json.loads(Path(f"{stem}.json").read_text())
     assert own_frame(marker) in record["traceback"]
     assert not record["summary"]["reached"]
@@ -65,7 +65,7 @@ def test_sim_reports_a_crashed_or_hung_planner_with_its_own_line(
 
 
 def test_a_planners_print_and_logger_lines_are_shown_marked(tmp_path: Path) -> None:
-    result = run_sim_command(tmp_path, "--controller", "user_faults:Segfaults")
+    result = run_sim_command(tmp_path, "--controller", "crashing:Segfaults")
     lines = result.stderr.splitlines()
     printed = "[nav2_pyif/sim/FollowPath] Segfaults: about to read address 0"
     assert printed in lines, result.stderr
@@ -80,10 +80,10 @@ def test_a_planners_print_and_logger_lines_are_shown_marked(tmp_path: Path) -> N
 def served(
     tmp_path: Path, planner: str, *flags: str
 ) -> Iterator[tuple[PlannerHostProcess, ControllerClient]]:
-    """A standalone planner-host serving user_faults' ``planner``, and a client of it past
+    """A standalone planner-host serving crashing.py's ``planner``, and a client of it past
     configure and activate."""
     key = "nav2_pyif/reports/FollowPath"
-    args = ["--serve", f"{key}=user_faults:{planner}", *flags]
+    args = ["--serve", f"{key}=crashing:{planner}", *flags]
     host = host_process(free_port(), args, tmp_path / "host.log").start()
     session = open_client_session(host.endpoint)
     timeouts = Timeouts(call=3.0, configure=30.0)

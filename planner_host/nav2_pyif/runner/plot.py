@@ -48,7 +48,7 @@ def figure(result: SimResult) -> Figure:
         world.origin_y,
         world.origin_y + world.size_y * world.resolution,
     )
-    fig = plt.figure(figsize=(13, 6.5), constrained_layout=True)
+    fig = plt.figure(figsize=(13, 7), constrained_layout=True)  # room for the legend
     grid = fig.add_gridspec(2, 3)
     ax = fig.add_subplot(grid[:, :2])
     base = np.full(world.occupancy.shape, 1.0)
@@ -99,7 +99,7 @@ def figure(result: SimResult) -> Figure:
     _draw_debug(ax, result)
     if result.trajectory:
         t = np.array(result.trajectory)
-        ax.plot(t[:, 1], t[:, 2], "-", color="tab:green", lw=2.0, label="driven")
+        ax.plot(t[:, 1], t[:, 2], "-", color="tab:green", lw=1.6, label="driven", zorder=3)
     sx, sy, syaw = result.start
     gx, gy, gyaw = result.goal
     ax.quiver(
@@ -127,7 +127,18 @@ def figure(result: SimResult) -> Figure:
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_aspect("equal")
-    ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
+    # below the map, never over it (a corner of a map may hold the obstacles that matter)
+    legend = ax.legend(
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.09),
+        ncols=4,
+        fontsize=8,
+        framealpha=0.9,
+    )
+    for handle in legend.legend_handles:  # faint sampled lines read in full in the legend
+        if handle is not None and hasattr(handle, "set_linewidth"):
+            handle.set_alpha(1.0)
+            handle.set_linewidth(max(1.5, float(np.max(handle.get_linewidth()))))
     bar = fig.colorbar(shading, ax=ax, shrink=0.75, pad=0.01)
     bar.set_label("costmap cost (inflation; black: lethal)", fontsize=8)
     bar.ax.tick_params(labelsize=8)
@@ -165,13 +176,22 @@ def figure(result: SimResult) -> Figure:
     return fig
 
 
-#: How each debug output is drawn (lines; one-point outputs as dots), by name.
+#: How each debug output is drawn (lines; one-point outputs as dots), by name: strong enough
+#: to see beside the plan and the driven path, the sampled ones under them.
 _DEBUG_STYLE: dict[str, dict[str, Any]] = {
-    "trajectories": {"color": "tab:cyan", "lw": 0.3, "alpha": 0.3},
-    "local_plan": {"color": "tab:purple", "lw": 1.0, "alpha": 0.8},
+    "trajectories": {"color": "darkcyan", "lw": 0.5, "alpha": 0.3, "zorder": 1.5},
+    "local_plan": {"color": "darkviolet", "lw": 1.0, "alpha": 0.8, "zorder": 2.5},
 }
-_DEBUG_LINE = {"color": "tab:gray", "lw": 0.6, "alpha": 0.5}
-_DEBUG_POINT = {"color": "tab:red", "ls": "none", "marker": ".", "ms": 3, "alpha": 0.7}
+_DEBUG_LINE = {"color": "tab:gray", "lw": 0.8, "alpha": 0.7, "zorder": 2}
+_DEBUG_POINT = {
+    "color": "magenta",
+    "ls": "none",
+    "marker": "o",
+    "ms": 3.0,
+    "mec": "white",
+    "mew": 0.4,
+    "zorder": 5,
+}
 
 
 def _draw_debug(ax: Any, result: SimResult) -> None:
