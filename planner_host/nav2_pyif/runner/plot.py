@@ -16,6 +16,7 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN
@@ -136,7 +137,7 @@ def figure(result: SimResult) -> Figure:
         framealpha=0.9,
     )
     for handle in legend.legend_handles:  # faint sampled lines read in full in the legend
-        if handle is not None and hasattr(handle, "set_linewidth"):
+        if isinstance(handle, Line2D | LineCollection):
             handle.set_alpha(1.0)
             handle.set_linewidth(max(1.5, float(np.max(handle.get_linewidth()))))
     bar = fig.colorbar(shading, ax=ax, shrink=0.75, pad=0.01)
