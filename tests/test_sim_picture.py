@@ -9,6 +9,7 @@ from nav2_pyif.runner.cli import default_stem
 from nav2_pyif.runner.maps import map_path
 from nav2_pyif.runner.plot import figure
 from nav2_pyif.runner.run import SimConfig, SimResult, prepare
+from nav2_pyif.runner.swaps import Swap
 
 
 def driven(result: SimResult, cycles: int = 200) -> SimResult:
@@ -59,3 +60,21 @@ def test_runs_with_other_plugins_write_other_files() -> None:
     assert default_stem(with_plugins) == "office_pure_pursuit_simple_smoother_my.layers.Zone"
     other_planner = prepare(SimConfig(map=office, planner="my.planners:Rrt"))
     assert default_stem(other_planner) == "office_pure_pursuit_my.planners.Rrt"
+
+
+def test_a_hot_swap_is_marked_on_the_map_and_the_timeline() -> None:
+    result = driven(prepare(SimConfig(map=map_path("office"))))
+    result.sim_time = result.trajectory[-1][0]
+    result.swaps = [Swap(4.0, "controller", "nav2_pyif_planners.mppi:MPPI")]
+    fig = figure(result)
+    try:
+        world, speed = fig.axes[0], fig.axes[2]
+        marks = [line for line in world.get_lines() if line.get_label() == "hot swap"]
+        assert len(marks) == 1
+        where = np.asarray(marks[0].get_xydata())[0]
+        assert np.allclose(where, (3.0 + 0.05 * 80, 7.0))  # where the robot was at 4 s
+        assert any("controller → mppi at 4.0 s" in t.get_text() for t in world.texts)
+        assert "hot swap" in [line.get_label() for line in speed.get_lines()]
+        assert "pure_pursuit → mppi + astar" in " ".join(world.get_title().split())
+    finally:
+        plt.close(fig)

@@ -21,7 +21,7 @@ from matplotlib.lines import Line2D
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN
 from nav2_pyif.runner.report import summary
-from nav2_pyif.runner.run import SimResult
+from nav2_pyif.runner.run import SimResult, short_name
 
 
 def draw(result: SimResult, path: Path) -> None:
@@ -33,8 +33,9 @@ def draw(result: SimResult, path: Path) -> None:
 
 def title(result: SimResult) -> str:
     s = summary(result)
+    controller, planner = result.names_over_time("controller"), result.names_over_time("planner")
     return (
-        f"{Path(s['map']).stem}: {s['controller']} + {s['planner']} — "
+        f"{Path(s['map']).stem}: {controller} + {planner} — "
         f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
         f"{s['driven_distance_m']:.1f} m, clearance ≥ {s['min_clearance_m']:.2f} m"
     )
@@ -125,6 +126,7 @@ def figure(result: SimResult) -> Figure:
             ms=14,
             label="collision",
         )
+    _draw_swaps(ax, result)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_aspect("equal")
@@ -150,6 +152,10 @@ def figure(result: SimResult) -> Figure:
         t = np.array(result.trajectory)
         speed.plot(t[:, 0], t[:, 4], label="v [m/s]")
         speed.plot(t[:, 0], t[:, 5], label="ω [rad/s]", alpha=0.7)
+        for i, swap in enumerate(result.swaps):
+            speed.axvline(
+                swap.sim_time, color="black", ls=":", lw=1.0, label="hot swap" if i == 0 else None
+            )
         speed.legend(fontsize=8)
     speed.set_xlabel("simulated time [s]")
     speed.set_title(_wrapped("commanded motion", 45), fontsize=10)
@@ -212,6 +218,26 @@ def _draw_debug(ax: Any, result: SimResult) -> None:
         if strips:
             style = _DEBUG_STYLE.get(name, _DEBUG_LINE)
             ax.add_collection(LineCollection(strips, label=label, **style))
+
+
+def _draw_swaps(ax: Any, result: SimResult) -> None:
+    """Where the robot was at each hot swap, and what was swapped in."""
+    if not result.swaps or not result.trajectory:
+        return
+    t = np.array(result.trajectory)
+    for i, swap in enumerate(result.swaps):
+        row = min(int(np.searchsorted(t[:, 0], swap.sim_time)), len(t) - 1)
+        x, y = t[row, 1], t[row, 2]
+        ax.plot([x], [y], "D", color="black", ms=7, zorder=6, label="hot swap" if i == 0 else None)
+        ax.annotate(
+            f"{swap.role} → {short_name(swap.planner)} at {swap.sim_time:.1f} s",
+            (x, y),
+            xytext=(8, 8),
+            textcoords="offset points",
+            fontsize=8,
+            bbox={"boxstyle": "round", "fc": "white", "alpha": 0.85},
+            zorder=6,
+        )
 
 
 def _wrapped(text: str, width: int) -> str:

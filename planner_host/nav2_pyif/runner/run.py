@@ -37,6 +37,7 @@ from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.runner.sensing import DebugLines, Sensing, SensingConfig, lines_of
+from nav2_pyif.runner.swaps import Swap, swaps_during
 
 log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
@@ -122,6 +123,8 @@ class SimResult:
     controller_errors: list[str] = field(default_factory=list)
     traceback: str = ""  # the planner's own traceback of the error that ended the run
     host_log: str = ""  # the log of the planner host the run started (none with an endpoint)
+    clock: list[float] = field(default_factory=list)  # unix time each trajectory row's cycle began
+    swaps: list[Swap] = field(default_factory=list)  # hot swaps during the run
     records: list[CallRecord] = field(default_factory=list)
     raw_plan: np.ndarray | None = None  # the planner's plan, when a smoother smoothed it
     layer: LayerEffect | None = None  # what the costmap layer changed
@@ -143,6 +146,20 @@ class SimResult:
     @property
     def cycles(self) -> int:
         return len(self.trajectory)
+
+    def served_over_time(self, role: str) -> list[tuple[float, float, str]]:
+        """(from, to [s], short name) of each planner that served ``role``: one span unless
+        it was hot-swapped during the run."""
+        spans, since, name = [], 0.0, self.name_of(role)
+        for swap in self.swaps:
+            if swap.role == role:
+                spans.append((since, swap.sim_time, name))
+                since, name = swap.sim_time, short_name(swap.planner)
+        return [*spans, (since, self.sim_time, name)]
+
+    def names_over_time(self, role: str) -> str:
+        """``name_of(role)``, or each planner in turn after hot swaps ("a → b")."""
+        return " → ".join(name for _, _, name in self.served_over_time(role))
 
     def name_of(self, role: str) -> str:
         """What drove as ``role`` ("controller", "planner"), by its short name: what the host
@@ -341,11 +358,14 @@ def _drive(
                 config.rate,
             )
             calls = CycleCalls(controller, extras, config.goal_checker)
+            driving_since = time.time()
             try:
                 _control_loop(config, result, calls, local_version)
             finally:
                 result.carried = calls.carried
                 result.records = [r for client in roles.values() for r in client.records or []]
+            sim_times = [row[0] for row in result.trajectory]
+            result.swaps = swaps_during(session, roles, driving_since, result.clock, sim_times)
             for role, client in reversed(roles.items()):
                 try:
                     client.deactivate()
@@ -459,6 +479,7 @@ def _control_loop(
                         local_version,
                     )
                 )
+            began = time.time()  # when a hot swap happened, in cycles
             velocity = Twist()
             velocity.linear.x, velocity.angular.z = robot.v, robot.w
             stamp_s = CLOCK_START + result.sim_time
@@ -500,6 +521,7 @@ def _control_loop(
             result.trajectory.append(
                 (result.sim_time, robot.x, robot.y, robot.yaw, robot.v, robot.w)
             )
+            result.clock.append(began)
             result.min_clearance = min(
                 result.min_clearance, checker.clearance(robot.x, robot.y, robot.yaw)
             )

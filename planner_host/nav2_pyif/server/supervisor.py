@@ -245,6 +245,7 @@ class SupervisedPlanner:
         self.crash_window, self.crash_threshold = crash_window, crash_threshold
         self.max_backoff = max_backoff
         self.journal = Journal()
+        self.swapped_at = 0.0  # unix time of the last hot swap
         self.plugin_type = PluginType.CONTROLLER
         self.worker: Worker | None = None
         self.reason = "starting"
@@ -490,6 +491,7 @@ class SupervisedPlanner:
             nonlocal old
             old, self.worker = self.worker, worker
             self.spec, self.plugin_type = new_spec, plugin_type
+            self.swapped_at = time.time()
             self.overrun_since = None
             self._set_reason("")
 
