@@ -16,6 +16,7 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import ControllerException, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.testing import drive
 
 from tests.conftest import FIXTURES, free_port, host_process, make_costmap, open_client_session
 from tests.test_host_e2e import pose
@@ -134,3 +135,15 @@ def test_a_refused_return_value_points_at_the_planners_return_line(
         assert tb[1].endswith(f"{own_frame(marker)}, in compute_velocity_commands")
         text = "\n".join(tb)
         assert "runtime.py" not in text and "results.py" not in text  # none of the host's
+
+
+def test_drive_shows_the_planners_own_lines_and_keeps_the_hosts_log(
+    capfd: pytest.CaptureFixture[str],
+) -> None:
+    result = drive("crashing:Segfaults", path=[str(FIXTURES)], timeout=5.0)
+    err = capfd.readouterr().err
+    assert "[nav2_pyif/sim/FollowPath] Segfaults: about to read address 0" in err
+    assert "[nav2_pyif.planner.FollowPath] Segfaults: cycle at x=" in err
+    assert not result.reached and "SIGSEGV" in result.outcome
+    assert own_frame("the crash: SIGSEGV") in result.traceback
+    assert own_frame("the crash: SIGSEGV") in result.host_log
