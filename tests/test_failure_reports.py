@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import os
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -147,3 +148,13 @@ def test_drive_shows_the_planners_own_lines_and_keeps_the_hosts_log(
     assert not result.reached and "SIGSEGV" in result.outcome
     assert own_frame("the crash: SIGSEGV") in result.traceback
     assert own_frame("the crash: SIGSEGV") in result.host_log
+
+
+def test_the_stack_files_have_no_name_once_the_workers_are_serving(tmp_path: Path) -> None:
+    # A host killed with SIGKILL cannot remove them: they must already be gone from /tmp.
+    with served(tmp_path, "Segfaults") as (host, _):
+        assert host.proc is not None
+        fds = Path(f"/proc/{host.proc.pid}/fd")
+        links = [os.readlink(fd) for fd in fds.iterdir() if fd.is_symlink()]
+        stacks = [link for link in links if "nav2_pyif_worker_" in link]
+        assert stacks and all(link.endswith(" (deleted)") for link in stacks), links

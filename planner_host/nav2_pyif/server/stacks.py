@@ -71,23 +71,27 @@ def tidy(text: str) -> str:
 
 
 class StackFile:
-    """The supervisor's end: a temporary file the worker writes its stacks to."""
+    """The supervisor's end: a temporary file the worker writes its stacks to, read through a
+    descriptor kept open, so that its name can go as soon as the worker has opened it
+    (``unlink``): a host killed with SIGKILL leaves no file behind."""
 
     def __init__(self) -> None:
-        fd, self.path = tempfile.mkstemp(prefix="nav2_pyif_worker_", suffix=".stack")
-        os.close(fd)
+        self._fd, self.path = tempfile.mkstemp(prefix="nav2_pyif_worker_", suffix=".stack")
         self._read = 0
+
+    def unlink(self) -> None:
+        """The worker has it open (it opens it before loading the planner)."""
+        with contextlib.suppress(OSError):
+            os.unlink(self.path)
 
     def read_new(self) -> str:
         """What the worker wrote since the last read ("" when nothing)."""
-        try:
-            with open(self.path, "rb") as f:
-                f.seek(self._read)
-                data = f.read()
-        except OSError:
-            return ""
-        self._read += len(data)
-        return tidy(data.decode("utf-8", errors="replace"))
+        chunks = []
+        with contextlib.suppress(OSError):
+            while chunk := os.pread(self._fd, 65536, self._read):
+                chunks.append(chunk)
+                self._read += len(chunk)
+        return tidy(b"".join(chunks).decode("utf-8", errors="replace"))
 
     def dump(self, pid: int, timeout: float = 1.0) -> str:
         """Ask a live worker for every thread's stack; wait until it is written (its size
@@ -107,10 +111,14 @@ class StackFile:
 
     def _size(self) -> int:
         try:
-            return os.path.getsize(self.path)
+            return os.fstat(self._fd).st_size
         except OSError:
             return 0
 
     def remove(self) -> None:
-        with contextlib.suppress(OSError):
-            os.unlink(self.path)
+        """Once only: a descriptor closed twice could be another file's by then."""
+        self.unlink()
+        if self._fd >= 0:
+            with contextlib.suppress(OSError):
+                os.close(self._fd)
+            self._fd = -1

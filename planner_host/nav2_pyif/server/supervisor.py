@@ -147,7 +147,10 @@ class Worker:
         return self.stacks.read_new()
 
     def wait_loaded(self, timeout: float) -> PluginType:
-        reply = self._receive(timeout)
+        try:
+            reply = self._receive(timeout)
+        finally:
+            self.stacks.unlink()  # opened by the worker by now, or never
         if reply is None:
             self.stop()
             raise PlannerLoadError(f"planner worker did not load within {timeout:.0f} s")
