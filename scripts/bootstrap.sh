@@ -10,6 +10,10 @@
 # NAV2_PYIF_EXTRAS (default: dev; "ros" is added without a system ROS 2), NAV2_PYIF_EDITABLE
 # (default 1; 0 installs a copy, as the container image does).
 set -euo pipefail
+# Ctrl-C ends the bootstrap with 130 (SIGTERM 143), whatever the interrupted step returned: a
+# check interrupted half-way must not be taken for its answer (a missing venv module, ...).
+trap 'exit 130' INT
+trap 'exit 143' TERM
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 VENV="${NAV2_PYIF_VENV:-$ROOT/.venv}"
@@ -44,7 +48,7 @@ pick_python() {
   for py in "${candidates[@]}"; do
     [ -n "$py" ] || continue
     command -v "$py" >/dev/null || continue
-    if "$py" -c 'import sys; sys.exit(0 if (3, 10) <= sys.version_info[:2] <= (3, 12) else 1)'; then
+    if "$py" -c 'import sys; sys.exit(0 if (3, 10) <= sys.version_info[:2] <= (3, 12) else 1)' 2>/dev/null; then
       echo "$py"; return 0
     fi
   done

@@ -5,7 +5,7 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$ROOT/scripts/bootstrap.sh"
 "$ROOT/scripts/system_deps.sh" "C++ codec tests" \
-  cmake g++ make libmsgpack-cxx-dev libgtest-dev nlohmann-json3-dev zlib1g-dev
+  cmake g++ make libmsgpack-dev libgtest-dev nlohmann-json3-dev zlib1g-dev
 # podman (runc, CNI with dnsname for compose) and debootstrap for the local base image
 "$ROOT/scripts/system_deps.sh" "container tests" podman runc debootstrap uidmap iptables \
   catatonit containernetworking-plugins golang-github-containernetworking-plugin-dnsname

@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -17,12 +20,47 @@ from nav2_pyif import Costmap
 from nav2_pyif.common.host_process import PlannerHostProcess, free_port
 from nav2_pyif.common.zenoh_config import connect_to
 
+from tests.neighbours import Neighbours
+
 __all__ = ["free_port"]  # tests import it from here
 
 FIXTURES = Path(__file__).parent / "fixtures"
 ROOT = Path(__file__).resolve().parents[1]
 #: What README's "To use the tools by hand" sources: the project's venv and ROS environment.
 ENV_SCRIPT = Path(os.environ.get("NAV2_PYIF_VENV", ROOT / ".venv")) / "nav2_pyif_env.sh"
+
+
+#: The file whose test checks, after every other test, the processes the suite did not start.
+FOREIGN_PROCESSES_TEST = "test_foreign_processes.py"
+_NEIGHBOURS = pytest.StashKey["Neighbours"]()
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The check of the neighbours runs last: after everything that could have touched them."""
+    last = [item for item in items if item.path.name == FOREIGN_PROCESSES_TEST]
+    items[:] = [item for item in items if item.path.name != FOREIGN_PROCESSES_TEST] + last
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    """With that check collected (the whole suite), start the neighbours before any test."""
+    if any(item.path.name == FOREIGN_PROCESSES_TEST for item in session.items):
+        directory = Path(tempfile.mkdtemp(prefix="nav2_pyif_neighbours_"))
+        neighbours = Neighbours(directory)
+        session.config.stash[_NEIGHBOURS] = neighbours
+        neighbours.start()
+
+
+def pytest_sessionfinish(session: pytest.Session) -> None:
+    neighbours = session.config.stash.get(_NEIGHBOURS, None)
+    if neighbours is not None:
+        neighbours.stop()
+        shutil.rmtree(neighbours.directory, ignore_errors=True)
+
+
+@pytest.fixture(scope="session")
+def neighbours(request: pytest.FixtureRequest) -> Neighbours:
+    """The router and planner host running beside the suite (tests/neighbours.py)."""
+    return request.config.stash[_NEIGHBOURS]
 
 
 def in_project_env(command: str) -> list[str]:
@@ -118,12 +156,23 @@ def _stat(pid: int | str) -> list[str]:
     return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
 
 
-def process_tree(root: int) -> dict[int, tuple[str, str]]:
-    """``root``'s descendants now: pid -> (start time, command line), from /proc."""
+def _parents() -> dict[int, int]:
+    """pid -> parent pid of every process now, from /proc."""
     parents: dict[int, int] = {}
     for entry in Path("/proc").iterdir():
         with contextlib.suppress(OSError, ValueError):
             parents[int(entry.name)] = int(_stat(entry.name)[1])
+    return parents
+
+
+def child_pids(parent: int) -> list[int]:
+    """``parent``'s children now: what a test signals, never a process name."""
+    return [pid for pid, pp in _parents().items() if pp == parent]
+
+
+def process_tree(root: int) -> dict[int, tuple[str, str]]:
+    """``root``'s descendants now: pid -> (start time, command line), from /proc."""
+    parents = _parents()
     found: dict[int, tuple[str, str]] = {}
     frontier = [root]
     while frontier:
@@ -164,3 +213,16 @@ def wait_until(predicate: object, timeout: float = 10.0) -> bool:
             return True
         time.sleep(0.01)
     return False
+
+
+def worker_pid_in(log: str, key: str) -> int | None:
+    """The pid of the worker serving ``key``, newest first, from a planner host's log: its
+    "serving <planner> on <key>/** (<type>, worker <pid>)" line at start and after a swap,
+    and "<key>: worker <pid> restarted" after a restart."""
+    serving = re.compile(rf" on {re.escape(key)}/\*\* \([\w]+, worker (\d+)\)")
+    restarted = re.compile(rf"{re.escape(key)}: worker (\d+) restarted")
+    for line in reversed(log.splitlines()):
+        found = serving.search(line) or restarted.search(line)
+        if found:
+            return int(found.group(1))
+    return None

@@ -15,7 +15,8 @@ than "run it in the user's directory and expect exit code 0":
 Python blocks whose first line is ``# some/path.py`` are files a user writes (they go into the
 user's directory); a Python block with ``def test_`` runs under pytest there; any other Python
 block runs with ``python -c``. Shell blocks run with bash, the project's environment sourced
-(``.venv/nav2_pyif_env.sh``), as after README's "To use the tools by hand".
+(``.venv/nav2_pyif_env.sh``), as after README's "To use the tools by hand", each document's in
+a network of its own (tests/test_docs.py): as written, Zenoh's default port 7447 included.
 """
 
 from __future__ import annotations

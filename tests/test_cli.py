@@ -89,8 +89,8 @@ def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
                 "--zenoh-config",
                 "/nonexistent.json5",
             ],
-            3,
-            "does not exist",
+            2,  # a usage error, before any worker starts
+            "argument --zenoh-config: Zenoh config file '/nonexistent.json5' does not exist",
         ),
     ],
 )

@@ -7,10 +7,13 @@ where this machine cannot run podman."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
+import signal
 import subprocess
 import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -21,16 +24,21 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 
-from tests.conftest import FIXTURES, free_port, make_costmap
+from tests.conftest import FIXTURES, child_pids, free_port, make_costmap
 from tests.podman.support import (
+    IMAGE,
+    LOCAL_BASE,
     ROOT,
     Unavailable,
     base_image,
     build_image,
+    exclusive,
     podman,
     podman_env,
     probe,
+    remove_stale_images,
     require_podman,
+    stale_images,
 )
 from tests.test_host_e2e import pose
 
@@ -41,15 +49,28 @@ TIMEOUTS = Timeouts(call=5.0, lifecycle=10.0, configure=20.0, plan=20.0)
 
 
 @pytest.fixture(scope="module")
-def image() -> tuple[str, str]:
-    """(planner-host image, base image)."""
-    try:
-        require_podman()
-        base = base_image()
-        probe(base)
-    except Unavailable as exc:
-        pytest.skip(f"container test skipped: {exc}")
-    return build_image(base), base
+def image() -> Iterator[tuple[str, str]]:
+    """(planner-host image, base image), this checkout's container tests holding the lock."""
+    with contextlib.ExitStack() as stack:
+        try:
+            require_podman()
+            stack.enter_context(exclusive())
+            base = base_image()
+            probe(base)
+        except Unavailable as exc:
+            pytest.skip(f"container test skipped: {exc}")
+        yield build_image(base), base
+        remove_stale_images()
+
+
+def test_one_image_is_left_whatever_the_checkout(image: tuple[str, str]) -> None:
+    """The tag names no checkout path (one per path left ~0.4 GB each), and neither the
+    image a build replaced nor any build layer is left behind untagged."""
+    assert image[0] == IMAGE and image[0].endswith(":test")
+    assert str(ROOT) not in IMAGE and ROOT.name not in IMAGE
+    assert not stale_images()
+    readme = (ROOT / "README.md").read_text()
+    assert IMAGE in readme and LOCAL_BASE.split(":")[0] in readme  # says what is left
 
 
 def _logs(name: str) -> str:
@@ -149,7 +170,10 @@ def test_compose_router_and_host_serve_the_mounted_planners(
         # Crash the host process from outside: the restart policy brings the container back.
         container = f"{project}_planner-host_1"
         pid = podman("inspect", "--format", "{{.State.Pid}}", container).stdout.strip()
-        subprocess.run(["pkill", "-KILL", "-P", pid], check=True)
+        children = child_pids(int(pid))  # the host under the container's init
+        assert children, f"no process under the container's init {pid}"
+        for child in children:
+            os.kill(child, signal.SIGKILL)
         assert controller.hosts.wait_for(lambda alive: not alive, 20)
         assert controller.wait_for_host(60), _logs(container)
         cmd = controller.compute_velocity_commands(pose(0.5, 0.5), Twist())

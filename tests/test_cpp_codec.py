@@ -1,6 +1,6 @@
 """The C++ codec (bridge_plugin/) against the shared vectors: configure, build and run its
 GoogleTest suite with ctest. Skipped, naming what is missing, on machines without the C++
-toolchain or the codec's Debian packages (libmsgpack-cxx-dev, libgtest-dev,
+toolchain or the codec's Debian packages (libmsgpack-dev: msgpack-c, libgtest-dev,
 nlohmann-json3-dev, zlib1g-dev).
 
 The build directory (build/cpp_codec, git-ignored) is kept between runs, so only the first run
@@ -26,7 +26,7 @@ VECTORS = ROOT / "protocol" / "vectors"
 
 # What the build needs, as (what to report, header that proves it is installed).
 HEADERS = [
-    ("msgpack-cxx (apt: libmsgpack-cxx-dev)", "msgpack.hpp"),
+    ("msgpack-c (apt: libmsgpack-dev; rosdep key msgpack)", "msgpack.h"),
     ("GoogleTest (apt: libgtest-dev)", "gtest/gtest.h"),
     ("nlohmann-json (apt: nlohmann-json3-dev)", "nlohmann/json.hpp"),
     ("zlib (apt: zlib1g-dev)", "zlib.h"),

@@ -1,6 +1,12 @@
 """Every shell and Python block of README.md, docs/DEPLOYMENT.md and bridge_plugin/README.md,
 extracted from the Markdown and run as a user would (tests/docs_blocks.py says how a block is
-marked). Blocks that need Docker, Nav2 or a GPU are marked and skipped, saying so."""
+marked). Blocks that need Docker, Nav2 or a GPU are marked and skipped, saying so.
+
+Each document runs in a network of its own (tests/private_network.py): its commands use
+Zenoh's default port 7447 as written, beside a Zenoh router that may already listen on 7447
+here and other planner hosts, and reach none of them. Where no such network can be made, the
+blocks run on this machine's own network if 7447 is free, and are skipped, naming the cause,
+if it is not."""
 
 from __future__ import annotations
 
@@ -17,6 +23,7 @@ import pytest
 
 from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import Block, blocks
+from tests.private_network import ZENOH_DEFAULT_PORT, PrivateNetwork, port_is_free
 
 DOCS = [
     ROOT / "README.md",
@@ -37,6 +44,23 @@ class DocRun:
         self.user_dir = Path(self._tmp.name)
         self.done: set[int] = set()
         self.background: list[tuple[Block, subprocess.Popen[bytes], Path]] = []
+        self.network: PrivateNetwork | None = PrivateNetwork()
+        #: why this document's commands cannot run here, if they cannot
+        self.cannot_run: str | None = None
+        why_not = self.network.open()
+        if why_not is not None:
+            self.network = None
+            if not port_is_free(ZENOH_DEFAULT_PORT):
+                self.cannot_run = (
+                    f"port {ZENOH_DEFAULT_PORT}, which the documented commands use, is taken "
+                    f"here (a Zenoh router?) and no network of the tests' own can be made "
+                    f"({why_not})"
+                )
+
+    def argv(self, command: str) -> list[str]:
+        """``command`` as a user runs it, in this document's own network if there is one."""
+        argv = in_project_env(command)
+        return self.network.command(argv) if self.network is not None else argv
 
     def cwd(self, block: Block) -> Path:
         return ROOT if block.options.get("cwd") == "repo" else self.user_dir
@@ -79,7 +103,7 @@ class DocRun:
             self._start(block, command)
             return
         result = subprocess.run(
-            in_project_env(f"set -eo pipefail\n{command}"),
+            self.argv(f"set -eo pipefail\n{command}"),
             cwd=self.cwd(block),
             capture_output=True,
             text=True,
@@ -94,7 +118,7 @@ class DocRun:
         log = self.user_dir / f"background_{block.line}.log"
         with open(log, "wb") as out:
             proc = subprocess.Popen(
-                in_project_env(command),
+                self.argv(command),
                 cwd=self.cwd(block),
                 stdout=out,
                 stderr=subprocess.STDOUT,
@@ -123,6 +147,8 @@ class DocRun:
             if code not in (0, 128 + signal.SIGINT):
                 problems.append(f"{block.name} exited {code} on SIGINT:\n{log.read_text()}")
         self.background.clear()
+        if self.network is not None:
+            self.network.close()
         self._tmp.cleanup()
         return problems
 
@@ -147,7 +173,10 @@ def test_doc_block_runs_as_written(block: Block, doc_runs: dict[Path, DocRun]) -
             assert not problems, "\n".join(problems)
         doc_runs.clear()
         doc_runs[block.doc] = DocRun(block.doc)
-    doc_runs[block.doc].run(block)
+    run = doc_runs[block.doc]
+    if run.cannot_run is not None and not block.user_file and "file" not in block.options:
+        pytest.skip(f"{block.name}: {run.cannot_run}")
+    run.run(block)
 
 
 def test_every_document_has_blocks_that_run() -> None:

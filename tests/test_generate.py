@@ -15,8 +15,8 @@ from nav2_pyif_protocol import cpp_codec, cpp_errors, generate, schema
 from nav2_pyif_protocol.constants import (
     ERRORS_BY_PLUGIN,
     GENERIC_ERROR,
+    HOST_FAILURE_ERROR,
     INVALID_ERROR,
-    TIMED_OUT_ERROR,
     Op,
     PluginType,
 )
@@ -125,8 +125,28 @@ def test_the_cpp_error_tables_say_what_constants_py_says() -> None:
         assert own == {e.value for e in ERRORS_BY_PLUGIN[plugin]}, plugin
     for table, expected in (
         ("kGenericError", GENERIC_ERROR),
-        ("kTimedOutError", TIMED_OUT_ERROR),
+        ("kHostFailureError", HOST_FAILURE_ERROR),
         ("kInvalidError", INVALID_ERROR),
     ):
         assert rows(table) == [f"ErrorKind::{expected[p].value}" for p in PluginType], table
     assert "InvalidPath" in names and "SessionUnknown" not in names  # protocol errors: no
+
+
+def test_every_op_has_one_timeout_class_that_every_party_reads() -> None:
+    """schema.OP_TIMEOUT is the one table: the reference client's Timeouts and the host's
+    Deadlines have a field per class, and reset is a control-loop call (Nav2 resets after
+    every goal: an abort must not wait on a silent host's lifecycle timeout)."""
+    from nav2_pyif.client.plugin_client import Timeouts
+    from nav2_pyif.server.supervisor import Deadlines
+    from nav2_pyif_protocol.schema import OP_TIMEOUT, Timeout
+
+    assert set(OP_TIMEOUT) == set(Op)
+    timeouts = Timeouts(call=1.0, lifecycle=2.0, configure=3.0, plan=4.0)
+    deadlines = Deadlines(call=1.0, lifecycle=2.0, configure=3.0, plan=4.0)
+    seconds = {Timeout.CALL: 1.0, Timeout.LIFECYCLE: 2.0, Timeout.CONFIGURE: 3.0, Timeout.PLAN: 4.0}
+    for op, timeout in OP_TIMEOUT.items():
+        assert getattr(timeouts, timeout.value) == seconds[timeout]
+        assert deadlines.of(op.value) == seconds[timeout], op
+    assert OP_TIMEOUT[Op.RESET] is Timeout.CALL
+    header = (ROOT / "bridge_plugin/include/nav2_pyif_bridge/protocol/ops.hpp").read_text()
+    assert "TimeoutClass::Call,  // reset" in header

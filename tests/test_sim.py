@@ -274,9 +274,9 @@ def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
     result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan")
     assert result.returncode == 1, result.stderr  # not reached; no traceback of the runner
     assert "Traceback" not in result.stderr
-    assert "NOT REACHED: set_plan failed: ControllerTimedOut" in result.stdout
+    assert "NOT REACHED: set_plan failed: NoValidControl" in result.stdout
     record = json.loads((tmp_path / "office_user_faults.SlowSetPlan.json").read_text())
-    assert record["summary"]["outcome"].startswith("set_plan failed: ControllerTimedOut")
+    assert record["summary"]["outcome"].startswith("set_plan failed: NoValidControl")
 
 
 def test_built_in_zenoh_configs_make_no_shared_memory_pool_on_the_first_large_message() -> None:

@@ -25,7 +25,7 @@ from nav2_pyif.client import (
 from nav2_pyif.client.admin import request_reload
 from nav2_pyif.messages import ns_to_stamp
 
-from tests.conftest import make_costmap, wait_until
+from tests.conftest import make_costmap, wait_until, worker_pid_in
 
 SMOOTHER = "nav2_pyif/test_robot/simple_smoother"
 GOAL = "nav2_pyif/test_robot/goal_checker"
@@ -182,11 +182,7 @@ def test_seed_style_functions_serve_a_goal_checker_and_a_smoother(
 
 
 def worker_pid(host: Any, key: str) -> int | None:
-    marker = f"{key}: worker "
-    for line in reversed(host.log().splitlines()):
-        if marker in line and (" serving " in line or " restarted" in line):
-            return int(line.split(marker)[1].split()[0])
-    return None
+    return worker_pid_in(host.log(), key)
 
 
 def test_a_killed_worker_is_restarted_with_the_sessions_state(

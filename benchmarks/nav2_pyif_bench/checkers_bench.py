@@ -27,6 +27,7 @@ from nav2_pyif.client import (
     Timeouts,
 )
 from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.common.option_types import positive_int
 from nav2_pyif.messages import ns_to_stamp
 
 from nav2_pyif_bench.protocol_bench import costmap, open_session, progress
@@ -41,7 +42,9 @@ ROWS = ("controller only (1 query)", "checkers, a query each (3)", "checkers car
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--calls", type=int, default=3000, help="cycles per variant")
+    p.add_argument(
+        "--calls", type=positive_int, default=3000, help="cycles per variant, >= 1 (default 3000)"
+    )
     p.add_argument("--quick", action="store_true", help="300 cycles per variant")
 
 

@@ -26,9 +26,18 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
+from nav2_pyif.common.option_types import positive_float
+
 from nav2_pyif_bench.cycle_targets import cycle_target_lines
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
-from nav2_pyif_bench.protocol_bench import BARE_KEY, INPROC_KEY, KEY, peer_commands, progress
+from nav2_pyif_bench.protocol_bench import (
+    BARE_KEY,
+    INPROC_KEY,
+    KEY,
+    add_rounds_and_rate,
+    peer_commands,
+    progress,
+)
 from nav2_pyif_bench.stats import Summary, header_row
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -162,17 +171,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--setup", help="ROS 2 setup script the binary runs in (default: $NAV2_PYIF_NAV2_SETUP)"
     )
-    parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
-    parser.add_argument("--calls", type=int, default=300, help="calls per row and round")
+    add_rounds_and_rate(parser, paced_calls=300, none_paced=True)
     parser.add_argument(
-        "--paced-calls",
-        type=int,
-        default=300,
-        help="then this many calls per row at --rate (0: none)",
+        "--timeout",
+        type=positive_float,
+        default=900.0,
+        metavar="SECONDS",
+        help="seconds for the binary, > 0 (default 900)",
     )
-    parser.add_argument("--rate", type=float, default=20.0, help="the paced rows' rate, Hz")
-    parser.add_argument("--timeout", type=float, default=900.0, help="seconds for the binary")
-    parser.add_argument("--quick", action="store_true", help="a short smoke run")
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:

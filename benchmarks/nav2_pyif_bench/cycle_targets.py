@@ -4,11 +4,7 @@ machine: the default (crash-isolated) cycle against the bare Zenoh get, against
 
 from __future__ import annotations
 
-from nav2_pyif_bench.stats import Summary
-
-
-def _verdict(met: bool) -> str:
-    return "MET" if met else "NOT MET"
+from nav2_pyif_bench.stats import Summary, verdict
 
 
 def cycle_target_lines(c: dict[str, Summary]) -> list[str]:
@@ -20,20 +16,20 @@ def cycle_target_lines(c: dict[str, Summary]) -> list[str]:
     below_ros_p99 = ros.p99_us / worker.p99_us
     lines = [
         f"  worker cycle / bare get, median: {over_bare:.2f}x (target <= 1.5x): "
-        f"{_verdict(over_bare <= 1.5)}  [--isolation none: "
+        f"{verdict(over_bare, '<=', 1.5, 2)}  [--isolation none: "
         f"{inproc.median_us / bare.median_us:.2f}x]",
         f"  worker cycle / --isolation none, median: {over_inproc:.2f}x (target <= 1.10x): "
-        f"{_verdict(over_inproc <= 1.10)}",
+        f"{verdict(over_inproc, '<=', 1.10, 2)}",
         f"  rclpy node / worker cycle, median: {below_ros:.2f}x (target >= 1.2x): "
-        f"{_verdict(below_ros >= 1.2)}",
+        f"{verdict(below_ros, '>=', 1.2, 2)}",
         f"  rclpy node / worker cycle, p99: {below_ros_p99:.2f}x (target >= 2x, machine "
-        f"loaded): {_verdict(below_ros_p99 >= 2)}",
+        f"loaded): {verdict(below_ros_p99, '>=', 2, 2)}",
     ]
     paced = c.get("pyif.paced")
     if paced is not None:
         spread = paced.p99_us / paced.median_us
         lines.append(
             f"  worker cycle at 20 Hz, p99 / median: {spread:.2f}x (target <= 2x): "
-            f"{_verdict(spread <= 2)}"
+            f"{verdict(spread, '<=', 2, 2)}"
         )
     return lines

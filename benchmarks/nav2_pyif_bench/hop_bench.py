@@ -38,7 +38,7 @@ from nav2_pyif.common.zenoh_config import connect_to
 from nav2_pyif.server.frames import FramedPipe
 
 from nav2_pyif_bench.processes import free_port, peer_processes
-from nav2_pyif_bench.protocol_bench import interleaved, progress
+from nav2_pyif_bench.protocol_bench import add_rounds_and_rate, interleaved, progress
 from nav2_pyif_bench.stats import Summary, header_row
 
 REQUEST = b"r" * 300
@@ -222,11 +222,7 @@ def _ratio(rows: dict[str, Summary], name: str) -> str:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
-    parser.add_argument("--calls", type=int, default=300, help="calls per row and round")
-    parser.add_argument("--paced-calls", type=int, default=200, help="calls per row at --rate")
-    parser.add_argument("--rate", type=float, default=20.0, help="the paced rows' rate, Hz")
-    parser.add_argument("--quick", action="store_true", help="a short smoke run")
+    add_rounds_and_rate(parser, paced_calls=200, none_paced=False)
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:

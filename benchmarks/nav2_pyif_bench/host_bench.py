@@ -21,7 +21,8 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.client.hosts import visible_hosts
-from nav2_pyif.common.zenoh_config import ZenohOptions, open_session
+from nav2_pyif.common.option_types import non_negative_float, positive_int
+from nav2_pyif.common.zenoh_config import ZenohOptions, add_endpoint_arguments, open_session
 
 from nav2_pyif_bench.protocol_bench import costmap, progress
 from nav2_pyif_bench.stats import Summary, header_row
@@ -31,12 +32,34 @@ TIMEOUTS = Timeouts(call=2.0, lifecycle=5.0, configure=30.0)
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("--key", required=True, help="the key prefix a controller is served on")
-    p.add_argument("--connect", action="append", default=[], metavar="ENDPOINT")
-    p.add_argument("--mode", choices=["client", "peer"], default="client")
-    p.add_argument("--zenoh-config", metavar="FILE", help="a JSON5 Zenoh config instead")
-    p.add_argument("--calls", type=int, default=2000)
-    p.add_argument("--rate", type=float, default=20.0, help="calls per second (0: unpaced)")
-    p.add_argument("--wait", type=float, default=10.0, help="seconds to wait for the host")
+    add_endpoint_arguments(
+        p,
+        config_help="a JSON5 Zenoh config instead",
+        connect_help="the router or host to connect to, repeatable",
+        listen_help="endpoint to listen on, repeatable (peers dial it)",
+    )
+    p.add_argument(
+        "--mode",
+        choices=["client", "peer"],
+        default="client",
+        help="this session's Zenoh mode (default client, as the C++ plugin)",
+    )
+    p.add_argument(
+        "--calls", type=positive_int, default=2000, help="control cycles, >= 1 (default 2000)"
+    )
+    p.add_argument(
+        "--rate",
+        type=non_negative_float,
+        default=20.0,
+        help="calls per second, >= 0 (0: unpaced; default 20)",
+    )
+    p.add_argument(
+        "--wait",
+        type=non_negative_float,
+        default=10.0,
+        metavar="SECONDS",
+        help="seconds to wait for the host, >= 0 (default 10)",
+    )
 
 
 def _pose(x: float, y: float) -> Any:
@@ -46,7 +69,7 @@ def _pose(x: float, y: float) -> Any:
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    options = ZenohOptions(args.zenoh_config, list(args.connect), mode=args.mode)
+    options = ZenohOptions(args.zenoh_config, list(args.connect), list(args.listen), args.mode)
     try:
         session = open_session(options)
     except (ConnectionError, FileNotFoundError) as exc:

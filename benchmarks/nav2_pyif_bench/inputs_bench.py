@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif.client import ControllerClient
+from nav2_pyif.common.option_types import positive_int
 from nav2_pyif.common.zenoh_config import connect_to
 from nav2_pyif.ros_types import serialize, type_name_of
 from nav2_pyif_protocol.constants import Op
@@ -124,7 +125,12 @@ def paced(rate: float, calls: int, each: Callable[[], None]) -> None:
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--calls", type=int, default=200, help="messages per kind and path")
+    parser.add_argument(
+        "--calls",
+        type=positive_int,
+        default=200,
+        help="messages per kind and path, >= 1 (default 200)",
+    )
     parser.add_argument("--quick", action="store_true", help="20 messages per kind and path")
 
 

@@ -15,6 +15,7 @@ import numpy as np
 from nav2_pyif import Costmap, LayerWindow
 from nav2_pyif.client import CostmapLayerClient, Timeouts
 from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.common.option_types import positive_int
 
 from nav2_pyif_bench.protocol_bench import open_session, progress
 from nav2_pyif_bench.stats import Summary, header_row
@@ -33,7 +34,12 @@ ROWS = {"400 x 400 window (whole grid)": 400, "60 x 60 window (3 m x 3 m)": 60}
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
-    p.add_argument("--updates", type=int, default=100, help="updates per window size, at 5 Hz")
+    p.add_argument(
+        "--updates",
+        type=positive_int,
+        default=100,
+        help="updates per window size, at 5 Hz, >= 1 (default 100)",
+    )
     p.add_argument("--quick", action="store_true", help="20 updates per window size")
 
 

@@ -20,6 +20,7 @@ import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif import Costmap, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
+from nav2_pyif.common.option_types import non_negative_int, positive_float, positive_int
 from nav2_pyif.common.zenoh_config import connect_to
 from nav2_pyif_protocol.codec import Request, encode_request
 from nav2_pyif_protocol.constants import Op
@@ -27,7 +28,7 @@ from nav_msgs.msg import Odometry
 
 from nav2_pyif_bench.processes import free_port, peer_processes, ros_localhost_env
 from nav2_pyif_bench.rclpy_client import RclpyWorkaroundClient, path_message
-from nav2_pyif_bench.stats import Summary, cycle_target_lines, header_row
+from nav2_pyif_bench.stats import Summary, cycle_target_lines, header_row, verdict
 
 KEY = "nav2_pyif/bench/FollowPath"
 INPROC_KEY = "nav2_pyif/bench/InProcess"
@@ -301,7 +302,7 @@ def report(results: dict[str, Any]) -> str:
         header_row(),
         p["pyif"].row("nav2_pyif set_plan"),
         p["rclpy"].row("rclpy node, nav_msgs/Path topic"),
-        f"  target <= 1 ms: {'MET' if p['pyif'].median_us <= 1000 else 'NOT MET'}",
+        f"  target <= 1 ms: {verdict(p['pyif'].median_us, '<=', 1000, 1)}",
         "",
     ]
     m = results["costmap_400"]
@@ -312,8 +313,7 @@ def report(results: dict[str, Any]) -> str:
         summary(m["unchanged"]).row(
             f"unchanged: not sent ({m['request_bytes_unchanged']} B request)"
         ),
-        f"  target <= 1 ms when changed: "
-        f"{'MET' if summary(m['changed']).median_us <= 1000 else 'NOT MET'}",
+        f"  target <= 1 ms when changed: {verdict(summary(m['changed']).median_us, '<=', 1000, 1)}",
         "",
     ]
     lines += ["host throughput, trivial planner, one key, N client sessions in one process"]
@@ -323,12 +323,43 @@ def report(results: dict[str, Any]) -> str:
     return "\n".join(lines)
 
 
+def _rounds(parser: argparse.ArgumentParser, calls: str) -> None:
+    parser.add_argument(
+        "--rounds", type=positive_int, default=10, help="interleaved rounds, >= 1 (default 10)"
+    )
+    parser.add_argument(
+        "--calls", type=positive_int, default=300, help=f"{calls}, >= 1 (default 300)"
+    )
+    parser.add_argument("--quick", action="store_true", help="a short smoke run")
+
+
+def add_rounds_and_rate(
+    parser: argparse.ArgumentParser, *, paced_calls: int, none_paced: bool
+) -> None:
+    """Interleaved rounds, then paced calls at --rate, and --quick: the C++ cycle's and the
+    hops' options (``none_paced``: --paced-calls 0 skips the paced rows)."""
+    _rounds(parser, "calls per row and round")
+    least = ">= 0 (0: none; " if none_paced else ">= 1 ("
+    parser.add_argument(
+        "--paced-calls",
+        type=non_negative_int if none_paced else positive_int,
+        default=paced_calls,
+        help=f"then this many calls per row at --rate, {least}default {paced_calls})",
+    )
+    parser.add_argument(
+        "--rate",
+        type=positive_float,
+        default=20.0,
+        help="the paced rows' rate [Hz], > 0 (default 20)",
+    )
+
+
 def add_round_arguments(parser: argparse.ArgumentParser) -> None:
     """Rounds of control cycles and plans, and --quick: this benchmark's and the TLS one's."""
-    parser.add_argument("--rounds", type=int, default=10, help="interleaved rounds")
-    parser.add_argument("--calls", type=int, default=300, help="control cycles per round")
-    parser.add_argument("--plan-calls", type=int, default=40, help="plans per round")
-    parser.add_argument("--quick", action="store_true", help="a short smoke run")
+    _rounds(parser, "control cycles per round")
+    parser.add_argument(
+        "--plan-calls", type=positive_int, default=40, help="plans per round, >= 1 (default 40)"
+    )
 
 
 def apply_quick_rounds(args: argparse.Namespace) -> argparse.Namespace:
@@ -339,9 +370,25 @@ def apply_quick_rounds(args: argparse.Namespace) -> argparse.Namespace:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_round_arguments(parser)
-    parser.add_argument("--costmap-calls", type=int, default=100, help="cycles per round")
-    parser.add_argument("--threads", type=int, nargs="+", default=[1, 4])
-    parser.add_argument("--seconds", type=float, default=3.0, help="per throughput run")
+    parser.add_argument(
+        "--costmap-calls",
+        type=positive_int,
+        default=100,
+        help="cycles per round with a new costmap each, >= 1 (default 100)",
+    )
+    parser.add_argument(
+        "--threads",
+        type=positive_int,
+        nargs="+",
+        default=[1, 4],
+        help="client threads of each throughput run, each >= 1 (default 1 4)",
+    )
+    parser.add_argument(
+        "--seconds",
+        type=positive_float,
+        default=3.0,
+        help="seconds per throughput run, > 0 (default 3)",
+    )
 
 
 def apply_quick(args: argparse.Namespace) -> argparse.Namespace:

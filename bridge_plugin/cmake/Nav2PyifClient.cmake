@@ -9,6 +9,7 @@
 find_package(Threads REQUIRED)
 
 add_library(nav2_pyif_client STATIC
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/behavior_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/carried_cycle.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/checker_sessions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/clock.cpp
@@ -33,6 +34,7 @@ set(_nav2_pyif_client_test_dir ${CMAKE_CURRENT_LIST_DIR}/../test/client)
 
 function(nav2_pyif_client_test_sources out_var)
   set(${out_var}
+    ${_nav2_pyif_client_test_dir}/behavior_session_test.cpp
     ${_nav2_pyif_client_test_dir}/carried_test.cpp
     ${_nav2_pyif_client_test_dir}/controller_session_test.cpp
     ${_nav2_pyif_client_test_dir}/fakes.cpp

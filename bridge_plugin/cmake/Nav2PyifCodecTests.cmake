@@ -37,8 +37,9 @@ function(nav2_pyif_codec_test_setup target)
   # The default vectors location; the NAV2_PYIF_VECTORS_DIR environment variable overrides it
   # at run time (test_data.cpp).
   target_compile_definitions(${target} PRIVATE
-    NAV2_PYIF_VECTORS_DIR="${NAV2_PYIF_VECTORS_DIR}" MSGPACK_NO_BOOST)
-  target_include_directories(${target} SYSTEM PRIVATE ${MSGPACK_CXX_INCLUDE_DIR})
+    NAV2_PYIF_VECTORS_DIR="${NAV2_PYIF_VECTORS_DIR}")
+  # json_tree.cpp packs the vectors' trees with msgpack-c (linked through the codec).
+  target_include_directories(${target} SYSTEM PRIVATE ${MSGPACK_C_INCLUDE_DIR})
   target_link_libraries(${target}
     nav2_pyif_protocol_codec nlohmann_json::nlohmann_json ZLIB::ZLIB)
 endfunction()

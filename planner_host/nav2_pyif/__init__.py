@@ -1,13 +1,15 @@
 """nav2_pyif: write Nav2 controllers, global planners, path smoothers, goal checkers,
-progress checkers and costmap layers in Python; serve them over Zenoh.
+progress checkers, costmap layers and behaviours in Python; serve them over Zenoh.
 
 The planner API (what a planner imports)::
 
     from nav2_pyif import Controller, GlobalPlanner, Costmap, Plan, GoalChecker
     from nav2_pyif import Smoother, GoalCheckerPlugin, ProgressCheckerPlugin, CostmapLayer
+    from nav2_pyif import Behavior, Status, Step, Failure  # behavior_server's plugins
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
 """
 
+from nav2_pyif.behavior import Behavior, Command, Failure, Status, Step, arc, pose_xy_yaw
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.costmap_layer import Combine, CostmapLayer, LayerWindow
@@ -51,7 +53,9 @@ from nav2_pyif.smoother import Smoother
 __version__ = "0.1.0"
 
 __all__ = [
+    "Behavior",
     "Combine",
+    "Command",
     "Controller",
     "ControllerException",
     "ControllerTFError",
@@ -60,6 +64,7 @@ __all__ = [
     "CostmapLayer",
     "FailedToMakeProgress",
     "FailedToSmoothPath",
+    "Failure",
     "GlobalPlanner",
     "GoalChecker",
     "GoalCheckerPlugin",
@@ -91,4 +96,8 @@ __all__ = [
     "SmootherTimedOut",
     "StartOccupied",
     "StartOutsideMapBounds",
+    "Status",
+    "Step",
+    "arc",
+    "pose_xy_yaw",
 ]

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import ClassVar
 
-from nav2_pyif_protocol.constants import GENERIC_ERROR, TIMED_OUT_ERROR, ErrorType, PluginType
+from nav2_pyif_protocol.constants import GENERIC_ERROR, HOST_FAILURE_ERROR, ErrorType, PluginType
 
 
 class Nav2Error(Exception):
@@ -160,8 +160,11 @@ def generic_error(plugin_type: PluginType) -> type[Nav2Error]:
     return NAV2_EXCEPTIONS[GENERIC_ERROR[plugin_type].value]
 
 
-def timed_out_error(plugin_type: PluginType) -> type[Nav2Error]:
-    return NAV2_EXCEPTIONS[TIMED_OUT_ERROR[plugin_type].value]
+def host_failure_error(plugin_type: PluginType) -> type[Nav2Error]:
+    """What a plugin of this type raises when its host, not its planner, failed the call (none
+    alive, no reply in time, Unavailable): the exception Nav2's recovery conditions retry
+    (constants.HOST_FAILURE_ERROR)."""
+    return NAV2_EXCEPTIONS[HOST_FAILURE_ERROR[plugin_type].value]
 
 
 class PlannerLoadError(Exception):

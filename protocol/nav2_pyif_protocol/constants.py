@@ -15,6 +15,7 @@ class PluginType(str, Enum):
     GOAL_CHECKER = "goal_checker"  # nav2_core::GoalChecker (controller_server)
     PROGRESS_CHECKER = "progress_checker"  # nav2_core::ProgressChecker (controller_server)
     COSTMAP_LAYER = "costmap_layer"  # nav2_costmap_2d::Layer (a costmap's plugins)
+    BEHAVIOR = "behavior"  # nav2_core::Behavior (behavior_server), as TimedBehavior runs it
 
 
 class Op(str, Enum):
@@ -45,6 +46,10 @@ class Op(str, Enum):
     UPDATE_BOUNDS = "update_bounds"
     UPDATE_COSTS = "update_costs"
     MATCH_SIZE = "match_size"
+    # behavior (nav2_behaviors::TimedBehavior's hooks)
+    ON_RUN = "on_run"
+    ON_CYCLE_UPDATE = "on_cycle_update"
+    ON_ACTION_COMPLETION = "on_action_completion"
 
 
 LIFECYCLE_OPS = frozenset({Op.CONFIGURE, Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS})
@@ -63,6 +68,7 @@ SMOOTHER_OPS = LIFECYCLE_OPS | {Op.SMOOTH}
 GOAL_CHECKER_OPS = LIFECYCLE_OPS | {Op.IS_GOAL_REACHED, Op.GET_TOLERANCES, Op.RESET}
 PROGRESS_CHECKER_OPS = LIFECYCLE_OPS | {Op.CHECK, Op.RESET}
 COSTMAP_LAYER_OPS = LIFECYCLE_OPS | {Op.UPDATE_BOUNDS, Op.UPDATE_COSTS, Op.MATCH_SIZE, Op.RESET}
+BEHAVIOR_OPS = LIFECYCLE_OPS | {Op.ON_RUN, Op.ON_CYCLE_UPDATE, Op.ON_ACTION_COMPLETION}
 OPS_BY_PLUGIN = {
     PluginType.CONTROLLER: CONTROLLER_OPS,
     PluginType.GLOBAL_PLANNER: GLOBAL_PLANNER_OPS,
@@ -70,6 +76,7 @@ OPS_BY_PLUGIN = {
     PluginType.GOAL_CHECKER: GOAL_CHECKER_OPS,
     PluginType.PROGRESS_CHECKER: PROGRESS_CHECKER_OPS,
     PluginType.COSTMAP_LAYER: COSTMAP_LAYER_OPS,
+    PluginType.BEHAVIOR: BEHAVIOR_OPS,
 }
 
 
@@ -161,8 +168,12 @@ ERRORS_BY_PLUGIN = {
     # A layer never throws into Nav2 (its costmap's update thread would die): the plugin logs
     # the error and keeps its last costs. ControllerException only names the failure here.
     PluginType.COSTMAP_LAYER: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
+    # Nor does a behaviour: TimedBehavior ends its action with a status and an error code.
+    # The plugin turns any failed call into FAILED (the action's UNKNOWN code);
+    # ControllerException only names the failure here.
+    PluginType.BEHAVIOR: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
 }
-#: The catch-all exception of each plugin type, its timeout and its configure failure.
+#: The catch-all exception of each plugin type, its host failure and its configure failure.
 GENERIC_ERROR = {
     PluginType.CONTROLLER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_EXCEPTION,
@@ -170,14 +181,26 @@ GENERIC_ERROR = {
     PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.BEHAVIOR: ErrorType.CONTROLLER_EXCEPTION,
 }
-TIMED_OUT_ERROR = {
-    PluginType.CONTROLLER: ErrorType.CONTROLLER_TIMED_OUT,
-    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_TIMED_OUT,
-    PluginType.SMOOTHER: ErrorType.SMOOTHER_TIMED_OUT,
-    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
-    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_TIMED_OUT,
-    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_TIMED_OUT,
+#: What a plugin throws when its host failed it rather than the planner: no host alive, no
+#: reply in time, a broken connection, or an ``Unavailable`` reply (the worker crashed and is
+#: restarting, or overran its deadline). Chosen so that Nav2's own behaviour-tree conditions
+#: send the navigation to a recovery (RELIABILITY.md, "Which exception a host failure
+#: becomes"): Jazzy, Kilted and Lyrical's WouldAControllerRecoveryHelp accepts
+#: NO_VALID_CONTROL and UNKNOWN but not CONTROLLER_TIMED_OUT, and controller_server's
+#: ``failure_tolerance`` holds the robot still and retries through NoValidControl only;
+#: WouldAPlannerRecoveryHelp and WouldASmootherRecoveryHelp accept UNKNOWN (the generic
+#: exceptions). On Humble every one of them is PlannerException, which its BT always recovers.
+#: A planner's own typed errors (a planner raising ControllerTimedOut) pass through as raised.
+HOST_FAILURE_ERROR = {
+    PluginType.CONTROLLER: ErrorType.NO_VALID_CONTROL,
+    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_EXCEPTION,
+    PluginType.SMOOTHER: ErrorType.SMOOTHER_EXCEPTION,
+    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.BEHAVIOR: ErrorType.CONTROLLER_EXCEPTION,
 }
 INVALID_ERROR = {
     PluginType.CONTROLLER: ErrorType.INVALID_CONTROLLER,
@@ -186,6 +209,7 @@ INVALID_ERROR = {
     PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.BEHAVIOR: ErrorType.CONTROLLER_EXCEPTION,
 }
 PROTOCOL_ERRORS = frozenset(
     {

@@ -28,6 +28,7 @@ from nav2_pyif_protocol.schema import (
     FLOAT6,
     FLOAT7,
     INT,
+    OP_TIMEOUT,
     PARAMS,
     REPLY_ENVELOPE,
     REQUEST_ENVELOPE,
@@ -39,6 +40,7 @@ from nav2_pyif_protocol.schema import (
     UINT,
     UINT32,
     Field,
+    Timeout,
 )
 
 COMMAND = "python -m nav2_pyif_protocol.generate"
@@ -297,6 +299,25 @@ def ops_hpp() -> str:
         "constexpr std::string_view op_name(Op op) noexcept",
         "{",
         "  return kOpNames[static_cast<std::size_t>(op)];",
+        "}",
+        "",
+        *comment(
+            "Which of a plugin's timeouts bounds each op's reply (schema.py OP_TIMEOUT; "
+            "PROTOCOL.md section 8).",
+            "",
+        ),
+        "enum class TimeoutClass : std::uint8_t",
+        "{",
+        *(f"  {camel(t.value)}," for t in Timeout),
+        "};",
+        "",
+        "inline constexpr std::array<TimeoutClass, kOpCount> kOpTimeout = {",
+        *(f"  TimeoutClass::{camel(OP_TIMEOUT[op].value)},  // {op.value}" for op in Op),
+        "};",
+        "",
+        "constexpr TimeoutClass timeout_class(Op op) noexcept",
+        "{",
+        "  return kOpTimeout[static_cast<std::size_t>(op)];",
         "}",
         "",
         "// std::nullopt for a name this version of the protocol does not know.",

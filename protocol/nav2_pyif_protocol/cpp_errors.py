@@ -1,7 +1,7 @@
 """Render constants.py's plugin types and nav2_core error tables as a C++ header
 (bridge_plugin/include/nav2_pyif_bridge/protocol/nav2_errors.hpp): which exception names a
 reply may carry, which a plugin of each type throws under their own name, and each type's
-generic, timed-out and invalid error. The plugin's error mapping (client/error_mapping.cpp)
+generic, host-failure and invalid error. The plugin's error mapping (client/error_mapping.cpp)
 looks them up instead of repeating them, so a new exception or plugin type is one edit of
 constants.py and a regeneration."""
 
@@ -11,11 +11,11 @@ from nav2_pyif_protocol.constants import (
     CONTROLLER_ERRORS,
     ERRORS_BY_PLUGIN,
     GENERIC_ERROR,
+    HOST_FAILURE_ERROR,
     INVALID_ERROR,
     PLANNER_ERRORS,
     PROTOCOL_ERRORS,
     SMOOTHER_ERRORS,
-    TIMED_OUT_ERROR,
     ErrorType,
     PluginType,
 )
@@ -116,7 +116,11 @@ def nav2_errors_hpp() -> str:
     ]
     for name, table, doc in (
         ("kGenericError", GENERIC_ERROR, "catch-all exception"),
-        ("kTimedOutError", TIMED_OUT_ERROR, "exception for a call that got no reply in time"),
+        (
+            "kHostFailureError",
+            HOST_FAILURE_ERROR,
+            "exception when its host failed it (none alive, no reply in time, Unavailable)",
+        ),
         ("kInvalidError", INVALID_ERROR, "exception when it cannot be configured"),
     ):
         body += _table(
@@ -129,7 +133,7 @@ def nav2_errors_hpp() -> str:
     assert len(NAV2_ERRORS) <= 32, "kOwnErrors is a 32-bit mask per plugin type"
     return cpp_file(
         "The plugin types and the nav2_core exceptions each throws (constants.py's "
-        "ERRORS_BY_PLUGIN, GENERIC_ERROR, TIMED_OUT_ERROR and INVALID_ERROR), as tables the "
+        "ERRORS_BY_PLUGIN, GENERIC_ERROR, HOST_FAILURE_ERROR and INVALID_ERROR), as tables the "
         "plugin's error mapping (client/error_mapping.cpp) looks up.",
         ["<array>", "<cstddef>", "<cstdint>", "<string_view>"],
         body,

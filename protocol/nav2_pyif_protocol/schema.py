@@ -11,6 +11,7 @@ the C++ message structs and their codec (bridge_plugin/) and as PROTOCOL.md's fi
 from __future__ import annotations
 
 from dataclasses import dataclass
+from enum import Enum
 from typing import Final
 
 from nav2_pyif_protocol.constants import Op
@@ -175,13 +176,17 @@ _CONFIGURE_REQUEST = (
     _f(
         "plugin_type",
         STR,
-        "'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker' or "
-        "'costmap_layer'",
+        "'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker', "
+        "'costmap_layer' or 'behavior'",
     ),
     _f("name", STR, "plugin name in Nav2 (e.g. FollowPath)"),
     _f("node", STR, "name of the Nav2 server node"),
     _f("params", PARAMS, "every parameter under the plugin's namespace, prefix stripped"),
-    _f("global_frame", STR, "the costmap's global frame"),
+    _f(
+        "global_frame",
+        STR,
+        "the costmap's global frame (a behaviour's: behavior_server's local_frame)",
+    ),
     _f("robot_base_frame", STR, "the robot base frame"),
     _f(
         "costmap",
@@ -201,6 +206,17 @@ _THEN_COMPUTE = (
         BIN,
         "an encoded compute_velocity_commands request for then_compute_key",
         False,
+    ),
+)
+
+# A behaviour's step (PROTOCOL.md section 17): TimedBehavior's ResultStatus, by name.
+_BEHAVIOR_STATUS = (
+    _f("status", STR, "'succeeded', 'failed' or 'running' (on_run: not 'running')"),
+    _f(
+        "failure",
+        STR,
+        "why it failed, mapped to the action's error code: '' (none), 'unknown', 'timeout', "
+        "'tf_error', 'invalid_input', 'collision_ahead'",
     ),
 )
 
@@ -402,4 +418,89 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         ),
         (),
     ),
+    Op.ON_RUN: (
+        (
+            _f("action", STR, "the action type, e.g. nav2_msgs/action/BackUp"),
+            _f(
+                "command",
+                PARAMS,
+                "the goal's fields as plain values (section 17), e.g. target_x [m], speed "
+                "[m/s], time_allowance [s]",
+            ),
+            _f("pose", "PoseStamped", "robot pose, in behavior_server's local frame"),
+            _f("costmap", "Costmap", "the local costmap, present only when changed", False),
+        ),
+        _BEHAVIOR_STATUS,
+    ),
+    Op.ON_CYCLE_UPDATE: (
+        (
+            _f("pose", "PoseStamped", "robot pose, in behavior_server's local frame"),
+            _f("elapsed", FLOAT, "time since on_run succeeded [s]"),
+            _f("costmap", "Costmap", "the local costmap, present only when changed", False),
+        ),
+        (
+            *_BEHAVIOR_STATUS,
+            _f(
+                "cmd_vel",
+                "TwistStamped",
+                "the command to publish this cycle; every component finite; absent: none "
+                "(the plugin stops the robot when the status is not 'running')",
+                False,
+            ),
+            _f(
+                "feedback",
+                PARAMS,
+                "the action's feedback fields, e.g. distance_traveled [m]; absent when none",
+                False,
+            ),
+        ),
+    ),
+    Op.ON_ACTION_COMPLETION: (
+        (
+            _f("status", STR, "how the action ended: 'succeeded', 'failed' or 'cancelled'"),
+            _f("elapsed", FLOAT, "the action's total_elapsed_time [s]"),
+        ),
+        (),
+    ),
+}
+
+
+class Timeout(str, Enum):
+    """Which of a plugin's timeouts (and of a host's deadlines) bounds an op: the values are
+    the parameter names of both (PROTOCOL.md section 8)."""
+
+    CALL = "call"  # the control loop's: below the controller period
+    LIFECYCLE = "lifecycle"
+    CONFIGURE = "configure"  # imports, JIT compilation
+    PLAN = "plan"  # create_plan and smooth may take seconds
+
+
+#: Each op's timeout class: the one table the Python client, the C++ client (generated into
+#: ops.hpp) and the host's deadlines read. ``reset`` is a control-loop call for every plugin
+#: type: Nav2 calls it after every goal, and an abort must not wait on it.
+OP_TIMEOUT: dict[Op, Timeout] = {
+    Op.CONFIGURE: Timeout.CONFIGURE,
+    Op.ACTIVATE: Timeout.LIFECYCLE,
+    Op.DEACTIVATE: Timeout.LIFECYCLE,
+    Op.CLEANUP: Timeout.LIFECYCLE,
+    Op.SET_PARAMETERS: Timeout.LIFECYCLE,
+    Op.SET_PLAN: Timeout.CALL,
+    Op.COMPUTE_VELOCITY_COMMANDS: Timeout.CALL,
+    Op.SET_SPEED_LIMIT: Timeout.CALL,
+    Op.CANCEL: Timeout.CALL,
+    Op.RESET: Timeout.CALL,
+    Op.CREATE_PLAN: Timeout.PLAN,
+    Op.CANCEL_PLAN: Timeout.LIFECYCLE,
+    Op.SMOOTH: Timeout.PLAN,
+    Op.IS_GOAL_REACHED: Timeout.CALL,
+    Op.GET_TOLERANCES: Timeout.CALL,
+    Op.CHECK: Timeout.CALL,
+    Op.UPDATE_BOUNDS: Timeout.CALL,
+    Op.UPDATE_COSTS: Timeout.CALL,
+    Op.MATCH_SIZE: Timeout.CALL,
+    # a behaviour: the goal's start and end as lifecycle calls, every cycle (behavior_server's
+    # 10 Hz) a control-loop one
+    Op.ON_RUN: Timeout.LIFECYCLE,
+    Op.ON_CYCLE_UPDATE: Timeout.CALL,
+    Op.ON_ACTION_COMPLETION: Timeout.LIFECYCLE,
 }

@@ -271,6 +271,34 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     yield "update_costs_request", req(Op.UPDATE_COSTS, window, seq=18), "a 4 x 3 window"
     grid = {"size_x": 400, "size_y": 400, "resolution": 0.05, "origin_x": -10.0, "origin_y": -10.0}
     yield "match_size_request", req(Op.MATCH_SIZE, grid, seq=19), ""
+    behavior_configure = dict(
+        configure,
+        plugin_type="behavior",
+        name="backup",
+        node="behavior_server",
+        params={"free_threshold": 0.5, "max_turn": 1.57},
+        costmap=costmap(8, 6, 1, "odom"),
+    )
+    yield "configure_behavior", req(Op.CONFIGURE, behavior_configure, seq=0), "a behaviour"
+    backup = {
+        "target_x": -0.3,
+        "target_y": 0.0,
+        "target_z": 0.0,
+        "speed": 0.15,
+        "time_allowance": 10.0,
+        "disable_collision_checks": False,
+    }
+    run = {
+        "action": "nav2_msgs/action/BackUp",
+        "command": backup,
+        "pose": pose(1.0, 2.0, 0.5, "odom"),
+        "costmap": costmap(8, 6, 2, "odom"),
+    }
+    yield "on_run_request", req(Op.ON_RUN, run, seq=20), "BackUp's goal, costmap changed"
+    cycle = {"pose": pose(0.9, 1.95, 0.5, "odom"), "elapsed": 0.1}
+    yield "on_cycle_update_request", req(Op.ON_CYCLE_UPDATE, cycle, seq=21), ""
+    ended = {"status": "succeeded", "elapsed": 2.5}
+    yield "on_action_completion_request", req(Op.ON_ACTION_COMPLETION, ended, seq=22), ""
 
 
 def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
@@ -377,6 +405,32 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
     costs = {"width": 4, "height": 3, "costs": bytes([0, 254, 254, 255] * 3), "combine": "max"}
     yield "update_costs_reply", Op.UPDATE_COSTS, ok(Op.UPDATE_COSTS, costs, seq=18), ""
     yield "match_size_reply", Op.MATCH_SIZE, ok(Op.MATCH_SIZE, {}, seq=19), "empty body"
+    started = {"status": "succeeded", "failure": ""}
+    yield "on_run_reply", Op.ON_RUN, ok(Op.ON_RUN, started, seq=20), "start the cycle"
+    step = {
+        "status": "running",
+        "failure": "",
+        "cmd_vel": {"frame_id": "base_link", "stamp_ns": 42, "twist": [-0.15] + [0.0] * 5},
+        "feedback": {"distance_traveled": 0.11},
+    }
+    yield (
+        "on_cycle_update_reply",
+        Op.ON_CYCLE_UPDATE,
+        ok(Op.ON_CYCLE_UPDATE, step, seq=21),
+        "running: a command and feedback",
+    )
+    yield (
+        "on_cycle_update_reply_collision",
+        Op.ON_CYCLE_UPDATE,
+        ok(Op.ON_CYCLE_UPDATE, {"status": "failed", "failure": "collision_ahead"}, seq=21),
+        "failed, no command: the plugin stops the robot",
+    )
+    yield (
+        "on_action_completion_reply",
+        Op.ON_ACTION_COMPLETION,
+        ok(Op.ON_ACTION_COMPLETION, {}, seq=22),
+        "empty body",
+    )
     tolerances = {
         "available": True,
         "pose_tolerance": [0.25, 0.25, 0.0, 0.0, 0.0, math.sin(0.125), math.cos(0.125)],

@@ -1,15 +1,24 @@
 """podman for the container tests: a probe that says why containers cannot run here, a base
 image made locally (no registry is reachable on the project's CI machines), and the
-planner-host image built from docker/Dockerfile on it."""
+planner-host image built from docker/Dockerfile on it.
+
+What they leave (README, "Try it"): the base image and the planner-host image, one tag each
+whatever the checkout (about 0.3 GB and 0.4 GB more), kept as the cache of the next run.
+Images a build replaces and the layers of a failed build are removed (all carry LABEL). One
+checkout's container tests run at a time (an exclusive lock): another's build would otherwise
+re-tag, and its clean-up remove, the image a run is using."""
 
 from __future__ import annotations
 
-import hashlib
+import contextlib
+import fcntl
 import os
 import shutil
 import subprocess
 import sys
 import tempfile
+import time
+from collections.abc import Iterator
 from pathlib import Path
 from typing import IO
 
@@ -19,8 +28,12 @@ CONTAINERS_CONF = Path(__file__).with_name("containers.conf")
 LOCAL_BASE = "localhost/nav2-pyif-test-base:{codename}"
 #: set to an existing image (e.g. python:3.11-slim-bookworm where a registry is reachable)
 BASE_ENV = "NAV2_PYIF_TEST_BASE_IMAGE"
-#: one tag per checkout: two checkouts testing at once must not run each other's image
-IMAGE = "localhost/nav2-pyif-host:test-" + hashlib.sha1(str(ROOT).encode()).hexdigest()[:10]
+#: one tag for every checkout (a tag per checkout path left ~0.4 GB behind per checkout)
+IMAGE = "localhost/nav2-pyif-host:test"
+#: on every image (and build layer) the tests make: what their clean-up may remove
+LABEL = "nav2-pyif-test-image=1"
+#: held while one checkout's container tests run (podman's images are shared per user)
+LOCK = Path(tempfile.gettempdir()) / f"nav2-pyif-container-tests-{os.getuid()}.lock"
 HOST_CA = "/etc/nav2-pyif-test-ca.crt"
 MIRRORS = {"debian": "http://deb.debian.org/debian", "ubuntu": "http://archive.ubuntu.com/ubuntu"}
 
@@ -124,10 +137,50 @@ def probe(base: str) -> None:
 
 
 def build_image(base: str) -> str:
-    """docker/Dockerfile on ``base``; podman's layer cache makes a rebuild quick."""
+    """docker/Dockerfile on ``base``; podman's layer cache makes a rebuild quick. The image
+    it replaces under IMAGE is removed (remove_stale_images)."""
     _say(f"building {IMAGE} from docker/Dockerfile on {base}")
-    podman(
-        "build", "--format", "docker", "-f", str(ROOT / "docker/Dockerfile"), "--build-arg",
-        f"BASE_IMAGE={base}", "-t", IMAGE, str(ROOT), timeout=900,
-    )  # fmt: skip
+    try:
+        podman(
+            "build", "--format", "docker", "-f", str(ROOT / "docker/Dockerfile"), "--build-arg",
+            f"BASE_IMAGE={base}", "--label", LABEL, "-t", IMAGE, str(ROOT), timeout=900,
+        )  # fmt: skip
+    finally:
+        remove_stale_images()
     return IMAGE
+
+
+def stale_images() -> list[str]:
+    """Images the tests made that nothing uses any more: untagged (replaced by a later build,
+    or the layers of a failed one) and without a container."""
+    listed = podman(
+        "images", "--all", "--quiet", "--no-trunc", "--filter", f"label={LABEL}",
+        "--filter", "dangling=true", check=False,
+    )  # fmt: skip
+    return listed.stdout.split()
+
+
+def remove_stale_images() -> None:
+    podman("image", "prune", "--force", "--filter", f"label={LABEL}", check=False, timeout=300)
+
+
+@contextlib.contextmanager
+def exclusive(wait: float = 300) -> Iterator[None]:
+    """Hold LOCK: one checkout's container tests at a time. Unavailable if another's still
+    hold it after ``wait`` seconds."""
+    with open(LOCK, "a") as lock:
+        deadline = time.monotonic() + wait
+        while True:
+            try:
+                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    raise Unavailable(
+                        f"another checkout's container tests have held {LOCK} for {wait:.0f} s"
+                    ) from None
+                time.sleep(1)
+        try:
+            yield
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)

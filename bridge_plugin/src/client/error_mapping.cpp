@@ -2,6 +2,8 @@
 
 #include <cstddef>
 
+#include "nav2_pyif_bridge/protocol/constants.hpp"
+
 namespace nav2_pyif_bridge::client
 {
 namespace
@@ -47,9 +49,9 @@ ErrorKind generic_error(PluginKind kind) noexcept
   return protocol::kGenericError[index(kind)];
 }
 
-ErrorKind timed_out_error(PluginKind kind) noexcept
+ErrorKind host_failure_error(PluginKind kind) noexcept
 {
-  return protocol::kTimedOutError[index(kind)];
+  return protocol::kHostFailureError[index(kind)];
 }
 
 ErrorKind invalid_error(PluginKind kind) noexcept
@@ -88,6 +90,11 @@ CallError error_from_reply(const protocol::Error & error, PluginKind kind)
   const std::optional<ErrorKind> named = error_kind_from_name(error.type);
   if (named && belongs_to(*named, kind)) {
     return CallError(*named, Cause::Remote, error.message, std::move(remote));
+  }
+  if (error.type == protocol::error_type::kUnavailable) {
+    return CallError(
+      host_failure_error(kind), Cause::Remote, "[" + error.type + "] " + error.message,
+      std::move(remote));
   }
   return CallError(
     generic_error(kind), Cause::Remote, "[" + error.type + "] " + error.message,

@@ -3,6 +3,7 @@
 #include <array>
 #include <cstdio>
 #include <random>
+#include <type_traits>
 #include <utility>
 #include <variant>
 
@@ -15,16 +16,22 @@ namespace proto = protocol;
 namespace
 {
 
-// The costmap rides in these three requests only.
+template<class T, class = void>
+struct HasCostmap : std::false_type {};
+template<class T>
+struct HasCostmap<T, std::void_t<decltype(std::declval<T &>().costmap)>> : std::true_type {};
+
+// The costmap rides in every request schema.py gives a costmap field (configure,
+// compute_velocity_commands, create_plan, smooth, on_run, on_cycle_update): found from the
+// generated structs, not listed here (a hand list had left out smooth's).
 void attach_costmap(proto::RequestBody & body, proto::Costmap costmap)
 {
-  if (auto * configure = std::get_if<proto::ConfigureRequest>(&body)) {
-    configure->costmap = std::move(costmap);
-  } else if (auto * compute = std::get_if<proto::ComputeVelocityCommandsRequest>(&body)) {
-    compute->costmap = std::move(costmap);
-  } else if (auto * plan = std::get_if<proto::CreatePlanRequest>(&body)) {
-    plan->costmap = std::move(costmap);
-  }
+  std::visit(
+    [&costmap](auto & request) {
+      if constexpr (HasCostmap<std::decay_t<decltype(request)>>::value) {
+        request.costmap = std::move(costmap);
+      }
+    }, body);
 }
 
 std::string milliseconds(Duration d)
@@ -38,26 +45,17 @@ std::string milliseconds(Duration d)
 
 Duration Timeouts::for_op(proto::Op op) const noexcept
 {
-  switch (op) {
-    case proto::Op::Configure:
+  switch (proto::timeout_class(op)) {  // schema.py OP_TIMEOUT, generated
+    case proto::TimeoutClass::Configure:
       return configure;
-    case proto::Op::ComputeVelocityCommands:
-    case proto::Op::SetPlan:
-    case proto::Op::SetSpeedLimit:
-    case proto::Op::Cancel:
-    case proto::Op::IsGoalReached:  // the checkers: every control cycle
-    case proto::Op::GetTolerances:
-    case proto::Op::Check:
-    case proto::Op::UpdateBounds:  // the costmap layer: every costmap update
-    case proto::Op::UpdateCosts:
-    case proto::Op::MatchSize:
+    case proto::TimeoutClass::Call:
       return call;
-    case proto::Op::CreatePlan:
-    case proto::Op::Smooth:
+    case proto::TimeoutClass::Plan:
       return plan;
-    default:
-      return lifecycle;
+    case proto::TimeoutClass::Lifecycle:
+      break;
   }
+  return lifecycle;
 }
 
 std::string new_session_id()
@@ -261,7 +259,7 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
   }
   if (!transport_.hosts_alive()) {
     fail(
-      generic_error(config_.kind), Cause::NoHost,
+      host_failure_error(config_.kind), Cause::NoHost,
       "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +
       keys_.prefix() + " ...); " + op_text + " not sent");
   }
@@ -437,12 +435,12 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
     throw;
   } catch (const std::exception & error) {
     fail(
-      generic_error(config_.kind), Cause::Transport,
+      host_failure_error(config_.kind), Cause::Transport,
       op_text + " on " + keys_.prefix() + ": Zenoh query failed: " + error.what());
   }
   if (!answer) {
     fail(
-      timed_out_error(config_.kind), Cause::TimedOut,
+      host_failure_error(config_.kind), Cause::TimedOut,
       op_text + " got no reply from " + keys_.prefix() + " within " + milliseconds(timeout) +
       " ms");
   }

@@ -4,13 +4,16 @@
 
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 namespace nav2_pyif_bridge
 {
 
 CostmapSubscriberSource::CostmapSubscriberSource(
-  std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> subscriber, std::string frame_id)
-: subscriber_(std::move(subscriber)), none_(frame_id), frame_id_(std::move(frame_id))
+  std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> subscriber, std::string frame_id,
+  std::shared_ptr<nav2_costmap_2d::FootprintSubscriber> footprint)
+: subscriber_(std::move(subscriber)), footprint_(std::move(footprint)), none_(frame_id),
+  frame_id_(std::move(frame_id))
 {
 }
 
@@ -26,8 +29,19 @@ client::CostmapRead CostmapSubscriberSource::read(std::optional<std::uint64_t> k
   if (!costmap) {
     return client::read_costmap(none_.view(), version_, known);
   }
+  std::vector<double> footprint;
+  std::vector<geometry_msgs::msg::Point> points;
+  std_msgs::msg::Header header;
+  if (footprint_ && footprint_->getFootprintInRobotFrame(points, header)) {
+    for (const auto & point : points) {
+      footprint.push_back(point.x);
+      footprint.push_back(point.y);
+    }
+  }
   std::unique_lock<nav2_costmap_2d::Costmap2D::mutex_t> lock(*costmap->getMutex());
-  return client::read_costmap(costmap_view(*costmap, frame_id_), version_, known);
+  client::CostmapView view = costmap_view(*costmap, frame_id_);
+  view.footprint = std::move(footprint);
+  return client::read_costmap(view, version_, known);
 }
 
 }  // namespace nav2_pyif_bridge

@@ -516,6 +516,74 @@ void write(Writer & w, const MatchSizeReply &, const FieldPath &)
   w.map(0);
 }
 
+void write(Writer & w, const OnRunRequest & value, const FieldPath & where)
+{
+  w.map(std::size_t{3} + (value.costmap ? 1u : 0u));
+  w.key("action");
+  w.str(value.action, where.key("action"));
+  w.key("command");
+  write_params(w, value.command, where.key("command"));
+  w.key("pose");
+  write(w, value.pose, where.key("pose"));
+  if (value.costmap) {
+    w.key("costmap");
+    write(w, *value.costmap, where.key("costmap"));
+  }
+}
+
+void write(Writer & w, const OnRunReply & value, const FieldPath & where)
+{
+  w.map(2);
+  w.key("status");
+  w.str(value.status, where.key("status"));
+  w.key("failure");
+  w.str(value.failure, where.key("failure"));
+}
+
+void write(Writer & w, const OnCycleUpdateRequest & value, const FieldPath & where)
+{
+  w.map(std::size_t{2} + (value.costmap ? 1u : 0u));
+  w.key("pose");
+  write(w, value.pose, where.key("pose"));
+  w.key("elapsed");
+  w.f64(value.elapsed);
+  if (value.costmap) {
+    w.key("costmap");
+    write(w, *value.costmap, where.key("costmap"));
+  }
+}
+
+void write(Writer & w, const OnCycleUpdateReply & value, const FieldPath & where)
+{
+  w.map(std::size_t{2} + (value.cmd_vel ? 1u : 0u) + (value.feedback ? 1u : 0u));
+  w.key("status");
+  w.str(value.status, where.key("status"));
+  w.key("failure");
+  w.str(value.failure, where.key("failure"));
+  if (value.cmd_vel) {
+    w.key("cmd_vel");
+    write(w, *value.cmd_vel, where.key("cmd_vel"));
+  }
+  if (value.feedback) {
+    w.key("feedback");
+    write_params(w, *value.feedback, where.key("feedback"));
+  }
+}
+
+void write(Writer & w, const OnActionCompletionRequest & value, const FieldPath & where)
+{
+  w.map(2);
+  w.key("status");
+  w.str(value.status, where.key("status"));
+  w.key("elapsed");
+  w.f64(value.elapsed);
+}
+
+void write(Writer & w, const OnActionCompletionReply &, const FieldPath &)
+{
+  w.map(0);
+}
+
 void write(Writer & w, const RequestBody & body, const FieldPath & where)
 {
   std::visit([&](const auto & alternative) {write(w, alternative, where);}, body);
@@ -956,6 +1024,64 @@ MatchSizeReply read_match_size_reply(const Object & object, const FieldPath & wh
   return MatchSizeReply{};
 }
 
+OnRunRequest read_on_run_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  OnRunRequest out;
+  out.action = m.required("action", read_str);
+  out.command = m.required("command", read_params);
+  out.pose = m.required("pose", read_pose_stamped);
+  out.costmap = m.optional("costmap", read_costmap);
+  return out;
+}
+
+OnRunReply read_on_run_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  OnRunReply out;
+  out.status = m.required("status", read_str);
+  out.failure = m.required("failure", read_str);
+  return out;
+}
+
+OnCycleUpdateRequest read_on_cycle_update_request(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  OnCycleUpdateRequest out;
+  out.pose = m.required("pose", read_pose_stamped);
+  out.elapsed = m.required("elapsed", read_f64);
+  out.costmap = m.optional("costmap", read_costmap);
+  return out;
+}
+
+OnCycleUpdateReply read_on_cycle_update_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  OnCycleUpdateReply out;
+  out.status = m.required("status", read_str);
+  out.failure = m.required("failure", read_str);
+  out.cmd_vel = m.optional("cmd_vel", read_twist_stamped);
+  out.feedback = m.optional("feedback", read_params);
+  return out;
+}
+
+OnActionCompletionRequest read_on_action_completion_request(
+  const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  OnActionCompletionRequest out;
+  out.status = m.required("status", read_str);
+  out.elapsed = m.required("elapsed", read_f64);
+  return out;
+}
+
+OnActionCompletionReply read_on_action_completion_reply(
+  const Object & object, const FieldPath & where)
+{
+  static_cast<void>(MapReader(object, where));  // a map, even when empty
+  return OnActionCompletionReply{};
+}
+
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where)
 {
   switch (op) {
@@ -997,6 +1123,12 @@ RequestBody read_request_body(Op op, const Object & object, const FieldPath & wh
       return read_update_costs_request(object, where);
     case Op::MatchSize:
       return read_match_size_request(object, where);
+    case Op::OnRun:
+      return read_on_run_request(object, where);
+    case Op::OnCycleUpdate:
+      return read_on_cycle_update_request(object, where);
+    case Op::OnActionCompletion:
+      return read_on_action_completion_request(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -1042,6 +1174,12 @@ ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where)
       return read_update_costs_reply(object, where);
     case Op::MatchSize:
       return read_match_size_reply(object, where);
+    case Op::OnRun:
+      return read_on_run_reply(object, where);
+    case Op::OnCycleUpdate:
+      return read_on_cycle_update_reply(object, where);
+    case Op::OnActionCompletion:
+      return read_on_action_completion_reply(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -1214,6 +1352,35 @@ std::size_t payload_size(const UpdateCostsReply & value)
 std::size_t payload_size(const MatchSizeRequest &) {return 0;}
 
 std::size_t payload_size(const MatchSizeReply &) {return 0;}
+
+std::size_t payload_size(const OnRunRequest & value)
+{
+  return value.action.size() + payload_size(value.pose)
+           + (value.costmap ? payload_size((*value.costmap)) : 0);
+}
+
+std::size_t payload_size(const OnRunReply & value)
+{
+  return value.status.size() + value.failure.size();
+}
+
+std::size_t payload_size(const OnCycleUpdateRequest & value)
+{
+  return payload_size(value.pose) + (value.costmap ? payload_size((*value.costmap)) : 0);
+}
+
+std::size_t payload_size(const OnCycleUpdateReply & value)
+{
+  return value.status.size() + value.failure.size()
+           + (value.cmd_vel ? payload_size((*value.cmd_vel)) : 0);
+}
+
+std::size_t payload_size(const OnActionCompletionRequest & value)
+{
+  return value.status.size();
+}
+
+std::size_t payload_size(const OnActionCompletionReply &) {return 0;}
 
 std::size_t payload_size(const RequestBody & body)
 {

@@ -66,6 +66,12 @@ void write(Writer & w, const UpdateCostsRequest & value, const FieldPath & where
 void write(Writer & w, const UpdateCostsReply & value, const FieldPath & where);
 void write(Writer & w, const MatchSizeRequest & value, const FieldPath & where);
 void write(Writer & w, const MatchSizeReply & value, const FieldPath & where);
+void write(Writer & w, const OnRunRequest & value, const FieldPath & where);
+void write(Writer & w, const OnRunReply & value, const FieldPath & where);
+void write(Writer & w, const OnCycleUpdateRequest & value, const FieldPath & where);
+void write(Writer & w, const OnCycleUpdateReply & value, const FieldPath & where);
+void write(Writer & w, const OnActionCompletionRequest & value, const FieldPath & where);
+void write(Writer & w, const OnActionCompletionReply & value, const FieldPath & where);
 void write(Writer & w, const RequestBody & body, const FieldPath & where);
 void write(Writer & w, const ReplyBody & body, const FieldPath & where);
 
@@ -128,6 +134,14 @@ UpdateCostsRequest read_update_costs_request(const Object & object, const FieldP
 UpdateCostsReply read_update_costs_reply(const Object & object, const FieldPath & where);
 MatchSizeRequest read_match_size_request(const Object & object, const FieldPath & where);
 MatchSizeReply read_match_size_reply(const Object & object, const FieldPath & where);
+OnRunRequest read_on_run_request(const Object & object, const FieldPath & where);
+OnRunReply read_on_run_reply(const Object & object, const FieldPath & where);
+OnCycleUpdateRequest read_on_cycle_update_request(const Object & object, const FieldPath & where);
+OnCycleUpdateReply read_on_cycle_update_reply(const Object & object, const FieldPath & where);
+OnActionCompletionRequest read_on_action_completion_request(
+  const Object & object, const FieldPath & where);
+OnActionCompletionReply read_on_action_completion_reply(
+  const Object & object, const FieldPath & where);
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where);
 ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where);
 
@@ -178,6 +192,12 @@ std::size_t payload_size(const UpdateCostsRequest & value);
 std::size_t payload_size(const UpdateCostsReply & value);
 std::size_t payload_size(const MatchSizeRequest & value);
 std::size_t payload_size(const MatchSizeReply & value);
+std::size_t payload_size(const OnRunRequest & value);
+std::size_t payload_size(const OnRunReply & value);
+std::size_t payload_size(const OnCycleUpdateRequest & value);
+std::size_t payload_size(const OnCycleUpdateReply & value);
+std::size_t payload_size(const OnActionCompletionRequest & value);
+std::size_t payload_size(const OnActionCompletionReply & value);
 std::size_t payload_size(const RequestBody & body);
 std::size_t payload_size(const ReplyBody & body);
 inline std::size_t payload_size(const std::string & text) {return text.size();}

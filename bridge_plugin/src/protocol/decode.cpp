@@ -5,7 +5,6 @@
 // codecs refuse the same messages with the same error types.
 #include <cstddef>
 #include <cstdint>
-#include <exception>
 #include <string>
 #include <utility>
 
@@ -13,6 +12,7 @@
 #include "nav2_pyif_bridge/protocol/constants.hpp"
 #include "body_codec.hpp"
 #include "field_path.hpp"
+#include "parse.hpp"
 #include "reader.hpp"
 
 namespace nav2_pyif_bridge::protocol
@@ -23,59 +23,26 @@ namespace
 using detail::FieldPath;
 using detail::MapReader;
 using detail::Object;
+using detail::ParsedMessage;
 using detail::read_bool;
 using detail::read_i64;
 using detail::read_str;
 using detail::read_u64;
-
-// --- parsing --------------------------------------------------------------------------------
-
-// str and bin objects point into the caller's buffer instead of being copied into the zone:
-// the buffer outlives the tree (both live only during one decode call), and the fields are
-// copied once, into the message, anyway.
-bool reference_input(msgpack::type::object_type, std::size_t, void *)
-{
-  return true;
-}
-
-msgpack::object_handle parse(const std::uint8_t * data, std::size_t size, const char * what)
-{
-  // Every element takes at least one byte (a map entry two), so no valid message has more
-  // elements than bytes; these limits keep a forged length such as "array of 2^32 - 1" from
-  // allocating gigabytes before the parser notices the data is short.
-  const std::size_t elements = size;
-  const msgpack::unpack_limit limit(elements, elements / 2, size, size, size, 64);
-  std::size_t offset = 0;
-  msgpack::object_handle handle;
-  try {
-    handle = msgpack::unpack(
-      reinterpret_cast<const char *>(data), size, offset, reference_input, nullptr, limit);
-  } catch (const std::exception & e) {
-    // insufficient_bytes, parse_error, *_size_overflow, depth_size_overflow, ...
-    throw DecodeError(error_type::kBadRequest, what, std::string("not valid msgpack: ") + e.what());
-  }
-  if (offset != size) {
-    throw DecodeError(
-            error_type::kBadRequest, what,
-            "not valid msgpack: " + std::to_string(size - offset) + " extra bytes after the message");
-  }
-  return handle;
-}
 
 // `v` comes first: a message of another version may differ in anything else, so nothing
 // else is read before it is known to be ours.
 void check_version(const MapReader & message, const char * what)
 {
   const Object * v = message.find("v");
-  if (v != nullptr && v->type == msgpack::type::POSITIVE_INTEGER &&
+  if (v != nullptr && v->type == MSGPACK_OBJECT_POSITIVE_INTEGER &&
     v->via.u64 == static_cast<std::uint64_t>(kProtocolVersion))
   {
     return;
   }
   std::string theirs = "missing";
   if (v != nullptr) {
-    theirs = v->type == msgpack::type::POSITIVE_INTEGER ? std::to_string(v->via.u64) :
-      v->type == msgpack::type::NEGATIVE_INTEGER ? std::to_string(v->via.i64) :
+    theirs = v->type == MSGPACK_OBJECT_POSITIVE_INTEGER ? std::to_string(v->via.u64) :
+      v->type == MSGPACK_OBJECT_NEGATIVE_INTEGER ? std::to_string(v->via.i64) :
       std::string("of type ") + detail::type_name(*v);
   }
   throw DecodeError(
@@ -88,8 +55,8 @@ void check_version(const MapReader & message, const char * what)
 const Object & body_of(const MapReader & message)
 {
   static const Object empty_map = [] {
-      Object o;
-      o.type = msgpack::type::MAP;
+      Object o{};
+      o.type = MSGPACK_OBJECT_MAP;
       o.via.map.size = 0;
       o.via.map.ptr = nullptr;
       return o;
@@ -113,9 +80,9 @@ std::string known_ops()
 
 Request decode_request(const std::uint8_t * data, std::size_t size)
 {
-  const msgpack::object_handle handle = parse(data, size, "request");
+  const ParsedMessage parsed(data, size, "request");
   const FieldPath root("request");
-  const MapReader m(handle.get(), root);
+  const MapReader m(parsed.root(), root);
   check_version(m, "request");
 
   Request out;
@@ -137,9 +104,9 @@ Request decode_request(const std::uint8_t * data, std::size_t size)
 
 Reply decode_reply(const std::uint8_t * data, std::size_t size, Op op)
 {
-  const msgpack::object_handle handle = parse(data, size, "reply");
+  const ParsedMessage parsed(data, size, "reply");
   const FieldPath root("reply");
-  const MapReader m(handle.get(), root);
+  const MapReader m(parsed.root(), root);
   check_version(m, "reply");
 
   Reply out;

@@ -23,14 +23,14 @@ std::string expected(const char * what, const Object & object)
 
 bool is_int(const Object & object) noexcept
 {
-  return object.type == msgpack::type::POSITIVE_INTEGER ||
-         object.type == msgpack::type::NEGATIVE_INTEGER;
+  return object.type == MSGPACK_OBJECT_POSITIVE_INTEGER ||
+         object.type == MSGPACK_OBJECT_NEGATIVE_INTEGER;
 }
 
 // The value of an int object as text, for range errors.
 std::string int_text(const Object & object)
 {
-  return object.type == msgpack::type::POSITIVE_INTEGER ? std::to_string(object.via.u64) :
+  return object.type == MSGPACK_OBJECT_POSITIVE_INTEGER ? std::to_string(object.via.u64) :
          std::to_string(object.via.i64);
 }
 
@@ -46,15 +46,15 @@ using Scalar = std::variant<bool, std::int64_t, double, std::string>;
 Scalar read_scalar(const Object & object, const FieldPath & where, std::string_view name)
 {
   switch (object.type) {
-    case msgpack::type::BOOLEAN:
+    case MSGPACK_OBJECT_BOOLEAN:
       return object.via.boolean;
-    case msgpack::type::POSITIVE_INTEGER:
-    case msgpack::type::NEGATIVE_INTEGER:
+    case MSGPACK_OBJECT_POSITIVE_INTEGER:
+    case MSGPACK_OBJECT_NEGATIVE_INTEGER:
       return read_i64(object, where);
-    case msgpack::type::FLOAT32:
-    case msgpack::type::FLOAT64:
+    case MSGPACK_OBJECT_FLOAT32:
+    case MSGPACK_OBJECT_FLOAT64:
       return object.via.f64;
-    case msgpack::type::STR:
+    case MSGPACK_OBJECT_STR:
       return read_str(object, where);
     default:
       fail(where, "parameter '" + std::string(name) + "': " + type_name(object) +
@@ -76,7 +76,7 @@ ParamValue collect(const std::vector<Scalar> & items)
 
 ParamValue read_param(const Object & object, const FieldPath & where, std::string_view name)
 {
-  if (object.type != msgpack::type::ARRAY) {
+  if (object.type != MSGPACK_OBJECT_ARRAY) {
     return std::visit([](auto && value) -> ParamValue {return value;},
              read_scalar(object, where, name));
   }
@@ -120,25 +120,25 @@ void fail(const FieldPath & where, const std::string & problem)
 const char * type_name(const Object & object) noexcept
 {
   switch (object.type) {
-    case msgpack::type::NIL:
+    case MSGPACK_OBJECT_NIL:
       return "nil";
-    case msgpack::type::BOOLEAN:
+    case MSGPACK_OBJECT_BOOLEAN:
       return "bool";
-    case msgpack::type::POSITIVE_INTEGER:
-    case msgpack::type::NEGATIVE_INTEGER:
+    case MSGPACK_OBJECT_POSITIVE_INTEGER:
+    case MSGPACK_OBJECT_NEGATIVE_INTEGER:
       return "int";
-    case msgpack::type::FLOAT32:
-    case msgpack::type::FLOAT64:
+    case MSGPACK_OBJECT_FLOAT32:
+    case MSGPACK_OBJECT_FLOAT64:
       return "float";
-    case msgpack::type::STR:
+    case MSGPACK_OBJECT_STR:
       return "str";
-    case msgpack::type::BIN:
+    case MSGPACK_OBJECT_BIN:
       return "bin";
-    case msgpack::type::ARRAY:
+    case MSGPACK_OBJECT_ARRAY:
       return "array";
-    case msgpack::type::MAP:
+    case MSGPACK_OBJECT_MAP:
       return "map";
-    case msgpack::type::EXT:
+    case MSGPACK_OBJECT_EXT:
       return "ext";
   }
   return "unknown";
@@ -146,7 +146,7 @@ const char * type_name(const Object & object) noexcept
 
 std::string read_str(const Object & object, const FieldPath & where)
 {
-  if (object.type != msgpack::type::STR) {
+  if (object.type != MSGPACK_OBJECT_STR) {
     fail(where, expected("str", object));
   }
   if (!is_valid_utf8(object.via.str.ptr, object.via.str.size)) {
@@ -157,7 +157,7 @@ std::string read_str(const Object & object, const FieldPath & where)
 
 bool read_bool(const Object & object, const FieldPath & where)
 {
-  if (object.type != msgpack::type::BOOLEAN) {
+  if (object.type != MSGPACK_OBJECT_BOOLEAN) {
     fail(where, expected("bool", object));
   }
   return object.via.boolean;
@@ -165,10 +165,10 @@ bool read_bool(const Object & object, const FieldPath & where)
 
 std::int64_t read_i64(const Object & object, const FieldPath & where)
 {
-  if (object.type == msgpack::type::NEGATIVE_INTEGER) {
+  if (object.type == MSGPACK_OBJECT_NEGATIVE_INTEGER) {
     return object.via.i64;
   }
-  if (object.type != msgpack::type::POSITIVE_INTEGER) {
+  if (object.type != MSGPACK_OBJECT_POSITIVE_INTEGER) {
     fail(where, expected("int", object));
   }
   if (object.via.u64 > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max())) {
@@ -182,7 +182,7 @@ std::uint64_t read_u64(const Object & object, const FieldPath & where)
   if (!is_int(object)) {
     fail(where, expected("int", object));
   }
-  if (object.type == msgpack::type::NEGATIVE_INTEGER) {
+  if (object.type == MSGPACK_OBJECT_NEGATIVE_INTEGER) {
     fail(where, "expected an int >= 0, got " + int_text(object));
   }
   return object.via.u64;
@@ -200,12 +200,12 @@ std::uint32_t read_u32(const Object & object, const FieldPath & where)
 double read_f64(const Object & object, const FieldPath & where)
 {
   switch (object.type) {
-    case msgpack::type::FLOAT32:  // msgpack-cxx widens float32 into via.f64
-    case msgpack::type::FLOAT64:
+    case MSGPACK_OBJECT_FLOAT32:  // msgpack-c widens float32 into via.f64
+    case MSGPACK_OBJECT_FLOAT64:
       return object.via.f64;
-    case msgpack::type::POSITIVE_INTEGER:  // a peer may send a whole number as an int
+    case MSGPACK_OBJECT_POSITIVE_INTEGER:  // a peer may send a whole number as an int
       return static_cast<double>(object.via.u64);
-    case msgpack::type::NEGATIVE_INTEGER:
+    case MSGPACK_OBJECT_NEGATIVE_INTEGER:
       return static_cast<double>(object.via.i64);
     default:
       fail(where, expected("float", object));
@@ -214,7 +214,7 @@ double read_f64(const Object & object, const FieldPath & where)
 
 std::vector<std::uint8_t> read_bin(const Object & object, const FieldPath & where)
 {
-  if (object.type != msgpack::type::BIN) {
+  if (object.type != MSGPACK_OBJECT_BIN) {
     fail(where, expected("bin", object));
   }
   const auto * data = reinterpret_cast<const std::uint8_t *>(object.via.bin.ptr);
@@ -224,7 +224,7 @@ std::vector<std::uint8_t> read_bin(const Object & object, const FieldPath & wher
 std::vector<double> read_packed_f64(
   const Object & object, const FieldPath & where, std::size_t row_size)
 {
-  if (object.type != msgpack::type::BIN) {
+  if (object.type != MSGPACK_OBJECT_BIN) {
     fail(where, expected("bin", object));
   }
   const std::size_t size = object.via.bin.size;
@@ -251,7 +251,7 @@ void expect_cells(
 
 void read_f64_array(const Object & object, const FieldPath & where, double * out, std::size_t n)
 {
-  if (object.type != msgpack::type::ARRAY) {
+  if (object.type != MSGPACK_OBJECT_ARRAY) {
     fail(where, "expected an array of " + std::to_string(n) + " floats, got " +
       type_name(object));
   }
@@ -264,9 +264,9 @@ void read_f64_array(const Object & object, const FieldPath & where, double * out
   }
 }
 
-const msgpack::object_array & read_array_items(const Object & object, const FieldPath & where)
+const msgpack_object_array & read_array_items(const Object & object, const FieldPath & where)
 {
-  if (object.type != msgpack::type::ARRAY) {
+  if (object.type != MSGPACK_OBJECT_ARRAY) {
     fail(where, expected("an array", object));
   }
   return object.via.array;
@@ -274,14 +274,14 @@ const msgpack::object_array & read_array_items(const Object & object, const Fiel
 
 Params read_params(const Object & object, const FieldPath & where)
 {
-  if (object.type != msgpack::type::MAP) {
+  if (object.type != MSGPACK_OBJECT_MAP) {
     fail(where, expected("a map of parameters", object));
   }
   Params out;
   const auto & map = object.via.map;
   for (std::uint32_t i = 0; i < map.size; ++i) {
     const Object & key = map.ptr[i].key;
-    if (key.type != msgpack::type::STR) {
+    if (key.type != MSGPACK_OBJECT_STR) {
       fail(where, std::string("a parameter name is ") + type_name(key) + ", not str");
     }
     const std::string name = read_str(key, where);
@@ -292,7 +292,7 @@ Params read_params(const Object & object, const FieldPath & where)
 
 StringMap read_str_map(const Object & object, const FieldPath & where)
 {
-  if (object.type != msgpack::type::MAP) {
+  if (object.type != MSGPACK_OBJECT_MAP) {
     fail(where, expected("a map of str to str", object));
   }
   StringMap out;
@@ -308,7 +308,7 @@ StringMap read_str_map(const Object & object, const FieldPath & where)
 MapReader::MapReader(const Object & object, const FieldPath & where)
 : map_(object.via.map), where_(where)
 {
-  if (object.type != msgpack::type::MAP) {
+  if (object.type != MSGPACK_OBJECT_MAP) {
     fail(where, expected("map", object));
   }
 }
@@ -318,11 +318,11 @@ const Object * MapReader::find(std::string_view key) const noexcept
   const Object * found = nullptr;
   for (std::uint32_t i = 0; i < map_.size; ++i) {
     const Object & k = map_.ptr[i].key;
-    if (k.type == msgpack::type::STR && str_view(k) == key) {
+    if (k.type == MSGPACK_OBJECT_STR && str_view(k) == key) {
       found = &map_.ptr[i].val;  // keep scanning: the last duplicate wins
     }
   }
-  if (found != nullptr && found->type == msgpack::type::NIL) {
+  if (found != nullptr && found->type == MSGPACK_OBJECT_NIL) {
     return nullptr;
   }
   return found;

@@ -4,7 +4,7 @@
 // float is specified, nil counts as absent, unknown keys are ignored).
 #pragma once
 
-#include <msgpack.hpp>
+#include <msgpack.h>
 
 #include <array>
 #include <cstddef>
@@ -22,7 +22,8 @@
 namespace nav2_pyif_bridge::protocol::detail
 {
 
-using Object = msgpack::object;
+// msgpack-c's object tree (msgpack.h): the C library the rosdep key `msgpack` installs.
+using Object = msgpack_object;
 
 // Throws DecodeError (BadRequest) for the field at `where`.
 [[noreturn]] void fail(const FieldPath & where, const std::string & problem);
@@ -63,12 +64,12 @@ std::array<double, N> read_f64_array(const Object & object, const FieldPath & wh
 }
 
 // The elements of a msgpack array (throws unless `object` is one).
-const msgpack::object_array & read_array_items(const Object & object, const FieldPath & where);
+const msgpack_object_array & read_array_items(const Object & object, const FieldPath & where);
 // An array field (`many` in the schema): each element read by Read, naming its index in errors.
 template<auto Read>
 auto read_array(const Object & object, const FieldPath & where)
 {
-  const msgpack::object_array & items = read_array_items(object, where);
+  const msgpack_object_array & items = read_array_items(object, where);
   std::vector<decltype(Read(object, where))> out;
   out.reserve(items.size);
   for (std::uint32_t i = 0; i < items.size; ++i) {
@@ -114,7 +115,7 @@ public:
   const FieldPath & where() const noexcept {return where_;}
 
 private:
-  const msgpack::object_map & map_;
+  const msgpack_object_map & map_;
   // A copy, so a MapReader built from a temporary path stays valid; the parents it points
   // to live further up the stack.
   FieldPath where_;

@@ -32,23 +32,31 @@ std::uint32_t length32(std::size_t size, const char * what)
 Writer::Writer(std::size_t capacity_hint)
 {
   out_.reserve(capacity_hint);
+  msgpack_packer_init(&packer_, &out_, &Writer::append);
+}
+
+int Writer::append(void * data, const char * bytes, std::size_t size)
+{
+  auto & out = *static_cast<std::vector<std::uint8_t> *>(data);
+  out.insert(out.end(), bytes, bytes + size);
+  return 0;
 }
 
 void Writer::map(std::size_t entries)
 {
-  packer_.pack_map(length32(entries, "map"));
+  msgpack_pack_map(&packer_, length32(entries, "map"));
 }
 
 void Writer::array(std::size_t elements)
 {
-  packer_.pack_array(length32(elements, "array"));
+  msgpack_pack_array(&packer_, length32(elements, "array"));
 }
 
 void Writer::key(std::string_view name)
 {
   const auto size = length32(name.size(), "str");
-  packer_.pack_str(size);
-  packer_.pack_str_body(name.data(), size);
+  msgpack_pack_str(&packer_, size);
+  msgpack_pack_str_body(&packer_, name.data(), size);
 }
 
 void Writer::str(std::string_view text, const FieldPath & where)
@@ -61,44 +69,44 @@ void Writer::str(std::string_view text, const FieldPath & where)
 
 void Writer::i64(std::int64_t value)
 {
-  // pack_int64 picks the shortest form and writes non-negative values as unsigned, exactly
-  // as msgpack-python does; the vectors check both.
-  packer_.pack_int64(value);
+  // msgpack_pack_int64 picks the shortest form and writes non-negative values as unsigned,
+  // exactly as msgpack-python does; the vectors check both.
+  msgpack_pack_int64(&packer_, value);
 }
 
 void Writer::u64(std::uint64_t value)
 {
-  packer_.pack_uint64(value);
+  msgpack_pack_uint64(&packer_, value);
 }
 
 void Writer::f64(double value)
 {
-  // Written by hand: msgpack-cxx 4.1's pack_double writes whole numbers as ints (2.0 as 2,
-  // -0.0 as 0), which the canonical form forbids. float64 is 0xcb + 8 bytes big-endian.
+  // Written by hand, so the canonical form (always float64, never an int for a whole number)
+  // holds whatever a msgpack-c release does: float64 is 0xcb + 8 bytes big-endian.
   std::uint64_t bits = 0;
   std::memcpy(&bits, &value, sizeof bits);
-  char buf[9];
-  buf[0] = static_cast<char>(0xcb);
+  std::uint8_t buf[9];
+  buf[0] = 0xcb;
   for (int i = 0; i < 8; ++i) {
-    buf[1 + i] = static_cast<char>((bits >> (56 - 8 * i)) & 0xFF);
+    buf[1 + i] = static_cast<std::uint8_t>((bits >> (56 - 8 * i)) & 0xFF);
   }
-  sink_.write(buf, sizeof buf);
+  out_.insert(out_.end(), buf, buf + sizeof buf);
 }
 
 void Writer::boolean(bool value)
 {
   if (value) {
-    packer_.pack_true();
+    msgpack_pack_true(&packer_);
   } else {
-    packer_.pack_false();
+    msgpack_pack_false(&packer_);
   }
 }
 
 void Writer::bin(const std::uint8_t * data, std::size_t size)
 {
   const auto size32 = length32(size, "bin");
-  packer_.pack_bin(size32);
-  packer_.pack_bin_body(reinterpret_cast<const char *>(data), size32);
+  msgpack_pack_bin(&packer_, size32);
+  msgpack_pack_bin_body(&packer_, data, size32);
 }
 
 void Writer::rows(const std::vector<double> & values, std::size_t row_size, const FieldPath & where)
@@ -108,7 +116,7 @@ void Writer::rows(const std::vector<double> & values, std::size_t row_size, cons
             " values is not a whole number of rows of " + std::to_string(row_size));
   }
   const std::size_t bytes = values.size() * 8;
-  packer_.pack_bin(length32(bytes, "bin"));
+  msgpack_pack_bin(&packer_, length32(bytes, "bin"));
   // The body goes straight into the output (no temporary buffer for a 1000-pose plan).
   const std::size_t start = out_.size();
   out_.resize(start + bytes);

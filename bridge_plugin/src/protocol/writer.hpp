@@ -1,10 +1,11 @@
-// The canonical msgpack primitives (PROTOCOL.md section 2), on top of msgpack::packer.
+// The canonical msgpack primitives (PROTOCOL.md section 2), on top of msgpack-c's
+// msgpack_packer (the C library the rosdep key `msgpack` installs on every platform).
 // The generated body_codec.cpp says *what* to write, in schema order; this says *how*, once
 // per field kind: floats always float64, ints in their shortest form, text as str, bytes as
 // bin.
 #pragma once
 
-#include <msgpack.hpp>
+#include <msgpack.h>
 
 #include <array>
 #include <cstddef>
@@ -57,19 +58,11 @@ public:
   std::vector<std::uint8_t> take() {return std::move(out_);}
 
 private:
-  // msgpack::packer writes through any type with write(const char *, size_t).
-  struct Sink
-  {
-    std::vector<std::uint8_t> & out;
-    void write(const char * data, std::size_t size)
-    {
-      out.insert(out.end(), data, data + size);
-    }
-  };
+  // msgpack_packer's write callback: appends to the Writer's output (`data` is out_).
+  static int append(void * data, const char * bytes, std::size_t size);
 
   std::vector<std::uint8_t> out_;
-  Sink sink_{out_};
-  msgpack::packer<Sink> packer_{sink_};
+  msgpack_packer packer_{};
 };
 
 // One text element of an array field (the generated write of a std::vector calls it).

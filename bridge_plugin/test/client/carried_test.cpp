@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -47,6 +48,29 @@ protected:
   {
     const proto::Op op = carried.request.op();
     return host.query(Target{session->keys().call(op), ""}, carried.payload, 2s, nullptr);
+  }
+
+  // A goal checker and a progress checker of controller_server, configured.
+  struct Checkers
+  {
+    std::unique_ptr<GoalCheckerSession> goal;
+    std::unique_ptr<ProgressCheckerSession> progress;
+  };
+  Checkers checkers(const Timeouts & timeouts)
+  {
+    SessionConfig config;
+    config.node = "controller_server";
+    config.global_frame = "odom";
+    config.timeouts = timeouts;
+    config.key_prefix = "nav2_pyif/test_robot/goal_checker";
+    config.name = "goal_checker";
+    Checkers made{std::make_unique<GoalCheckerSession>(config, host, costmap, log.logger()), {}};
+    config.key_prefix = "nav2_pyif/test_robot/progress_checker";
+    config.name = "progress_checker";
+    made.progress = std::make_unique<ProgressCheckerSession>(config, host, costmap, log.logger());
+    made.goal->configure();
+    made.progress->configure();
+    return made;
   }
 
   PreparedCommand prepare()
@@ -183,20 +207,32 @@ TEST_F(CarriedTest, TheCycleUsesACarriedAnswerOnceAndForgetsALeavingSession)
   EXPECT_EQ(cycle->carried_used(), 0u);
 }
 
+TEST_F(CarriedTest, TheCheckersResetIsAControlLoopCallNotALifecycleOne)
+{
+  // Nav2 resets the checkers after every goal, inside controller_server's loop: a silent
+  // host may hold it up for the call timeout, never the 5 s lifecycle one (schema.py
+  // OP_TIMEOUT, the same table the reference client and the host read).
+  Timeouts timeouts;
+  timeouts.call = 40ms;
+  timeouts.lifecycle = 5s;
+  const Checkers made = checkers(timeouts);
+  host.call_time = 100s;
+  for (const auto & reset : std::vector<std::function<void()>>{
+      [&made] {made.goal->reset();}, [&made] {made.progress->reset();}})
+  {
+    const Duration before = clock.elapsed();
+    EXPECT_THROW(reset(), CallError);
+    EXPECT_EQ(clock.elapsed() - before, Duration{40ms});
+  }
+}
+
 TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
 {
-  SessionConfig config;
-  config.node = "controller_server";
-  config.global_frame = "odom";
-  config.timeouts.call = 2s;
-  config.key_prefix = "nav2_pyif/test_robot/goal_checker";
-  config.name = "goal_checker";
-  GoalCheckerSession goal_checker(config, host, costmap, log.logger());
-  config.key_prefix = "nav2_pyif/test_robot/progress_checker";
-  config.name = "progress_checker";
-  ProgressCheckerSession progress_checker(config, host, costmap, log.logger());
-  goal_checker.configure();
-  progress_checker.configure();
+  Timeouts timeouts;
+  timeouts.call = 2s;
+  auto made = checkers(timeouts);
+  GoalCheckerSession & goal_checker = *made.goal;
+  ProgressCheckerSession & progress_checker = *made.progress;
   auto cycle = CarriedCycle::of("/carried_test_moved_pose");
   session->join(cycle);
   progress_checker.join(cycle);

@@ -188,6 +188,12 @@ bool FakeHost::last_had_costmap() const
   if (const auto * p = std::get_if<proto::CreatePlanRequest>(&body)) {
     return p->costmap.has_value();
   }
+  if (const auto * r = std::get_if<proto::OnRunRequest>(&body)) {
+    return r->costmap.has_value();
+  }
+  if (const auto * u = std::get_if<proto::OnCycleUpdateRequest>(&body)) {
+    return u->costmap.has_value();
+  }
   return std::holds_alternative<proto::ConfigureRequest>(body);
 }
 
@@ -444,6 +450,55 @@ proto::Reply FakeHost::handle(
         reply.outcome = proto::ReplyBody{proto::CreatePlanReply{path}};
         break;
       }
+    case proto::Op::OnRun: {
+        // A backup: SUCCEEDED unless the speed is 0 (INVALID_INPUT).
+        const auto & body = std::get<proto::OnRunRequest>(request.body);
+        if (body.costmap) {
+          s.costmap_version = body.costmap->version;
+        }
+        const auto * speed = body.command.find("speed");
+        const auto * target = body.command.find("target_x");
+        const bool valid = speed && target && std::get<double>(*speed) != 0.0;
+        if (valid) {
+          ++s.runs;
+          s.start_x = body.pose.pose[0];
+          s.distance = std::abs(std::get<double>(*target));
+        }
+        reply.outcome = proto::ReplyBody{
+          proto::OnRunReply{valid ? "succeeded" : "failed", valid ? "" : "invalid_input"}};
+        break;
+      }
+    case proto::Op::OnCycleUpdate: {
+        // Backs up at 0.1 m/s until |x - start_x| reaches the distance.
+        const auto & body = std::get<proto::OnCycleUpdateRequest>(request.body);
+        if (body.costmap) {
+          s.costmap_version = body.costmap->version;
+        }
+        proto::OnCycleUpdateReply out;
+        const double travelled = std::abs(body.pose.pose[0] - s.start_x);
+        out.feedback.emplace();
+        out.feedback->set("distance_traveled", travelled);
+        out.feedback->set("runs", s.runs);
+        if (travelled >= s.distance) {
+          out.status = "succeeded";
+        } else {
+          out.status = "running";
+          proto::TwistStamped cmd;
+          cmd.frame_id = "base_link";
+          cmd.stamp_ns = body.pose.stamp_ns;
+          cmd.twist = {-0.1, 0.0, 0.0, 0.0, 0.0, 0.0};
+          if (nan_once) {
+            cmd.twist[0] = std::numeric_limits<double>::quiet_NaN();
+            nan_once = false;
+          }
+          out.cmd_vel = cmd;
+        }
+        reply.outcome = proto::ReplyBody{out};
+        break;
+      }
+    case proto::Op::OnActionCompletion:
+      reply.outcome = proto::ReplyBody{proto::OnActionCompletionReply{}};
+      break;
     default:
       return error(id, request, "BadRequest", "unexpected op");
   }

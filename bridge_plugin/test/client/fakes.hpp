@@ -138,6 +138,10 @@ public:
     std::uint64_t costmap_version{0};
     double calls{0.0};
     bool active{false};
+    // a behaviour's action: on_run's count, start x and distance (|target_x|)
+    std::int64_t runs{0};
+    double start_x{0.0};
+    double distance{0.0};
   };
 
 private:

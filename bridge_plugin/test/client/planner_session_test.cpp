@@ -111,12 +111,13 @@ TEST_F(PlannerSessionTest, ACheckerThatNeverCancelsSendsNothing)
   EXPECT_EQ(session->cancels_sent(), 0u);
 }
 
-TEST_F(PlannerSessionTest, TimeoutIsPlannerTimedOut)
+TEST_F(PlannerSessionTest, TimeoutIsThePlannerExceptionNav2RecoversFrom)
 {
   make();
   host.next_call_time = 6s;
   const CallError e = error_of([&] {session->create_plan(pose_at(0, 0), pose_at(1, 1));});
-  EXPECT_EQ(e.kind(), ErrorKind::PlannerTimedOut);
+  EXPECT_EQ(e.kind(), ErrorKind::PlannerException);
+  EXPECT_EQ(e.cause(), Cause::TimedOut);
   EXPECT_EQ(
     std::string(e.what()), "create_plan got no reply from " + std::string(kKey) +
     " within 5000 ms");

@@ -12,6 +12,7 @@
 #include "nav2_pyif_bridge/client/command_check.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 #include "nav2_pyif_bridge/client/keys.hpp"
+#include "nav2_pyif_bridge/client/smoother_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
 {
@@ -79,11 +80,11 @@ TEST(ErrorMapping, InvalidPathIsTheSmoothersTooAndCheckersOnlyThrowControllerExc
     const CallError e = error_from_reply(remote("NoValidControl"), kind);
     EXPECT_EQ(e.kind(), ErrorKind::ControllerException);
     EXPECT_EQ(std::string(e.what()), "[NoValidControl] msg");
-    EXPECT_EQ(timed_out_error(kind), ErrorKind::ControllerTimedOut);
+    EXPECT_EQ(host_failure_error(kind), ErrorKind::ControllerException);
     EXPECT_EQ(invalid_error(kind), ErrorKind::ControllerException);
   }
   EXPECT_EQ(generic_error(PluginKind::Smoother), ErrorKind::SmootherException);
-  EXPECT_EQ(timed_out_error(PluginKind::Smoother), ErrorKind::SmootherTimedOut);
+  EXPECT_EQ(host_failure_error(PluginKind::Smoother), ErrorKind::SmootherException);
   EXPECT_EQ(invalid_error(PluginKind::Smoother), ErrorKind::InvalidSmoother);
   EXPECT_EQ(plugin_type_name(PluginKind::Smoother), "smoother");
   EXPECT_EQ(plugin_type_name(PluginKind::GoalChecker), "goal_checker");
@@ -103,7 +104,7 @@ TEST(ErrorMapping, TheOtherKindsNamesAndProtocolErrorsAreGeneric)
       error_from_reply(remote(name), PluginKind::GlobalPlanner).kind(),
       ErrorKind::PlannerException) << name;
   }
-  for (const std::string name : {"SessionUnknown", "VersionMismatch", "BadRequest", "Unavailable",
+  for (const std::string name : {"SessionUnknown", "VersionMismatch", "BadRequest",
       "SomethingNew"})
   {
     EXPECT_EQ(error_from_reply(remote(name), PluginKind::Controller).kind(),
@@ -111,6 +112,22 @@ TEST(ErrorMapping, TheOtherKindsNamesAndProtocolErrorsAreGeneric)
     EXPECT_EQ(error_from_reply(remote(name), PluginKind::GlobalPlanner).kind(),
       ErrorKind::PlannerException);
   }
+}
+
+TEST(ErrorMapping, UnavailableIsAHostFailureThatNav2RecoversFrom)
+{
+  // A crashed, restarting or overrunning worker: NoValidControl for a controller (Jazzy+'s
+  // WouldAControllerRecoveryHelp retries it; ControllerTimedOut would end the navigation).
+  const CallError e = error_from_reply(remote("Unavailable"), PluginKind::Controller);
+  EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
+  EXPECT_EQ(std::string(e.what()), "[Unavailable] msg");
+  EXPECT_EQ(error_from_reply(remote("Unavailable"), PluginKind::GlobalPlanner).kind(),
+    ErrorKind::PlannerException);
+  EXPECT_EQ(error_from_reply(remote("Unavailable"), PluginKind::Smoother).kind(),
+    ErrorKind::SmootherException);
+  // A planner's own typed errors are kept as raised: a ControllerTimedOut means it.
+  EXPECT_EQ(error_from_reply(remote("ControllerTimedOut"), PluginKind::Controller).kind(),
+    ErrorKind::ControllerTimedOut);
 }
 
 TEST(ErrorMapping, HumbleThrowsPlannerExceptionForEverything)
@@ -124,12 +141,12 @@ TEST(ErrorMapping, HumbleThrowsPlannerExceptionForEverything)
   EXPECT_EQ(error_kind_from_name("SessionUnknown"), std::nullopt);
 }
 
-TEST(ErrorMapping, GenericAndTimedOutPerPluginType)
+TEST(ErrorMapping, GenericAndHostFailurePerPluginType)
 {
   EXPECT_EQ(generic_error(PluginKind::Controller), ErrorKind::ControllerException);
   EXPECT_EQ(generic_error(PluginKind::GlobalPlanner), ErrorKind::PlannerException);
-  EXPECT_EQ(timed_out_error(PluginKind::Controller), ErrorKind::ControllerTimedOut);
-  EXPECT_EQ(timed_out_error(PluginKind::GlobalPlanner), ErrorKind::PlannerTimedOut);
+  EXPECT_EQ(host_failure_error(PluginKind::Controller), ErrorKind::NoValidControl);
+  EXPECT_EQ(host_failure_error(PluginKind::GlobalPlanner), ErrorKind::PlannerException);
   EXPECT_EQ(plugin_type_name(PluginKind::Controller), "controller");
   EXPECT_EQ(plugin_type_name(PluginKind::GlobalPlanner), "global_planner");
 }
@@ -333,6 +350,27 @@ TEST(HostWatcher, WakesARealWaiterFromAnotherThread)
   EXPECT_TRUE(watcher.wait_for_any(10s));
   EXPECT_LT(std::chrono::steady_clock::now() - start, 5s);
   zenoh.join();
+}
+
+// --- The costmap rides in every request that has the field ------------------------------------
+
+TEST(CostmapDelivery, AChangedCostmapRidesInTheSmoothersRequest)
+{
+  // smooth's costmap was left out of a hand-written list: smoother_server's costmap reached
+  // the Python smoother only at configure.
+  FakeClock clock;
+  FakeHost host{clock};  // answers smooth with BadRequest: only the request matters here
+  GridCostmap costmap;
+  SessionConfig config;
+  config.key_prefix = "nav2_pyif/test_robot/simple_smoother";
+  config.name = "simple_smoother";
+  SmootherSession session(config, host, costmap);
+  session.configure();
+  costmap.resolution = 0.1;
+  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 0.1);});
+  const auto & smooth = std::get<proto::SmoothRequest>(host.last().body);
+  ASSERT_TRUE(smooth.costmap.has_value());
+  EXPECT_EQ(smooth.costmap->resolution, 0.1);
 }
 
 }  // namespace

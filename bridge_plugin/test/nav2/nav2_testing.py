@@ -173,6 +173,8 @@ def start_nav2(procs: Processes, params: Path, servers: tuple[str, ...] = SERVER
         "controller_server": "nav2_controller",
         "planner_server": "nav2_planner",
         "smoother_server": "nav2_smoother",
+        "behavior_server": "nav2_behaviors",
+        "bt_navigator": "nav2_bt_navigator",
     }
     for server in servers:
         procs.start(server, [str(find(f"lib/{packages[server]}/{server}")), *ros])
@@ -249,8 +251,13 @@ def bring_up(
     import pytest
 
     absent = missing()
-    if "smoother_server" in servers and find("lib/nav2_smoother/smoother_server") is None:
-        absent.append("smoother_server")
+    for server, package in (
+        ("smoother_server", "nav2_smoother"),
+        ("behavior_server", "nav2_behaviors"),
+        ("bt_navigator", "nav2_bt_navigator"),
+    ):
+        if server in servers and find(f"lib/{package}/{server}") is None:
+            absent.append(server)
     if absent:
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
     endpoint, params, procs = prepare(logs, endpoint)
@@ -289,7 +296,7 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
     import rclpy
     from geometry_msgs.msg import PoseStamped
     from lifecycle_msgs.srv import GetState
-    from nav2_msgs.action import ComputePathToPose, FollowPath, SmoothPath
+    from nav2_msgs.action import ComputePathToPose, FollowPath, NavigateToPose, SmoothPath
     from nav_msgs.msg import Odometry
     from rclpy.action import ActionClient
     from rclpy.node import Node
@@ -300,13 +307,19 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             self.plan_client = ActionClient(self, ComputePathToPose, "compute_path_to_pose")
             self.follow_client = ActionClient(self, FollowPath, "follow_path")
             self.smooth_client = ActionClient(self, SmoothPath, "smooth_path")
+            self.navigate_client = ActionClient(self, NavigateToPose, "navigate_to_pose")
             self.pose: tuple[float, float] | None = None
             self.speed = 0.0  # the commanded speed, as the simulated robot reports it
+            self.speeds: list[tuple[float, float]] = []  # (monotonic time, speed), recorded
+            self.recording = False
+            self.recoveries = 0  # NavigateToPose feedback's number_of_recoveries, last seen
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
 
         def _on_odom(self, msg: Any) -> None:
             self.pose = (msg.pose.pose.position.x, msg.pose.pose.position.y)
             self.speed = math.hypot(msg.twist.twist.linear.x, msg.twist.twist.angular.z)
+            if self.recording:
+                self.speeds.append((time.monotonic(), self.speed))
 
         def spin_until(self, done: Any, timeout: float) -> bool:
             end = time.monotonic() + timeout
@@ -393,6 +406,24 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             handle = self.wait(self.smooth_client.send_goal_async(goal), 10.0)
             assert handle is not None and handle.accepted, "SmoothPath not accepted"
             return self.wait(handle.get_result_async(), timeout)
+
+        def navigate(self, x: float, y: float) -> Any:
+            """NavigateToPose (bt_navigator, its default BT): the goal handle. Feedback
+            updates ``recoveries``; the odometry's speeds are recorded from now on."""
+            assert self.navigate_client.wait_for_server(timeout_sec=10.0)
+            goal = NavigateToPose.Goal()
+            goal.pose.header.frame_id = "map"
+            goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
+            goal.pose.pose.orientation.w = 1.0
+            self.recoveries, self.speeds, self.recording = 0, [], True
+
+            def on_feedback(message: Any) -> None:
+                self.recoveries = int(message.feedback.number_of_recoveries)
+
+            sent = self.navigate_client.send_goal_async(goal, feedback_callback=on_feedback)
+            handle = self.wait(sent, 10.0)
+            assert handle is not None and handle.accepted, "NavigateToPose not accepted"
+            return handle
 
         def follow(self, path: Any, goal_checker: str = "general_goal_checker") -> Any:
             assert self.follow_client.wait_for_server(timeout_sec=10.0)

@@ -195,10 +195,8 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     assert time.monotonic() - killed < 5.0, "the abort took longer than a few timeouts"
     failed = client.smooth(raw, "simple_smoother")
     assert failed is not None and failed.status == ABORTED, _logs(nav2, "smoother_server")
-    assert failed.result.error_code in {
-        SmoothPath.Result.TIMEOUT,  # no reply in time while the dead host's token lingers
-        SmoothPath.Result.UNKNOWN,  # no host alive: SmootherException
-    }, failed.result.error_code
+    # no reply in time while the dead host's token lingers, or no host alive: SmootherException
+    assert failed.result.error_code == SmoothPath.Result.UNKNOWN, failed.result.error_code
     assert client.wait_active(SERVERS, 10.0) == dict.fromkeys(SERVERS, "active")
 
     # a new host: the smoother, the checkers and the controller are served again

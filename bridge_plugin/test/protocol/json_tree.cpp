@@ -1,6 +1,6 @@
 #include "json_tree.hpp"
 
-#include <msgpack.hpp>
+#include <msgpack.h>
 #include <zlib.h>
 
 #include <cmath>
@@ -259,14 +259,28 @@ std::string unhex(const std::string & hex)
   return out;
 }
 
+// msgpack-c's packer, writing into `out`.
 struct Sink
 {
+  explicit Sink(std::vector<std::uint8_t> & bytes)
+  : out(bytes)
+  {
+    msgpack_packer_init(&packer, &out, &Sink::append);
+  }
+
+  static int append(void * data, const char * bytes, std::size_t size)
+  {
+    auto & out = *static_cast<std::vector<std::uint8_t> *>(data);
+    out.insert(out.end(), bytes, bytes + size);
+    return 0;
+  }
+
   std::vector<std::uint8_t> & out;
-  void write(const char * data, std::size_t size) {out.insert(out.end(), data, data + size);}
+  msgpack_packer packer{};
 };
 
-// float64 / float32 written by hand: msgpack-cxx 4.1's pack_double and pack_float write
-// whole numbers as ints, and these trees need the exact float forms.
+// float64 / float32 written by hand: these trees need the exact float forms, whatever a
+// msgpack-c release's pack_double and pack_float do with whole numbers.
 template<class Float, class Bits>
 void pack_float_bits(Sink & sink, std::uint8_t marker, Float value)
 {
@@ -280,41 +294,45 @@ void pack_float_bits(Sink & sink, std::uint8_t marker, Float value)
   sink.out.insert(sink.out.end(), buf, buf + sizeof buf);
 }
 
-void pack(msgpack::packer<Sink> & p, Sink & sink, const Json & j)
+void pack(Sink & sink, const Json & j)
 {
   switch (j.type()) {
     case Json::value_t::null:
-      p.pack_nil();
+      msgpack_pack_nil(&sink.packer);
       return;
     case Json::value_t::boolean:
-      j.get<bool>() ? p.pack_true() : p.pack_false();
+      if (j.get<bool>()) {
+        msgpack_pack_true(&sink.packer);
+      } else {
+        msgpack_pack_false(&sink.packer);
+      }
       return;
     case Json::value_t::number_unsigned:
-      p.pack_uint64(j.get<std::uint64_t>());
+      msgpack_pack_uint64(&sink.packer, j.get<std::uint64_t>());
       return;
     case Json::value_t::number_integer:
-      p.pack_int64(j.get<std::int64_t>());
+      msgpack_pack_int64(&sink.packer, j.get<std::int64_t>());
       return;
     case Json::value_t::number_float:
       pack_float_bits<double, std::uint64_t>(sink, 0xcb, j.get<double>());
       return;
     case Json::value_t::string: {
         const auto & s = j.get_ref<const std::string &>();
-        p.pack_str(static_cast<std::uint32_t>(s.size()));
-        p.pack_str_body(s.data(), static_cast<std::uint32_t>(s.size()));
+        msgpack_pack_str(&sink.packer, s.size());
+        msgpack_pack_str_body(&sink.packer, s.data(), s.size());
         return;
       }
     case Json::value_t::array:
-      p.pack_array(static_cast<std::uint32_t>(j.size()));
+      msgpack_pack_array(&sink.packer, j.size());
       for (const auto & item : j) {
-        pack(p, sink, item);
+        pack(sink, item);
       }
       return;
     case Json::value_t::object:
       if (j.size() == 1 && j.contains("$bin")) {
         const std::string bytes = unhex(j["$bin"].get<std::string>());
-        p.pack_bin(static_cast<std::uint32_t>(bytes.size()));
-        p.pack_bin_body(bytes.data(), static_cast<std::uint32_t>(bytes.size()));
+        msgpack_pack_bin(&sink.packer, bytes.size());
+        msgpack_pack_bin_body(&sink.packer, bytes.data(), bytes.size());
         return;
       }
       if (j.size() == 1 && j.contains("$float")) {
@@ -332,11 +350,11 @@ void pack(msgpack::packer<Sink> & p, Sink & sink, const Json & j)
       if (j.contains("$bin_len")) {
         throw std::invalid_argument("pack_json: a bin above 4 KiB has no bytes in its JSON form");
       }
-      p.pack_map(static_cast<std::uint32_t>(j.size()));
+      msgpack_pack_map(&sink.packer, j.size());
       for (const auto & item : j.items()) {
-        p.pack_str(static_cast<std::uint32_t>(item.key().size()));
-        p.pack_str_body(item.key().data(), static_cast<std::uint32_t>(item.key().size()));
-        pack(p, sink, item.value());
+        msgpack_pack_str(&sink.packer, item.key().size());
+        msgpack_pack_str_body(&sink.packer, item.key().data(), item.key().size());
+        pack(sink, item.value());
       }
       return;
     default:
@@ -382,9 +400,8 @@ std::string first_difference(const Json & expected, const Json & actual)
 std::vector<std::uint8_t> pack_json(const Json & tree)
 {
   std::vector<std::uint8_t> out;
-  Sink sink{out};
-  msgpack::packer<Sink> packer(sink);
-  pack(packer, sink, tree);
+  Sink sink(out);
+  pack(sink, tree);
   return out;
 }
 

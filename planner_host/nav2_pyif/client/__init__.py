@@ -5,6 +5,7 @@ Nav2 plugin follows: session id and epoch, state re-sent after a host restart, t
 liveliness fail-fast, costmap sent only when changed.
 """
 
+from nav2_pyif.client.behavior import BehaviorClient
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient
 from nav2_pyif.client.controller import ControllerClient
@@ -16,6 +17,7 @@ from nav2_pyif.client.plugin_client import PluginClient, Timeouts
 from nav2_pyif.client.smoother import SmootherClient
 
 __all__ = [
+    "BehaviorClient",
     "CallRecord",
     "ControlCycle",
     "ControllerClient",

@@ -28,6 +28,7 @@ def request_reload(
     planner: str | None = None,
     module: str | None = None,
     delegates: dict[str, str] | None = None,
+    allow_type_change: bool = False,
     timeout: float = 60.0,
     wait: float = DISCOVERY,
     on_waiting: Callable[[str], None] | None = None,
@@ -39,7 +40,9 @@ def request_reload(
     The reload is sent only once a host's liveliness token is seen on the key (the host
     declares it after its queryables: a query sent before would find nothing to answer it),
     waiting up to ``wait`` seconds for one; ``on_waiting`` is told, after DISCOVERY s without
-    one, what this session sees meanwhile. ``timeout``: how long the host may take to load."""
+    one, what this session sees meanwhile. ``timeout``: how long the host may take to load.
+    ``allow_type_change``: let the new planner be of another plugin type than the key serves
+    (the host refuses it otherwise, and always while a session is live)."""
     keys = KeySpace(key_prefix)
     watcher = HostWatcher(session, keys)
     try:
@@ -58,7 +61,12 @@ def request_reload(
                 f"{visible_hosts(session)}"
             )
         started = time.monotonic()
-        request = {"planner": planner, "module": module, "delegates": delegates}
+        request = {
+            "planner": planner,
+            "module": module,
+            "delegates": delegates,
+            "allow_type_change": allow_type_change,
+        }
         for reply in session.get(
             keys.admin_reload, payload=msgpack.packb(request), timeout=timeout
         ):

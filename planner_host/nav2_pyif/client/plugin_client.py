@@ -2,7 +2,8 @@
 
 Rules (PROTOCOL.md, "Client behaviour"):
 1. No host alive on the prefix (liveliness): fail at once, no query is sent.
-2. No reply within the op's timeout: ControllerTimedOut / PlannerTimedOut.
+2. No reply within the op's timeout, no host alive, or Unavailable: the plugin type's
+   host-failure exception (NoValidControl for a controller), which Nav2 recovers from.
 3. SessionUnknown: the host restarted (or another replica answered). Bump the epoch, re-send
    configure (with the costmap), activate if active, then the subclass's state (plan, speed
    limit), then retry the call once.
@@ -30,12 +31,12 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
-from nav2_pyif_protocol.schema import BODIES
+from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT
 
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import HostWatcher
 from nav2_pyif.costmap import Costmap
-from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, timed_out_error
+from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, host_failure_error
 from nav2_pyif.params import ParamValue
 
 log = logging.getLogger("nav2_pyif.client")
@@ -56,9 +57,16 @@ class Timeouts:
 
 def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
     """The exception a plugin raises for an error reply: the named nav2_core class when it
-    belongs to this plugin type, the generic one otherwise (protocol errors included)."""
+    belongs to this plugin type; for ``Unavailable`` (the host's worker crashed, is restarting
+    or overran its deadline) the host-failure one, which Nav2 recovers from; the generic one
+    otherwise (the other protocol errors included)."""
     named = {e.value for e in ERRORS_BY_PLUGIN[plugin_type]}
-    cls = NAV2_EXCEPTIONS[error.type] if error.type in named else generic_error(plugin_type)
+    if error.type in named:
+        cls = NAV2_EXCEPTIONS[error.type]
+    elif error.type == ErrorType.UNAVAILABLE.value:
+        cls = host_failure_error(plugin_type)
+    else:
+        cls = generic_error(plugin_type)
     message = error.message if error.type in named else f"[{error.type}] {error.message}"
     return cls(message, remote_traceback=error.traceback, python_type=error.python_type)
 
@@ -175,25 +183,9 @@ class PluginClient:
         }
 
     def _timeout(self, op: Op) -> float:
-        if op is Op.CONFIGURE:
-            return self.timeouts.configure
-        if op in (
-            Op.COMPUTE_VELOCITY_COMMANDS,
-            Op.SET_PLAN,
-            Op.SET_SPEED_LIMIT,
-            Op.CANCEL,
-            Op.RESET,
-            Op.IS_GOAL_REACHED,
-            Op.GET_TOLERANCES,
-            Op.CHECK,
-            Op.UPDATE_BOUNDS,
-            Op.UPDATE_COSTS,
-            Op.MATCH_SIZE,
-        ):  # Nav2 calls reset after every goal: it must not stall an abort
-            return self.timeouts.call
-        if op in (Op.CREATE_PLAN, Op.SMOOTH):
-            return self.timeouts.plan
-        return self.timeouts.lifecycle
+        # Timeouts' fields are named after the classes of schema.py's one table.
+        timeout: float = getattr(self.timeouts, OP_TIMEOUT[op].value)
+        return timeout
 
     # --- replicas: several hosts may serve one key; this plugin talks to exactly one ------
     def _pin_host(self, alive: frozenset[str]) -> None:
@@ -285,7 +277,7 @@ class PluginClient:
             )
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
         if not alive:
-            raise generic_error(self.plugin_type)(
+            raise host_failure_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
                 f"--key {self.keys.prefix} ...); {op.value} not sent"
             )
@@ -349,7 +341,7 @@ class PluginClient:
         elapsed = time.perf_counter_ns() - start
         if sample is None:
             self._record(request, elapsed, 0, len(payload), False)
-            raise timed_out_error(self.plugin_type)(
+            raise host_failure_error(self.plugin_type)(
                 f"{request.op.value} got no reply from {self.keys.prefix} within "
                 f"{timeout * 1000:.0f} ms"
             )

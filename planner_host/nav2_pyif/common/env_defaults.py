@@ -43,7 +43,7 @@ def _convert(parser: argparse.ArgumentParser, action: argparse.Action, name: str
     def one(item: str) -> Any:
         try:
             value = action.type(item) if callable(action.type) else item
-        except (TypeError, ValueError) as exc:
+        except (TypeError, ValueError, argparse.ArgumentTypeError) as exc:
             parser.error(f"{name}={text!r}: {exc}")
         if action.choices is not None and value not in action.choices:
             choices = ", ".join(map(str, action.choices))

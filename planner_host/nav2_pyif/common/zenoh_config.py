@@ -18,6 +18,8 @@ from dataclasses import dataclass, field
 
 import zenoh
 
+from nav2_pyif.common.option_types import FromVariable, endpoint, zenoh_config_file
+
 DEFAULT_ROUTER = "tcp/localhost:7447"
 LOCAL_LISTEN = "tcp/localhost:0"  # a peer's own port, found by other peers through the router
 CONFIG_ENV = "NAV2_PYIF_ZENOH_CONFIG"
@@ -51,11 +53,17 @@ def add_endpoint_arguments(
     config_help: str,
     connect_help: str,
     listen_help: str,
+    default: str | None = None,
 ) -> None:
-    """--zenoh-config, --connect and --listen (repeatable), shared by the host and router."""
-    group.add_argument("--zenoh-config", metavar="FILE", help=config_help)
+    """--zenoh-config, --connect and --listen (repeatable), shared by the host and router;
+    each checked at parse time (a usage error, not Zenoh's error when the session opens)."""
+    group.add_argument(
+        "--zenoh-config", type=zenoh_config_file, default=default, metavar="FILE", help=config_help
+    )
     for flag, text in (("--connect", connect_help), ("--listen", listen_help)):
-        group.add_argument(flag, action="append", default=[], metavar="ENDPOINT", help=text)
+        group.add_argument(
+            flag, action="append", type=endpoint, default=[], metavar="ENDPOINT", help=text
+        )
 
 
 def add_zenoh_arguments(parser: argparse.ArgumentParser, default_mode: str = "peer") -> None:
@@ -65,6 +73,9 @@ def add_zenoh_arguments(parser: argparse.ArgumentParser, default_mode: str = "pe
     group = parser.add_argument_group("zenoh")
     add_endpoint_arguments(
         group,
+        # The variable as the option's default: argparse checks a string default with the
+        # option's type, so a missing or unreadable file is a usage error here too.
+        default=FromVariable(path, CONFIG_ENV) if (path := os.environ.get(CONFIG_ENV)) else None,
         config_help=f"Zenoh JSON5 config file (default: ${CONFIG_ENV}, else built-in)",
         connect_help=f"endpoint to connect to, repeatable (default: {DEFAULT_ROUTER})",
         listen_help="endpoint to listen on, repeatable, e.g. tcp/127.0.0.1:7447 "

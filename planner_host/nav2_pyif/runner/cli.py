@@ -8,6 +8,14 @@ import math
 import sys
 from pathlib import Path
 
+from nav2_pyif.common.option_types import (
+    endpoint,
+    finite_float,
+    non_negative_float,
+    number,
+    positive_float,
+    positive_int,
+)
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.runner.aliases import ALIASES
 from nav2_pyif.runner.laser import LaserSpec
@@ -83,17 +91,36 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "--planner", help=f"default: {DEFAULTS['planner']}; with --connect, what the host serves"
     )
     p.add_argument(
-        "--start", nargs=3, type=float, metavar=("X", "Y", "YAW"), help="default: the map's task"
+        "--start",
+        nargs=3,
+        type=finite_float,
+        metavar=("X", "Y", "YAW"),
+        help="start pose [m, m, rad] (default: the map's task)",
     )
-    p.add_argument("--goal", nargs=3, type=float, metavar=("X", "Y", "YAW"))
-    p.add_argument("--rate", type=float, default=20.0, help="control rate [Hz] (default 20)")
-    p.add_argument("--timeout", type=float, default=180.0, help="simulated seconds")
+    p.add_argument(
+        "--goal",
+        nargs=3,
+        type=finite_float,
+        metavar=("X", "Y", "YAW"),
+        help="goal pose [m, m, rad] (default: the map's task)",
+    )
+    p.add_argument(
+        "--rate", type=positive_float, default=20.0, help="control rate [Hz], > 0 (default 20)"
+    )
+    p.add_argument(
+        "--timeout",
+        type=positive_float,
+        default=180.0,
+        metavar="SECONDS",
+        help="simulated seconds before the run ends NOT REACHED, > 0 (default 180)",
+    )
     p.add_argument("--realtime", action="store_true", help="pace to wall-clock time")
     p.add_argument(
         "--call-timeout",
-        type=float,
+        type=positive_float,
         default=0.25,
-        help="seconds to wait for each control cycle's reply",
+        metavar="SECONDS",
+        help="seconds to wait for each control cycle's reply, > 0 (default 0.25)",
     )
     p.add_argument(
         "--param",
@@ -102,14 +129,26 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         metavar="NAME=VALUE",
         help="controller parameter (YAML value), repeatable",
     )
-    p.add_argument("--planner-param", action="append", default=[], metavar="NAME=VALUE")
+    p.add_argument(
+        "--planner-param",
+        action="append",
+        default=[],
+        metavar="NAME=VALUE",
+        help="global planner parameter (YAML value), repeatable",
+    )
     for role, what in PLUGIN_FLAGS.items():
         flag = role.replace("_", "-")
         p.add_argument(f"--{flag}", metavar="NAME", help=what)
-        p.add_argument(f"--{flag}-param", action="append", default=[], metavar="NAME=VALUE")
+        p.add_argument(
+            f"--{flag}-param",
+            action="append",
+            default=[],
+            metavar="NAME=VALUE",
+            help=f"parameter of the --{flag} plugin (YAML value), repeatable",
+        )
     p.add_argument(
         "--smoother-max-time",
-        type=float,
+        type=positive_float,
         default=1.0,
         metavar="SECONDS",
         help="the smoother's time budget (smoother_server's max_smoothing_duration; default 1)",
@@ -124,17 +163,28 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     )
     p.add_argument(
         "--connect",
+        type=endpoint,
         metavar="ENDPOINT",
         help="use a running planner host (keys nav2_pyif/sim/FollowPath, "
         "nav2_pyif/sim/GridBased, or --controller-key / --planner-key) instead of starting "
         "one, as a Zenoh client of ENDPOINT (the host listening there, or a router); the run "
         "is named after what it serves",
     )
-    p.add_argument("--controller-key", default=CONTROLLER_KEY, metavar="PREFIX")
-    p.add_argument("--planner-key", default=PLANNER_KEY, metavar="PREFIX")
+    p.add_argument(
+        "--controller-key",
+        default=CONTROLLER_KEY,
+        metavar="PREFIX",
+        help=f"with --connect: the controller's key (default {CONTROLLER_KEY})",
+    )
+    p.add_argument(
+        "--planner-key",
+        default=PLANNER_KEY,
+        metavar="PREFIX",
+        help=f"with --connect: the global planner's key (default {PLANNER_KEY})",
+    )
     p.add_argument(
         "--wait",
-        type=float,
+        type=non_negative_float,
         default=10.0,
         metavar="SECONDS",
         help="with --connect: how long to wait for a router at ENDPOINT, then for a host on "
@@ -146,13 +196,24 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         help="simulate a laser scanner on the map and feed it to the controller as input "
         "'scan' (a sensor_msgs/LaserScan, as the plugin's inputs parameter ships a topic)",
     )
-    p.add_argument("--scan-beams", type=int, default=360, help="beams over a full turn (360)")
-    p.add_argument("--scan-range", type=float, default=8.0, help="range_max [m] (8)")
-    p.add_argument("--scan-noise", type=float, default=0.01, help="noise std dev [m] (0.01)")
-    p.add_argument("--scan-rate", type=float, default=20.0, help="scans per second (20)")
+    p.add_argument(
+        "--scan-beams", type=positive_int, default=360, help="beams over a full turn, >= 1 (360)"
+    )
+    p.add_argument(
+        "--scan-range",
+        type=number(float, above=LaserSpec.range_min),
+        default=8.0,
+        help=f"range_max [m], > range_min {LaserSpec.range_min:g} (8)",
+    )
+    p.add_argument(
+        "--scan-noise", type=non_negative_float, default=0.01, help="noise std dev [m], >= 0 (0.01)"
+    )
+    p.add_argument(
+        "--scan-rate", type=positive_float, default=20.0, help="scans per second, > 0 (20)"
+    )
     p.add_argument(
         "--debug-every",
-        type=float,
+        type=non_negative_float,
         default=0.5,
         metavar="SECONDS",
         help="ask for the controller's debug outputs (and draw them) every SECONDS of "
@@ -160,7 +221,7 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
     p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
-    p.add_argument("--no-progress", action="store_true")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run_command)
 
 
@@ -224,8 +285,6 @@ def run_command(args: argparse.Namespace) -> int:
             smoother_max_time=args.smoother_max_time,
             sensing=sensing_config(args),
         )
-        if not (math.isfinite(config.rate) and config.rate > 0):
-            raise SimError("--rate must be > 0")
         result = run_sim(config)
     except RunInterrupted as exc:
         png, record = _write(exc.result, args)

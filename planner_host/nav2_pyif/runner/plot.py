@@ -20,7 +20,7 @@ from matplotlib.lines import Line2D
 
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN
-from nav2_pyif.runner.report import summary
+from nav2_pyif.runner.report import clearance_text, summary
 from nav2_pyif.runner.run import SimResult, short_name
 
 
@@ -37,7 +37,7 @@ def title(result: SimResult) -> str:
     return (
         f"{Path(s['map']).stem}: {controller} + {planner} — "
         f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
-        f"{s['driven_distance_m']:.1f} m, clearance ≥ {s['min_clearance_m']:.2f} m"
+        f"{s['driven_distance_m']:.1f} m, min clearance {clearance_text(s['min_clearance_m'], 2)}"
     )
 
 

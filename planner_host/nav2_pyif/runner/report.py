@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from nav2_pyif.runner.run import SimResult
+from nav2_pyif.runner.robot import CLEARANCE_REACH
+from nav2_pyif.runner.run import CONTROLLER_FAILED, SimResult
 
 
 def latency_rows(result: SimResult) -> list[dict[str, Any]]:
@@ -68,7 +70,10 @@ def summary(result: SimResult) -> dict[str, Any]:
         "control_rate_hz": c.rate,
         "plan_length_m": round(result.path_length, 3),
         "driven_distance_m": round(result.driven_distance, 3),
-        "min_clearance_m": round(result.min_clearance, 3),
+        # None: no step driven, nothing measured (JSON has no infinity)
+        "min_clearance_m": (
+            round(result.min_clearance, 3) if math.isfinite(result.min_clearance) else None
+        ),
         "collisions": result.collisions,
         "controller_errors": len(result.controller_errors),
         "plugins": {role: result.name_of(role) for role in c.plugins},
@@ -135,6 +140,25 @@ def _served(result: SimResult, role: str) -> str:
     )
 
 
+def clearance_text(metres: float | None, digits: int = 3) -> str:
+    """The minimum clearance as measured: the check looks CLEARANCE_REACH far, and a run that
+    drove no step measured nothing."""
+    if metres is None:
+        return "not measured (no step driven)"
+    if metres >= CLEARANCE_REACH:
+        return f"over {CLEARANCE_REACH:g} m (no obstacle nearer)"
+    return f"{metres:.{digits}f} m"
+
+
+def _errors_text(s: dict[str, Any]) -> str:
+    """The controller's errors; the one that ended the run came in a cycle not driven (the
+    cycles counted are the steps driven)."""
+    errors = s["controller_errors"]
+    if not s["outcome"].startswith(CONTROLLER_FAILED) or not errors:
+        return str(errors)
+    return f"{errors} ({errors - 1} in the {s['cycles']} cycles driven, 1 that ended the run)"
+
+
 def format_report(result: SimResult) -> str:
     s = summary(result)
     # The planner's own traceback first (the error that ended the run), then what happened.
@@ -146,8 +170,8 @@ def format_report(result: SimResult) -> str:
         f"  simulated time {s['sim_time_s']:.1f} s in {s['cycles']} cycles at "
         f"{s['control_rate_hz']:.0f} Hz (wall {s['wall_time_s']:.1f} s)",
         f"  plan {s['plan_length_m']:.2f} m, driven {s['driven_distance_m']:.2f} m, "
-        f"minimum clearance {s['min_clearance_m']:.3f} m, collisions {s['collisions']}, "
-        f"controller errors {s['controller_errors']}",
+        f"minimum clearance {clearance_text(s['min_clearance_m'])}, "
+        f"collisions {s['collisions']}, controller errors {_errors_text(s)}",
         *_plugins_line(s),
         *_sensing_line(result, s),
         "",

@@ -41,6 +41,10 @@ class DiffDrive:
         self.v = self.w = 0.0
 
 
+#: How far [m] the clearance check looks: a clearance of this much means "nothing nearer".
+CLEARANCE_REACH = 2.0
+
+
 class WorldChecker:
     """Collision and clearance of the footprint against the occupied cells of the map."""
 
@@ -60,7 +64,7 @@ class WorldChecker:
             self.world.footprint_costs(np.array([x, y, yaw]), self.outline) >= Costmap.LETHAL
         )
 
-    def clearance(self, x: float, y: float, yaw: float, reach: float = 2.0) -> float:
+    def clearance(self, x: float, y: float, yaw: float, reach: float = CLEARANCE_REACH) -> float:
         """Smallest distance [m] from the footprint outline to an occupied cell's edge
         (``reach`` when none is that close)."""
         near = self._centres[

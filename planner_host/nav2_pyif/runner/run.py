@@ -41,6 +41,8 @@ from nav2_pyif.runner.swaps import Swap, swaps_during
 
 log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
+#: The outcome of a run the controller's errors ended (its last error ended it mid-cycle).
+CONTROLLER_FAILED = "controller failed"
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
 Pose3 = tuple[float, float, float]
 #: The simulated ROS time [s] when a run starts: not zero, which a stamp reads as "no time".
@@ -513,7 +515,7 @@ def _control_loop(
                 failing_since = result.sim_time if failing_since is None else failing_since
                 failure_traceback = exc.remote_traceback or failure_traceback
                 if result.sim_time - failing_since > config.failure_tolerance:
-                    _ended_by(result, "controller failed", exc, failure_traceback)
+                    _ended_by(result, CONTROLLER_FAILED, exc, failure_traceback)
                     return
             robot.step(cmd_v, cmd_w, dt)
             result.sim_time += dt

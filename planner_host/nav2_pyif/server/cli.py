@@ -19,6 +19,7 @@ import zenoh
 from nav2_pyif_protocol.keys import validate_prefix
 
 from nav2_pyif.common.env_defaults import apply_environment, document_environment
+from nav2_pyif.common.option_types import non_negative_float, non_negative_int, positive_float
 from nav2_pyif.common.signals import TERMINATING, exit_code
 from nav2_pyif.common.zenoh_config import (
     add_zenoh_arguments,
@@ -30,6 +31,8 @@ from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import check_roles, parse_delegates
 from nav2_pyif.ros_types import check_serialization_rmw
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
+from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
+from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
 from nav2_pyif.server.spec import PlannerSpec
@@ -63,7 +66,7 @@ examples:
   NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
       NAV2_PYIF_CONNECT=tcp/router:7447 planner-host
 
-signals:
+signals (to this host only: --pid-file FILE, then kill -HUP "$(cat FILE)"):
   SIGHUP          re-import every planner (fresh workers; sessions carry over)
   SIGINT, SIGTERM stop: workers and the Zenoh session are closed, exit code 130 / 143
                   (SIGHUP before the host serves stops it too: 129)
@@ -84,8 +87,7 @@ def build_parser() -> argparse.ArgumentParser:
     what.add_argument(
         "--planner",
         metavar="MODULE:CLASS",
-        help="a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin or "
-        "ProgressCheckerPlugin subclass, e.g. my_pkg.ctrl:MyController",
+        help=f"a {PLUGIN_BASES_TEXT} subclass, e.g. my_pkg.ctrl:MyController",
     )
     what.add_argument(
         "--module", metavar="MODULE", help="module of plain functions (the seed's python_module)"
@@ -130,31 +132,33 @@ def build_parser() -> argparse.ArgumentParser:
     )
     safety.add_argument(
         "--deadline",
-        type=float,
+        type=positive_float,
         default=1.0,
         metavar="SECONDS",
-        help="control-loop calls running longer are answered with ControllerTimedOut (default 1.0)",
+        help="control-loop calls running longer are answered Unavailable, which the plugin "
+        "throws as NoValidControl, > 0 (default 1.0)",
     )
     safety.add_argument(
         "--plan-deadline",
-        type=float,
+        type=positive_float,
         default=30.0,
         metavar="SECONDS",
-        help="the same for create_plan (default 30)",
+        help="the same for create_plan and smooth, > 0 (default 30)",
     )
     safety.add_argument(
         "--hang-grace",
-        type=float,
+        type=non_negative_float,
         default=3.0,
         metavar="SECONDS",
-        help="a worker still busy this long after a deadline is killed and restarted (default 3.0)",
+        help="a worker still busy this long after a deadline is killed and restarted, >= 0 "
+        "(default 3.0)",
     )
     safety.add_argument(
         "--memory-limit",
-        type=int,
+        type=non_negative_int,
         default=0,
         metavar="MB",
-        help="address-space limit of each worker process; a planner exceeding it gets "
+        help="address-space limit of each worker process, >= 0; a planner exceeding it gets "
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
     )
     swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")
@@ -173,6 +177,13 @@ def build_parser() -> argparse.ArgumentParser:
         "e.g. 'my_planners.*', repeatable",
     )
     add_zenoh_arguments(parser)
+    parser.add_argument(
+        "--pid-file",
+        type=Path,
+        metavar="FILE",
+        help="write the host's process id to FILE once it serves, for a signal sent to this "
+        'host only (kill -HUP "$(cat FILE)": reload every planner); removed on exit',
+    )
     parser.add_argument(
         "--log-level",
         default="INFO",
@@ -282,6 +293,8 @@ def main(argv: list[str] | None = None) -> int:
         signal.signal(signum, on_signal)
     if args.reload_allow and not args.allow_remote_reload:
         parser.error("--reload-allow needs --allow-remote-reload")
+    if args.pid_file and not os.access(args.pid_file.parent, os.W_OK):
+        parser.error(f"--pid-file {args.pid_file}: its directory is missing or not writable")
     try:
         specs = collect_specs(args, parser)
         services = start_services(specs, host_id, args)
@@ -312,6 +325,8 @@ def main(argv: list[str] | None = None) -> int:
                 "s"[: len(services) > 1],
                 args.isolation,
             )
+            if args.pid_file:
+                write_pid_file(args.pid_file)
         reach = ReachWatch(session, *configured_endpoints(options))
         while not stopped_by:
             if not stop.wait(1.0):
@@ -325,6 +340,8 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         # Close explicitly on every path: an open session keeps the process alive. Services
         # not yet served (a signal during start-up) are closed too: no worker outlives us.
+        if args.pid_file:
+            remove_pid_file(args.pid_file)
         host.close()
         for service in services:
             service.close()

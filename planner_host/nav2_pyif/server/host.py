@@ -142,6 +142,7 @@ class ServedPlanner:
         threading.Thread(target=self._reload, args=(query,), daemon=True).start()
 
     def _reload(self, query: Any) -> None:
+        what = "?"
         try:
             request = msgpack.unpackb(_payload(query)) if query.payload is not None else {}
             current = getattr(self.runtime, "spec", None)
@@ -151,20 +152,23 @@ class ServedPlanner:
                     request.get("planner"), request.get("module"), request.get("delegates")
                 )
             requested = spec if spec != current else None  # None: a fresh import
+            wanted = requested or current
+            what = ("" if requested else "a fresh import of ") + (
+                wanted.describe() if isinstance(wanted, PlannerSpec) else "?"
+            )
             refusal = self.reload_policy.refusal(requested)
             if refusal:
-                wanted = requested or current
-                log.warning(
-                    "%s: refused a remote reload (%s%s): %s",
-                    self.keys.prefix,
-                    "" if requested else "a fresh import of ",
-                    wanted.describe() if isinstance(wanted, PlannerSpec) else "?",
-                    refusal,
-                )
+                log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, refusal)
                 answer = {"ok": False, "message": f"reload refused by the host: {refusal}"}
             else:
-                answer = {"ok": True, "message": self.reload(spec)}
+                allow = isinstance(request, dict) and request.get("allow_type_change") is True
+                message = self.reload(spec, allow_type_change=allow)
+                log.info("%s", message)
+                answer = {"ok": True, "message": message}
         except PlannerLoadError as exc:
+            # A planner that does not load (a SyntaxError, an import error, another plugin
+            # type) is refused as the allow-list refuses: said here too, not only to the caller.
+            log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, exc)
             answer = {"ok": False, "message": str(exc)}
         except Exception as exc:
             log.exception("%s: reload failed", self.keys.prefix)
@@ -174,9 +178,9 @@ class ServedPlanner:
         finally:
             query.drop()
 
-    def reload(self, spec: PlannerSpec | None = None) -> str:
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         """A hot swap (PlannerService.reload), noted in the key's history."""
-        message = self.runtime.reload(spec)
+        message = self.runtime.reload(spec, allow_type_change=allow_type_change)
         self.history.append((self.runtime.swapped_at, self.runtime.label))
         return message
 
@@ -191,7 +195,9 @@ class ServedPlanner:
 class ReachWatch:
     """Says in the log whether this host reaches anything over Zenoh: a warning, repeated
     every ``every`` seconds, while no router, peer or plugin is connected (a host that
-    reaches nothing cannot be reached by Nav2), and once what it reached."""
+    reaches nothing cannot be reached by Nav2), and once what it reached. A host that only
+    listens, once its plugins have come and gone, says so once: a plugin that stops (a sim
+    run that ends, a robot switched off) is no fault of the host's."""
 
     def __init__(
         self,
@@ -206,26 +212,45 @@ class ReachWatch:
         self.connect, self.listen = connect, listen
         self.every = every
         self.reached = False
+        self._lost_at: float | None = None  # when the last connection closed
         self._next_warning = time.monotonic() + grace
 
     def check(self) -> None:
         transports = list(self.session.info.transports())
         now = time.monotonic()
-        if transports and not self.reached:
-            self.reached = True
-            log.info("Zenoh: reached %s", _describe(transports))
-        elif not transports and self.reached:
-            self.reached = False
-            log.warning("Zenoh: every connection is gone; %s", self._advice())
+        if transports:
+            if not self.reached:
+                self.reached = True
+                log.info("Zenoh: reached %s", _describe(transports))
+            return
+        if self.reached:
+            self.reached, self._lost_at = False, now
             self._next_warning = now + self.every
-        elif not transports and now >= self._next_warning:
-            log.warning("Zenoh: nothing reached yet; %s", self._advice())
+            if self.connect:
+                log.warning("Zenoh: every connection is gone; %s", self._advice())
+            else:
+                log.info("Zenoh: the last connection closed; %s", self._waiting())
+        elif now >= self._next_warning and (self.connect or self._lost_at is None):
             self._next_warning = now + self.every
+            if self._lost_at is None:
+                log.warning("Zenoh: nothing reached yet; %s", self._advice())
+            else:
+                log.warning(
+                    "Zenoh: still nothing reached, %.0f s after the last connection closed; %s",
+                    now - self._lost_at,
+                    self._advice(),
+                )
+
+    def _waiting(self) -> str:
+        where = f"listening on {', '.join(self.listen)}" if self.listen else "listening"
+        return f"waiting for a Nav2 plugin to connect ({where})"
 
     def _advice(self) -> str:
         listening = f"listening on {', '.join(self.listen)}" if self.listen else ""
         if not self.connect:
-            return f"no Nav2 plugin has connected ({listening}): point the plugin's Zenoh at it"
+            return (
+                f"no Nav2 plugin has connected: {self._waiting()}; point the plugin's Zenoh at it"
+            )
         return (
             f"no Zenoh router or peer answers at {', '.join(self.connect)}"
             + (f" and none connected ({listening})" if listening else "")
@@ -270,7 +295,13 @@ class PlannerHost:
             route=self._route,
         )
         self.served[key_prefix] = served
-        log.info("serving %s on %s/** (%s)", runtime.label, key_prefix, runtime.plugin_type.value)
+        log.info(
+            "serving %s on %s/** (%s, %s)",
+            runtime.label,
+            key_prefix,
+            runtime.plugin_type.value,
+            runtime.where,
+        )
         return served
 
     def _route(self, key_prefix: str, op: str, payload: bytes) -> bytes | None:

@@ -29,6 +29,8 @@ STATE_OPS = frozenset(
         Op.SET_PARAMETERS,
         Op.SET_PLAN,
         Op.SET_SPEED_LIMIT,
+        Op.ON_RUN,
+        Op.ON_ACTION_COMPLETION,
     }
 )
 
@@ -47,6 +49,8 @@ class SessionRecord:
     params: dict[str, Any] = field(default_factory=dict)
     plan: dict[str, Any] | None = None
     speed_limit: dict[str, Any] | None = None
+    # A behaviour's running action: its on_run, replayed so a new worker goes on with it.
+    behavior_run: dict[str, Any] | None = None
     version: int = 0  # bumped on every change: a hot swap replays what changed meanwhile
 
     def replay(self) -> list[Request]:
@@ -60,6 +64,8 @@ class SessionRecord:
             requests.append(Request(Op.SET_PLAN, self.sid, self.epoch, 0, self.plan))
         if self.speed_limit is not None:
             requests.append(Request(Op.SET_SPEED_LIMIT, self.sid, self.epoch, 0, self.speed_limit))
+        if self.behavior_run is not None:
+            requests.append(Request(Op.ON_RUN, self.sid, self.epoch, 0, self.behavior_run))
         return requests
 
 
@@ -92,11 +98,12 @@ class Journal:
             request = decode_request(payload)
         except Exception:
             return
-        rejected = (answer.get("body") or {}).get("rejected") or {}
+        reply_body = answer.get("body") or {}
+        rejected = reply_body.get("rejected") or {}
         with self._lock:
-            self._apply(request, rejected)
+            self._apply(request, rejected, reply_body.get("status"))
 
-    def _apply(self, request: Request, rejected: dict[str, str]) -> None:
+    def _apply(self, request: Request, rejected: dict[str, str], status: Any = None) -> None:
         op, body = request.op, request.body
         if op is Op.CONFIGURE:
             self._sessions[request.sid] = SessionRecord(request.sid, request.epoch, dict(body))
@@ -115,6 +122,10 @@ class Journal:
             record.plan = body
         elif op is Op.SET_SPEED_LIMIT:
             record.speed_limit = body
+        elif op is Op.ON_RUN:
+            record.behavior_run = body if status == "succeeded" else None
+        elif op is Op.ON_ACTION_COMPLETION:
+            record.behavior_run = None
         if "costmap" in body:
             record.configure["costmap"] = body["costmap"]
 
@@ -139,15 +150,27 @@ class Journal:
         serving: PluginType,
         lock: AbstractContextManager[Any],
         swap: Callable[[], None],
+        allow_type_change: bool = False,
     ) -> int:
         """Hot swap, all or nothing: replay every session on the new planner (``new``: its
         label and kind) through ``call``, then, holding ``lock`` so that no call changes them
         meanwhile, the sessions changed since, and ``swap()``. Raises PlannerLoadError naming
         the first session and step that failed (nothing swapped). Returns the number of
-        sessions carried over."""
+        sessions carried over.
+
+        A planner of another kind is refused: the Nav2 YAML names the key for one plugin type
+        (a controller's key turned into a global planner's answers nothing its plugin sends).
+        With ``allow_type_change`` it is taken, but only with no live session."""
         label, kind = new
-        if len(self) and kind is not serving:
-            raise PlannerLoadError(f"{label} is a {kind.value}; this key serves a {serving.value}")
+        if kind is not serving and (len(self) or not allow_type_change):
+            why = (
+                f"{len(self)} live session(s) of the {serving.value} would break"
+                if len(self)
+                else "ask for it explicitly (nav2-pyif reload --allow-type-change)"
+            )
+            raise PlannerLoadError(
+                f"{label} is a {kind.value}; this key serves a {serving.value}: {why}"
+            )
         snapshot = self.snapshot()
         _replay_all_or_refuse(snapshot, call, label)
         with lock:

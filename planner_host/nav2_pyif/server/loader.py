@@ -51,9 +51,23 @@ def _import_failure(name: str, exc: BaseException) -> str:
     )
 
 
+#: The base classes a planner class derives from (nav2_pyif's PlannerPlugin subclasses),
+#: named in planner-host's help and in the error for a class that derives from none.
+PLUGIN_BASES = (
+    "Controller",
+    "GlobalPlanner",
+    "Smoother",
+    "GoalCheckerPlugin",
+    "ProgressCheckerPlugin",
+    "CostmapLayer",
+    "Behavior",
+)
+PLUGIN_BASES_TEXT = f"{', '.join(PLUGIN_BASES[:-1])} or {PLUGIN_BASES[-1]}"
+
+
 def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
-    """``pkg.module:Class`` -> the class, checked to be a nav2_pyif plugin (Controller,
-    GlobalPlanner, Smoother, GoalCheckerPlugin or ProgressCheckerPlugin)."""
+    """``pkg.module:Class`` -> the class, checked to be a nav2_pyif plugin (a subclass of
+    one of PLUGIN_BASES)."""
     module_name, sep, class_name = spec.partition(":")
     if not sep or not module_name or not class_name:
         raise PlannerLoadError(f"planner {spec!r} is not of the form 'package.module:ClassName'")
@@ -73,9 +87,7 @@ def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
         )
     if not (inspect.isclass(cls) and issubclass(cls, PlannerPlugin)):
         raise PlannerLoadError(
-            f"{spec} is not a nav2_pyif Controller, GlobalPlanner, Smoother, "
-            f"GoalCheckerPlugin or ProgressCheckerPlugin subclass "
-            f"(got {type(cls).__name__})"
+            f"{spec} is not a nav2_pyif {PLUGIN_BASES_TEXT} subclass (got {type(cls).__name__})"
         )
     if inspect.isabstract(cls):
         missing = ", ".join(sorted(getattr(cls, "__abstractmethods__", ())))

@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import Twist, TwistStamped
 
+from nav2_pyif.behavior import Failure, Status, Step
 from nav2_pyif.costmap_layer import Combine
 from nav2_pyif.exceptions import (
     ControllerException,
@@ -19,7 +20,7 @@ from nav2_pyif.exceptions import (
     SmootherException,
 )
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.messages import twist_to_list
+from nav2_pyif.messages import stamp_to_ns, twist_to_list
 from nav2_pyif.plan import Plan
 
 TWIST_FIELDS = ("linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z")
@@ -166,3 +167,39 @@ def checked_layer_costs(result: Any, shape: tuple[int, int]) -> tuple[bytes, str
             f"update_costs returned {got}; expected a uint8 array of the window's shape {shape}"
         )
     return np.ascontiguousarray(result).tobytes(), mode.value
+
+
+def checked_step(result: Any, method: str, frame_id: str) -> dict[str, Any]:
+    """A behaviour's answer (a Step, a Status, ``(Status, TwistStamped | None)`` or, from
+    on_run, ``(Status, Failure)``) as its reply body: a known status, finite command."""
+    if isinstance(result, tuple) and len(result) == 2 and isinstance(result[1], Failure | str):
+        step = Step(Status(result[0]), None, Failure(result[1]))
+    elif isinstance(result, tuple) and len(result) == 2:
+        step = Step(Status(result[0]), result[1])
+    elif isinstance(result, Step):
+        step = result
+    elif isinstance(result, Status | str):
+        step = Step(Status(result))
+    else:
+        raise ControllerException(
+            f"{method} returned {type(result).__name__}; expected a Step, a Status or "
+            "(Status, TwistStamped)"
+        )
+    status = Status(step.status)
+    failure = Failure(step.failure)
+    if status is Status.FAILED and failure is Failure.NONE:
+        failure = Failure.UNKNOWN
+    body: dict[str, Any] = {"status": status.value, "failure": failure.value}
+    if step.cmd_vel is not None:
+        values = checked_twist_stamped(step.cmd_vel, method)
+        header = step.cmd_vel.header
+        body["cmd_vel"] = {
+            "frame_id": header.frame_id or frame_id,
+            "stamp_ns": stamp_to_ns(header.stamp),
+            "twist": values,
+        }
+    if step.feedback:
+        body["feedback"] = {
+            str(k): v.item() if isinstance(v, np.generic) else v for k, v in step.feedback.items()
+        }
+    return body

@@ -29,6 +29,7 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
+from nav2_pyif.behavior import Behavior, Command, Status
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.costmap_layer import CostmapLayer, LayerWindow
@@ -53,6 +54,7 @@ from nav2_pyif.server.results import (
     checked_layer_costs,
     checked_plan,
     checked_smoothed,
+    checked_step,
     checked_twist_stamped,
     tolerances_to_wire,
 )
@@ -158,6 +160,9 @@ class PlannerRuntime:
             Op.UPDATE_BOUNDS: self._update_bounds,
             Op.UPDATE_COSTS: self._update_costs,
             Op.MATCH_SIZE: self._match_size,
+            Op.ON_RUN: self._on_run,
+            Op.ON_CYCLE_UPDATE: self._on_cycle_update,
+            Op.ON_ACTION_COMPLETION: self._on_action_completion,
         }
 
     # --- entry points -------------------------------------------------------------------
@@ -486,6 +491,34 @@ class PlannerRuntime:
         assert isinstance(layer, CostmapLayer)
         b = request.body
         layer.match_size(b["size_x"], b["size_y"], b["resolution"], b["origin_x"], b["origin_y"])
+        return {}
+
+    def _on_run(self, session: Session, request: Request) -> Body:
+        behavior = session.planner
+        assert isinstance(behavior, Behavior)
+        body = request.body
+        behavior.pose = pose_from_wire(body["pose"])
+        result = behavior.on_run(Command(body["action"], body["command"]))
+        reply = checked_step(result, "on_run", session.context.robot_base_frame)
+        if reply["status"] == Status.RUNNING.value:
+            raise generic_error(self.plugin_type)(
+                "on_run returned RUNNING; it returns SUCCEEDED (start cycling) or FAILED"
+            )
+        reply.pop("cmd_vel", None)  # on_run's answer is only a status (TimedBehavior's)
+        reply.pop("feedback", None)
+        return reply
+
+    def _on_cycle_update(self, session: Session, request: Request) -> Body:
+        behavior = session.planner
+        assert isinstance(behavior, Behavior)
+        behavior.pose = pose = pose_from_wire(request.body["pose"])
+        result = behavior.on_cycle_update(pose, request.body["elapsed"])
+        return checked_step(result, "on_cycle_update", session.context.robot_base_frame)
+
+    def _on_action_completion(self, session: Session, request: Request) -> Body:
+        behavior = session.planner
+        assert isinstance(behavior, Behavior)
+        behavior.on_action_completion(request.body["status"], request.body["elapsed"])
         return {}
 
 

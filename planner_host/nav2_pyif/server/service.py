@@ -27,11 +27,14 @@ class PlannerService(Protocol):
     @property
     def label(self) -> str: ...
 
+    @property
+    def where(self) -> str: ...  # where the planner runs: "worker 1234", "in process"
+
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes: ...
 
     def handle_cancel(self, payload: bytes) -> bytes: ...
 
-    def reload(self, spec: PlannerSpec | None = None) -> str: ...
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str: ...
 
     def close(self) -> None: ...
 
@@ -56,6 +59,8 @@ class InProcessPlanner:
     def label(self) -> str:
         return self.runtime.label
 
+    where = "in process"
+
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
         with self._lock:
             reply = self.runtime.handle(payload, key_op)
@@ -66,7 +71,7 @@ class InProcessPlanner:
     def handle_cancel(self, payload: bytes) -> bytes:
         return self.runtime.handle_cancel(payload)
 
-    def reload(self, spec: PlannerSpec | None = None) -> str:
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         new_spec = spec or self.spec
         try:
             runtime = PlannerRuntime(
@@ -90,6 +95,7 @@ class InProcessPlanner:
                 self.plugin_type,
                 self._lock,
                 swap,
+                allow_type_change,
             )
         except PlannerLoadError as exc:
             _discard(runtime, shared)

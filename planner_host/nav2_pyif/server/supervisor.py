@@ -4,7 +4,7 @@
   session is restored on the new one from the journal; meanwhile calls are answered at once
   with a typed ``Unavailable`` error naming the cause, never left hanging.
 - A worker that crash-loops is restarted with exponential back-off, and says so.
-- A call that overruns its deadline is answered with ControllerTimedOut / PlannerTimedOut; a
+- A call that overruns its deadline is answered with Unavailable (the plugin's host failure); a
   worker that does not come back within the grace period (stuck in native code) is killed
   and restarted.
 - Where it crashed or hangs (``stacks``): the Python stack a dying worker leaves, or the one a
@@ -30,7 +30,8 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import msgpack
-from nav2_pyif_protocol.constants import TIMED_OUT_ERROR, ErrorType, Op, PluginType
+from nav2_pyif_protocol.constants import ErrorType, PluginType
+from nav2_pyif_protocol.schema import OP_TIMEOUT
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.frames import FramedPipe
@@ -44,13 +45,10 @@ log = logging.getLogger("nav2_pyif.server.supervisor")
 _SPAWN = multiprocessing.get_context("spawn")  # never fork a process that runs Zenoh threads
 
 
-# Op names as plain strings: Deadlines.of runs on every call, and Enum.value costs an
-# attribute lookup through a descriptor each time.
-_CONFIGURE = Op.CONFIGURE.value
-_PLAN_OPS = frozenset({Op.CREATE_PLAN.value, Op.SMOOTH.value})  # may take seconds
-_LIFECYCLE_OPS = frozenset(
-    op.value for op in (Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS)
-)
+# Each op's deadline field by its plain name: Deadlines.of runs on every call, and Enum.value
+# costs an attribute lookup through a descriptor each time (schema.py OP_TIMEOUT: the classes
+# are named after Deadlines' fields).
+_DEADLINE_OF = {op.value: timeout.value for op, timeout in OP_TIMEOUT.items()}
 
 
 @dataclass(frozen=True)
@@ -64,13 +62,8 @@ class Deadlines:
     hang_grace: float = 3.0  # then a worker still busy is killed and restarted
 
     def of(self, op: str) -> float:
-        if op == _CONFIGURE:
-            return self.configure
-        if op in _PLAN_OPS:
-            return self.plan
-        if op in _LIFECYCLE_OPS:
-            return self.lifecycle
-        return self.call
+        deadline: float = getattr(self, _DEADLINE_OF.get(op, "call"))
+        return deadline
 
 
 def _dumped(stack: str, when: str) -> str:
@@ -275,8 +268,15 @@ class SupervisedPlanner:
         self.worker = worker
         self._set_reason("")
         self._monitor.start()
-        log.info("%s: worker %s serving %s", self.spec.key, worker.pid, self.label)
+        # Not "serving" yet: a signal may stop the host before it serves; the host says when.
+        log.debug("%s: worker %s loaded %s", self.spec.key, worker.pid, self.label)
         return self
+
+    @property
+    def where(self) -> str:
+        """Where the planner runs, for the host's log."""
+        worker = self.worker
+        return f"worker {worker.pid}" if worker is not None else "no worker"
 
     def close(self) -> None:
         self._closing = True
@@ -336,9 +336,13 @@ class SupervisedPlanner:
                     stack or "(no stack: the worker did not answer SIGUSR1)",
                 )
                 self._wake.set()
+                # Unavailable, not the plugin type's TimedOut: the hang is the host's to
+                # handle (it restarts the worker), and the plugin turns Unavailable into
+                # the exception Nav2 recovers from; ControllerTimedOut would end the
+                # navigation (constants.HOST_FAILURE_ERROR).
                 return self._error(
                     payload,
-                    TIMED_OUT_ERROR[self.plugin_type],
+                    ErrorType.UNAVAILABLE,
                     f"{self.label}.{op} overran its {deadline:g} s deadline",
                     stack,
                 )
@@ -481,7 +485,7 @@ class SupervisedPlanner:
         return lambda op, payload: worker.call(op, payload, self.deadlines.of(op))
 
     # --- hot swap ----------------------------------------------------------------------
-    def reload(self, spec: PlannerSpec | None = None) -> str:
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         """Swap in ``spec`` (default: a fresh import of the current planner) on this live
         key. All or nothing: the new worker must load and take every live session (configure,
         activate, parameters, plan, speed limit); otherwise PlannerLoadError says why and the
@@ -506,6 +510,7 @@ class SupervisedPlanner:
                 self.plugin_type,
                 self._lock,
                 swap,
+                allow_type_change,
             )
         except (PlannerLoadError, WorkerDied) as exc:
             worker.kill()
@@ -516,5 +521,4 @@ class SupervisedPlanner:
             f"{self.spec.key}: now serving {new_spec.describe()} "
             f"(worker {worker.pid}, {carried} session(s) carried over)"
         )
-        log.info("%s", message)
-        return message
+        return message  # the host logs it, once, whoever asked (SIGHUP or a remote reload)

@@ -18,6 +18,7 @@ import zenoh
 
 from nav2_pyif.client.hosts import ALL_HOSTS, ask_info, collect_tokens
 from nav2_pyif.client.reach import open_tool_session, unreachable
+from nav2_pyif.common.option_types import positive_float
 from nav2_pyif.common.zenoh_config import ZenohOptions, add_zenoh_arguments, options_from_args
 
 
@@ -143,17 +144,17 @@ def add_hosts_parser(subparsers: argparse._SubParsersAction) -> None:  # type: i
     )
     p.add_argument(
         "--wait",
-        type=float,
+        type=positive_float,
         default=1.0,
         metavar="SECONDS",
-        help="how long to collect the hosts' liveliness tokens (default 1)",
+        help="how long to collect the hosts' liveliness tokens, > 0 (default 1)",
     )
     p.add_argument(
         "--timeout",
-        type=float,
+        type=positive_float,
         default=2.0,
         metavar="SECONDS",
-        help="how long the hosts may take to answer (default 2)",
+        help="how long the hosts may take to answer, > 0 (default 2)",
     )
     p.add_argument("--json", action="store_true", help="print JSON instead of a table")
     add_zenoh_arguments(p, default_mode="client")

@@ -6,6 +6,7 @@ import argparse
 import logging
 import sys
 
+from nav2_pyif.common.option_types import positive_float
 from nav2_pyif.common.signals import Interrupted, raise_on_signals
 from nav2_pyif.common.zenoh_config import add_zenoh_arguments
 from nav2_pyif.runner.cli import add_sim_parser
@@ -20,17 +21,39 @@ def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
         description="Ask the planner host serving KEY to load a new planner, or re-import "
         "the current one, while Nav2 keeps calling: sessions carry over.",
     )
-    p.add_argument("--key", required=True, metavar="PREFIX")
-    p.add_argument("--planner", metavar="MODULE:CLASS", help="default: re-import the current")
-    p.add_argument("--module", metavar="MODULE", help="function-delegate style")
-    p.add_argument("--delegate", action="append", default=[], metavar="ROLE=FUNCTION")
+    p.add_argument(
+        "--key", required=True, metavar="PREFIX", help="the key prefix the planner is served on"
+    )
+    p.add_argument(
+        "--planner",
+        metavar="MODULE:CLASS",
+        help="the planner to load (default: re-import the current one)",
+    )
+    p.add_argument(
+        "--module", metavar="MODULE", help="a module of plain functions (function-delegate style)"
+    )
+    p.add_argument(
+        "--delegate",
+        action="append",
+        default=[],
+        metavar="ROLE=FUNCTION",
+        help="role -> function of --module, repeatable or comma-separated",
+    )
+    p.add_argument(
+        "--allow-type-change",
+        action="store_true",
+        help="let the new planner be of another plugin type than the key serves (e.g. a "
+        "global planner on a controller's key); refused otherwise, and always while a "
+        "session is live",
+    )
     p.add_argument(
         "--timeout",
-        type=float,
+        type=positive_float,
         default=60.0,
         metavar="SECONDS",
         help="how long to wait for a router and a host on KEY (a host just started is "
-        "waited for), then how long the host may take to load the new version (default 60)",
+        "waited for), then how long the host may take to load the new version, > 0 "
+        "(default 60)",
     )
     add_zenoh_arguments(p, default_mode="client")
     p.set_defaults(func=run_reload)
@@ -62,6 +85,7 @@ def run_reload(args: argparse.Namespace) -> int:
                 planner=args.planner,
                 module=args.module,
                 delegates=delegates,
+                allow_type_change=args.allow_type_change,
                 timeout=args.timeout,
                 wait=args.timeout,
                 on_waiting=say,
@@ -109,22 +133,28 @@ def run_by_path(args: argparse.Namespace) -> int:
     return code
 
 
-def main(argv: list[str] | None = None) -> int:
+def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+    """The top-level parser, and each command's own parser by name."""
     parser = argparse.ArgumentParser(prog="nav2-pyif", description="nav2_pyif tools")
-    subparsers = parser.add_subparsers(required=True, metavar="COMMAND")
+    subparsers = parser.add_subparsers(required=True, metavar="COMMAND", dest="command_name")
     add_sim_parser(subparsers)
     add_planners_commands(subparsers)
     add_reload_parser(subparsers)
     add_router_parser(subparsers)
     add_hosts_parser(subparsers)
+    return parser, dict(subparsers.choices)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser, commands = build_parser()
     args, rest = parser.parse_known_args(argv)
     if args.func is run_by_path:  # a planners' command parses its own arguments
         args.rest = rest
-    elif rest:
-        parser.error(f"unrecognized arguments: {' '.join(rest)}")
+    elif rest:  # the command's own usage: the options it does take
+        commands[args.command_name].error(f"unrecognized arguments: {' '.join(rest)}")
     logging.basicConfig(level=logging.WARNING, format="[%(levelname)s] [%(name)s] %(message)s")
-    raise_on_signals()  # every command cleans up and exits 128 + signum on a signal
     try:
+        raise_on_signals()  # every command cleans up and exits 128 + signum on a signal
         code: int = args.func(args)
     except Interrupted as exc:
         print(f"nav2-pyif: stopped by {exc.name}", file=sys.stderr)

@@ -8,6 +8,8 @@ import logging
 import sys
 from pathlib import Path
 
+from nav2_pyif.common.option_types import positive_int
+
 from nav2_pyif_planners.learned.policy import default_weights
 
 
@@ -22,15 +24,25 @@ def parser(prog: str = "nav2-pyif learn") -> argparse.ArgumentParser:
         "--planner nav2_pyif_planners.learned.controller:LearnedController and a LaserScan "
         "topic in the plugin's inputs parameter named 'scan'.",
     )
-    p.add_argument("--maps", nargs="+", default=["office", "cluttered"], metavar="MAP")
-    p.add_argument("--runs", type=int, default=2, help="demonstrations per map (default 2)")
-    p.add_argument("--steps", type=int, default=3000, help="training steps (default 3000)")
+    p.add_argument(
+        "--maps",
+        nargs="+",
+        default=["office", "cluttered"],
+        metavar="MAP",
+        help="maps to record demonstrations on (default: office cluttered)",
+    )
+    p.add_argument(
+        "--runs", type=positive_int, default=2, help="demonstrations per map, >= 1 (default 2)"
+    )
+    p.add_argument(
+        "--steps", type=positive_int, default=3000, help="training steps, >= 1 (default 3000)"
+    )
     p.add_argument(
         "--weights", type=Path, default=None, help=f"where to save (default {default_weights()})"
     )
     p.add_argument("--evaluate", default="office", metavar="MAP", help="map to drive after")
     p.add_argument("--out", type=Path, default=Path("out"), help="where the drive's PNG goes")
-    p.add_argument("--no-progress", action="store_true")
+    p.add_argument("--no-progress", action="store_true", help="no progress bars on stderr")
     return p
 
 
@@ -42,9 +54,6 @@ def main(argv: list[str] | None = None, prog: str = "nav2-pyif learn") -> int:
     from nav2_pyif_planners.learned.pipeline import LearnConfig, Task, learn
 
     args = parser(prog).parse_args(argv)
-    if args.runs < 1 or args.steps < 1:
-        print(f"{prog}: error: --runs and --steps must be >= 1", file=sys.stderr)
-        return 2
     logging.basicConfig(format="[%(levelname)s] [%(name)s] %(message)s")
     logging.getLogger("nav2_pyif").setLevel(logging.INFO)  # what runs, on stderr
     config = LearnConfig(

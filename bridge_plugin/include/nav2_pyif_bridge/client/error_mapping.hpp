@@ -44,8 +44,11 @@ bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept;
 // ControllerException (controller, goal and progress checker) / PlannerException /
 // SmootherException.
 ErrorKind generic_error(PluginKind kind) noexcept;
-// ControllerTimedOut / PlannerTimedOut / SmootherTimedOut.
-ErrorKind timed_out_error(PluginKind kind) noexcept;
+// What a plugin throws when its host, not its planner, failed the call (none alive, no reply
+// in time, a broken transport, an Unavailable reply): NoValidControl for a controller,
+// the generic class for the others, so that Nav2's recovery conditions retry it on every
+// distribution (constants.py HOST_FAILURE_ERROR; RELIABILITY.md).
+ErrorKind host_failure_error(PluginKind kind) noexcept;
 // What a plugin throws when it cannot be configured: InvalidController / InvalidPlanner /
 // InvalidSmoother / ControllerException (checkers).
 ErrorKind invalid_error(PluginKind kind) noexcept;
@@ -97,9 +100,9 @@ private:
 };
 
 // The exception for an error reply: the named class when it belongs to `kind`'s plugin type
-// (message as sent); otherwise the generic class, with "[<type>] " before the message
-// (protocol errors, and the other plugin type's names). Same as the reference client's
-// error_from_reply.
+// (message as sent); for Unavailable the host-failure class; otherwise the generic class,
+// with "[<type>] " before the message (protocol errors, and the other plugin type's names).
+// Same as the reference client's error_from_reply.
 CallError error_from_reply(const protocol::Error & error, PluginKind kind);
 
 }  // namespace nav2_pyif_bridge::client

@@ -1,8 +1,8 @@
 // One plugin instance's session with the planner host: sid, epoch and seq, and the call
 // procedure of PROTOCOL.md section 4 ("Plugin rules"), exactly as the reference client
 // (planner_host/nav2_pyif/client/plugin_client.py) does it:
-//   1. no host alive under P/host/*: fail at once with the generic exception, send nothing;
-//   2. no reply within the op's timeout: ControllerTimedOut / PlannerTimedOut;
+//   1. no host alive under P/host/*: fail at once with the host-failure exception, send nothing;
+//   2. no reply within the op's timeout: the host-failure exception (NoValidControl, ...);
 //   3. SessionUnknown (the host restarted, or another replica answered): epoch + 1, configure
 //      (current parameters, full costmap), activate if active, re-send the subclass's state
 //      (plan, speed limit), then retry the call once; a second SessionUnknown fails it;
@@ -48,13 +48,14 @@
 namespace nav2_pyif_bridge::client
 {
 
-// How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults).
+// How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults). Which
+// one bounds an op is schema.py's OP_TIMEOUT (protocol::timeout_class).
 struct Timeouts
 {
-  // compute_velocity_commands, set_plan, set_speed_limit, cancel, and the checkers'
-  // is_goal_reached, get_tolerances, check: below the control period.
+  // The control loop's ops (compute_velocity_commands, set_plan, set_speed_limit, cancel,
+  // reset, the checkers' and the costmap layer's): below the control period.
   Duration call{std::chrono::milliseconds(40)};
-  // activate, deactivate, cleanup, set_parameters, reset, cancel_plan.
+  // activate, deactivate, cleanup, set_parameters, cancel_plan.
   Duration lifecycle{std::chrono::seconds(5)};
   // configure: imports, JIT compilation.
   Duration configure{std::chrono::seconds(10)};

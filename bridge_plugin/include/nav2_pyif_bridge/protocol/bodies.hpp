@@ -23,8 +23,8 @@ namespace nav2_pyif_bridge::protocol
 // --- configure -----------------------------------------------------------------------------------
 struct ConfigureRequest
 {
-  // 'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker' or
-  // 'costmap_layer'
+  // 'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker', 'costmap_layer'
+  // or 'behavior'
   std::string plugin_type;
   // plugin name in Nav2 (e.g. FollowPath)
   std::string name;
@@ -32,7 +32,7 @@ struct ConfigureRequest
   std::string node;
   // every parameter under the plugin's namespace, prefix stripped
   Params params;
-  // the costmap's global frame
+  // the costmap's global frame (a behaviour's: behavior_server's local_frame)
   std::string global_frame;
   // the robot base frame
   std::string robot_base_frame;
@@ -331,18 +331,79 @@ struct MatchSizeRequest
 
 struct MatchSizeReply {};
 
+// --- on_run --------------------------------------------------------------------------------------
+struct OnRunRequest
+{
+  // the action type, e.g. nav2_msgs/action/BackUp
+  std::string action;
+  // the goal's fields as plain values (section 17), e.g. target_x [m], speed [m/s], time_allowance
+  // [s]
+  Params command;
+  // robot pose, in behavior_server's local frame
+  PoseStamped pose;
+  // optional: the local costmap, present only when changed
+  std::optional<Costmap> costmap;
+};
+
+struct OnRunReply
+{
+  // 'succeeded', 'failed' or 'running' (on_run: not 'running')
+  std::string status;
+  // why it failed, mapped to the action's error code: '' (none), 'unknown', 'timeout', 'tf_error',
+  // 'invalid_input', 'collision_ahead'
+  std::string failure;
+};
+
+// --- on_cycle_update -----------------------------------------------------------------------------
+struct OnCycleUpdateRequest
+{
+  // robot pose, in behavior_server's local frame
+  PoseStamped pose;
+  // time since on_run succeeded [s]
+  double elapsed{0.0};
+  // optional: the local costmap, present only when changed
+  std::optional<Costmap> costmap;
+};
+
+struct OnCycleUpdateReply
+{
+  // 'succeeded', 'failed' or 'running' (on_run: not 'running')
+  std::string status;
+  // why it failed, mapped to the action's error code: '' (none), 'unknown', 'timeout', 'tf_error',
+  // 'invalid_input', 'collision_ahead'
+  std::string failure;
+  // optional: the command to publish this cycle; every component finite; absent: none (the plugin
+  // stops the robot when the status is not 'running')
+  std::optional<TwistStamped> cmd_vel;
+  // optional: the action's feedback fields, e.g. distance_traveled [m]; absent when none
+  std::optional<Params> feedback;
+};
+
+// --- on_action_completion ------------------------------------------------------------------------
+struct OnActionCompletionRequest
+{
+  // how the action ended: 'succeeded', 'failed' or 'cancelled'
+  std::string status;
+  // the action's total_elapsed_time [s]
+  double elapsed{0.0};
+};
+
+struct OnActionCompletionReply {};
+
 // Alternative i belongs to Op(i).
 using RequestBody = std::variant<ConfigureRequest, ActivateRequest, DeactivateRequest,
   CleanupRequest, SetParametersRequest, SetPlanRequest, ComputeVelocityCommandsRequest,
   SetSpeedLimitRequest, CancelRequest, ResetRequest, CreatePlanRequest, CancelPlanRequest,
   SmoothRequest, IsGoalReachedRequest, GetTolerancesRequest, CheckRequest, UpdateBoundsRequest,
-  UpdateCostsRequest, MatchSizeRequest>;
+  UpdateCostsRequest, MatchSizeRequest, OnRunRequest, OnCycleUpdateRequest,
+  OnActionCompletionRequest>;
 
 // Alternative i belongs to Op(i).
 using ReplyBody = std::variant<ConfigureReply, ActivateReply, DeactivateReply, CleanupReply,
   SetParametersReply, SetPlanReply, ComputeVelocityCommandsReply, SetSpeedLimitReply, CancelReply,
   ResetReply, CreatePlanReply, CancelPlanReply, SmoothReply, IsGoalReachedReply, GetTolerancesReply,
-  CheckReply, UpdateBoundsReply, UpdateCostsReply, MatchSizeReply>;
+  CheckReply, UpdateBoundsReply, UpdateCostsReply, MatchSizeReply, OnRunReply, OnCycleUpdateReply,
+  OnActionCompletionReply>;
 
 inline Op op_of(const RequestBody & body) noexcept {return static_cast<Op>(body.index());}
 inline Op op_of(const ReplyBody & body) noexcept {return static_cast<Op>(body.index());}

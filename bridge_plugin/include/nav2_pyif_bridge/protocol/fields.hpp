@@ -332,4 +332,47 @@ void for_each_field(const MatchSizeRequest & value, Visit && visit)
 template<class Visit>
 void for_each_field(const MatchSizeReply &, Visit &&) {}
 
+template<class Visit>
+void for_each_field(const OnRunRequest & value, Visit && visit)
+{
+  visit("action", value.action);
+  visit("command", value.command);
+  visit("pose", value.pose);
+  visit("costmap", value.costmap);
+}
+
+template<class Visit>
+void for_each_field(const OnRunReply & value, Visit && visit)
+{
+  visit("status", value.status);
+  visit("failure", value.failure);
+}
+
+template<class Visit>
+void for_each_field(const OnCycleUpdateRequest & value, Visit && visit)
+{
+  visit("pose", value.pose);
+  visit("elapsed", value.elapsed);
+  visit("costmap", value.costmap);
+}
+
+template<class Visit>
+void for_each_field(const OnCycleUpdateReply & value, Visit && visit)
+{
+  visit("status", value.status);
+  visit("failure", value.failure);
+  visit("cmd_vel", value.cmd_vel);
+  visit("feedback", value.feedback);
+}
+
+template<class Visit>
+void for_each_field(const OnActionCompletionRequest & value, Visit && visit)
+{
+  visit("status", value.status);
+  visit("elapsed", value.elapsed);
+}
+
+template<class Visit>
+void for_each_field(const OnActionCompletionReply &, Visit &&) {}
+
 }  // namespace nav2_pyif_bridge::protocol

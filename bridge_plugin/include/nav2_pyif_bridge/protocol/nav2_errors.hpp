@@ -2,7 +2,7 @@
 // `python -m nav2_pyif_protocol.generate`: do not edit.
 //
 // The plugin types and the nav2_core exceptions each throws (constants.py's ERRORS_BY_PLUGIN,
-// GENERIC_ERROR, TIMED_OUT_ERROR and INVALID_ERROR), as tables the plugin's error mapping
+// GENERIC_ERROR, HOST_FAILURE_ERROR and INVALID_ERROR), as tables the plugin's error mapping
 // (client/error_mapping.cpp) looks up.
 
 #pragma once
@@ -24,8 +24,9 @@ enum class PluginKind : std::uint8_t
   GoalChecker,
   ProgressChecker,
   CostmapLayer,
+  Behavior,
 };
-inline constexpr std::size_t kPluginKindCount = 6;
+inline constexpr std::size_t kPluginKindCount = 7;
 
 // Wire names, by PluginKind.
 inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames = {
@@ -35,6 +36,7 @@ inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames
   "goal_checker",
   "progress_checker",
   "costmap_layer",
+  "behavior",
 };
 
 // The nav2_core exception classes of Jazzy and Kilted, by name; the names are also the wire's
@@ -134,6 +136,7 @@ inline constexpr std::array<std::uint32_t, kPluginKindCount> kOwnErrors = {
   0x00000001u,  // goal_checker
   0x00000001u,  // progress_checker
   0x00000001u,  // costmap_layer
+  0x00000001u,  // behavior
 };
 
 // Each plugin type's catch-all exception, by PluginKind.
@@ -144,16 +147,19 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kGenericError = {
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
 };
 
-// Each plugin type's exception for a call that got no reply in time, by PluginKind.
-inline constexpr std::array<ErrorKind, kPluginKindCount> kTimedOutError = {
-  ErrorKind::ControllerTimedOut,
-  ErrorKind::PlannerTimedOut,
-  ErrorKind::SmootherTimedOut,
-  ErrorKind::ControllerTimedOut,
-  ErrorKind::ControllerTimedOut,
-  ErrorKind::ControllerTimedOut,
+// Each plugin type's exception when its host failed it (none alive, no reply in time, Unavailable),
+// by PluginKind.
+inline constexpr std::array<ErrorKind, kPluginKindCount> kHostFailureError = {
+  ErrorKind::NoValidControl,
+  ErrorKind::PlannerException,
+  ErrorKind::SmootherException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
+  ErrorKind::ControllerException,
 };
 
 // Each plugin type's exception when it cannot be configured, by PluginKind.
@@ -161,6 +167,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kInvalidError = {
   ErrorKind::InvalidController,
   ErrorKind::InvalidPlanner,
   ErrorKind::InvalidSmoother,
+  ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,

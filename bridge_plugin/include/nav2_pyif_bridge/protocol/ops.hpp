@@ -38,9 +38,12 @@ enum class Op : std::uint8_t
   UpdateBounds,  // costmap_layer
   UpdateCosts,  // costmap_layer
   MatchSize,  // costmap_layer
+  OnRun,  // behavior
+  OnCycleUpdate,  // behavior
+  OnActionCompletion,  // behavior
 };
 
-inline constexpr std::size_t kOpCount = 19;
+inline constexpr std::size_t kOpCount = 22;
 
 inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "configure",
@@ -62,11 +65,54 @@ inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "update_bounds",
   "update_costs",
   "match_size",
+  "on_run",
+  "on_cycle_update",
+  "on_action_completion",
 };
 
 constexpr std::string_view op_name(Op op) noexcept
 {
   return kOpNames[static_cast<std::size_t>(op)];
+}
+
+// Which of a plugin's timeouts bounds each op's reply (schema.py OP_TIMEOUT; PROTOCOL.md section
+// 8).
+enum class TimeoutClass : std::uint8_t
+{
+  Call,
+  Lifecycle,
+  Configure,
+  Plan,
+};
+
+inline constexpr std::array<TimeoutClass, kOpCount> kOpTimeout = {
+  TimeoutClass::Configure,  // configure
+  TimeoutClass::Lifecycle,  // activate
+  TimeoutClass::Lifecycle,  // deactivate
+  TimeoutClass::Lifecycle,  // cleanup
+  TimeoutClass::Lifecycle,  // set_parameters
+  TimeoutClass::Call,  // set_plan
+  TimeoutClass::Call,  // compute_velocity_commands
+  TimeoutClass::Call,  // set_speed_limit
+  TimeoutClass::Call,  // cancel
+  TimeoutClass::Call,  // reset
+  TimeoutClass::Plan,  // create_plan
+  TimeoutClass::Lifecycle,  // cancel_plan
+  TimeoutClass::Plan,  // smooth
+  TimeoutClass::Call,  // is_goal_reached
+  TimeoutClass::Call,  // get_tolerances
+  TimeoutClass::Call,  // check
+  TimeoutClass::Call,  // update_bounds
+  TimeoutClass::Call,  // update_costs
+  TimeoutClass::Call,  // match_size
+  TimeoutClass::Lifecycle,  // on_run
+  TimeoutClass::Call,  // on_cycle_update
+  TimeoutClass::Lifecycle,  // on_action_completion
+};
+
+constexpr TimeoutClass timeout_class(Op op) noexcept
+{
+  return kOpTimeout[static_cast<std::size_t>(op)];
 }
 
 // std::nullopt for a name this version of the protocol does not know.

@@ -1,0 +1,160 @@
+#include "nav2_pyif_bridge/client/behavior_session.hpp"
+
+#include <array>
+#include <utility>
+
+#include "nav2_pyif_bridge/client/command_check.hpp"
+
+namespace nav2_pyif_bridge::client
+{
+namespace proto = protocol;
+
+namespace
+{
+
+constexpr std::array<std::pair<const char *, BehaviorStatus>, 3> kStatuses = {{
+  {"succeeded", BehaviorStatus::Succeeded},
+  {"failed", BehaviorStatus::Failed},
+  {"running", BehaviorStatus::Running},
+}};
+constexpr std::array<std::pair<const char *, BehaviorFailure>, 6> kFailures = {{
+  {"", BehaviorFailure::None},
+  {"unknown", BehaviorFailure::Unknown},
+  {"timeout", BehaviorFailure::Timeout},
+  {"tf_error", BehaviorFailure::TfError},
+  {"invalid_input", BehaviorFailure::InvalidInput},
+  {"collision_ahead", BehaviorFailure::CollisionAhead},
+}};
+
+template<class T, std::size_t N>
+std::optional<T> lookup(
+  const std::array<std::pair<const char *, T>, N> & table, const std::string & name) noexcept
+{
+  for (const auto & [spelling, value] : table) {
+    if (name == spelling) {
+      return value;
+    }
+  }
+  return std::nullopt;
+}
+
+BehaviorStep failed(const std::string & error)
+{
+  BehaviorStep step;
+  step.error = error;
+  return step;
+}
+
+}  // namespace
+
+std::optional<BehaviorStatus> behavior_status_from_name(const std::string & name) noexcept
+{
+  return lookup(kStatuses, name);
+}
+
+std::optional<BehaviorFailure> behavior_failure_from_name(const std::string & name) noexcept
+{
+  return lookup(kFailures, name);
+}
+
+BehaviorStep BehaviorSession::step_of(
+  const std::string & status, const std::string & failure, const char * what) const
+{
+  const auto s = behavior_status_from_name(status);
+  const auto f = behavior_failure_from_name(failure);
+  if (!s || !f) {
+    return failed(
+      std::string(what) + " reply from host " + last_host() + " has status '" + status +
+      "' and failure '" + failure + "'");
+  }
+  BehaviorStep step;
+  step.status = *s;
+  // FAILED always says why (UNKNOWN when the behaviour did not); the others never fail.
+  step.failure = *s != BehaviorStatus::Failed ? BehaviorFailure::None :
+    (*f == BehaviorFailure::None ? BehaviorFailure::Unknown : *f);
+  return step;
+}
+
+BehaviorStep BehaviorSession::run(
+  const std::string & action, const proto::Params & command, const proto::PoseStamped & pose)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::OnRunRequest body;
+  body.action = action;
+  body.command = command;
+  body.pose = pose;
+  running_.reset();
+  try {
+    CallOptions options;
+    options.costmap = CostmapMode::IfChanged;
+    const auto reply = call_for<proto::OnRunReply>(body, options);
+    BehaviorStep step = step_of(reply.status, reply.failure, "on_run");
+    if (step.status == BehaviorStatus::Running) {
+      return failed("on_run reply from host " + last_host() + " is 'running'");
+    }
+    if (step.status == BehaviorStatus::Succeeded) {
+      running_ = std::move(body);
+    }
+    return step;
+  } catch (const CallError & error) {
+    return failed(error.log_text());
+  }
+}
+
+BehaviorStep BehaviorSession::cycle_update(const proto::PoseStamped & pose, double elapsed)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::OnCycleUpdateRequest body;
+  body.pose = pose;
+  body.elapsed = elapsed;
+  try {
+    CallOptions options;
+    options.costmap = CostmapMode::IfChanged;
+    auto reply = call_for<proto::OnCycleUpdateReply>(body, options);
+    BehaviorStep step = step_of(reply.status, reply.failure, "on_cycle_update");
+    if (!step.error.empty()) {
+      return step;
+    }
+    if (reply.cmd_vel && step.status == BehaviorStatus::Running) {
+      check_command(*reply.cmd_vel, last_host());
+      step.cmd_vel = std::move(reply.cmd_vel);
+    }
+    if (reply.feedback) {
+      step.feedback = std::move(*reply.feedback);
+    }
+    return step;
+  } catch (const CallError & error) {
+    return failed(error.log_text());
+  }
+}
+
+void BehaviorSession::action_completion(const std::string & status, double elapsed)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  running_.reset();
+  proto::OnActionCompletionRequest body;
+  body.status = status;
+  body.elapsed = elapsed;
+  try {
+    call(body, {});
+  } catch (const CallError & error) {
+    log(logger(), LogLevel::Warn, "on_action_completion failed: " + error.log_text());
+  }
+}
+
+bool BehaviorSession::running() const
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  return running_.has_value();
+}
+
+void BehaviorSession::restore_state()
+{
+  if (running_) {
+    CallOptions options;
+    options.allow_resync = false;
+    call(*running_, options);
+  }
+}
+
+}  // namespace nav2_pyif_bridge::client

@@ -1,0 +1,229 @@
+"""The whole Nav2 stack (issue 25): NavigateToPose through bt_navigator and the distribution's
+default navigate_to_pose BT, with behavior_server's recoveries, controller_server with
+PyController (the reference regulated pure pursuit, misbehaving on demand:
+planners/fault_pursuit.py) and planner_server with PyGlobalPlanner (A*), each served by its
+own planner host behind a `nav2-pyif router`. controller_server's failure_tolerance is 3 s
+(bridge_plugin/params/nav2_pyif_params.yaml's value).
+
+Each fault is repeated $NAV2_PYIF_FULL_STACK_RUNS times (default 20: a loop, not a retry), the
+robot driving around the wall and back, and every navigation must succeed:
+- none (the baseline; test_full_stack_native.py drives the same goals with Nav2's native RPP
+  and NavFn);
+- the controller's host SIGKILLed 3 s into a goal and restarted 2 s later;
+- the controller hanging past the host's deadline (the worker killed and restarted);
+- the controller raising NoValidControl for a second;
+- the planner's host killed during a replan (the BT replans at 1 Hz) and restarted;
+- a hot swap (SIGHUP) of the controller's host mid-navigation.
+Per fault: successes, time to the goal (median, and extra over the baseline's median), the
+number of recoveries the BT ran, and the longest stop while driving. The figures go to
+$NAV2_PYIF_FIGURES (JSON) when set; tests/test_nav2_launch.py prints them.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import signal
+import statistics
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any
+
+import nav2_testing
+import pytest
+from test_host_recovery import record
+
+RUNS = int(os.environ.get("NAV2_PYIF_FULL_STACK_RUNS", "20"))
+FULL_STACK = (*nav2_testing.SERVERS, "behavior_server", "bt_navigator")
+GOALS = ((2.0, 0.5), (0.0, 0.0))  # around the wall, and back
+FAULT_AT = 3.0  # [s] into a navigation
+CONTROLLER = (
+    *("--path", str(nav2_testing.HERE / "planners")),
+    *("--deadline", "0.5", "--hang-grace", "0.5"),
+    *("--serve", f"{nav2_testing.PREFIX}/FollowPath=fault_pursuit:FaultPursuit"),
+)
+PLANNER = ("--serve", f"{nav2_testing.PREFIX}/GridBased=nav2_pyif_planners.astar:AStar")
+
+
+def full_stack_params(text: str) -> str:
+    """nav2_params.yaml with bt_navigator and behavior_server, managed too, and
+    failure_tolerance as the shipped params set it."""
+    text = text.replace("failure_tolerance: 0.0", "failure_tolerance: 3.0")
+    text = text.replace(
+        'node_names: ["controller_server", "planner_server"]',
+        f"node_names: {list(FULL_STACK)!r}".replace("'", '"'),
+    )
+    return text + (nav2_testing.HERE / "full_stack_params.yaml").read_text()
+
+
+def _through_a_router(procs: nav2_testing.Processes, endpoint: str) -> tuple[list[str], list[str]]:
+    router = nav2_testing.project_command("nav2-pyif")
+    assert router is not None, "nav2-pyif is not on PATH (or $NAV2_PYIF_RUN)"
+    procs.start("router", [*router, "router", "--listen", endpoint])
+    return [], ["--connect", endpoint]
+
+
+@pytest.fixture(scope="module")
+def stack(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, Any]]:
+    """The controller's host is bring_up's; the planner's a second host on the same router."""
+    for up in nav2_testing.bring_up(
+        tmp_path_factory.mktemp("nav2_full_stack"),
+        planners=CONTROLLER,
+        edit_params=full_stack_params,
+        topology=_through_a_router,
+        servers=FULL_STACK,
+    ):
+        procs, endpoint = up["procs"], up["endpoint"]
+        planner_host = [*(nav2_testing.host_command() or []), "--connect", endpoint, *PLANNER]
+
+        def start_planner_host(procs: Any = procs, command: list[str] = planner_host) -> None:
+            procs.start("planner_host_plans", command)
+
+        start_planner_host()
+        client = up["client"]
+        states = client.wait_active(FULL_STACK, 120.0)
+        assert all(s == "active" for s in states.values()), f"{states}\n" + procs.log(
+            "lifecycle_manager"
+        )
+        yield {**up, "start_planner_host": start_planner_host}
+
+
+@dataclass
+class Run:
+    succeeded: bool
+    seconds: float
+    recoveries: int
+    longest_stop: float  # [s] between the first and the last moment the robot moved
+    status: int
+
+
+def _longest_stop(speeds: list[tuple[float, float]]) -> float:
+    moving = [t for t, v in speeds if v > 0.01]
+    if len(moving) < 2:
+        return 0.0
+    return max(b - a for a, b in itertools.pairwise(moving))
+
+
+def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] | None) -> Run:
+    handle = client.navigate(*goal)
+    started = time.monotonic()
+    result_future = handle.get_result_async()
+    if fault is not None:
+        client.spin_until(result_future.done, FAULT_AT)
+        if not result_future.done():
+            fault()
+    result = client.wait(result_future, 120.0)
+    seconds = time.monotonic() - started
+    client.recording = False
+    status = -1 if result is None else int(result.status)
+    return Run(
+        status == nav2_testing.SUCCEEDED,
+        seconds,
+        client.recoveries,
+        _longest_stop(client.speeds),
+        status,
+    )
+
+
+def _runs(stack: dict[str, Any], fault: Callable[[], None] | None) -> list[Run]:
+    client, procs = stack["client"], stack["procs"]
+    runs = []
+    for i in range(RUNS):
+        run = _navigate(client, GOALS[i % 2], fault)
+        runs.append(run)
+        logs = "\n".join(
+            procs.log(n, 60) for n in ("bt_navigator", "controller_server", "planner_host")
+        )
+        assert run.succeeded, f"run {i + 1} of {RUNS}: NavigateToPose ended {run}\n{logs}"
+    return runs
+
+
+BASELINE: list[float] = []  # the unfaulted runs' times, for the extra time of the others
+
+
+def _record(name: str, runs: list[Run]) -> None:
+    seconds = statistics.median(r.seconds for r in runs)
+    figures: dict[str, float | int | str] = {
+        f"full_stack_{name}_succeeded": f"{sum(r.succeeded for r in runs)}/{len(runs)}",
+        f"full_stack_{name}_median_s": seconds,
+        f"full_stack_{name}_max_recoveries": max(r.recoveries for r in runs),
+        f"full_stack_{name}_median_longest_stop_s": statistics.median(r.longest_stop for r in runs),
+        f"full_stack_{name}_max_longest_stop_s": max(r.longest_stop for r in runs),
+    }
+    if BASELINE:
+        figures[f"full_stack_{name}_extra_s"] = seconds - statistics.median(BASELINE)
+    record(**figures)
+    print(name, figures)
+
+
+def test_navigate_to_pose_through_the_python_plugins(stack: dict[str, Any]) -> None:
+    runs = _runs(stack, None)
+    BASELINE[:] = [r.seconds for r in runs]
+    assert max(r.recoveries for r in runs) == 0, runs
+    _record("none", runs)
+
+
+def test_a_killed_and_restarted_controller_host_costs_at_most_one_recovery(
+    stack: dict[str, Any],
+) -> None:
+    procs = stack["procs"]
+
+    def kill_and_restart() -> None:
+        procs.kill("planner_host", signal.SIGKILL)
+        stack["client"].spin_until(lambda: False, 2.0)
+        stack["start_host"]()
+
+    runs = _runs(stack, kill_and_restart)
+    _record("host_killed", runs)
+    # a 2 s restart inside failure_tolerance: the robot waits, no spin or back-up
+    assert max(r.recoveries for r in runs) <= 1, runs
+
+
+def _fault_once(stack: dict[str, Any], kind: str, seconds: float = 1.0) -> Callable[[], None]:
+    """Start FaultPursuit's ``kind`` for ``seconds`` through `ros2 param set`, then set the
+    fault back to none (so that the next run's set is a change again)."""
+    client = stack["client"]
+
+    def fault() -> None:
+        for name, value in (("fault_for", seconds), ("fault", kind), ("fault", "none")):
+            ok, reason = client.set_parameter("controller_server", f"FollowPath.{name}", value)
+            assert ok, reason
+
+    return fault
+
+
+def test_a_controller_hanging_past_its_deadline(stack: dict[str, Any]) -> None:
+    runs = _runs(stack, _fault_once(stack, "hang"))
+    _record("hang", runs)
+    assert max(r.recoveries for r in runs) <= 1, runs
+
+
+def test_a_controller_raising_no_valid_control_for_a_second(stack: dict[str, Any]) -> None:
+    runs = _runs(stack, _fault_once(stack, "no_valid_control", 1.0))
+    _record("no_valid_control", runs)
+    # inside failure_tolerance: controller_server holds the robot and keeps the goal
+    assert max(r.recoveries for r in runs) == 0, runs
+
+
+def test_the_planners_host_killed_during_a_replan(stack: dict[str, Any]) -> None:
+    procs = stack["procs"]
+
+    def kill_and_restart() -> None:
+        procs.kill("planner_host_plans", signal.SIGKILL)
+        stack["client"].spin_until(lambda: False, 2.0)
+        stack["start_planner_host"]()
+
+    runs = _runs(stack, kill_and_restart)
+    _record("planner_host_killed", runs)
+
+
+def test_a_hot_swap_mid_navigation(stack: dict[str, Any]) -> None:
+    procs = stack["procs"]
+
+    def swap() -> None:
+        os.kill(procs.procs["planner_host"].pid, signal.SIGHUP)  # the host we started
+
+    runs = _runs(stack, swap)
+    _record("hot_swap", runs)
+    assert max(r.recoveries for r in runs) == 0, runs
