@@ -49,12 +49,13 @@ def test_sim_reports_a_crashed_or_hung_planner_with_its_own_line(
     tmp_path: Path, planner: str, marker: str, cause: str
 ) -> None:
     result = run_sim_command(tmp_path, "--controller", f"crashing:{planner}")
-    assert result.returncode == 1, result.stdout + result.stderr
-    assert "NOT REACHED: controller failed: " in result.stdout, result.stdout + result.stderr
-    assert cause in result.stdout
+    said = result.stdout + result.stderr
+    assert result.returncode == 1, said
+    assert "NOT REACHED: controller failed: " in result.stdout, said
+    assert cause in result.stdout, said
     # the planner's own line, in the report (first) and in the JSON record
     report = result.stdout.split("NOT REACHED")[0]
-    assert own_frame(marker) in report, result.stdout
+    assert own_frame(marker) in report, said
     stem = tmp_path / f"office_crashing.{planner}"
     record = json.loads(Path(f"{stem}.json").read_text())
     assert own_frame(marker) in record["traceback"]
