@@ -1,5 +1,5 @@
 """Which planner hosts are alive on a key prefix (or on every prefix), from their liveliness
-tokens."""
+tokens; what each serves there, from its ``admin/info``."""
 
 from __future__ import annotations
 
@@ -9,6 +9,7 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+import msgpack
 import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
@@ -115,3 +116,30 @@ def visible_hosts(session: zenoh.Session, wait: float = 1.0) -> str:
         )
     listed = "; ".join(f"{p} (host {', '.join(sorted(h))})" for p, h in sorted(served.items()))
     return f"planner hosts visible from here: {listed}; reached {where}"
+
+
+def ask_info(
+    session: zenoh.Session, prefixes: set[str], timeout: float
+) -> dict[tuple[str, str], dict[str, Any]]:
+    """(prefix, host id) -> admin/info reply, from every host answering on each prefix (all
+    gets in flight at once)."""
+    pending = [
+        session.get(
+            KeySpace(prefix).admin_info,
+            target=zenoh.QueryTarget.ALL,
+            consolidation=zenoh.ConsolidationMode.NONE,  # replicas answer on the same key
+            timeout=timeout,
+        )
+        for prefix in sorted(prefixes)
+    ]
+    answers: dict[tuple[str, str], dict[str, Any]] = {}
+    for replies in pending:
+        for reply in replies:
+            if reply.ok is None:
+                continue
+            try:
+                info = msgpack.unpackb(reply.ok.payload.to_bytes())
+                answers[(str(info["key"]), str(info["host_id"]))] = info
+            except Exception:
+                continue  # not a planner host's answer
+    return answers

@@ -298,8 +298,19 @@ def run_command(args: argparse.Namespace) -> int:
         return 2
     png, record = _write(result, args)
     print(format_report(result))
-    print(f"\nwrote {png} and {record}")
+    log_file = f", {png.with_suffix('.host.log')}" if result.host_log else ""
+    print(f"\nwrote {png}{log_file} and {record}")
     return 0 if result.reached else 1
+
+
+def default_stem(result: SimResult) -> str:
+    """MAP_CONTROLLER, then a planner other than the default and each other plugin: runs
+    with different planners write different files (office_pure_pursuit for the default)."""
+    parts = [Path(str(result.config.map)).stem, result.name_of("controller")]
+    if result.name_of("planner") != DEFAULTS["planner"]:
+        parts.append(result.name_of("planner"))
+    parts += [result.name_of(role) for role in result.config.plugins]
+    return "_".join(parts).replace(":", ".")
 
 
 def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
@@ -308,9 +319,10 @@ def _write(result: SimResult, args: argparse.Namespace) -> tuple[Path, Path]:
     from nav2_pyif.runner.report import write_json
 
     args.out.mkdir(parents=True, exist_ok=True)
-    controller = result.name_of("controller")  # what the host served, with --connect too
-    stem = args.name or f"{Path(str(result.config.map)).stem}_{controller.replace(':', '.')}"
+    stem = args.name or default_stem(result)
     png, record = args.out / f"{stem}.png", args.out / f"{stem}.json"
     draw(result, png)
     write_json(result, record)
+    if result.host_log:  # the host's own account (where a planner crashed or hung)
+        (args.out / f"{stem}.host.log").write_text(result.host_log)
     return png, record

@@ -16,11 +16,12 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN
 from nav2_pyif.runner.report import clearance_text, summary
-from nav2_pyif.runner.run import SimResult
+from nav2_pyif.runner.run import SimResult, short_name
 
 
 def draw(result: SimResult, path: Path) -> None:
@@ -32,8 +33,9 @@ def draw(result: SimResult, path: Path) -> None:
 
 def title(result: SimResult) -> str:
     s = summary(result)
+    controller, planner = result.names_over_time("controller"), result.names_over_time("planner")
     return (
-        f"{Path(s['map']).stem}: {s['controller']} + {s['planner']} — "
+        f"{Path(s['map']).stem}: {controller} + {planner} — "
         f"{'reached' if s['reached'] else s['outcome']} in {s['sim_time_s']:.1f} s, "
         f"{s['driven_distance_m']:.1f} m, min clearance {clearance_text(s['min_clearance_m'], 2)}"
     )
@@ -48,7 +50,7 @@ def figure(result: SimResult) -> Figure:
         world.origin_y,
         world.origin_y + world.size_y * world.resolution,
     )
-    fig = plt.figure(figsize=(13, 6.5), constrained_layout=True)
+    fig = plt.figure(figsize=(13, 7), constrained_layout=True)  # room for the legend
     grid = fig.add_gridspec(2, 3)
     ax = fig.add_subplot(grid[:, :2])
     base = np.full(world.occupancy.shape, 1.0)
@@ -99,7 +101,7 @@ def figure(result: SimResult) -> Figure:
     _draw_debug(ax, result)
     if result.trajectory:
         t = np.array(result.trajectory)
-        ax.plot(t[:, 1], t[:, 2], "-", color="tab:green", lw=2.0, label="driven")
+        ax.plot(t[:, 1], t[:, 2], "-", color="tab:green", lw=1.6, label="driven", zorder=3)
     sx, sy, syaw = result.start
     gx, gy, gyaw = result.goal
     ax.quiver(
@@ -124,10 +126,22 @@ def figure(result: SimResult) -> Figure:
             ms=14,
             label="collision",
         )
+    _draw_swaps(ax, result)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_aspect("equal")
-    ax.legend(loc="upper left", fontsize=8, framealpha=0.9)
+    # below the map, never over it (a corner of a map may hold the obstacles that matter)
+    legend = ax.legend(
+        loc="upper center",
+        bbox_to_anchor=(0.5, -0.09),
+        ncols=4,
+        fontsize=8,
+        framealpha=0.9,
+    )
+    for handle in legend.legend_handles:  # faint sampled lines read in full in the legend
+        if isinstance(handle, Line2D | LineCollection):
+            handle.set_alpha(1.0)
+            handle.set_linewidth(max(1.5, float(np.max(handle.get_linewidth()))))
     bar = fig.colorbar(shading, ax=ax, shrink=0.75, pad=0.01)
     bar.set_label("costmap cost (inflation; black: lethal)", fontsize=8)
     bar.ax.tick_params(labelsize=8)
@@ -138,6 +152,10 @@ def figure(result: SimResult) -> Figure:
         t = np.array(result.trajectory)
         speed.plot(t[:, 0], t[:, 4], label="v [m/s]")
         speed.plot(t[:, 0], t[:, 5], label="ω [rad/s]", alpha=0.7)
+        for i, swap in enumerate(result.swaps):
+            speed.axvline(
+                swap.sim_time, color="black", ls=":", lw=1.0, label="hot swap" if i == 0 else None
+            )
         speed.legend(fontsize=8)
     speed.set_xlabel("simulated time [s]")
     speed.set_title(_wrapped("commanded motion", 45), fontsize=10)
@@ -165,13 +183,22 @@ def figure(result: SimResult) -> Figure:
     return fig
 
 
-#: How each debug output is drawn (lines; one-point outputs as dots), by name.
+#: How each debug output is drawn (lines; one-point outputs as dots), by name: strong enough
+#: to see beside the plan and the driven path, the sampled ones under them.
 _DEBUG_STYLE: dict[str, dict[str, Any]] = {
-    "trajectories": {"color": "tab:cyan", "lw": 0.3, "alpha": 0.3},
-    "local_plan": {"color": "tab:purple", "lw": 1.0, "alpha": 0.8},
+    "trajectories": {"color": "darkcyan", "lw": 0.5, "alpha": 0.3, "zorder": 1.5},
+    "local_plan": {"color": "darkviolet", "lw": 1.0, "alpha": 0.8, "zorder": 2.5},
 }
-_DEBUG_LINE = {"color": "tab:gray", "lw": 0.6, "alpha": 0.5}
-_DEBUG_POINT = {"color": "tab:red", "ls": "none", "marker": ".", "ms": 3, "alpha": 0.7}
+_DEBUG_LINE = {"color": "tab:gray", "lw": 0.8, "alpha": 0.7, "zorder": 2}
+_DEBUG_POINT = {
+    "color": "magenta",
+    "ls": "none",
+    "marker": "o",
+    "ms": 3.0,
+    "mec": "white",
+    "mew": 0.4,
+    "zorder": 5,
+}
 
 
 def _draw_debug(ax: Any, result: SimResult) -> None:
@@ -191,6 +218,26 @@ def _draw_debug(ax: Any, result: SimResult) -> None:
         if strips:
             style = _DEBUG_STYLE.get(name, _DEBUG_LINE)
             ax.add_collection(LineCollection(strips, label=label, **style))
+
+
+def _draw_swaps(ax: Any, result: SimResult) -> None:
+    """Where the robot was at each hot swap, and what was swapped in."""
+    if not result.swaps or not result.trajectory:
+        return
+    t = np.array(result.trajectory)
+    for i, swap in enumerate(result.swaps):
+        row = min(int(np.searchsorted(t[:, 0], swap.sim_time)), len(t) - 1)
+        x, y = t[row, 1], t[row, 2]
+        ax.plot([x], [y], "D", color="black", ms=7, zorder=6, label="hot swap" if i == 0 else None)
+        ax.annotate(
+            f"{swap.role} → {short_name(swap.planner)} at {swap.sim_time:.1f} s",
+            (x, y),
+            xytext=(8, 8),
+            textcoords="offset points",
+            fontsize=8,
+            bbox={"boxstyle": "round", "fc": "white", "alpha": 0.85},
+            zorder=6,
+        )
 
 
 def _wrapped(text: str, width: int) -> str:

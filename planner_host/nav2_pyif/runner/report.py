@@ -55,6 +55,10 @@ def summary(result: SimResult) -> dict[str, Any]:
         "controller": result.name_of("controller"),
         "planner": result.name_of("planner"),
         "served": result.served,
+        "hot_swaps": [
+            {"t_s": round(s.sim_time, 3), "role": s.role, "planner": s.planner}
+            for s in result.swaps
+        ],
         "start": list(result.start),
         "goal": list(result.goal),
         "reached": result.reached,
@@ -126,6 +130,16 @@ def _plugins_line(s: dict[str, Any]) -> list[str]:
     return [f"  {named}"]
 
 
+def _served(result: SimResult, role: str) -> str:
+    """The planner of ``role``; after hot swaps, each with the simulated time it served."""
+    spans = result.served_over_time(role)
+    if len(spans) == 1:
+        return spans[0][2]
+    return ", then ".join(f"{name} ({t0:.1f}-{t1:.1f} s)" for t0, t1, name in spans) + (
+        " (hot swap)" if len(spans) == 2 else " (hot swaps)"
+    )
+
+
 def clearance_text(metres: float | None, digits: int = 3) -> str:
     """The minimum clearance as measured: the check looks CLEARANCE_REACH far, and a run that
     drove no step measured nothing."""
@@ -151,7 +165,8 @@ def format_report(result: SimResult) -> str:
     lines = [result.traceback.rstrip(), ""] if result.traceback else []
     lines += [
         f"{'REACHED' if s['reached'] else 'NOT REACHED'}: {s['outcome']}",
-        f"  map {s['map']}, controller {s['controller']}, planner {s['planner']}",
+        f"  map {s['map']}, controller {_served(result, 'controller')}, planner "
+        f"{_served(result, 'planner')}",
         f"  simulated time {s['sim_time_s']:.1f} s in {s['cycles']} cycles at "
         f"{s['control_rate_hz']:.0f} Hz (wall {s['wall_time_s']:.1f} s)",
         f"  plan {s['plan_length_m']:.2f} m, driven {s['driven_distance_m']:.2f} m, "

@@ -31,11 +31,13 @@ from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import ALIASES
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
+from nav2_pyif.runner.host_log import HostLogFollower
 from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.runner.sensing import DebugLines, Sensing, SensingConfig, lines_of
+from nav2_pyif.runner.swaps import Swap, swaps_during
 
 log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
@@ -122,6 +124,9 @@ class SimResult:
     min_clearance: float = math.inf
     controller_errors: list[str] = field(default_factory=list)
     traceback: str = ""  # the planner's own traceback of the error that ended the run
+    host_log: str = ""  # the log of the planner host the run started (none with an endpoint)
+    clock: list[float] = field(default_factory=list)  # unix time each trajectory row's cycle began
+    swaps: list[Swap] = field(default_factory=list)  # hot swaps during the run
     records: list[CallRecord] = field(default_factory=list)
     raw_plan: np.ndarray | None = None  # the planner's plan, when a smoother smoothed it
     layer: LayerEffect | None = None  # what the costmap layer changed
@@ -143,6 +148,20 @@ class SimResult:
     @property
     def cycles(self) -> int:
         return len(self.trajectory)
+
+    def served_over_time(self, role: str) -> list[tuple[float, float, str]]:
+        """(from, to [s], short name) of each planner that served ``role``: one span unless
+        it was hot-swapped during the run."""
+        spans, since, name = [], 0.0, self.name_of(role)
+        for swap in self.swaps:
+            if swap.role == role:
+                spans.append((since, swap.sim_time, name))
+                since, name = swap.sim_time, short_name(swap.planner)
+        return [*spans, (since, self.sim_time, name)]
+
+    def names_over_time(self, role: str) -> str:
+        """``name_of(role)``, or each planner in turn after hot swaps ("a → b")."""
+        return " → ".join(name for _, _, name in self.served_over_time(role))
 
     def name_of(self, role: str) -> str:
         """What drove as ``role`` ("controller", "planner"), by its short name: what the host
@@ -245,9 +264,12 @@ def run_sim(config: SimConfig) -> SimResult:
         with contextlib.ExitStack() as cleanup:
             host = None
             if not config.endpoint:
-                host = PlannerHostProcess(entries, extra_path=import_path(config))
+                # INFO: the planners' self.logger.info lines, shown as they come
+                host = PlannerHostProcess(entries, extra_path=import_path(config), log_level="INFO")
                 cleanup.callback(host.close)
                 host.start()
+                follower = HostLogFollower(host.log_path, [e["key"] for e in entries]).start()
+                cleanup.callback(_keep_host_log, result, host, follower)
             if config.endpoint:
                 # A host already running may be behind a router: be a client, as the C++
                 # plugin is, and give a router just started time to listen.
@@ -338,17 +360,36 @@ def _drive(
                 config.rate,
             )
             calls = CycleCalls(controller, extras, config.goal_checker)
+            driving_since = time.time()
             try:
                 _control_loop(config, result, calls, local_version)
             finally:
                 result.carried = calls.carried
                 result.records = [r for client in roles.values() for r in client.records or []]
-            for client in reversed(roles.values()):
-                client.deactivate()
-                client.cleanup()
+            sim_times = [row[0] for row in result.trajectory]
+            result.swaps = swaps_during(session, roles, driving_since, result.clock, sim_times)
+            for role, client in reversed(roles.items()):
+                try:
+                    client.deactivate()
+                    client.cleanup()
+                except Nav2Error as exc:  # e.g. its worker is restarting after a crash
+                    # (said already when it also ended the run)
+                    log.log(
+                        logging.WARNING if result.reached else logging.DEBUG,
+                        "%s: deactivate/cleanup failed: %s",
+                        result.name_of(role),
+                        exc,
+                    )
     finally:
         planner.close()
         controller.close()
+
+
+def _keep_host_log(result: SimResult, host: PlannerHostProcess, follower: HostLogFollower) -> None:
+    """The host stopped, its last lines shown, its whole log kept in the result."""
+    host.stop()
+    follower.stop()
+    result.host_log = host.log()
 
 
 class _Ended(Exception):
@@ -380,9 +421,11 @@ def _start(
             raise _Ended from exc
 
 
-def _ended_by(result: SimResult, what: str, exc: Nav2Error) -> None:
+def _ended_by(result: SimResult, what: str, exc: Nav2Error, earlier_traceback: str = "") -> None:
+    """The run ends with ``exc``; its traceback is the planner's, else (a call that timed out
+    here, say) the latest one an earlier error of the same failure brought."""
     result.outcome = f"{what}: {type(exc).__name__}: {exc}"
-    result.traceback = exc.remote_traceback
+    result.traceback = exc.remote_traceback or earlier_traceback
 
 
 def _note_served(config: SimConfig, result: SimResult, served: dict[str, str | None]) -> None:
@@ -416,6 +459,7 @@ def _control_loop(
     local_every = max(1, round(config.rate / config.local_costmap_rate))
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
+    failure_traceback = ""  # the latest planner traceback since the controller began failing
     bar = tqdm(
         total=round(config.timeout, 1),
         unit="sim s",
@@ -437,6 +481,7 @@ def _control_loop(
                         local_version,
                     )
                 )
+            began = time.time()  # when a hot swap happened, in cycles
             velocity = Twist()
             velocity.linear.x, velocity.angular.z = robot.v, robot.w
             stamp_s = CLOCK_START + result.sim_time
@@ -459,7 +504,7 @@ def _control_loop(
             try:
                 cmd = calls.compute(pose, velocity, sensed)
                 cmd_v, cmd_w = cmd.twist.linear.x, cmd.twist.angular.z
-                failing_since = None
+                failing_since, failure_traceback = None, ""
                 for name, msg in controller.debug.items():
                     result.debug.append((result.sim_time, name, lines_of(msg)))
             except Nav2Error as exc:
@@ -468,8 +513,9 @@ def _control_loop(
                 )
                 cmd_v = cmd_w = 0.0  # as Nav2's controller server: stop, then retry
                 failing_since = result.sim_time if failing_since is None else failing_since
+                failure_traceback = exc.remote_traceback or failure_traceback
                 if result.sim_time - failing_since > config.failure_tolerance:
-                    _ended_by(result, CONTROLLER_FAILED, exc)
+                    _ended_by(result, CONTROLLER_FAILED, exc, failure_traceback)
                     return
             robot.step(cmd_v, cmd_w, dt)
             result.sim_time += dt
@@ -477,6 +523,7 @@ def _control_loop(
             result.trajectory.append(
                 (result.sim_time, robot.x, robot.y, robot.yaw, robot.v, robot.w)
             )
+            result.clock.append(began)
             result.min_clearance = min(
                 result.min_clearance, checker.clearance(robot.x, robot.y, robot.yaw)
             )

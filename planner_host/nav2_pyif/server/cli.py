@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import faulthandler
 import logging
 import os
 import signal
@@ -265,6 +266,8 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
     )
+    # A planner served in this process (--isolation none) that segfaults leaves its stack.
+    faulthandler.enable()
     log = logging.getLogger("nav2_pyif.server.host")
     for name, value in sorted(from_environment.items()):
         log.info("from the environment: %s=%s", name, value)

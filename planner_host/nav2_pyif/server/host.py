@@ -12,6 +12,7 @@ import secrets
 import socket
 import threading
 import time
+from collections import deque
 from typing import Any
 
 import msgpack
@@ -57,6 +58,8 @@ class ServedPlanner:
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
         self.queries = 0  # calls that came on this key's own queries (not carried in another)
+        # (unix time, label) of each planner this key served, a hot swap's too: who served when
+        self.history: deque[tuple[float, str]] = deque([(time.time(), runtime.label)], maxlen=32)
         self._calls = session.declare_queryable(keys.calls, zenoh.handlers.FifoChannel(256))
         # Reading the channel (not the queryable) lets close() undeclare from another thread.
         self._receiver = self._calls.handler
@@ -117,6 +120,7 @@ class ServedPlanner:
             "plugin_type": self.runtime.plugin_type.value,
             "isolation": self.runtime.isolation,
             "sessions": len(self.runtime.journal),
+            "history": [list(entry) for entry in self.history],
             "queries": self.queries,
             "started": self.started,
             "pid": os.getpid(),
@@ -158,7 +162,7 @@ class ServedPlanner:
                 answer = {"ok": False, "message": f"reload refused by the host: {refusal}"}
             else:
                 allow = isinstance(request, dict) and request.get("allow_type_change") is True
-                message = self.runtime.reload(spec, allow_type_change=allow)
+                message = self.reload(spec, allow_type_change=allow)
                 log.info("%s", message)
                 answer = {"ok": True, "message": message}
         except PlannerLoadError as exc:
@@ -173,6 +177,12 @@ class ServedPlanner:
             query.reply(query.key_expr, msgpack.packb(answer))
         finally:
             query.drop()
+
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
+        """A hot swap (PlannerService.reload), noted in the key's history."""
+        message = self.runtime.reload(spec, allow_type_change=allow_type_change)
+        self.history.append((self.runtime.swapped_at, self.runtime.label))
+        return message
 
     def close(self) -> None:
         for entity in (self._token, self._info, self._admin, self._cancel, self._calls):
@@ -303,7 +313,7 @@ class PlannerHost:
         """SIGHUP: re-import every planner (fresh worker processes) without dropping a key."""
         for served in self.served.values():
             try:
-                log.info("%s", served.runtime.reload())
+                log.info("%s", served.reload())
             except Exception as exc:
                 log.error("%s: %s", served.keys.prefix, exc)
 

@@ -58,6 +58,7 @@ from nav2_pyif.server.results import (
     checked_twist_stamped,
     tolerances_to_wire,
 )
+from nav2_pyif.server.returns import return_site
 from nav2_pyif.smoother import Smoother
 
 MAX_TRACEBACK_CHARS = 16_000
@@ -80,6 +81,7 @@ def _qualname(exc: BaseException) -> str:
 
 
 _INTERNAL_DIR = str(Path(__file__).resolve().parent)
+_RESULTS_FILE = str(Path(__file__).resolve().parent / "results.py")
 
 
 def _user_frames(tb: TracebackType | None) -> TracebackType | None:
@@ -92,8 +94,30 @@ def _user_frames(tb: TracebackType | None) -> TracebackType | None:
     return first or tb
 
 
-def _short_traceback(exc: BaseException) -> str:
-    text = "".join(traceback.format_exception(type(exc), exc, _user_frames(exc.__traceback__)))
+def _refused_return(exc: BaseException) -> tuple[bool, Any]:
+    """(True, what the planner returned) when ``exc`` is a check of results.py refusing a
+    planner's return value (each check takes that value as its first argument)."""
+    tb = exc.__traceback__
+    while tb is not None:
+        code = tb.tb_frame.f_code
+        if code.co_filename == _RESULTS_FILE and code.co_argcount:
+            return True, tb.tb_frame.f_locals.get(code.co_varnames[0])
+        tb = tb.tb_next
+    return False, None
+
+
+def _short_traceback(
+    exc: BaseException, site: tuple[traceback.StackSummary, str] | None = None
+) -> str:
+    """The planner's own frames; ``site``: for a refused return value, where it returned."""
+    if site is not None:
+        stack, note = site
+        text = "Traceback (most recent call last):\n" + "".join(stack.format())
+        text += "".join(traceback.format_exception_only(type(exc), exc))
+        text += f"{note}\n" if note else ""
+    else:
+        tb = _user_frames(exc.__traceback__)
+        text = "".join(traceback.format_exception(type(exc), exc, tb))
     if len(text) <= MAX_TRACEBACK_CHARS:
         return text
     half = MAX_TRACEBACK_CHARS // 2
@@ -247,9 +271,23 @@ class PlannerRuntime:
             )
             message = "".join(traceback.format_exception_only(type(exc), exc)).strip()
         message = f"{self.label}.{request.op.value}: {message}"
-        tb = _short_traceback(exc)
+        tb = _short_traceback(exc, self._return_site(request, exc))
         self.log.error("%s failed [%s]: %s\n%s", request.op.value, error_type.value, message, tb)
         return self._error_reply(request.seq, error_type, message, tb, _qualname(exc), elapsed)
+
+    def _return_site(
+        self, request: Request, exc: BaseException
+    ) -> tuple[traceback.StackSummary, str] | None:
+        """Where the planner returned the value a check refused (None: not such an error,
+        or its source is unknown)."""
+        refused, returned = _refused_return(exc)
+        session = self.sessions.get(request.sid)
+        if not refused or session is None:
+            return None
+        try:  # the op is named after the planner's method (cancel, create_plan, check, ...)
+            return return_site(session.planner, request.op.value, returned)
+        except Exception:  # an error reply must never fail: the host's frames then
+            return None
 
     # --- operations ---------------------------------------------------------------------
     def _configure(self, request: Request) -> Body:

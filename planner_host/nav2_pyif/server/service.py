@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import logging
 import threading
+import time
 from typing import Protocol
 
 from nav2_pyif_protocol.constants import PluginType
@@ -21,6 +22,7 @@ class PlannerService(Protocol):
     plugin_type: PluginType
     isolation: str  # "process" or "none", as planner-host --isolation says
     journal: Journal  # every live session, len() of it their number
+    swapped_at: float  # unix time of the last hot swap (0: none yet)
 
     @property
     def label(self) -> str: ...
@@ -50,6 +52,7 @@ class InProcessPlanner:
         self.runtime = PlannerRuntime(spec.load(), host_id, label=spec.describe())
         self.plugin_type = self.runtime.plugin_type
         self.journal = Journal()
+        self.swapped_at = 0.0
         self._lock = threading.Lock()  # calls vs. the swap
 
     @property
@@ -83,6 +86,7 @@ class InProcessPlanner:
 
         def swap() -> None:  # called with the lock held, between two calls
             self.runtime, self.spec, self.plugin_type = runtime, new_spec, runtime.plugin_type
+            self.swapped_at = time.time()
 
         try:
             carried = self.journal.hand_over(

@@ -7,6 +7,9 @@
 - A call that overruns its deadline is answered with Unavailable (the plugin's host failure); a
   worker that does not come back within the grace period (stuck in native code) is killed
   and restarted.
+- Where it crashed or hangs (``stacks``): the Python stack a dying worker leaves, or the one a
+  late worker dumps when asked, is logged and sent as the traceback of the errors that say
+  so.
 - ``reload`` swaps in a new planner (or a fresh import of the same one) on a live key: the
   new worker is loaded and given every session while the old one keeps serving, then the two
   are swapped between two calls.
@@ -35,6 +38,7 @@ from nav2_pyif.server.frames import FramedPipe
 from nav2_pyif.server.journal import Journal, Snapshot, replay
 from nav2_pyif.server.runtime import error_reply, peek_seq
 from nav2_pyif.server.spec import PlannerSpec
+from nav2_pyif.server.stacks import StackFile
 from nav2_pyif.server.worker import LOAD_ERROR, worker_main
 
 log = logging.getLogger("nav2_pyif.server.supervisor")
@@ -60,6 +64,10 @@ class Deadlines:
     def of(self, op: str) -> float:
         deadline: float = getattr(self, _DEADLINE_OF.get(op, "call"))
         return deadline
+
+
+def _dumped(stack: str, when: str) -> str:
+    return f"Stack of the planner worker {when}:\n{stack}" if stack else ""
 
 
 class WorkerDied(Exception):
@@ -91,11 +99,21 @@ class Worker:
         calls, child_calls = _SPAWN.Pipe()
         self.calls = FramedPipe(calls)
         self.cancels, child_cancels = _SPAWN.Pipe()
+        self.stacks = StackFile()
         self.process = _SPAWN.Process(
             target=worker_main,
             name=f"planner-worker:{spec.key}",
             daemon=True,
-            args=(child_calls, child_cancels, spec, host_id, memory_limit, log_level, quiet),
+            args=(
+                child_calls,
+                child_cancels,
+                spec,
+                host_id,
+                memory_limit,
+                log_level,
+                quiet,
+                self.stacks.path,
+            ),
         )
         self.process.start()
         child_calls.close()
@@ -114,14 +132,25 @@ class Worker:
         self.process.join(0.5)
         return describe_exit(self.process.exitcode)
 
+    def stack(self, *, dump: bool = False) -> str:
+        """The Python stack the worker left since the last call (a fatal signal's, an
+        ``os._exit``'s); with ``dump``, a live worker's stack of every thread, now."""
+        if dump and self.process.is_alive() and self.process.pid is not None:
+            return self.stacks.dump(self.process.pid)
+        return self.stacks.read_new()
+
     def wait_loaded(self, timeout: float) -> PluginType:
-        reply = self._receive(timeout)
+        try:
+            reply = self._receive(timeout)
+        finally:
+            self.stacks.unlink()  # opened by the worker by now, or never
         if reply is None:
             self.stop()
             raise PlannerLoadError(f"planner worker did not load within {timeout:.0f} s")
         kind, detail = msgpack.unpackb(reply)
         if kind == LOAD_ERROR:
-            self.process.join(5)
+            self.process.join(5)  # it exits on its own
+            self.kill()
             raise PlannerLoadError(detail)
         return PluginType(detail)
 
@@ -178,11 +207,13 @@ class Worker:
             self.process.join(5)
         for conn in (self.calls, self.cancels):
             conn.close()
+        self.stacks.remove()
 
     def kill(self) -> None:
         if self.process.is_alive():
             self.process.kill()
         self.process.join(5)
+        self.stacks.remove()
 
 
 class SupervisedPlanner:
@@ -210,9 +241,11 @@ class SupervisedPlanner:
         self.crash_window, self.crash_threshold = crash_window, crash_threshold
         self.max_backoff = max_backoff
         self.journal = Journal()
+        self.swapped_at = 0.0  # unix time of the last hot swap
         self.plugin_type = PluginType.CONTROLLER
         self.worker: Worker | None = None
         self.reason = "starting"
+        self.reason_stack = ""  # where the planner crashed or hangs, while ``reason`` holds
         self.overrun_since: float | None = None
         self.deaths: deque[float] = deque(maxlen=50)
         self.restarts = 0
@@ -232,7 +265,8 @@ class SupervisedPlanner:
         """Start the first worker; a planner that cannot load raises PlannerLoadError."""
         worker = self._new_worker(self.spec)
         self.plugin_type = worker.wait_loaded(self.deadlines.configure)
-        self.worker, self.reason = worker, ""
+        self.worker = worker
+        self._set_reason("")
         self._monitor.start()
         # Not "serving" yet: a signal may stop the host before it serves; the host says when.
         log.debug("%s: worker %s loaded %s", self.spec.key, worker.pid, self.label)
@@ -247,6 +281,8 @@ class SupervisedPlanner:
     def close(self) -> None:
         self._closing = True
         self._wake.set()
+        if self._monitor.is_alive():  # a restart under way stops its new worker
+            self._monitor.join(10.0)
         with self._lock:
             if self.worker is not None:
                 self.worker.stop()
@@ -261,12 +297,14 @@ class SupervisedPlanner:
         with self._lock:
             worker = self.worker
             if worker is not None and self.overrun_since is not None and worker.drain():
-                self.overrun_since, self.reason = None, ""  # the late call finished
+                self._set_reason("")  # the late call finished
+                self.overrun_since = None
             if worker is None or self.reason:
                 return self._error(
                     payload,
                     ErrorType.UNAVAILABLE,
                     f"{self.spec.key}: planner unavailable: {self.reason}",
+                    self.reason_stack,
                 )
             deadline = self.deadlines.of(op)
             try:
@@ -278,12 +316,24 @@ class SupervisedPlanner:
                     ErrorType.UNAVAILABLE,
                     f"{self.spec.key}: planner worker {died} during {op}; "
                     "restarting it and restoring every session",
+                    self.reason_stack,
                 )
             if reply is None:
                 self.overrun_since = time.monotonic()
-                self.reason = (
+                # Where it is stuck, asked now: it may never come back to say.
+                stack = _dumped(worker.stack(dump=True), "when it overran its deadline")
+                self._set_reason(
                     f"busy: {op} overran its {deadline:g} s deadline; the worker is "
-                    f"restarted unless it returns within {self.deadlines.hang_grace:g} s"
+                    f"restarted unless it returns within {self.deadlines.hang_grace:g} s",
+                    stack,
+                )
+                log.warning(
+                    "%s: %s.%s overran its %g s deadline; where it is:\n%s",
+                    self.spec.key,
+                    self.label,
+                    op,
+                    deadline,
+                    stack or "(no stack: the worker did not answer SIGUSR1)",
                 )
                 self._wake.set()
                 # Unavailable, not the plugin type's TimedOut: the hang is the host's to
@@ -294,6 +344,7 @@ class SupervisedPlanner:
                     payload,
                     ErrorType.UNAVAILABLE,
                     f"{self.label}.{op} overran its {deadline:g} s deadline",
+                    stack,
                 )
             self.journal.note(op, payload, reply)
             return reply
@@ -305,19 +356,34 @@ class SupervisedPlanner:
             return self._error(payload, ErrorType.UNAVAILABLE, "planner worker unavailable")
         return reply
 
-    def _error(self, payload: bytes, error_type: ErrorType, message: str) -> bytes:
-        return error_reply(peek_seq(payload), self.host_id, error_type, message)
+    def _error(self, payload: bytes, error_type: ErrorType, message: str, tb: str = "") -> bytes:
+        return error_reply(peek_seq(payload), self.host_id, error_type, message, tb)
+
+    def _set_reason(self, reason: str, stack: str = "") -> None:
+        """Why calls are answered Unavailable ("" : they are served), and where the planner
+        crashed or hangs, sent with each of those answers."""
+        self.reason, self.reason_stack = reason, stack
 
     # --- restarts ------------------------------------------------------------------------
-    def _on_death(self, worker: Worker, cause: str) -> None:
-        """Called with the lock held."""
+    def _on_death(self, worker: Worker, cause: str, *, dump: bool = False) -> None:
+        """Called with the lock held. ``dump``: the worker is alive (hung); its stack is
+        asked for before it is killed."""
         if self.worker is not worker:
             return
-        log.error("%s: planner worker %s %s; restarting it", self.spec.key, worker.pid, cause)
+        stack = worker.stack(dump=dump)
+        if dump:
+            stack = _dumped(stack, "before it was killed")
+        log.error(
+            "%s: planner worker %s %s; restarting it%s",
+            self.spec.key,
+            worker.pid,
+            cause,
+            f"; where it was:\n{stack}" if stack else "",
+        )
         worker.kill()
         self.worker, self.overrun_since = None, None
         self.deaths.append(time.monotonic())
-        self.reason = f"planner worker {cause}; restarting"
+        self._set_reason(f"planner worker {cause}; restarting", stack or self.reason_stack)
         self._wake.set()
 
     def _backoff(self) -> float:
@@ -345,9 +411,12 @@ class SupervisedPlanner:
                     and time.monotonic() - self.overrun_since > self.deadlines.hang_grace
                 ):
                     if worker.drain():
-                        self.overrun_since, self.reason = None, ""
+                        self.overrun_since = None
+                        self._set_reason("")
                     else:
-                        self._on_death(worker, "stayed stuck past its deadline and was killed")
+                        self._on_death(
+                            worker, "stayed stuck past its deadline and was killed", dump=True
+                        )
                         worker = None
                 needs_restart = self.worker is None
             if needs_restart:
@@ -358,26 +427,31 @@ class SupervisedPlanner:
         if delay:
             recent = sum(1 for t in self.deaths if time.monotonic() - t < self.crash_window)
             with self._lock:
-                self.reason = (
+                self.reason = (  # the stack of the last death stays with it
                     f"crash-looping: the worker died {recent} times in "
                     f"{self.crash_window:g} s; next restart in {delay:g} s"
                 )
             log.error("%s: %s", self.spec.key, self.reason)
             if self._sleep(delay):
                 return
+        worker = self._new_worker(self.spec, quiet=True)  # its warnings were logged at start
         try:
-            worker = self._new_worker(self.spec, quiet=True)  # its warnings were logged at start
             worker.wait_loaded(self.deadlines.configure)
             self._replay(worker, self.journal.snapshot())
         except (PlannerLoadError, WorkerDied) as exc:
+            worker.kill()
             self.deaths.append(time.monotonic())
             with self._lock:
-                self.reason = f"restart failed: {exc}"
+                self._set_reason(f"restart failed: {exc}")
             log.error("%s: restart failed: %s", self.spec.key, exc)
             self._wake.set()
             return
         with self._lock:  # no state changed meanwhile: calls were answered Unavailable
-            self.worker, self.reason, self.restarts = worker, "", self.restarts + 1
+            if self._closing:
+                worker.stop()
+                return
+            self.worker, self.restarts = worker, self.restarts + 1
+            self._set_reason("")
         log.warning(
             "%s: worker %s restarted, %d session(s) restored",
             self.spec.key,
@@ -424,7 +498,9 @@ class SupervisedPlanner:
             nonlocal old
             old, self.worker = self.worker, worker
             self.spec, self.plugin_type = new_spec, plugin_type
-            self.reason, self.overrun_since = "", None
+            self.swapped_at = time.time()
+            self.overrun_since = None
+            self._set_reason("")
 
         try:
             plugin_type = worker.wait_loaded(self.deadlines.configure)

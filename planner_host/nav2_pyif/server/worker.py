@@ -12,11 +12,14 @@ from __future__ import annotations
 import logging
 import os
 import signal
+import sys
 import threading
 from multiprocessing.connection import Connection
 
 import msgpack
 
+from nav2_pyif.common.planner_output import MarkedStream, print_marker
+from nav2_pyif.server import stacks
 from nav2_pyif.server.frames import FramedPipe
 from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif.server.spec import PlannerSpec
@@ -40,7 +43,7 @@ def _serve_cancels(cancels: Connection, runtime: list[PlannerRuntime]) -> None:
         try:
             payload = cancels.recv_bytes()
         except (EOFError, OSError):
-            os._exit(0)
+            stacks.real_exit(0)
         cancels.send_bytes(runtime[0].handle_cancel(payload))
 
 
@@ -52,11 +55,18 @@ def worker_main(
     memory_limit: int | None,
     log_level: str,
     quiet: bool = False,
+    stack_path: str | None = None,
 ) -> None:
     logging.basicConfig(
         level=log_level,
         format=f"[%(asctime)s] [%(levelname)s] [worker {os.getpid()}] [%(name)s] %(message)s",
     )
+    # The planner's print() output, marked with its key: several planners share the host's
+    # stderr (logging's handler keeps the unmarked stream it was given above).
+    sys.stdout = MarkedStream(sys.stdout, print_marker(spec.key))
+    sys.stderr = MarkedStream(sys.stderr, print_marker(spec.key))
+    if stack_path is not None:
+        stacks.install(stack_path)  # where it crashed or hangs, for the supervisor
     # Ctrl-C and a terminal's hangup reach the whole process group; they are the host's to
     # act on (stop, reload), and it stops its workers itself.
     signal.signal(signal.SIGINT, signal.SIG_IGN)

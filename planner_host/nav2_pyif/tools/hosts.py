@@ -14,11 +14,9 @@ import time
 from dataclasses import dataclass, field
 from typing import Any
 
-import msgpack
 import zenoh
-from nav2_pyif_protocol.keys import KeySpace
 
-from nav2_pyif.client.hosts import ALL_HOSTS, collect_tokens
+from nav2_pyif.client.hosts import ALL_HOSTS, ask_info, collect_tokens
 from nav2_pyif.client.reach import open_tool_session, unreachable
 from nav2_pyif.common.option_types import positive_float
 from nav2_pyif.common.zenoh_config import ZenohOptions, add_zenoh_arguments, options_from_args
@@ -68,33 +66,6 @@ class Survey:
             "via": {"routers": self.routers, "peers": self.peers},
             "hosts": [self.hosts[h].as_json(now) for h in sorted(self.hosts)],
         }
-
-
-def ask_info(
-    session: zenoh.Session, prefixes: set[str], timeout: float
-) -> dict[tuple[str, str], dict[str, Any]]:
-    """(prefix, host id) -> admin/info reply, from every host answering on each prefix (all
-    gets in flight at once)."""
-    pending = [
-        session.get(
-            KeySpace(prefix).admin_info,
-            target=zenoh.QueryTarget.ALL,
-            consolidation=zenoh.ConsolidationMode.NONE,  # replicas answer on the same key
-            timeout=timeout,
-        )
-        for prefix in sorted(prefixes)
-    ]
-    answers: dict[tuple[str, str], dict[str, Any]] = {}
-    for replies in pending:
-        for reply in replies:
-            if reply.ok is None:
-                continue
-            try:
-                info = msgpack.unpackb(reply.ok.payload.to_bytes())
-                answers[(str(info["key"]), str(info["host_id"]))] = info
-            except Exception:
-                continue  # not a planner host's answer
-    return answers
 
 
 def survey(session: zenoh.Session, wait: float = 1.0, timeout: float = 2.0) -> Survey:
