@@ -24,6 +24,15 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+class HostExited(RuntimeError):
+    """The planner host ended before it served; ``exit_code`` 2 is its usage error (an
+    unknown planner, a bad option), which the command that started it reports as its own."""
+
+    def __init__(self, exit_code: int, log: str) -> None:
+        super().__init__(f"planner host exited with code {exit_code}:\n{log}")
+        self.exit_code = exit_code
+
+
 class PlannerHostProcess:
     """A ``planner-host`` child process listening on ``endpoint``.
 
@@ -76,9 +85,7 @@ class PlannerHostProcess:
     def check_alive(self) -> None:
         """Raise with the host's own words when it has exited (e.g. an unknown planner)."""
         if self.proc is not None and self.proc.poll() is not None:
-            raise RuntimeError(
-                f"planner host exited with code {self.proc.returncode}:\n{self.log().strip()}"
-            )
+            raise HostExited(self.proc.returncode, self.log().strip())
 
     def log(self) -> str:
         return self.log_path.read_text(errors="replace") if self.log_path.exists() else ""

@@ -8,6 +8,7 @@ import math
 import sys
 from pathlib import Path
 
+from nav2_pyif.common.host_process import HostExited
 from nav2_pyif.common.option_types import (
     endpoint,
     finite_float,
@@ -293,9 +294,12 @@ def run_command(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
         return exc.exit_code
-    except (SimError, RuntimeError, TimeoutError, ConnectionError, Nav2Error) as exc:
+    except SimError as exc:  # bad input: the usage error's code
         print(f"nav2-pyif sim: error: {exc}", file=sys.stderr)
         return 2
+    except (RuntimeError, TimeoutError, ConnectionError, Nav2Error) as exc:  # the run failed
+        print(f"nav2-pyif sim: error: {exc}", file=sys.stderr)
+        return 2 if isinstance(exc, HostExited) and exc.exit_code == 2 else 1
     png, record = _write(result, args)
     print(format_report(result))
     log_file = f", {png.with_suffix('.host.log')}" if result.host_log else ""
