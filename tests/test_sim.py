@@ -33,7 +33,7 @@ from nav2_pyif.runner.report import format_report, summary
 from nav2_pyif.runner.run import SimConfig, prepare
 from nav2_pyif.testing import assert_reaches_goal, drive
 
-from tests.conftest import FIXTURES
+from tests.conftest import FIXTURES, free_port
 from tests.test_host_e2e import controller
 
 NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
@@ -312,3 +312,10 @@ def test_a_misspelt_controller_parameter_is_a_warning(tmp_path: Path) -> None:
         "desired_linear_velocity: desired_linear_velocity is not a parameter of this planner "
         "(did you mean desired_linear_vel?); it declares: approach_velocity_scaling_dist, "
     ) in result.stderr
+
+
+def test_a_run_that_cannot_reach_its_host_fails_with_1_not_the_usage_code() -> None:
+    """A connection nothing answers is the run failing, not bad arguments (2)."""
+    result = run_cli("--connect", f"tcp/127.0.0.1:{free_port()}", "--wait", "1")
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert "nav2-pyif sim: error:" in result.stderr and "Traceback" not in result.stderr
