@@ -244,17 +244,21 @@ step_base() {
     || die "base: the venv's install failed (see above)"
   write_base_env
   if [ "$PYPI_BASE" = 1 ]; then
-    # The wheels' CMake exports of their *__rosidl_generator_py targets name the Python and
-    # NumPy include directories of the machine that built them (/opt/python/cp3XX-cp3XX/...),
-    # which fails every message package generated against them: point them at this venv's.
+    # The wheels' CMake exports name paths of the machine that built them: the Python and
+    # NumPy include directories of the *__rosidl_generator_py targets (/opt/python/cp3XX-...),
+    # which fail every message package generated against them, and fastrtps' link to
+    # /usr/lib64/libtinyxml2.so. Point the former at this venv's, the latter at the linker's
+    # search path (libtinyxml2-dev).
     local include site
     include="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["include"])')"
     site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
     [ -f "$include/Python.h" ] || die "base: no Python.h in $include (install python3-dev)"
-    grep -rlZ --include='*.cmake' '/opt/python/cp3[0-9]*-cp3[0-9]*/' "$VENV/share" \
+    grep -rlZ --include='*.cmake' -e '/opt/python/cp3[0-9]*-cp3[0-9]*/' -e '/usr/lib64/' \
+      "$VENV/share" \
       | xargs -0r sed -i -E \
         -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/include/python3\.[0-9]+#$include#g" \
-        -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/lib/python3\.[0-9]+/site-packages#$site#g"
+        -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/lib/python3\.[0-9]+/site-packages#$site#g" \
+        -e "s#/usr/lib64/lib([A-Za-z0-9_+-]+)\.so#\\1#g"
     # shellcheck disable=SC1091
     (source "$VENV/testenv_base.sh" && python -c 'import rclpy, geometry_msgs.msg') \
       || die "base: rclpy from the wheels does not import (see above)"
@@ -346,6 +350,8 @@ step_setup() {
       echo "if [ -f '$PREFIX/ros/local_setup.bash' ]; then source '$PREFIX/ros/local_setup.bash'; fi"
       echo "export CMAKE_PREFIX_PATH='$PREFIX/$backend'\${CMAKE_PREFIX_PATH:+:\$CMAKE_PREFIX_PATH}"
       echo "export LD_LIBRARY_PATH='$PREFIX/$backend/lib':\"\$LD_LIBRARY_PATH\""
+      # Built from source, the core has only Cyclone DDS (the wheels' default is Fast DDS).
+      [ "$PYPI_BASE" = 1 ] || echo "export RMW_IMPLEMENTATION=\${RMW_IMPLEMENTATION:-rmw_cyclonedds_cpp}"
     } >"$file"
   done
   local state=()

@@ -84,7 +84,21 @@ distro_settings() {
       # the fastest DDS to build.
       PYPI_BASE=0
       ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp ros2cli ros2launch)
-      APT_PACKAGES+=(libacl1-dev libxml2-utils python3-numpy libbenchmark-dev liblttng-ust-dev)
+      APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
+      # What the core's Python packages import at build time (rosidl's generators) and ros2cli
+      PIP_PACKAGES+=(argcomplete packaging psutil netifaces importlib-metadata)
+      ;;
+  esac
+  case "$1" in
+    humble)
+      # Humble's Nav2 uses BehaviorTree.CPP 3 (behaviortree_cpp_v3), whose CMake options differ.
+      ROS_PACKAGES+=(behaviortree_cpp_v3)
+      CMAKE_ARGS+=(-DBUILD_EXAMPLES=OFF -DBUILD_UNIT_TESTS=OFF -DBUILD_TOOLS=OFF)
+      APT_PACKAGES+=(libboost-coroutine-dev)
+      ;;
+    lyrical)
+      # Run with --root DIR: Debian 13's toolchain; its rosidl takes empy 4.
+      PIP_PACKAGES=("${PIP_PACKAGES[@]/empy==3.3.4/empy}")
       ;;
   esac
 }
