@@ -329,6 +329,7 @@ step_ros() {
     colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \
       --build-base "$PREFIX/build/ros" --install-base "$PREFIX/ros" --merge-install \
       --packages-up-to "${ROS_PACKAGES[@]}" ${ignore[@]:+--packages-ignore "${ignore[@]}"} \
+      --packages-skip "${SKIP_PACKAGES[@]}" \
       --parallel-workers "$JOBS" --event-handlers console_cohesion- console_start_end+ \
       console_stderr+ status- summary+ \
       --cmake-args "${CMAKE_ARGS[@]}" -DPython3_EXECUTABLE="$VENV/bin/python" \
