@@ -10,12 +10,13 @@ NAV2_PACKAGES=(
   launch launch_ros tf2_ros tf2_ros_py tf2_geometry_msgs
 )
 
-# Debian packages: compilers, and the system libraries the ROS packages above find with CMake.
+# Debian packages: compilers, and the system libraries the ROS packages above find with CMake
+# (liblttng-ust-dev: the tracetools wheel's CMake export links it into rclcpp).
 # (zenoh-c also needs cargo: Debian 12's is too old; rustup's stable is used.)
 APT_COMMON=(
   build-essential cmake git pkg-config ca-certificates python3-venv python3-dev
   libeigen3-dev libconsole-bridge-dev liborocos-kdl-dev libtinyxml2-dev libyaml-cpp-dev
-  libsqlite3-dev libzmq3-dev libssl-dev uuid-dev libspdlog-dev libyaml-dev
+  libsqlite3-dev libzmq3-dev libssl-dev uuid-dev libspdlog-dev libyaml-dev liblttng-ust-dev
   libmsgpack-cxx-dev nlohmann-json3-dev zlib1g-dev libgtest-dev
 )
 
