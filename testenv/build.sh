@@ -156,12 +156,15 @@ extract_tolerant() {
 }
 
 step_sources() {
-  local name version url dest mirror count=0 total
+  local name version url dest mirror patch stamp count=0 total
   total="$(repos_entries "$REPOS" | wc -l)"
   while read -r name version url; do
     count=$((count + 1))
     dest="$SOURCES/$name"
-    if [ "$(cat "$dest/.testenv-version" 2>/dev/null)" = "$version" ]; then
+    patch="$HERE/patches/$DISTRO/${name/\//+}.patch"
+    stamp="$version"
+    [ -f "$patch" ] && stamp="$version $(sha256sum <"$patch" | cut -c1-16)"
+    if [ "$(cat "$dest/.testenv-version" 2>/dev/null)" = "$stamp" ]; then
       continue
     fi
     rm -rf "$dest" && mkdir -p "$dest"
@@ -178,7 +181,11 @@ step_sources() {
       git clone -q --depth 1 --branch "$version" "$url" "$dest.clone"
       rm -rf "$dest" && mv "$dest.clone" "$dest"
     fi
-    echo "$version" >"$dest/.testenv-version"
+    if [ -f "$patch" ]; then
+      (cd "$dest" && git apply "$patch") || die "sources: $patch does not apply to $name $version"
+      log "sources: patched $name with $patch"
+    fi
+    echo "$stamp" >"$dest/.testenv-version"
     log "sources [$count/$total]: $name $version"
   done < <(repos_entries "$REPOS")
   # zenoh-c/-cpp/-pico are built by their own steps, not by colcon.
