@@ -323,20 +323,20 @@ step_ros() {
   # shellcheck disable=SC1091
   source "$VENV/testenv_base.sh"
   # What the PyPI base already installs is not built again from the sources.
-  local ignore=() pkg
+  # Nor what only tests need and would need more (colcon wants a skipped package installed).
+  local ignore=("${IGNORE_PACKAGES[@]}") pkg
   if [ "$PYPI_BASE" = 1 ]; then
     while read -r pkg; do
       [ -f "$VENV/share/$pkg/package.xml" ] && ignore+=("$pkg")
     done < <(colcon list --base-paths "$SOURCES" --names-only 2>/dev/null)
   fi
-  log "ros: colcon build --packages-up-to ${ROS_PACKAGES[*]} (${#ignore[@]} source packages the base has are ignored)"
+  log "ros: colcon build --packages-up-to ${ROS_PACKAGES[*]} (ignored: ${ignore[*]})"
   mkdir -p "$PREFIX/build/ros" "$PREFIX/log"
   (
     cd "$PREFIX"
     colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \
       --build-base "$PREFIX/build/ros" --install-base "$PREFIX/ros" --merge-install \
-      --packages-up-to "${ROS_PACKAGES[@]}" ${ignore[@]:+--packages-ignore "${ignore[@]}"} \
-      --packages-skip "${SKIP_PACKAGES[@]}" \
+      --packages-up-to "${ROS_PACKAGES[@]}" --packages-ignore "${ignore[@]}" \
       --parallel-workers "$JOBS" --event-handlers console_cohesion- console_start_end+ \
       console_stderr+ status- summary+ \
       --cmake-args "${CMAKE_ARGS[@]}" -DPython3_EXECUTABLE="$VENV/bin/python" \

@@ -57,9 +57,9 @@ JAZZY_WHEELS=(
 )
 
 # Packages that colcon's --packages-up-to brings in only as test dependencies and that need
-# more than the above: skipped (nav2_map_server, a test dependency of nav2_costmap_2d, wants
+# more than the above: ignored (nav2_map_server, a test dependency of nav2_costmap_2d, wants
 # GraphicsMagick and yaml_cpp_vendor).
-SKIP_PACKAGES=(nav2_map_server)
+IGNORE_PACKAGES=(nav2_map_server)
 
 distro_settings() {
   # Link only what is used: the wheels name Python-only libraries as dependencies of C++ ones
