@@ -56,10 +56,11 @@ JAZZY_WHEELS=(
   visualization-msgs
 )
 
-# Packages that colcon's --packages-up-to brings in only as test dependencies and that need
-# more than the above: ignored (nav2_map_server, a test dependency of nav2_costmap_2d, wants
-# GraphicsMagick and yaml_cpp_vendor).
-IGNORE_PACKAGES=(nav2_map_server)
+# Packages that colcon's --packages-up-to brings in only as test dependencies, ignored:
+# nav2_map_server (of nav2_costmap_2d) wants GraphicsMagick and yaml_cpp_vendor, and
+# launch_testing's pytest plugin breaks every pytest run in the environment with today's pytest
+# ("Argument(s) {'path'} are declared in the hookimpl but can not be found in the hookspec").
+IGNORE_PACKAGES=(nav2_map_server launch_testing launch_testing_ros launch_testing_ament_cmake)
 
 distro_settings() {
   # Link only what is used: the wheels name Python-only libraries as dependencies of C++ ones
