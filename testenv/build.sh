@@ -313,12 +313,12 @@ step_zenoh_c() {
   # branch); crates.io has the same release (pinned: "1.9.0" alone would take a newer 1.x),
   # and only crates.io is reachable here.
   local manifest
-  for manifest in "$SOURCES/eclipse-zenoh/zenoh-c/Cargo.toml" \
-    "$SOURCES/eclipse-zenoh/zenoh-c/Cargo.toml.in"; do
-    [ -f "$manifest" ] && sed -i -E \
-      's#version = "([0-9.]+)", git = "https://github.com/eclipse-zenoh/zenoh(\.git)?", (branch|tag|rev) = "[^"]*"#version = "=\1"#' \
-      "$manifest"
-  done
+  find "$SOURCES/eclipse-zenoh/zenoh-c" \( -name Cargo.toml -o -name Cargo.toml.in \) -print0 \
+    | while IFS= read -r -d '' manifest; do
+      sed -i -E \
+        's#version = "([0-9.]+)", git = "https://github.com/eclipse-zenoh/zenoh(\.git)?", (branch|tag|rev) = "[^"]*"#version = "=\1"#' \
+        "$manifest"
+    done
   # The toolchain is the installed stable one: zenoh-c's rust-toolchain.toml pins a version
   # that rustup would try to download.
   CARGO_BUILD_JOBS="$JOBS" cmake_project zenoh-c "$SOURCES/eclipse-zenoh/zenoh-c" \
