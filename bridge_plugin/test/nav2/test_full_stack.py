@@ -81,12 +81,17 @@ def stack(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, Any]]:
             procs.start("planner_host_plans", command)
 
         start_planner_host()
+        NAVIGATIONS.clear()  # a new robot, at the origin
         client = up["client"]
         states = client.wait_active(FULL_STACK, 120.0)
         assert all(s == "active" for s in states.values()), f"{states}\n" + procs.log(
             "lifecycle_manager"
         )
         yield {**up, "start_planner_host": start_planner_host}
+
+
+# Every goal sent to the stack now up, in order (its robot starts at GOALS[1], the origin).
+NAVIGATIONS: list[tuple[float, float]] = []
 
 
 @dataclass
@@ -96,6 +101,7 @@ class Run:
     recoveries: int
     longest_stop: float  # [s] between the first and the last moment the robot moved
     status: int
+    faulted: bool  # the fault was made while the navigation ran
 
 
 def _longest_stop(speeds: list[tuple[float, float]]) -> float:
@@ -109,10 +115,12 @@ def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] 
     handle = client.navigate(*goal)
     started = time.monotonic()
     result_future = handle.get_result_async()
+    faulted = False
     if fault is not None:
         client.spin_until(result_future.done, FAULT_AT)
         if not result_future.done():
             fault()
+            faulted = True
     result = client.wait(result_future, 120.0)
     seconds = time.monotonic() - started
     client.recording = False
@@ -123,19 +131,25 @@ def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] 
         client.recoveries,
         _longest_stop(client.speeds),
         status,
+        faulted,
     )
 
 
 def _runs(stack: dict[str, Any], fault: Callable[[], None] | None) -> list[Run]:
     client, procs = stack["client"], stack["procs"]
     runs = []
-    for i in range(RUNS):
-        run = _navigate(client, GOALS[i % 2], fault)
+    for _ in range(RUNS):
+        # each navigation to the other goal, across the module's tests: never one that is
+        # over before its fault
+        goal = GOALS[len(NAVIGATIONS) % 2]
+        NAVIGATIONS.append(goal)
+        run = _navigate(client, goal, fault)
         runs.append(run)
+        assert fault is None or run.faulted, f"run {len(runs)} ended before its fault: {run}"
         logs = "\n".join(
             procs.log(n, 60) for n in ("bt_navigator", "controller_server", "planner_host")
         )
-        assert run.succeeded, f"run {i + 1} of {RUNS}: NavigateToPose ended {run}\n{logs}"
+        assert run.succeeded, f"run {len(runs)} of {RUNS}: NavigateToPose ended {run}\n{logs}"
     return runs
 
 

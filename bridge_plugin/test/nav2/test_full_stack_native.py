@@ -10,7 +10,7 @@ from typing import Any
 
 import nav2_testing
 import pytest
-from test_full_stack import FULL_STACK, PLANNER, _record, _runs, full_stack_params
+from test_full_stack import FULL_STACK, NAVIGATIONS, PLANNER, _record, _runs, full_stack_params
 
 NATIVE = {
     "nav2_pyif_bridge::PyController": "nav2_regulated_pure_pursuit_controller::"
@@ -40,6 +40,7 @@ def native_stack(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str,
         edit_params=native_params,
         servers=FULL_STACK,
     ):
+        NAVIGATIONS.clear()  # a new robot, at the origin
         states = up["client"].wait_active(FULL_STACK, 120.0)
         assert all(s == "active" for s in states.values()), states
         yield up
