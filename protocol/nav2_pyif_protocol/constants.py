@@ -194,13 +194,8 @@ GENERIC_ERROR = {
 #: exceptions). On Humble every one of them is PlannerException, which its BT always recovers.
 #: A planner's own typed errors (a planner raising ControllerTimedOut) pass through as raised.
 HOST_FAILURE_ERROR = {
+    **GENERIC_ERROR,  # UNKNOWN in every server: the generic exceptions are retried
     PluginType.CONTROLLER: ErrorType.NO_VALID_CONTROL,
-    PluginType.GLOBAL_PLANNER: ErrorType.PLANNER_EXCEPTION,
-    PluginType.SMOOTHER: ErrorType.SMOOTHER_EXCEPTION,
-    PluginType.GOAL_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
-    PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
-    PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
-    PluginType.BEHAVIOR: ErrorType.CONTROLLER_EXCEPTION,
 }
 INVALID_ERROR = {
     PluginType.CONTROLLER: ErrorType.INVALID_CONTROLLER,

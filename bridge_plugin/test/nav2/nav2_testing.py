@@ -163,21 +163,22 @@ class Processes:
 
 SUCCEEDED, ABORTED = 4, 6  # action_msgs/GoalStatus
 SERVERS = ("controller_server", "planner_server")
+# Each Nav2 server a test may start, by the package whose lib/ holds it.
+PACKAGES = {
+    "controller_server": "nav2_controller",
+    "planner_server": "nav2_planner",
+    "smoother_server": "nav2_smoother",
+    "behavior_server": "nav2_behaviors",
+    "bt_navigator": "nav2_bt_navigator",
+}
 
 
 def start_nav2(procs: Processes, params: Path, servers: tuple[str, ...] = SERVERS) -> None:
     """Nav2's ``servers`` (controller_server, planner_server, smoother_server: each from its
     package) and a lifecycle manager (autostart) with `params`."""
     ros = ["--ros-args", "--params-file", str(params)]
-    packages = {
-        "controller_server": "nav2_controller",
-        "planner_server": "nav2_planner",
-        "smoother_server": "nav2_smoother",
-        "behavior_server": "nav2_behaviors",
-        "bt_navigator": "nav2_bt_navigator",
-    }
     for server in servers:
-        procs.start(server, [str(find(f"lib/{packages[server]}/{server}")), *ros])
+        procs.start(server, [str(find(f"lib/{PACKAGES[server]}/{server}")), *ros])
     procs.start(
         "lifecycle_manager",
         [
@@ -251,12 +252,8 @@ def bring_up(
     import pytest
 
     absent = missing()
-    for server, package in (
-        ("smoother_server", "nav2_smoother"),
-        ("behavior_server", "nav2_behaviors"),
-        ("bt_navigator", "nav2_bt_navigator"),
-    ):
-        if server in servers and find(f"lib/{package}/{server}") is None:
+    for server in servers:  # missing() checked the two every test starts
+        if server not in SERVERS and find(f"lib/{PACKAGES[server]}/{server}") is None:
             absent.append(server)
     if absent:
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))

@@ -178,17 +178,22 @@ def test_navigate_to_pose_through_the_python_plugins(stack: dict[str, Any]) -> N
     _record("none", runs)
 
 
+def _kill_and_restart(stack: dict[str, Any], host: str, start: str) -> Callable[[], None]:
+    """SIGKILL the planner host ``host`` (a name in the process set), start it again 2 s
+    later through ``stack[start]``."""
+
+    def fault() -> None:
+        stack["procs"].kill(host, signal.SIGKILL)
+        stack["client"].spin_until(lambda: False, 2.0)
+        stack[start]()
+
+    return fault
+
+
 def test_a_killed_and_restarted_controller_host_costs_at_most_one_recovery(
     stack: dict[str, Any],
 ) -> None:
-    procs = stack["procs"]
-
-    def kill_and_restart() -> None:
-        procs.kill("planner_host", signal.SIGKILL)
-        stack["client"].spin_until(lambda: False, 2.0)
-        stack["start_host"]()
-
-    runs = _runs(stack, kill_and_restart)
+    runs = _runs(stack, _kill_and_restart(stack, "planner_host", "start_host"))
     _record("host_killed", runs)
     # a 2 s restart inside failure_tolerance: the robot waits, no spin or back-up
     assert max(r.recoveries for r in runs) <= 1, runs
@@ -221,14 +226,8 @@ def test_a_controller_raising_no_valid_control_for_a_second(stack: dict[str, Any
 
 
 def test_the_planners_host_killed_during_a_replan(stack: dict[str, Any]) -> None:
-    procs = stack["procs"]
-
-    def kill_and_restart() -> None:
-        procs.kill("planner_host_plans", signal.SIGKILL)
-        stack["client"].spin_until(lambda: False, 2.0)
-        stack["start_planner_host"]()
-
-    runs = _runs(stack, kill_and_restart)
+    fault = _kill_and_restart(stack, "planner_host_plans", "start_planner_host")
+    runs = _runs(stack, fault)
     _record("planner_host_killed", runs)
 
 

@@ -41,6 +41,9 @@ from nav2_pyif.params import ParamValue
 
 log = logging.getLogger("nav2_pyif.client")
 Body = dict[str, Any]
+# Each op's Timeouts field (schema.py OP_TIMEOUT names the classes after them), by op: looked
+# up on every call.
+_TIMEOUT_FIELD = {op: timeout.value for op, timeout in OP_TIMEOUT.items()}
 # Each op's request fields in wire order.
 _REQUEST_FIELDS = {op: [f.name for f in fields[0]] for op, fields in BODIES.items()}
 
@@ -183,8 +186,7 @@ class PluginClient:
         }
 
     def _timeout(self, op: Op) -> float:
-        # Timeouts' fields are named after the classes of schema.py's one table.
-        timeout: float = getattr(self.timeouts, OP_TIMEOUT[op].value)
+        timeout: float = getattr(self.timeouts, _TIMEOUT_FIELD[op])
         return timeout
 
     # --- replicas: several hosts may serve one key; this plugin talks to exactly one ------
