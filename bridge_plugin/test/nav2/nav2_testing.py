@@ -3,6 +3,7 @@ process group, stopped by pid), and an rclpy client of Nav2's lifecycle and acti
 
 from __future__ import annotations
 
+import ctypes
 import json
 import math
 import os
@@ -100,6 +101,18 @@ def free_port() -> int:
         return int(s.getsockname()[1])
 
 
+_PRCTL = ctypes.CDLL(None, use_errno=True).prctl  # looked up here, not in the forked child
+_PR_SET_PDEATHSIG = 1
+
+
+def _end_with_the_test() -> None:
+    """In a started child: SIGTERM it when the test process dies (Linux's parent-death
+    signal). stop_all ends them by pid; this covers a test run that crashes or is killed
+    first, whose children in their own sessions would otherwise live on (seen here: a
+    planner host left serving after rclpy segfaulted the test process)."""
+    _PRCTL(_PR_SET_PDEATHSIG, signal.SIGTERM)
+
+
 class Processes:
     """Everything the test starts, each in its own process group, stopped by pid."""
 
@@ -116,6 +129,7 @@ class Processes:
             env=self.env,
             cwd=cwd,
             start_new_session=True,
+            preexec_fn=_end_with_the_test,
         )
 
     def kill(self, name: str, sig: int = signal.SIGKILL) -> None:
