@@ -268,6 +268,28 @@ def test_a_speed_limit_set_while_no_host_is_up_survives(
     assert client.compute_velocity_commands(pose(), Twist()).twist.linear.z == -1.0  # forgotten
 
 
+def test_a_plan_set_while_the_host_is_down_is_kept_and_sent_first_not_raised(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """Nav2's behaviour tree replans about once a second: a set_plan that raised while the host
+    restarts would end FollowPath at once, outside the controller server's failure_tolerance."""
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host)
+    client.configure()
+    client.activate()
+    client.set_plan(Plan(np.zeros((9, 3)), "odom"))
+    host.kill()
+    assert client.hosts.wait_for(lambda alive: not alive, 10)
+    failure = client.set_plan(Plan(np.zeros((12, 3)), "odom"))
+    assert isinstance(failure, api.NoValidControl) and failure.host_failed, failure
+    with pytest.raises(api.NoValidControl, match="no planner host is alive"):
+        client.compute_velocity_commands(pose(), Twist())  # the cycle fails, as it would alone
+    start_host("--key", KEY, "--planner", "echo_planners:EchoController", port=host.port)
+    assert client.wait_for_host(15)
+    assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 12.0
+    assert client.set_plan(Plan(np.zeros((5, 3)), "odom")) is None
+
+
 def warned(log: str, words: str) -> bool:
     return any("[WARNING]" in line and words in line for line in log.splitlines())
 

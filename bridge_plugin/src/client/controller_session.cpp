@@ -8,12 +8,28 @@ namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
-void ControllerSession::set_plan(const proto::Path & path)
+std::optional<CallError> ControllerSession::set_plan(const proto::Path & path)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  call(proto::SetPlanRequest{path}, {});
   plan_ = path;
   ++plan_generation_;
+  plan_owed_ = true;
+  try {
+    send_plan({});
+  } catch (const CallError & error) {
+    if (!error.host_failed()) {
+      plan_owed_ = false;
+      throw;
+    }
+    return error;
+  }
+  return std::nullopt;
+}
+
+void ControllerSession::send_plan(const CallOptions & options)
+{
+  call(proto::SetPlanRequest{*plan_}, options);
+  plan_owed_ = false;
 }
 
 proto::TwistStamped ControllerSession::compute_velocity_commands(
@@ -21,6 +37,9 @@ proto::TwistStamped ControllerSession::compute_velocity_commands(
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
+  if (plan_owed_) {
+    send_plan({});  // a host failure here fails this cycle, as the cycle's own would
+  }
   std::vector<std::pair<std::string, std::uint64_t>> attached;
   const proto::ComputeVelocityCommandsRequest body =
     command_body(pose, velocity, goal_checker, attached);
@@ -34,6 +53,9 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
+  if (plan_owed_) {
+    return std::nullopt;  // it would run on the host's old plan
+  }
   PreparedCommand prepared;
   auto carried = prepare(
     command_body(pose, velocity, goal_checker, prepared.inputs), CostmapMode::IfChanged);
@@ -189,8 +211,8 @@ void ControllerSession::restore_state()
   }
   CallOptions options;
   options.allow_resync = false;
-  if (plan_) {
-    call(proto::SetPlanRequest{*plan_}, options);
+  if (plan_ && !plan_owed_) {
+    send_plan(options);  // an owed plan is sent by the call that owes it, right after
   }
   if (speed_limit_) {
     call(*speed_limit_, options);
@@ -206,6 +228,7 @@ void ControllerSession::forget_state()
     }
   }
   plan_.reset();
+  plan_owed_ = false;
   speed_limit_.reset();
 }
 

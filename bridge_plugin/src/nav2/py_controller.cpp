@@ -102,8 +102,13 @@ void PyController::setPlan(const nav_msgs::msg::Path & path)
         reset_owed_ = false;
         send_reset();
       }
-      session_->set_plan(ros::to_wire(plan_.set(
+      const std::optional<client::CallError> deferred = session_->set_plan(ros::to_wire(plan_.set(
         path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
+      if (deferred) {
+        RCLCPP_WARN(
+          bridge_->ros_logger(), "%s: plan kept, sent when the host answers: %s", name_.c_str(),
+          deferred->log_text().c_str());
+      }
       if (client::CarriedCycle * cycle = session_->cycle()) {
         cycle->use_controller(*session_);  // the next goal checks prepare for this plan
       }
@@ -122,7 +127,9 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
       if (auto fresh = plan_.refreshed(
           costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance()))
       {
-        session_->set_plan(ros::to_wire(*fresh));  // localisation moved the plan's frame
+        // Localisation moved the plan's frame. A host failure leaves it owed, and the cycle
+        // below sends it first (and fails as the host does).
+        session_->set_plan(ros::to_wire(*fresh));
       }
       sync_debug_publishers();
       const protocol::PoseStamped wire_pose = ros::to_wire(global);

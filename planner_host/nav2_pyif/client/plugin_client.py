@@ -71,7 +71,12 @@ def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
     else:
         cls = generic_error(plugin_type)
     message = error.message if error.type in named else f"[{error.type}] {error.message}"
-    return cls(message, remote_traceback=error.traceback, python_type=error.python_type)
+    return cls(
+        message,
+        remote_traceback=error.traceback,
+        python_type=error.python_type,
+        host_failed=error.type == ErrorType.UNAVAILABLE.value,
+    )
 
 
 class PluginClient:
@@ -281,7 +286,8 @@ class PluginClient:
         if not alive:
             raise host_failure_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
-                f"--key {self.keys.prefix} ...); {op.value} not sent"
+                f"--key {self.keys.prefix} ...); {op.value} not sent",
+                host_failed=True,
             )
         self._pin_host(alive)
         version = self.costmap.version
@@ -345,7 +351,8 @@ class PluginClient:
             self._record(request, elapsed, 0, len(payload), False)
             raise host_failure_error(self.plugin_type)(
                 f"{request.op.value} got no reply from {self.keys.prefix} within "
-                f"{timeout * 1000:.0f} ms"
+                f"{timeout * 1000:.0f} ms",
+                host_failed=True,
             )
         try:
             reply = decode_reply(sample.payload.to_bytes(), request.op)

@@ -33,8 +33,13 @@ class ControllerSession : public KindSession<PluginKind::Controller>
 public:
   using KindSession::KindSession;
 
-  // The plan in the costmap's global frame; remembered (after an ok reply) for re-sending.
-  void set_plan(const protocol::Path & path);
+  // The plan in the costmap's global frame, remembered for re-sending. std::nullopt when the
+  // host has it. When the host failed the call (CallError::host_failed) the plan is kept as
+  // owed and the failure returned, not thrown: the next cycle sends the plan first, as does a
+  // re-established session. Nav2's behaviour tree replans about once a second, and a throw
+  // here would end FollowPath at once, where a failing cycle gets the controller server's
+  // failure_tolerance. The planner's own errors (InvalidPath, ...) throw.
+  std::optional<CallError> set_plan(const protocol::Path & path);
   // The latest message of an input topic (from a subscription's thread): sent with the next
   // control cycle, once; every input again after the host lost the session.
   void set_input(protocol::Input input);
@@ -86,7 +91,11 @@ private:
     protocol::ComputeVelocityCommandsReply reply,
     const std::vector<std::pair<std::string, std::uint64_t>> & attached);
 
+  // Sends plan_; it is no longer owed once the host has it.
+  void send_plan(const CallOptions & options);
+
   std::optional<protocol::Path> plan_;
+  bool plan_owed_{false};  // set_plan failed on the host: sent before the next cycle
   std::uint64_t plan_generation_{0};  // set_plan calls: a prepared command is for one plan
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
