@@ -114,6 +114,57 @@ def test_planner_session_and_cancellation(start_host: Any, zsession_factory: Any
     assert len(client.create_plan(pose(), pose(3.0, 3.0))) == 25
 
 
+def test_a_plan_waits_for_a_restarting_host_within_its_timeout_and_a_cycle_does_not(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """planner_server runs create_plan in its own thread while the robot follows its last
+    path: a host restart there costs a slow plan, not a recovery. The control loop's calls
+    fail at once (the controller server's failure_tolerance rides those out)."""
+    args = ("--key", PLANNER_KEY, "--planner", "echo_planners:LinePlanner")
+    host = start_host(*args)
+    timeouts = Timeouts(call=0.5, lifecycle=5.0, configure=20.0, plan=8.0)
+    client = GlobalPlannerClient(
+        zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(), timeouts=timeouts
+    )
+    assert client.wait_for_host(15)
+    client.configure()
+    client.activate()
+    host.kill()
+    assert client.hosts.wait_for(lambda alive: not alive, 10)
+    restarted: list[Any] = []
+    restart = threading.Timer(1.0, lambda: restarted.append(start_host(*args, port=host.port)))
+    started = time.monotonic()
+    restart.start()
+    try:
+        plan = client.create_plan(pose(0.0, 0.0), pose(2.0, 1.0))
+    finally:
+        restart.join()
+    assert len(plan) > 1 and time.monotonic() - started > 1.0  # it waited for the new host
+    assert client.resyncs == 1  # and re-established the session there
+
+    short = GlobalPlannerClient(
+        zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(), timeouts=timeouts
+    )
+    assert short.wait_for_host(15)
+    short.configure()
+    restarted[0].kill()
+    assert short.hosts.wait_for(lambda alive: not alive, 10)
+    started = time.monotonic()
+    with pytest.raises(api.PlannerException, match="no planner host is alive"):
+        short.create_plan(pose(), pose(1.0, 1.0))
+    assert time.monotonic() - started >= timeouts.plan * 0.9  # no host came: its timeout
+
+    ctrl_host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    ctrl = controller(zsession_factory, ctrl_host)
+    ctrl.configure()
+    ctrl_host.kill()
+    assert ctrl.hosts.wait_for(lambda alive: not alive, 10)
+    started = time.monotonic()
+    with pytest.raises(api.NoValidControl, match="no planner host is alive"):
+        ctrl.compute_velocity_commands(pose(), Twist())
+    assert time.monotonic() - started < 0.5  # at once
+
+
 def test_errors_cross_the_wire_typed_with_traceback(start_host: Any, zsession_factory: Any) -> None:
     host = start_host("--key", KEY, "--planner", "echo_planners:FaultyController")
     client = controller(zsession_factory, host)

@@ -257,7 +257,14 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
       generic_error(config_.kind), Cause::NotConfigured,
       op_text + " before configure on " + keys_.prefix());
   }
-  if (!transport_.hosts_alive()) {
+  // A plan-class op (create_plan, smooth) runs in its server's own thread while the robot
+  // follows its last path: without a host it waits, up to its timeout, for one to come back,
+  // as it would for a slow planner, so that a host restart costs no recovery. The control
+  // loop's and the lifecycle's ops fail at once.
+  if (!transport_.hosts_alive() &&
+    !(proto::timeout_class(op) == proto::TimeoutClass::Plan &&
+    transport_.wait_for_host(options.timeout.value_or(config_.timeouts.for_op(op)))))
+  {
     fail(
       host_failure_error(config_.kind), Cause::NoHost,
       "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +

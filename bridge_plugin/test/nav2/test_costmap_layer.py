@@ -43,7 +43,8 @@ def with_keepout_layers(text: str) -> str:
         wait_for_host: 20.0
         polygons: "{POLYGONS}\""""
     out = text.replace(
-        'plugins: ["inflation_layer"]', f'plugins: ["keepout", "inflation_layer"]\n{layer}'
+        'plugins: ["obstacle_layer", "inflation_layer"]',
+        f'plugins: ["obstacle_layer", "keepout", "inflation_layer"]\n{layer}',
     )
     # a robot standing still gets only costmap_updates otherwise: the test reads whole grids
     out = out.replace(

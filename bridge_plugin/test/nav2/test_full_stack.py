@@ -200,12 +200,13 @@ def test_a_killed_and_restarted_controller_host_costs_at_most_one_recovery(
 
 
 def _fault_once(stack: dict[str, Any], kind: str, seconds: float = 1.0) -> Callable[[], None]:
-    """Start FaultPursuit's ``kind`` for ``seconds`` through `ros2 param set`, then set the
-    fault back to none (so that the next run's set is a change again)."""
+    """Start FaultPursuit's ``kind`` for ``seconds`` through `ros2 param set`. The fault is
+    set back to none first, so that setting it is a change on every run (not after: a hung
+    worker refuses parameters until it is restarted)."""
     client = stack["client"]
 
     def fault() -> None:
-        for name, value in (("fault_for", seconds), ("fault", kind), ("fault", "none")):
+        for name, value in (("fault", "none"), ("fault_for", seconds), ("fault", kind)):
             ok, reason = client.set_parameter("controller_server", f"FollowPath.{name}", value)
             assert ok, reason
 

@@ -31,7 +31,7 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
-from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT
+from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT, Timeout
 
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import HostWatcher
@@ -283,6 +283,12 @@ class PluginClient:
                 f"{op.value} before configure on {self.keys.prefix}"
             )
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
+        if not alive and OP_TIMEOUT[op] is Timeout.PLAN:
+            # create_plan and smooth run in their server's own thread while the robot follows
+            # its last path: they wait, up to their timeout, for a host to come back, as for a
+            # slow planner, so that a host restart costs no recovery. The others fail at once.
+            self.hosts.wait_for(bool, self._timeout(op))
+            alive = self.hosts.alive
         if not alive:
             raise host_failure_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
