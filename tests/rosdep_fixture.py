@@ -36,8 +36,8 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURE = ROOT / "tests" / "fixtures" / "rosdep"
 ROSDISTRO = FIXTURE / "rosdistro.yaml"
-#: The ROS 2 distributions the project supports (issue 27: Humble's, Jazzy's and Lyrical's
-#: platforms). Kilted shares Jazzy's platforms.
+#: The ROS 2 distributions whose platforms the project supports (Humble's, Jazzy's and
+#: Lyrical's). Kilted shares Jazzy's platforms.
 DISTRIBUTIONS = ("humble", "jazzy", "lyrical")
 #: The operating systems whose packages rosdep installs for our users.
 SYSTEMS = ("debian", "ubuntu")

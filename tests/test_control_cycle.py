@@ -19,6 +19,8 @@ from nav2_pyif_protocol.keys import KeySpace
 from tests.conftest import make_costmap
 from tests.test_smoother_and_checker_hosts import GENEROUS, no_costmap, pose, stamped
 
+pytestmark = pytest.mark.integration
+
 CONTROLLER = "nav2_pyif/test_robot/FollowPath"
 GOAL = "nav2_pyif/test_robot/goal_checker"
 PROGRESS = "nav2_pyif/test_robot/progress_checker"

@@ -18,6 +18,8 @@ from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 
 from tests.conftest import make_costmap
 
+pytestmark = pytest.mark.integration
+
 KEY = "nav2_pyif/test_robot/FollowPath"
 PLANNER_KEY = "nav2_pyif/test_robot/GridBased"
 GENEROUS = Timeouts(call=2.0, lifecycle=5.0, configure=10.0, plan=5.0)
@@ -348,7 +350,7 @@ def warned(log: str, words: str) -> bool:
 def test_delegate_modules_bind_by_name_and_say_what_a_missing_role_means(
     start_host: Any, zsession_factory: Any, tmp_path: Path
 ) -> None:
-    """The seed's examples: ``--module m`` alone binds m's functions named after the roles;
+    """Function-delegate modules: ``--module m`` alone binds m's functions named after the roles;
     a role left without a function is a warning at start, saying what Nav2's call then does."""
     by_name, one_liner = "nav2_pyif/apf/FollowPath", "nav2_pyif/seed/FollowPath"
     config = tmp_path / "planners.yaml"

@@ -5,8 +5,8 @@ while the servers stay active, a restarted host serves the next goal; through a 
 whose machine vanishes is noticed within a lease and comes back by itself, with the recovery
 figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans cross whole;
 map -> odom moving while driving; the secure fleet of DEPLOYMENT.md section 6 (TLS, client
-certificates, access control) carries robot1's goal; and the seed paper's YAML starts its own
-hosts.
+certificates, access control) carries robot1's goal; and the function-delegate YAML starts its
+own hosts.
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per zenoh-cpp backend: NAV2_PYIF_NAV2_SETUP_ZENOHC and
@@ -30,6 +30,8 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import free_port
+
+pytestmark = pytest.mark.nav2
 
 ROOT = Path(__file__).resolve().parents[1]
 # Each variant: the Zenoh library the plugin must link. rmw_zenoh: Nav2's servers, the test's
@@ -161,7 +163,7 @@ def _launch_tests(backend: str, selection: str, timeout: float) -> None:
         'exec "$@"\n'
     )
     wrapper.chmod(0o755)
-    host = workspace / "planner-host.sh"  # one executable: the seed YAML's planner_host_command
+    host = workspace / "planner-host.sh"  # one executable: the delegate YAML's planner_host_command
     host.write_text(f'#!/bin/bash\nexec {shlex.quote(str(wrapper))} planner-host "$@"\n')
     host.chmod(0o755)
     figures = workspace / "recovery_figures.json"

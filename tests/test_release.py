@@ -1,4 +1,4 @@
-"""Ready for a release (issue 27): one version in package.xml, pyproject.toml and the Python
+"""Ready for a release: one version in package.xml, pyproject.toml and the Python
 package; the wire protocol's version the same in both codecs, PROTOCOL.md and each release's
 changelog entry; a CHANGELOG.rst per ROS package as bloom reads it; one license, stated the
 same way in LICENSE, every package.xml and pyproject.toml.
@@ -23,7 +23,10 @@ from nav2_pyif_protocol import PROTOCOL_VERSION
 from tests.rosdep_fixture import ROOT, package_xmls
 
 # catkin_pkg calls docutils' Node.traverse, which newer docutils deprecates.
-pytestmark = pytest.mark.filterwarnings("ignore:nodes.Node.traverse:DeprecationWarning")
+pytestmark = [
+    pytest.mark.unit,
+    pytest.mark.filterwarnings("ignore:nodes.Node.traverse:DeprecationWarning"),
+]
 PYPROJECT = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
 #: The license texts LICENSE may hold, by SPDX identifier: their first lines.
 LICENSE_TITLES = {"Apache-2.0": ("Apache License", "Version 2.0, January 2004")}

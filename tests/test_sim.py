@@ -36,6 +36,8 @@ from nav2_pyif.testing import assert_reaches_goal, drive
 from tests.conftest import FIXTURES, free_port
 from tests.test_host_e2e import controller
 
+pytestmark = pytest.mark.integration
+
 NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
 

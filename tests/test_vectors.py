@@ -17,6 +17,8 @@ from nav2_pyif_protocol.codec import (
 from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.vectors import build_vectors, rendered_files, to_json_tree
 
+pytestmark = pytest.mark.unit
+
 VECTORS = Path(__file__).resolve().parents[1] / "protocol" / "vectors"
 INDEX = json.loads((VECTORS / "index.json").read_text())["vectors"]
 

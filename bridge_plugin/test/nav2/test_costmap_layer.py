@@ -1,4 +1,4 @@
-"""Issue 12's costmap layer in the real Nav2: the Python keep-out layer (KeepOutLayer) as a
+"""A Python costmap layer in the real Nav2: the Python keep-out layer (KeepOutLayer) as a
 plugin (PyCostmapLayer) of the global and the local costmap, one planner host serving both:
 
 1. its polygon's cells are lethal in the published local costmap, and the plan and the robot

@@ -1,4 +1,4 @@
-"""The whole Nav2 stack (issue 25): NavigateToPose through bt_navigator and the distribution's
+"""The whole Nav2 stack: NavigateToPose through bt_navigator and the distribution's
 default navigate_to_pose BT, with behavior_server's recoveries, controller_server with
 PyController (the reference regulated pure pursuit, misbehaving on demand:
 planners/fault_pursuit.py) and planner_server with PyGlobalPlanner (A*), each served by its

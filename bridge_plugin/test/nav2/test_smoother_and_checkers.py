@@ -1,4 +1,4 @@
-"""Issue 12 in the real Nav2: smoother_server with the Python smoother (PySmoother), and
+"""Other plugin types in the real Nav2: smoother_server with the Python smoother (PySmoother), and
 controller_server whose only goal checker and progress checker are Python ones
 (PyGoalChecker, PyProgressChecker), all served by one planner host:
 
