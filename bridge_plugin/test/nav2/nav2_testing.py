@@ -418,11 +418,13 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             assert handle is not None and handle.accepted, "SmoothPath not accepted"
             return self.wait(handle.get_result_async(), timeout)
 
-        def navigate(self, x: float, y: float) -> Any:
-            """NavigateToPose (bt_navigator, its default BT): the goal handle. Feedback
-            updates ``recoveries``; the odometry's speeds are recorded from now on."""
+        def navigate(self, x: float, y: float, behavior_tree: str = "") -> Any:
+            """NavigateToPose (bt_navigator, its default BT or the ``behavior_tree`` file): the
+            goal handle. Feedback updates ``recoveries``; the odometry's speeds are recorded
+            from now on."""
             assert self.navigate_client.wait_for_server(timeout_sec=10.0)
             goal = NavigateToPose.Goal()
+            goal.behavior_tree = behavior_tree
             goal.pose.header.frame_id = "map"
             goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
             goal.pose.pose.orientation.w = 1.0

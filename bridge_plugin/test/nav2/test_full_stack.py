@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import re
 import signal
 import statistics
 import time
@@ -44,17 +45,26 @@ CONTROLLER = (
     *("--serve", f"{nav2_testing.PREFIX}/FollowPath=fault_pursuit:FaultPursuit"),
 )
 PLANNER = ("--serve", f"{nav2_testing.PREFIX}/GridBased=nav2_pyif_planners.astar:AStar")
+BEHAVIOR = (
+    "--serve",
+    f"{nav2_testing.PREFIX}/backup=nav2_pyif_planners.free_backup:FreestBackUp",
+)
+BACKUP_BT = nav2_testing.HERE / "backup_recovery_bt.xml"
 
 
 def full_stack_params(text: str) -> str:
     """nav2_params.yaml with bt_navigator and behavior_server, managed too, and
-    failure_tolerance as the shipped params set it."""
+    failure_tolerance as the shipped params set it; the Python BackUp dials the endpoint the
+    other plugins dial."""
     text = text.replace("failure_tolerance: 0.0", "failure_tolerance: 3.0")
+    endpoint = re.search(r'zenoh_connect: \["([^"]+)"\]', text)
+    assert endpoint is not None, "nav2_params.yaml names no zenoh_connect endpoint"
     text = text.replace(
         'node_names: ["controller_server", "planner_server"]',
         f"node_names: {list(FULL_STACK)!r}".replace("'", '"'),
     )
-    return text + (nav2_testing.HERE / "full_stack_params.yaml").read_text()
+    added = (nav2_testing.HERE / "full_stack_params.yaml").read_text()
+    return text + added.replace("@ENDPOINT@", endpoint.group(1))
 
 
 def _through_a_router(procs: nav2_testing.Processes, endpoint: str) -> tuple[list[str], list[str]]:
@@ -81,6 +91,10 @@ def stack(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, Any]]:
             procs.start("planner_host_plans", command)
 
         start_planner_host()
+        procs.start(
+            "planner_host_behavior",
+            [*(nav2_testing.host_command() or []), "--connect", endpoint, *BEHAVIOR],
+        )
         NAVIGATIONS.clear()  # a new robot, at the origin
         client = up["client"]
         states = client.wait_active(FULL_STACK, 120.0)
@@ -111,8 +125,10 @@ def _longest_stop(speeds: list[tuple[float, float]]) -> float:
     return max(b - a for a, b in itertools.pairwise(moving))
 
 
-def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] | None) -> Run:
-    handle = client.navigate(*goal)
+def _navigate(
+    client: Any, goal: tuple[float, float], fault: Callable[[], None] | None, tree: str = ""
+) -> Run:
+    handle = client.navigate(*goal, behavior_tree=tree)
     started = time.monotonic()
     result_future = handle.get_result_async()
     faulted = False
@@ -135,7 +151,9 @@ def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] 
     )
 
 
-def _runs(stack: dict[str, Any], fault: Callable[[], None] | None) -> list[Run]:
+def _runs(stack: dict[str, Any], fault: Callable[[], None] | None, tree: str = "") -> list[Run]:
+    """RUNS navigations, each through ``fault`` at FAULT_AT s, with bt_navigator's default
+    tree or the behaviour tree file ``tree``."""
     client, procs = stack["client"], stack["procs"]
     runs = []
     for _ in range(RUNS):
@@ -143,7 +161,7 @@ def _runs(stack: dict[str, Any], fault: Callable[[], None] | None) -> list[Run]:
         # over before its fault
         goal = GOALS[len(NAVIGATIONS) % 2]
         NAVIGATIONS.append(goal)
-        run = _navigate(client, goal, fault)
+        run = _navigate(client, goal, fault, tree)
         runs.append(run)
         assert fault is None or run.faulted, f"run {len(runs)} ended before its fault: {run}"
         logs = "\n".join(
@@ -241,3 +259,16 @@ def test_a_hot_swap_mid_navigation(stack: dict[str, Any]) -> None:
     runs = _runs(stack, swap)
     _record("hot_swap", runs)
     assert max(r.recoveries for r in runs) == 0, runs
+
+
+def test_the_behaviour_tree_recovers_with_the_python_backup(stack: dict[str, Any]) -> None:
+    """The controller fails for longer than failure_tolerance (PatienceExceeded), and the
+    tree's recovery, BackUp, is behavior_server's PyBackUp, served by FreestBackUp."""
+    procs = stack["procs"]
+    runs = _runs(stack, _fault_once(stack, "no_valid_control", 4.0), str(BACKUP_BT))
+    _record("python_backup", runs)
+    assert min(r.recoveries for r in runs) >= 1, runs  # BackUp ran in every navigation
+    behavior_server = procs.log("behavior_server", 400)
+    assert behavior_server.count("Running backup") >= len(runs), behavior_server
+    assert "backup completed successfully" in behavior_server, behavior_server
+    assert "behavior_server/backup" in procs.log("planner_host_behavior", 400)
