@@ -108,7 +108,8 @@ def test_full_stack_navigations_survive_every_fault(backend: str) -> None:
             "NAV2_PYIF_FULL_STACK_RUNS gives the runs per fault"
         )
     files = " ".join(f"bridge_plugin/test/nav2/{name}" for name in FULL_STACK)
-    _launch_tests(backend, f"-s {files}", timeout=4 * 3600 - 600)
+    # -x: a failed navigation leaves the robot where the next test does not expect it
+    _launch_tests(backend, f"-s -x {files}", timeout=4 * 3600 - 600)
 
 
 def _launch_tests(backend: str, selection: str, timeout: float) -> None:
@@ -168,16 +169,19 @@ def _launch_tests(backend: str, selection: str, timeout: float) -> None:
     host.chmod(0o755)
     figures = workspace / "recovery_figures.json"
     figures.unlink(missing_ok=True)
+    # The Nav2 processes' logs, kept here until the next run: pytest's default base keeps
+    # only its last three runs, and other runs on the machine would remove these.
+    logs = workspace / "logs"
     zenoh_cpp = "zenoh-c" if backend == "rmw_zenoh" else backend
     run = _bash(
         f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
         f"{router}NAV2_PYIF_ZENOH_BACKEND={zenoh_cpp} NAV2_PYIF_RUN={shlex.quote(str(wrapper))} "
         f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} "
         f"NAV2_PYIF_FIGURES={shlex.quote(str(figures))} python -m pytest "
-        f"-p no:cacheprovider -q -rs {selection}",
+        f"-p no:cacheprovider -q -rs --basetemp={shlex.quote(str(logs))} {selection}",
         timeout=timeout,
     )
-    assert run.returncode == 0, "Nav2 launch tests failed:\n" + _tail(run, 120)
+    assert run.returncode == 0, f"Nav2 launch tests failed (logs in {logs}):\n" + _tail(run, 120)
     assert " passed" in run.stdout and "skipped" not in run.stdout, _tail(run)
     # The recovery figures of RELIABILITY.md (bridge_plugin/test/nav2/test_host_recovery.py)
     print(f"{backend} recovery figures: {figures.read_text()}")

@@ -324,6 +324,7 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             self.speeds: list[tuple[float, float]] = []  # (monotonic time, speed), recorded
             self.recording = False
             self.recoveries = 0  # NavigateToPose feedback's number_of_recoveries, last seen
+            self.messages_lost = 0  # incoming messages rclpy failed to take (spin_until)
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
 
         def _on_odom(self, msg: Any) -> None:
@@ -337,7 +338,16 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             while time.monotonic() < end:
                 if done():
                     return True
-                rclpy.spin_once(self, timeout_sec=0.05)
+                try:
+                    rclpy.spin_once(self, timeout_sec=0.05)
+                except RuntimeError as exc:
+                    # rclpy's take of one incoming message (odometry, action feedback) fails
+                    # now and then over a long run ("Unable to convert call argument '0' to
+                    # Python object", as in ros2/rclpy#848): that message is lost, the node
+                    # goes on. Anything else is the test's failure.
+                    if "Unable to convert call argument" not in str(exc):
+                        raise
+                    self.messages_lost += 1
             return bool(done())
 
         def wait(self, future: Any, timeout: float) -> Any:
