@@ -36,6 +36,9 @@ import pytest
 from test_host_recovery import record
 
 RUNS = int(os.environ.get("NAV2_PYIF_FULL_STACK_RUNS", "20"))
+# Each test drives RUNS navigations of about 10 s (30 s with recoveries): the project's
+# 120 s per-test timeout is for one navigation's worth.
+pytestmark = pytest.mark.timeout(120 + 60 * RUNS)
 FULL_STACK = (*nav2_testing.SERVERS, "behavior_server", "bt_navigator")
 GOALS = ((2.0, 0.5), (0.0, 0.0))  # around the wall, and back
 FAULT_AT = 3.0  # [s] into a navigation
