@@ -162,8 +162,10 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     # of them here, as the sim's 50 Hz TF and the 20 Hz loop lock in phase: BENCHMARKS.md,
     # "Goal and progress checkers"), carrying the command: two queries; a fully locked phase
     # (50 %) costs 1.51 and fails this target. Goal check last: the check goes on its own
-    # and the command carries the goal check, about two. The mechanism is tested call by call
-    # in carried_test.cpp.
+    # and the command carries the goal check, two queries; the goal check goes on its own too
+    # when TF moved on between the command's pose lookup and its own, a window of two queries
+    # (2.07 to 2.47 here, loaded); the same half of the cycles missing fails the target. The
+    # mechanism is tested call by call in carried_test.cpp.
     after = nav2_testing.host_queries(nav2["endpoint"])
     sent = {key.rsplit("/", 1)[1]: after[key] - before.get(key, 0) for key in after}
     first = nav2_testing.goal_check_first()
@@ -171,7 +173,7 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     cycles = sent["general_goal_checker" if first else "progress_checker"]
     assert cycles > 40, sent  # 20 Hz for a few seconds
     queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
-    assert queries < (1.5 if first else 2.2) * cycles, sent  # 3 a cycle without carrying
+    assert queries < (1.5 if first else 2.5) * cycles, sent  # 3 a cycle without carrying
     order = "goal check first" if first else "goal check last"
     print(f"queries during FollowPath ({order}): {sent}, {queries / cycles:.2f} per control cycle")
     assert "general_goal_checker.stateful" in client.list_parameters(
