@@ -15,6 +15,9 @@ from nav2_pyif.client import (
     GoalCheckerClient,
     ProgressCheckerClient,
 )
+from nav2_pyif.messages import pose_to_wire
+from nav2_pyif_protocol.codec import decode_reply
+from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.keys import KeySpace
 
 from tests.conftest import make_costmap
@@ -251,3 +254,21 @@ def test_goal_last_a_reset_or_a_moved_pose_sends_the_goal_check_on_its_own(
     assert not cycle.is_goal_reached(stamped(1.75, 0.5, 104.01), goal, Twist())
     assert (cycle.carried_used, cycle.queries) == (2, 8)
     assert cycle.goal_last  # one cycle that fits neither order changes nothing
+
+
+def test_the_host_runs_only_what_the_schema_lets_a_call_carry(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """schema.CARRIES: a command may carry the goal check, not the progress check."""
+    cycle = cycle_on(zsession_factory, one_host(start_host))
+    assert cycle.progress_checker is not None
+    robot = stamped(0.5, 0.5, 100.0)
+    check = cycle.progress_checker._prepare(Op.CHECK, {"pose": pose_to_wire(robot)})
+    assert check is not None
+    body = cycle.controller.compute_body(robot, Twist())
+    body["carry"] = [{"key": PROGRESS, "payload": check.payload}]
+    reply = cycle.controller._compute(body)
+    (carried,) = reply["carried"]
+    answer = decode_reply(carried["payload"], Op.CHECK)
+    assert answer.error is not None and answer.error.type == ErrorType.BAD_REQUEST.value
+    assert "compute_velocity_commands may not carry check" in answer.error.message
