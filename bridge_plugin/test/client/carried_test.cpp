@@ -294,6 +294,44 @@ TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
   EXPECT_FALSE(cycle->goal_last());
 }
 
+TEST_F(CarriedTest, GoalLastAResetOrAMovedPoseSendsTheGoalCheckOnItsOwn)
+{
+  Timeouts timeouts;
+  timeouts.call = 2s;
+  auto made = checkers(timeouts);
+  GoalCheckerSession & goal_checker = *made.goal;
+  auto cycle = CarriedCycle::of("/carried_test_goal_last");
+  session->join(cycle);
+  cycle->use_controller(*session);
+  const std::array<double, 7> goal{3.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  auto command_then_goal_check = [&](const proto::PoseStamped & robot, const auto & looked_up) {
+      cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);
+      return cycle->is_goal_reached(
+        goal_checker, std::nullopt, looked_up.pose, goal, kVelocity, std::nullopt);
+    };
+  command_then_goal_check(pose_at(0.5, 1.0), pose_at(0.5, 1.0));  // shows the order
+  ASSERT_TRUE(cycle->goal_last());
+  std::size_t before = host.received.size();
+  command_then_goal_check(pose_at(0.6, 1.0), pose_at(0.6, 1.0));
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"compute_velocity_commands"}));
+  EXPECT_EQ(host.carried_ops.back(), "is_goal_reached");
+  // A reset (a new plan): the goal checker may have another goal; the command carries none.
+  goal_checker.reset();
+  before = host.received.size();
+  command_then_goal_check(pose_at(0.7, 1.0), pose_at(0.7, 1.0));
+  EXPECT_EQ(
+    host.ops_since(before),
+    (std::vector<std::string>{"compute_velocity_commands", "is_goal_reached"}));
+  // TF moved on between the command's pose lookup and the goal check's: on its own.
+  before = host.received.size();
+  command_then_goal_check(pose_at(0.8, 1.0), pose_at(0.81, 1.0));
+  EXPECT_EQ(
+    host.ops_since(before),
+    (std::vector<std::string>{"compute_velocity_commands", "is_goal_reached"}));
+  EXPECT_TRUE(cycle->goal_last());  // a cycle that fits neither order changes nothing
+  EXPECT_EQ(cycle->carried_used(), 1u);
+}
+
 // What one control cycle's calls answered, in controller_server's order (`goal_last`: the goal
 // check ends the cycle, as in Humble), up to where Nav2 stops (the goal reached).
 std::vector<double> drive(
