@@ -38,7 +38,7 @@ def test_vector_decodes_and_reencodes_byte_for_byte(entry: dict[str, str]) -> No
     assert to_json_tree(msgpack.unpackb(data, raw=False)) == expected
     op = Op(entry["op"])
     if entry["kind"] == "request":
-        if entry["name"] == "activate_version_2":
+        if entry["name"] == "activate_newer_version":
             with pytest.raises(ProtocolError) as info:
                 decode_request(data)
             assert info.value.error_type is ErrorType.VERSION_MISMATCH

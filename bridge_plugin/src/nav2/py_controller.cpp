@@ -136,12 +136,11 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
       const std::array<double, 6> wire_velocity = ros::to_wire(velocity);
       const std::optional<protocol::GoalChecker> wire_tolerances = ros::tolerances(goal_checker);
       try {
-        // The command the goal check's query carried, when it was prepared for this call
+        // The command another call's query carried, when it was prepared for this call; else
+        // the call on its own, carrying the goal check when Nav2 calls that last
         client::CarriedCycle * cycle = session_->cycle();
-        std::optional<protocol::TwistStamped> carried = cycle ?
-          cycle->take_compute(*session_, wire_pose, wire_velocity, wire_tolerances) :
-          std::nullopt;
-        const protocol::TwistStamped cmd = carried ? std::move(*carried) :
+        const protocol::TwistStamped cmd = cycle ?
+          cycle->compute_velocity_commands(*session_, wire_pose, wire_velocity, wire_tolerances) :
           session_->compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
         host_silent_ = false;
         publish_debug();

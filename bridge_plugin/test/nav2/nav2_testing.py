@@ -37,6 +37,17 @@ def find(relative: str) -> Path | None:
     return None
 
 
+def goal_check_first() -> bool:
+    """Whether this Nav2's controller_server checks the goal first in its control cycle
+    (Jazzy from 1.3.13, Kilted, Lyrical) or last (Humble, Jazzy 1.3.8 to 1.3.12), read from
+    nav2_controller's package.xml (PROTOCOL.md section 15)."""
+    xml = find("share/nav2_controller/package.xml")
+    found = re.search(r"<version>(\d+)\.(\d+)\.(\d+)</version>", xml.read_text()) if xml else None
+    assert found, "no nav2_controller version in this environment"
+    version = tuple(map(int, found.groups()))
+    return version >= (1, 3, 13) if version[:2] == (1, 3) else version[:2] > (1, 3)
+
+
 def project_command(name: str) -> list[str] | None:
     """A command of the nav2_pyif package (planner-host, nav2-pyif): through $NAV2_PYIF_RUN
     (a wrapper that runs its arguments in the project's environment), else from PATH."""

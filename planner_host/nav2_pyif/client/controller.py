@@ -71,10 +71,14 @@ class ControllerClient(PluginClient):
         inputs: new input messages, name -> (rclpy message, receive time [ns]), serialized
         as the plugin sends them; debug_wanted: debug outputs to return (into ``self.debug``).
         """
+        body = self.compute_body(pose, velocity, goal_checker, inputs, debug_wanted)
+        return self.command_of(self._compute(body))
+
+    def _compute(self, body: dict[str, Any]) -> dict[str, Any]:
+        """The compute_velocity_commands call with ``body``; its reply body."""
         if self._plan_owed:
             self._send_plan()  # a host failure here fails this cycle, as the cycle's own would
-        body = self.compute_body(pose, velocity, goal_checker, inputs, debug_wanted)
-        return self.command_of(self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True))
+        return self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
 
     @staticmethod
     def compute_body(
@@ -125,6 +129,19 @@ class ControllerClient(PluginClient):
     ) -> Carried | None:
         # A command prepared while the plan is owed would run on the host's old plan.
         return None if self._plan_owed else super()._prepare(op, body, with_costmap=with_costmap)
+
+    def _take(
+        self,
+        carried: Carried | None,
+        reply_bytes: bytes | None,
+        body: dict[str, Any],
+        *,
+        with_costmap: bool = False,
+    ) -> dict[str, Any] | None:
+        # A plan that became owed (set_plan sent nothing: no host) is news to the host too.
+        if self._plan_owed:
+            return None
+        return super()._take(carried, reply_bytes, body, with_costmap=with_costmap)
 
     def _restore_state(self) -> None:
         if self._plan is not None and not self._plan_owed:

@@ -156,8 +156,9 @@ Sensed = tuple[dict[str, tuple[Any, int]], list[str]]
 
 
 class CycleCalls:
-    """One control cycle's calls in Nav2's order (controller_server's computeControl): the
-    goal check, the progress check, the command; with Python checkers through ControlCycle."""
+    """One control cycle's calls in Nav2's order (controller_server's computeControl, the goal
+    check first as in Jazzy from 1.3.13): the goal check, the progress check, the command;
+    with Python checkers through ControlCycle."""
 
     def __init__(
         self, controller: ControllerClient, extras: Extras, tolerances: GoalChecker

@@ -17,15 +17,18 @@
 namespace nav2_pyif_bridge::client
 {
 
-// A control cycle's command request prepared for the goal check's query to carry.
+// A control cycle's command request prepared for another plugin's query to carry.
 struct PreparedCommand
 {
   Carried carried;
-  protocol::PoseStamped pose;
-  std::array<double, 6> velocity{};
-  std::optional<protocol::GoalChecker> goal_checker;
   std::vector<std::pair<std::string, std::uint64_t>> inputs;  // attached: name, generation
-  std::uint64_t plan_generation{0};
+};
+
+// The command and the encoded replies of the calls its query carried (those that ran).
+struct CommandReplies
+{
+  protocol::TwistStamped cmd_vel;
+  std::vector<protocol::CarriedCall> carried;
 };
 
 class ControllerSession : public KindSession<PluginKind::Controller>
@@ -58,13 +61,19 @@ public:
   std::optional<PreparedCommand> prepare_command(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
-  // The command from the carried reply, when Nav2's call is the prepared one (the same pose,
-  // velocity and tolerances, the costmap and plan unchanged since) and the call ran; else
-  // std::nullopt, and the call goes on its own. Errors throw as compute_velocity_commands.
-  std::optional<protocol::TwistStamped> settle_command(
-    const PreparedCommand & prepared, const std::optional<protocol::Bytes> & reply,
+  // The command from the carried reply, when Nav2's call is the prepared one
+  // (PluginSession::take) and no plan is owed; else std::nullopt, and the call goes on its
+  // own. Errors throw as compute_velocity_commands.
+  std::optional<protocol::TwistStamped> take_command(
+    PreparedCommand prepared, const std::optional<protocol::Bytes> & reply,
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
+  // compute_velocity_commands carrying the calls that follow it in the cycle (the goal
+  // check, when controller_server calls it last).
+  CommandReplies compute_velocity_commands(
+    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
+    const std::optional<protocol::GoalChecker> & goal_checker,
+    std::vector<protocol::CarriedCall> carry);
 
   // Remembered after an ok reply, and also when no host could be reached (the reference
   // client forgets it then), so a host that comes back drives at the latest limit.
@@ -96,7 +105,6 @@ private:
 
   std::optional<protocol::Path> plan_;
   bool plan_owed_{false};  // set_plan failed on the host: sent before the next cycle
-  std::uint64_t plan_generation_{0};  // set_plan calls: a prepared command is for one plan
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
   // The latest message of each input; `sent` is the generation the host acknowledged.
