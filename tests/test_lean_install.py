@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pytest
 from nav2_pyif.tools.main import build_parser
+from nav2_pyif_entry import run
 
 from tests.rosdep_fixture import ROOT
 
@@ -69,11 +70,27 @@ def test_the_host_and_the_authors_testing_helpers_import_without_the_runner_extr
         monkeypatch.setitem(sys.modules, name, None)  # importing it raises ImportError
     # Imported afresh, then put back as they were (in sys.modules and as their parents'
     # attributes, which a fresh import rebinds), so later tests see the same modules.
-    for name in list(sys.modules):
-        if name.startswith(("nav2_pyif.runner", "nav2_pyif.testing", "nav2_pyif.server")):
-            parent, _, child = name.rpartition(".")
-            monkeypatch.setattr(sys.modules[parent], child, sys.modules[name])
-            monkeypatch.delitem(sys.modules, name)
+    fresh = [
+        name
+        for name in sys.modules
+        if name.startswith(("nav2_pyif.runner", "nav2_pyif.testing", "nav2_pyif.server"))
+    ]
+    for name in fresh:
+        parent, _, child = name.rpartition(".")
+        monkeypatch.setattr(sys.modules[parent], child, sys.modules[name])
+    for name in fresh:
+        monkeypatch.delitem(sys.modules, name)
     importlib.import_module("nav2_pyif.server.cli")
     testing = importlib.import_module("nav2_pyif.testing")
     assert testing.__name__ == "nav2_pyif.testing"
+
+
+def test_a_command_without_zenoh_says_how_to_install_it(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """What `ros2 run nav2_pyif planner-host` says in a shell without eclipse-zenoh."""
+    monkeypatch.setitem(sys.modules, "zenoh", None)
+    assert run("zenoh:open", "planner-host") == 1
+    err = capsys.readouterr().err
+    assert err.startswith("planner-host: the Python module 'zenoh' cannot be imported by "), err
+    assert "pip install eclipse-zenoh" in err and "--system-site-packages" in err, err
