@@ -34,7 +34,7 @@ LAUNCH_TEST = WORKSPACE / "src/nav2_pyif/bridge_plugin/test/nav2/test_launch_fil
 def _step(name: str, source: str, command: str, timeout: float) -> str:
     """One shell step in the workspace, timed; its output, or the test fails with its tail."""
     began = time.monotonic()
-    done = _bash(f"{source}; cd {shlex.quote(str(WORKSPACE))}; {command}", timeout=timeout)
+    done = _bash(f"cd {shlex.quote(str(WORKSPACE))}; {source}; {command}", timeout=timeout)
     print(f"{name}: {time.monotonic() - began:.0f} s ({command})")
     assert done.returncode == 0, f"{command} failed:\n" + _tail(done, 60)
     return done.stdout + done.stderr
