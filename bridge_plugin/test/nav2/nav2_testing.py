@@ -78,8 +78,13 @@ def host_queries(endpoint: str) -> dict[str, int]:
 
 
 def host_command() -> list[str] | None:
+    """$NAV2_PYIF_PLANNER_HOST, else planner-host through $NAV2_PYIF_RUN or on PATH (pip),
+    else the ROS package nav2_pyif's (a colcon workspace: `ros2 run nav2_pyif planner-host`)."""
     command = os.environ.get("NAV2_PYIF_PLANNER_HOST")
-    return shlex.split(command) if command else project_command("planner-host")
+    if command:
+        return shlex.split(command)
+    installed = find("lib/nav2_pyif/planner-host")
+    return project_command("planner-host") or ([str(installed)] if installed else None)
 
 
 def missing() -> list[str]:
@@ -102,7 +107,7 @@ def missing() -> list[str]:
     ):
         absent.append("nav2_pyif_bridge built and sourced")
     if host_command() is None:
-        absent.append("planner-host on PATH or $NAV2_PYIF_PLANNER_HOST")
+        absent.append("planner-host on PATH, in a workspace or $NAV2_PYIF_PLANNER_HOST")
     return absent
 
 

@@ -271,8 +271,14 @@ def _params(items: list[str]) -> dict[str, object]:
 def run_command(args: argparse.Namespace) -> int:
     logging.getLogger("nav2_pyif.runner").setLevel(logging.INFO)  # what runs, on stderr
     from nav2_pyif.runner.maps import map_path
+    from nav2_pyif.runner.needs import INSTALL_HINT, missing
     from nav2_pyif.runner.report import format_report
 
+    progress = not args.no_progress and sys.stderr.isatty()
+    absent = missing(progress=progress)
+    if absent:  # found now, not after a run whose picture could not be drawn
+        print(f"nav2-pyif sim: needs {' and '.join(absent)}: {INSTALL_HINT}", file=sys.stderr)
+        return 1
     try:
         config = SimConfig(
             map=map_path(args.map),
@@ -291,7 +297,7 @@ def run_command(args: argparse.Namespace) -> int:
             controller_key=args.controller_key,
             planner_key=args.planner_key,
             path=args.path,
-            progress=not args.no_progress and sys.stderr.isatty(),
+            progress=progress,
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
             plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
             smoother_max_time=args.smoother_max_time,

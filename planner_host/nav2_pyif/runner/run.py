@@ -16,7 +16,6 @@ from typing import Any
 import numpy as np
 import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
-from tqdm import tqdm
 
 from nav2_pyif.client import (
     BehaviorClient,
@@ -512,6 +511,33 @@ def _recover(
     return True
 
 
+class _NoBar:
+    """What the loop calls on a progress bar, doing nothing: no bar is shown."""
+
+    def update(self, n: float) -> None:
+        pass
+
+    def set_postfix_str(self, text: str) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def _progress_bar(config: SimConfig) -> Any:
+    """tqdm's bar on stderr when progress is shown, else one that does nothing: tqdm belongs
+    to the runner extra (runner/needs.py), so nav2_pyif.testing and the host run without it."""
+    if not config.progress:
+        return _NoBar()
+    from tqdm import tqdm
+
+    return tqdm(
+        total=round(config.timeout, 1),
+        unit="sim s",
+        bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
+    )
+
+
 def _control_loop(
     config: SimConfig, result: SimResult, calls: CycleCalls, local_version: int
 ) -> None:
@@ -525,12 +551,7 @@ def _control_loop(
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
     failure_traceback = ""  # the latest planner traceback since the controller began failing
-    bar = tqdm(
-        total=round(config.timeout, 1),
-        unit="sim s",
-        disable=not config.progress,
-        bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
-    )
+    bar = _progress_bar(config)
     wall_start = time.perf_counter()
     cycle = 0
     try:
