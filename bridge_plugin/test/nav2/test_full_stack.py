@@ -57,17 +57,17 @@ BACKUP_BT = nav2_testing.HERE / "backup_recovery_bt.xml"
 
 def full_stack_params(text: str) -> str:
     """nav2_params.yaml with bt_navigator and behavior_server, managed too, and
-    failure_tolerance as the shipped params set it; the Python BackUp dials the endpoint the
-    other plugins dial."""
+    failure_tolerance as the shipped params set it; the Python BackUp reaches its host as the
+    other plugins do (zenoh-pico: zenoh_connect; zenoh-c: zenoh_config)."""
     text = text.replace("failure_tolerance: 0.0", "failure_tolerance: 3.0")
-    endpoint = re.search(r'zenoh_connect: \["([^"]+)"\]', text)
-    assert endpoint is not None, "nav2_params.yaml names no zenoh_connect endpoint"
+    zenoh = re.search(r"zenoh_(?:connect|config): .+", text)
+    assert zenoh is not None, "nav2_params.yaml names no zenoh_connect or zenoh_config"
     text = text.replace(
         'node_names: ["controller_server", "planner_server"]',
         f"node_names: {list(FULL_STACK)!r}".replace("'", '"'),
     )
     added = (nav2_testing.HERE / "full_stack_params.yaml").read_text()
-    return text + added.replace("@ENDPOINT@", endpoint.group(1))
+    return text + added.replace("@ZENOH@", zenoh.group(0))
 
 
 def _through_a_router(procs: nav2_testing.Processes, endpoint: str) -> tuple[list[str], list[str]]:
