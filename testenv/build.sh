@@ -157,7 +157,7 @@ extract_tolerant() {
 }
 
 newest_release() {  # the newest numbered tag of the mirror $1, to say what it has instead
-  git --git-dir="$1" for-each-ref --sort=-creatordate --count=1 \
+  git --git-dir="$1" for-each-ref --sort=-v:refname --sort=-creatordate --count=1 \
     --format='%(refname:short) of %(creatordate:short)' 'refs/tags/[0-9]*'
 }
 
