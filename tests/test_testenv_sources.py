@@ -12,9 +12,12 @@ import pytest
 
 BUILD = Path(__file__).resolve().parents[1] / "testenv" / "build.sh"
 
-pytestmark = pytest.mark.skipif(
-    shutil.which("git") is None or shutil.which("bash") is None, reason="needs git and bash"
-)
+pytestmark = [
+    pytest.mark.integration,  # runs build.sh and git
+    pytest.mark.skipif(
+        shutil.which("git") is None or shutil.which("bash") is None, reason="needs git and bash"
+    ),
+]
 
 
 def _git(*args: str, cwd: Path) -> None:
