@@ -125,8 +125,9 @@ repos_entries() {
 
 mirror_of() {  # the bare git directory of repository $1 (OWNER/NAME) under $MIRRORS
   local name="$1" candidate
-  for candidate in "$MIRRORS/${name/\//+}/repo" "$MIRRORS/${name/\//+}" \
-    "$MIRRORS/$name.git" "$MIRRORS/$name"; do
+  # (OWNER+NAME/repo/.git: some snapshots are clones with a work tree.)
+  for candidate in "$MIRRORS/${name/\//+}/repo" "$MIRRORS/${name/\//+}/repo/.git" \
+    "$MIRRORS/${name/\//+}" "$MIRRORS/$name.git" "$MIRRORS/$name"; do
     if git --git-dir="$candidate" rev-parse --git-dir >/dev/null 2>&1; then
       echo "$candidate"; return 0
     fi
