@@ -245,7 +245,9 @@ step_base() {
     "$py" -m venv "$VENV"
   fi
   local pip=("$VENV/bin/python" -m pip --disable-pip-version-check -q)
-  log "base: pip install ${#PIP_PACKAGES[@]} packages (colcon, launch's deps, pytest${PYPI_BASE:+, the ros-$DISTRO-* wheels})"
+  local wheels=""
+  [ "$PYPI_BASE" = 1 ] && wheels=", the ros-$DISTRO-* wheels"
+  log "base: pip install ${#PIP_PACKAGES[@]} packages (colcon, launch's deps, pytest$wheels)"
   _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "${pip[@]}" install "${PIP_PACKAGES[@]}" 2>&1 \
     | grep -v "^WARNING: Location" || true
   _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c 'import colcon_core, pytest' \

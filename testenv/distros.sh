@@ -93,6 +93,9 @@ distro_settings() {
       PYPI_BASE=0
       ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp)
       APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
+      # pybind11_vendor (rclpy) takes the system's pybind11 where there is one; otherwise it
+      # clones github.com/pybind/pybind11 (unreachable where the sources come from mirrors).
+      APT_PACKAGES+=(pybind11-dev)
       # What the core's Python packages import at build time (rosidl's generators) and ros2cli
       PIP_PACKAGES+=(argcomplete packaging psutil netifaces importlib-metadata)
       ;;
