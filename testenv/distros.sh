@@ -105,7 +105,8 @@ distro_settings() {
       # Humble's Nav2 uses BehaviorTree.CPP 3 (behaviortree_cpp_v3), whose CMake options differ.
       ROS_PACKAGES+=(behaviortree_cpp_v3)
       CMAKE_ARGS+=(-DBUILD_EXAMPLES=OFF -DBUILD_UNIT_TESTS=OFF -DBUILD_TOOLS=OFF)
-      APT_PACKAGES+=(libboost-coroutine-dev)
+      # (nav2_util 1.1's lifecycle_bringup takes its arguments with Boost.Program_options)
+      APT_PACKAGES+=(libboost-coroutine-dev libboost-program-options-dev)
       ;;
     lyrical)
       # Run with --root DIR: Debian 13's toolchain; its rosidl takes empy 4.
