@@ -153,6 +153,9 @@ extract_tolerant() {
       [ "$mode" = 100755 ] && chmod +x "$dest/$path"
     fi
   done < <(git --git-dir="$mirror" ls-tree -r -z "$version")
+  # The commit's time on every file, as git archive gives: laid out again (a patch added or
+  # changed), only the files the patch touches are newer than what was built from them.
+  find "$dest" -exec touch -h -d "@$(git --git-dir="$mirror" log -1 --format=%ct "$version")" {} +
   log "sources: $missing files of $version were not in $mirror"
 }
 
