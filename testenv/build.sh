@@ -159,8 +159,13 @@ extract_tolerant() {
   log "sources: $missing files of $version were not in $mirror"
 }
 
+newest_release() {  # the newest numbered tag of the mirror $1, to say what it has instead
+  git --git-dir="$1" for-each-ref --sort=-v:refname --sort=-creatordate --count=1 \
+    --format='%(refname:short) of %(creatordate:short)' 'refs/tags/[0-9]*'
+}
+
 step_sources() {
-  local name version url dest mirror patch stamp count=0 total
+  local name version url dest mirror patch stamp count=0 total lacking=()
   total="$(repos_entries "$REPOS" | wc -l)"
   while read -r name version url; do
     count=$((count + 1))
@@ -171,17 +176,24 @@ step_sources() {
     if [ "$(cat "$dest/.testenv-version" 2>/dev/null)" = "$stamp" ]; then
       continue
     fi
-    rm -rf "$dest" && mkdir -p "$dest"
     if [ -n "$MIRRORS" ]; then
-      mirror="$(mirror_of "$name")" || die "no mirror of $name under $MIRRORS"
-      git --git-dir="$mirror" rev-parse -q --verify "$version^{commit}" >/dev/null \
-        || die "the mirror $mirror has no $version of $name"
+      # What a mirror lacks is named and the rest laid out, so that one run lists every
+      # version to bring in, and the steps that need only some sources (zenoh-pico) can go on.
+      if ! mirror="$(mirror_of "$name")"; then
+        lacking+=("$name: no mirror under $MIRRORS"); continue
+      fi
+      if ! git --git-dir="$mirror" rev-parse -q --verify "$version^{commit}" >/dev/null; then
+        lacking+=("$name: $mirror has no $version (its newest release: $(newest_release "$mirror"))")
+        continue
+      fi
+      rm -rf "$dest" && mkdir -p "$dest"
       if ! git --git-dir="$mirror" archive --format=tar "$version" 2>/dev/null \
         | tar -x -C "$dest"; then
         rm -rf "$dest" && mkdir -p "$dest"
         extract_tolerant "$mirror" "$version" "$dest"
       fi
     else
+      rm -rf "$dest" && mkdir -p "$dest"
       git clone -q --depth 1 --branch "$version" "$url" "$dest.clone"
       rm -rf "$dest" && mv "$dest.clone" "$dest"
     fi
@@ -194,6 +206,10 @@ step_sources() {
   done < <(repos_entries "$REPOS")
   # zenoh-c/-cpp/-pico are built by their own steps, not by colcon.
   [ -d "$SOURCES/eclipse-zenoh" ] && touch "$SOURCES/eclipse-zenoh/COLCON_IGNORE"
+  if [ ${#lacking[@]} -gt 0 ]; then
+    for name in "${lacking[@]}"; do log "sources: missing $name"; done
+    die "sources: ${#lacking[@]} of $total repositories lack their version in the mirrors (listed above; the others are laid out in $SOURCES)"
+  fi
   log "sources: $total repositories in $SOURCES"
 }
 

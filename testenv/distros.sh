@@ -1,7 +1,7 @@
 # What testenv/build.sh builds for each distribution (sourced by it).
 # shellcheck shell=bash disable=SC2034  # the variables are read by build.sh
 
-# Nav2's servers of issue 25's full stack, the native controller and planner they are compared
+# Nav2's servers of the full-stack launch test, the native controller and planner they are compared
 # with, and what the launch tests import or run (launch_ros, tf2_ros in Python, `ros2 launch`).
 NAV2_PACKAGES=(
   nav2_msgs nav2_core nav2_costmap_2d nav2_lifecycle_manager

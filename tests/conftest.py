@@ -21,6 +21,7 @@ from nav2_pyif.common.host_process import PlannerHostProcess, free_port
 from nav2_pyif.common.zenoh_config import connect_to
 
 from tests.neighbours import Neighbours
+from tests.tiers import unit_tier_only
 
 __all__ = ["free_port"]  # tests import it from here
 
@@ -55,6 +56,26 @@ def pytest_sessionfinish(session: pytest.Session) -> None:
     if neighbours is not None:
         neighbours.stop()
         shutil.rmtree(neighbours.directory, ignore_errors=True)
+
+
+def _guarded(item: pytest.Item) -> Iterator[None]:
+    """A test marked unit opens no Zenoh session and starts no process (tests/tiers.py): in
+    its setup too, where module and session fixtures start, not only in the test itself."""
+    if item.get_closest_marker("unit") is None:
+        yield
+        return
+    with unit_tier_only():
+        yield
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_setup(item: pytest.Item) -> Iterator[None]:
+    return (yield from _guarded(item))
+
+
+@pytest.hookimpl(wrapper=True)
+def pytest_runtest_call(item: pytest.Item) -> Iterator[None]:
+    return (yield from _guarded(item))
 
 
 @pytest.fixture(scope="session")

@@ -36,8 +36,8 @@ import yaml
 ROOT = Path(__file__).resolve().parents[1]
 FIXTURE = ROOT / "tests" / "fixtures" / "rosdep"
 ROSDISTRO = FIXTURE / "rosdistro.yaml"
-#: The ROS 2 distributions the project supports (issue 27: Humble's, Jazzy's and Lyrical's
-#: platforms). Kilted shares Jazzy's platforms.
+#: The ROS 2 distributions whose platforms the project supports (Humble's, Jazzy's and
+#: Lyrical's). Kilted shares Jazzy's platforms.
 DISTRIBUTIONS = ("humble", "jazzy", "lyrical")
 #: The operating systems whose packages rosdep installs for our users.
 SYSTEMS = ("debian", "ubuntu")
@@ -101,11 +101,16 @@ def package_keys(xml: Path) -> dict[str, list[str]]:
 
 
 def all_keys(root: Path = ROOT) -> dict[str, list[str]]:
-    """Every key of every package.xml: key -> "package.xml path: tag" where it is named."""
+    """Every key of every package.xml: key -> "package.xml path: tag" where it is named. The
+    repository's own packages (nav2_pyif_bridge depends on nav2_pyif) are not keys: they are
+    in the workspace, which `rosdep install --from-paths src --ignore-src` leaves to colcon."""
+    xmls = package_xmls(root)
+    own = {name for xml in xmls for name in package_field(xml, "name")}
     out: dict[str, list[str]] = {}
-    for xml in package_xmls(root):
+    for xml in xmls:
         for key, tags in package_keys(xml).items():
-            out.setdefault(key, []).extend(f"{xml.relative_to(root)}: {t}" for t in tags)
+            if key not in own:
+                out.setdefault(key, []).extend(f"{xml.relative_to(root)}: {t}" for t in tags)
     return out
 
 

@@ -14,6 +14,8 @@ from nav2_pyif import Costmap
 from nav2_pyif.runner.inflation import inflation_layer
 from nav_msgs.msg import Path
 
+pytestmark = pytest.mark.unit
+
 
 def _quaternion(yaw: float) -> Quaternion:
     return Quaternion(z=math.sin(yaw / 2), w=math.cos(yaw / 2))

@@ -1,5 +1,5 @@
 """Bad input to every command is a usage error (exit 2) before anything starts: it names the
-option or variable and the form or range expected, never a traceback (issue 24, items 8, 9).
+option or variable and the form or range expected, never a traceback.
 Each case runs the real command."""
 
 from __future__ import annotations
@@ -16,6 +16,8 @@ import zenoh
 from nav2_pyif.common.option_types import endpoint
 
 from tests.conftest import FIXTURES, free_port
+
+pytestmark = pytest.mark.integration
 
 COMMANDS = {
     "planner-host": ["-m", "nav2_pyif.server.cli"],

@@ -13,6 +13,8 @@ from nav2_pyif.params import Parameters
 from nav2_pyif.plugin import PluginContext
 from nav2_pyif_planners.free_backup import FreestBackUp
 
+pytestmark = pytest.mark.unit
+
 FOOTPRINT = [[0.2, 0.15], [0.2, -0.15], [-0.2, -0.15], [-0.2, 0.15]]
 
 

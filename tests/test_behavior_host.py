@@ -22,6 +22,8 @@ from nav2_pyif.runner.run import pose_msg
 from tests.conftest import wait_until
 from tests.test_smoother_and_checker_hosts import GENEROUS, worker_pid
 
+pytestmark = pytest.mark.integration
+
 KEY = "nav2_pyif/test_robot/backup"
 BACKUP = "nav2_msgs/action/BackUp"
 FOOTPRINT = [[0.2, 0.15], [0.2, -0.15], [-0.2, -0.15], [-0.2, 0.15]]

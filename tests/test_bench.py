@@ -12,6 +12,8 @@ import pytest
 
 from tests.conftest import free_port
 
+pytestmark = pytest.mark.integration
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -76,6 +78,8 @@ def test_cpp_cycle_without_its_binary_says_how_to_build_it(tmp_path: Path) -> No
     assert "no C++ bench binary" in result.stderr and "build_cpp_bench.sh" in result.stderr
 
 
+@pytest.mark.cpp
+@pytest.mark.nav2
 @pytest.mark.timeout(900)
 def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
     if not os.environ.get("NAV2_PYIF_NAV2_SETUP"):

@@ -1,4 +1,4 @@
-"""Benchmark verdicts agree with the figures they print (issue 24, item 16): a ratio printed
+"""Benchmark verdicts agree with the figures they print: a ratio printed
 "2.00x" against ">= 2x" is MET, whatever digits were not printed, and every printed target
 has a verdict (the MPPI one had none)."""
 
@@ -12,6 +12,8 @@ from nav2_pyif_bench import mppi_bench
 from nav2_pyif_bench.cycle_targets import cycle_target_lines
 from nav2_pyif_bench.stats import Summary
 from nav2_pyif_bench.stats import cycle_target_lines as issue2_target_lines
+
+pytestmark = pytest.mark.unit
 
 FIGURE = re.compile(r"(\d+\.\d+)x.*\(target (<=|>=) (\d+(?:\.\d+)?)x.*\): (MET|NOT MET)")
 

@@ -15,6 +15,8 @@ from nav2_pyif_planners.keepout import (
     polygon_mask,
 )
 
+pytestmark = pytest.mark.unit
+
 GOAL = (2.0, 1.0, 0.0)
 STILL = (0.0, 0.0, 0.0)
 

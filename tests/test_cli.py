@@ -14,6 +14,8 @@ from nav2_pyif.server.cli import build_parser
 from tests.conftest import FIXTURES
 from tests.test_env_and_router import parse
 
+pytestmark = pytest.mark.integration
+
 PYTHONPATH = {"PYTHONPATH": str(FIXTURES)}
 
 

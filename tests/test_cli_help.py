@@ -1,5 +1,5 @@
 """Every console command (pyproject.toml's [project.scripts]) explains each of its
-subcommands and options in --help, and checks its numbers (issue 24, items 9 and 15)."""
+subcommands and options in --help, and checks its numbers."""
 
 from __future__ import annotations
 
@@ -20,6 +20,8 @@ from nav2_pyif.tools.main import PLANNERS_COMMANDS
 from nav2_pyif_entry import TARGETS
 
 from tests.conftest import FIXTURES, ROOT
+
+pytestmark = pytest.mark.integration
 
 
 def console_scripts() -> dict[str, str]:

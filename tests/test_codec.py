@@ -19,6 +19,8 @@ from nav2_pyif_protocol.codec import (
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
 from nav2_pyif_protocol.keys import KeySpace
 
+pytestmark = pytest.mark.unit
+
 POSE = {"frame_id": "odom", "stamp_ns": 1, "pose": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]}
 COSTMAP = {
     "version": 1,

@@ -43,7 +43,8 @@ from tests.podman.support import (
 )
 from tests.test_host_e2e import pose
 
-pytestmark = pytest.mark.timeout(900)  # the first run makes a base image and builds
+# The first run makes a base image and builds.
+pytestmark = [pytest.mark.container, pytest.mark.timeout(900)]
 KEY = "nav2_pyif/container/FollowPath"
 # Generous: the first calls into a fresh container import NumPy and rclpy in its worker.
 TIMEOUTS = Timeouts(call=5.0, lifecycle=10.0, configure=20.0, plan=20.0)

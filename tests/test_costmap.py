@@ -8,6 +8,8 @@ from nav2_pyif import Costmap
 
 from tests.conftest import make_costmap
 
+pytestmark = pytest.mark.unit
+
 
 def test_constants_match_nav2() -> None:
     assert (

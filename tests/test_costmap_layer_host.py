@@ -12,6 +12,8 @@ from nav2_pyif.client import CostmapLayerClient
 
 from tests.test_smoother_and_checker_hosts import GENEROUS, no_costmap
 
+pytestmark = pytest.mark.integration
+
 LAYER = "nav2_pyif/test_robot/keepout"
 SQUARE = "[[[1.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0]]]"
 NONE = (1e30, 1e30, -1e30, -1e30)  # Nav2's bounds before any layer grew them

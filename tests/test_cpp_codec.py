@@ -19,6 +19,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.cpp
+
 ROOT = Path(__file__).resolve().parents[1]
 SOURCE = ROOT / "bridge_plugin"
 BUILD = ROOT / "build" / "cpp_codec"

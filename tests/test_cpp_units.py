@@ -14,6 +14,8 @@ import pytest
 
 from tests.test_cpp_codec import _run, _tail, build_dir  # noqa: F401  (the shared fixture)
 
+pytestmark = pytest.mark.cpp
+
 # Each C++ twin of a tests/test_host_e2e.py scenario must have run.
 MIRRORED = [
     "ControllerSessionTest.FullSession",

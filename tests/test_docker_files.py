@@ -14,6 +14,8 @@ import yaml
 from nav2_pyif.common.env_defaults import variable_name
 from nav2_pyif.server.cli import build_parser
 
+pytestmark = pytest.mark.integration
+
 DOCKER = Path(__file__).resolve().parents[1] / "docker"
 
 

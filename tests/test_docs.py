@@ -25,6 +25,8 @@ from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import Block, blocks
 from tests.private_network import ZENOH_DEFAULT_PORT, PrivateNetwork, port_is_free
 
+pytestmark = pytest.mark.integration
+
 DOCS = [
     ROOT / "README.md",
     ROOT / "docs" / "DEPLOYMENT.md",

@@ -16,6 +16,8 @@ import pytest
 
 from tests.conftest import ENV_SCRIPT, ROOT, in_project_env
 
+pytestmark = pytest.mark.integration
+
 SIGINT_EXIT = 128 + signal.SIGINT
 #: What a shell reports as 130: that exit code, or death by SIGINT's default action (a signal
 #: that lands before bash has set its trap, or before the interpreter starts).

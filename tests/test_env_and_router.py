@@ -18,6 +18,8 @@ from nav2_pyif.server.cli import build_parser
 from tests.conftest import FIXTURES, free_port, make_costmap, wait_until
 from tests.test_host_e2e import GENEROUS, pose
 
+pytestmark = pytest.mark.integration
+
 
 def parse(environ: dict[str, str], *argv: str) -> Any:
     parser = build_parser()

@@ -23,6 +23,8 @@ from tests.conftest import FIXTURES, free_port, host_process, make_costmap, open
 from tests.test_host_e2e import pose
 from tests.test_sim import run_sim_command
 
+pytestmark = pytest.mark.integration
+
 SOURCE = FIXTURES / "crashing.py"
 
 

@@ -36,6 +36,8 @@ from tests.conftest import (
 )
 from tests.test_host_e2e import pose
 
+pytestmark = pytest.mark.integration
+
 KEY = "nav2_pyif/faults/FollowPath"
 PLANNER_KEY = "nav2_pyif/faults/GridBased"
 HOST_FLAGS = ("--deadline", "0.5", "--hang-grace", "1.0", "--memory-limit", "2048")

@@ -10,8 +10,12 @@ from __future__ import annotations
 import re
 import subprocess
 
+import pytest
+
 from tests.conftest import ROOT
 from tests.neighbours import Neighbours
+
+pytestmark = pytest.mark.integration
 
 #: Commands that pick processes by name (pgrep only finds them, but to signal them next).
 BY_NAME = re.compile(r"\b(pkill|killall|pgrep)\b")

@@ -21,6 +21,8 @@ from nav2_pyif_protocol.constants import (
     PluginType,
 )
 
+pytestmark = pytest.mark.integration
+
 ROOT = Path(__file__).resolve().parents[1]
 COMMAND = "python -m nav2_pyif_protocol.generate"
 

@@ -18,6 +18,8 @@ from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 
 from tests.conftest import make_costmap
 
+pytestmark = pytest.mark.integration
+
 KEY = "nav2_pyif/test_robot/FollowPath"
 PLANNER_KEY = "nav2_pyif/test_robot/GridBased"
 GENEROUS = Timeouts(call=2.0, lifecycle=5.0, configure=10.0, plan=5.0)
@@ -112,6 +114,57 @@ def test_planner_session_and_cancellation(start_host: Any, zsession_factory: Any
     assert time.monotonic() - started < 2.0  # cancelled, not the planner's 10 s
     client.set_parameters({"mode": "ok"})
     assert len(client.create_plan(pose(), pose(3.0, 3.0))) == 25
+
+
+def test_a_plan_waits_for_a_restarting_host_within_its_timeout_and_a_cycle_does_not(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """planner_server runs create_plan in its own thread while the robot follows its last
+    path: a host restart there costs a slow plan, not a recovery. The control loop's calls
+    fail at once (the controller server's failure_tolerance rides those out)."""
+    args = ("--key", PLANNER_KEY, "--planner", "echo_planners:LinePlanner")
+    host = start_host(*args)
+    timeouts = Timeouts(call=0.5, lifecycle=5.0, configure=20.0, plan=8.0)
+    client = GlobalPlannerClient(
+        zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(), timeouts=timeouts
+    )
+    assert client.wait_for_host(15)
+    client.configure()
+    client.activate()
+    host.kill()
+    assert client.hosts.wait_for(lambda alive: not alive, 10)
+    restarted: list[Any] = []
+    restart = threading.Timer(1.0, lambda: restarted.append(start_host(*args, port=host.port)))
+    started = time.monotonic()
+    restart.start()
+    try:
+        plan = client.create_plan(pose(0.0, 0.0), pose(2.0, 1.0))
+    finally:
+        restart.join()
+    assert len(plan) > 1 and time.monotonic() - started > 1.0  # it waited for the new host
+    assert client.resyncs == 1  # and re-established the session there
+
+    short = GlobalPlannerClient(
+        zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(), timeouts=timeouts
+    )
+    assert short.wait_for_host(15)
+    short.configure()
+    restarted[0].kill()
+    assert short.hosts.wait_for(lambda alive: not alive, 10)
+    started = time.monotonic()
+    with pytest.raises(api.PlannerException, match="no planner host is alive"):
+        short.create_plan(pose(), pose(1.0, 1.0))
+    assert time.monotonic() - started >= timeouts.plan * 0.9  # no host came: its timeout
+
+    ctrl_host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    ctrl = controller(zsession_factory, ctrl_host)
+    ctrl.configure()
+    ctrl_host.kill()
+    assert ctrl.hosts.wait_for(lambda alive: not alive, 10)
+    started = time.monotonic()
+    with pytest.raises(api.NoValidControl, match="no planner host is alive"):
+        ctrl.compute_velocity_commands(pose(), Twist())
+    assert time.monotonic() - started < 0.5  # at once
 
 
 def test_errors_cross_the_wire_typed_with_traceback(start_host: Any, zsession_factory: Any) -> None:
@@ -268,6 +321,28 @@ def test_a_speed_limit_set_while_no_host_is_up_survives(
     assert client.compute_velocity_commands(pose(), Twist()).twist.linear.z == -1.0  # forgotten
 
 
+def test_a_plan_set_while_the_host_is_down_is_kept_and_sent_first_not_raised(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """Nav2's behaviour tree replans about once a second: a set_plan that raised while the host
+    restarts would end FollowPath at once, outside the controller server's failure_tolerance."""
+    host = start_host("--key", KEY, "--planner", "echo_planners:EchoController")
+    client = controller(zsession_factory, host)
+    client.configure()
+    client.activate()
+    client.set_plan(Plan(np.zeros((9, 3)), "odom"))
+    host.kill()
+    assert client.hosts.wait_for(lambda alive: not alive, 10)
+    failure = client.set_plan(Plan(np.zeros((12, 3)), "odom"))
+    assert isinstance(failure, api.NoValidControl) and failure.host_failed, failure
+    with pytest.raises(api.NoValidControl, match="no planner host is alive"):
+        client.compute_velocity_commands(pose(), Twist())  # the cycle fails, as it would alone
+    start_host("--key", KEY, "--planner", "echo_planners:EchoController", port=host.port)
+    assert client.wait_for_host(15)
+    assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 12.0
+    assert client.set_plan(Plan(np.zeros((5, 3)), "odom")) is None
+
+
 def warned(log: str, words: str) -> bool:
     return any("[WARNING]" in line and words in line for line in log.splitlines())
 
@@ -275,7 +350,7 @@ def warned(log: str, words: str) -> bool:
 def test_delegate_modules_bind_by_name_and_say_what_a_missing_role_means(
     start_host: Any, zsession_factory: Any, tmp_path: Path
 ) -> None:
-    """The seed's examples: ``--module m`` alone binds m's functions named after the roles;
+    """Function-delegate modules: ``--module m`` alone binds m's functions named after the roles;
     a role left without a function is a warning at start, saying what Nav2's call then does."""
     by_name, one_liner = "nav2_pyif/apf/FollowPath", "nav2_pyif/seed/FollowPath"
     config = tmp_path / "planners.yaml"

@@ -7,11 +7,14 @@ import json
 import subprocess
 from typing import Any
 
+import pytest
 from nav2_pyif.client import ControllerClient
 
 from tests.conftest import free_port, make_costmap, nav2_pyif_tool, wait_until
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS
+
+pytestmark = pytest.mark.integration
 
 CONTROLLER_KEY = "nav2_pyif/robot1/FollowPath"
 PLANNER_KEY = "nav2_pyif/robot2/GridBased"

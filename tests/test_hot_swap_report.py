@@ -11,8 +11,11 @@ import time
 from pathlib import Path
 from typing import Any
 
+import pytest
 from nav2_pyif.client.admin import request_reload
 from PIL import Image
+
+pytestmark = pytest.mark.integration
 
 KEY = "nav2_pyif/sim/FollowPath"
 

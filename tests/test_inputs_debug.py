@@ -1,4 +1,4 @@
-"""Issue 13 through a real planner host: input messages (real rclpy messages, serialized as
+"""Inputs and debug outputs through a real host: messages (real rclpy messages, serialized as
 the plugin's generic subscription delivers them) reach ``self.inputs`` in their NumPy forms and
 persist between calls; debug outputs come back only when wanted, as real messages."""
 
@@ -17,6 +17,8 @@ from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Image, LaserScan, PointCloud2, PointField
 
 from tests.test_host_e2e import controller, pose
+
+pytestmark = pytest.mark.integration
 
 KEY = "nav2_pyif/test_robot/FollowPath"
 

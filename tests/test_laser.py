@@ -10,6 +10,8 @@ import pytest
 from nav2_pyif.runner.laser import Laser, LaserSpec
 from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
 
+pytestmark = pytest.mark.unit
+
 RES = 0.05
 
 

@@ -8,6 +8,8 @@ from pathlib import Path
 
 import pytest
 
+pytestmark = pytest.mark.unit
+
 PACKAGE = Path(__file__).resolve().parents[1] / "planner_host" / "nav2_pyif"
 
 #: Which part of nav2_pyif each part may import (besides itself, the protocol and third parties).

@@ -1,4 +1,4 @@
-"""The learned controller end to end on a tiny budget (issue 13 item 4): MPPI demonstrations in
+"""The learned controller end to end on a tiny budget: MPPI demonstrations in
 the offline runner (a real host, real Zenoh, the simulated laser through the inputs), JAX
 training, the weights saved, and the learned controller driving to the goal the same way."""
 
@@ -7,8 +7,11 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 from nav2_pyif_planners.learned.pipeline import LearnConfig, Task, learn
 from nav2_pyif_planners.learned.policy import Policy
+
+pytestmark = pytest.mark.integration
 
 # A short route on the office map: out of the start room, round the corner and north.
 ROUTE = Task("office", (2.0, 2.5, 0.0), (3.2, 5.5, 1.5708))

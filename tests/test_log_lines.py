@@ -1,4 +1,4 @@
-"""What planner-host and nav2-pyif sim say: in order, once, and true (issue 24, item 14).
+"""What planner-host and nav2-pyif sim say: in order, once, and true.
 Real hosts, real signals (to the process this test started only), real Zenoh sessions."""
 
 from __future__ import annotations
@@ -20,6 +20,8 @@ from nav2_pyif.server.host import ReachWatch
 
 from tests.conftest import FIXTURES, free_port, wait_until
 from tests.test_signals import TRACKER, WORKER, Command, host_command
+
+pytestmark = pytest.mark.integration
 
 SLOW_TO_LOAD = """
 import time

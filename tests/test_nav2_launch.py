@@ -5,8 +5,8 @@ while the servers stay active, a restarted host serves the next goal; through a 
 whose machine vanishes is noticed within a lease and comes back by itself, with the recovery
 figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans cross whole;
 map -> odom moving while driving; the secure fleet of DEPLOYMENT.md section 6 (TLS, client
-certificates, access control) carries robot1's goal; and the seed paper's YAML starts its own
-hosts.
+certificates, access control) carries robot1's goal; and the function-delegate YAML starts its
+own hosts.
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per distribution (humble, jazzy, lyrical) and zenoh-cpp backend:
@@ -32,6 +32,8 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import free_port
+
+pytestmark = pytest.mark.nav2
 
 ROOT = Path(__file__).resolve().parents[1]
 # Each variant: the Zenoh library the plugin must link. rmw_zenoh: Nav2's servers, the test's
@@ -115,7 +117,8 @@ def test_full_stack_navigations_survive_every_fault(distro: str, backend: str) -
             "NAV2_PYIF_FULL_STACK_RUNS gives the runs per fault"
         )
     files = " ".join(f"bridge_plugin/test/nav2/{name}" for name in FULL_STACK)
-    _launch_tests(distro, backend, f"-s {files}", timeout=4 * 3600 - 600)
+    # -x: a failed navigation leaves the robot where the next test does not expect it
+    _launch_tests(distro, backend, f"-s -x {files}", timeout=4 * 3600 - 600)
 
 
 def _launch_tests(distro: str, backend: str, selection: str, timeout: float) -> None:
@@ -177,21 +180,24 @@ def _launch_tests(distro: str, backend: str, selection: str, timeout: float) -> 
         'exec "$@"\n'
     )
     wrapper.chmod(0o755)
-    host = workspace / "planner-host.sh"  # one executable: the seed YAML's planner_host_command
+    host = workspace / "planner-host.sh"  # one executable: the delegate YAML's planner_host_command
     host.write_text(f'#!/bin/bash\nexec {shlex.quote(str(wrapper))} planner-host "$@"\n')
     host.chmod(0o755)
     figures = workspace / "recovery_figures.json"
     figures.unlink(missing_ok=True)
+    # The Nav2 processes' logs, kept here until the next run: pytest's default base keeps
+    # only its last three runs, and other runs on the machine would remove these.
+    logs = workspace / "logs"
     zenoh_cpp = "zenoh-c" if backend == "rmw_zenoh" else backend
     run = _bash(
         f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
         f"{router}NAV2_PYIF_ZENOH_BACKEND={zenoh_cpp} NAV2_PYIF_RUN={shlex.quote(str(wrapper))} "
         f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} "
         f"NAV2_PYIF_FIGURES={shlex.quote(str(figures))} python -m pytest "
-        f"-p no:cacheprovider -q -rs {selection}",
+        f"-p no:cacheprovider -q -rs --basetemp={shlex.quote(str(logs))} {selection}",
         timeout=timeout,
     )
-    assert run.returncode == 0, "Nav2 launch tests failed:\n" + _tail(run, 120)
+    assert run.returncode == 0, f"Nav2 launch tests failed (logs in {logs}):\n" + _tail(run, 120)
     assert " passed" in run.stdout and "skipped" not in run.stdout, _tail(run)
     # The recovery figures of RELIABILITY.md (bridge_plugin/test/nav2/test_host_recovery.py)
     print(f"{backend} recovery figures: {figures.read_text()}")

@@ -27,6 +27,8 @@ from tests.netns import SUBNET, Link, namespace_link
 from tests.test_env_and_router import start_router
 from tests.test_host_e2e import pose
 
+pytestmark = pytest.mark.integration
+
 KEY = "nav2_pyif/remote/FollowPath"
 LEASE_MS = 1000  # short Zenoh lease: a dead link is noticed in ~1 s, not the default 10 s
 

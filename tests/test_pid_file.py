@@ -10,7 +10,11 @@ import sys
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from tests.conftest import wait_until
+
+pytestmark = pytest.mark.integration
 
 
 def test_the_pid_file_names_this_host_once_it_serves_and_goes_with_it(

@@ -11,6 +11,8 @@ from geometry_msgs.msg import PoseStamped
 from nav2_pyif import Parameters, Plan
 from nav_msgs.msg import Path
 
+pytestmark = pytest.mark.unit
+
 
 def test_plan_yaw_and_message_round_trip() -> None:
     xy_yaw = np.array([[0.0, 0.0, 0.0], [1.0, 0.5, math.pi / 2], [2.0, 1.0, -3.0]])

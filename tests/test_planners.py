@@ -22,6 +22,8 @@ from nav2_pyif_planners.astar import AStar
 from nav2_pyif_planners.mppi import MPPI
 from nav2_pyif_planners.pure_pursuit import RegulatedPurePursuit
 
+pytestmark = pytest.mark.unit
+
 
 def attach(planner: PlannerPlugin, costmap: Costmap, **params: Any) -> Any:
     planner._attach(

@@ -11,6 +11,8 @@ import pytest
 from tests.conftest import free_port, in_project_env
 from tests.private_network import PrivateNetwork, port_is_free
 
+pytestmark = pytest.mark.integration
+
 PROBE = """
 import socket, sys
 port = int(sys.argv[1])

@@ -1,6 +1,6 @@
 """A host failure (none alive, no reply in time, a crashed, restarting or overrunning worker)
 must become an exception that Nav2's own behaviour tree sends to a recovery, on every
-distribution, while a planner's own typed errors pass through as raised (issue 25 item 1).
+distribution, while a planner's own typed errors pass through as raised.
 
 Nav2's side is a recorded excerpt (tests/fixtures/nav2_recovery_conditions.json, with the date
 and files it was read from): which error code each server gives each nav2_core exception, and
@@ -24,6 +24,8 @@ from nav2_pyif_protocol.constants import (
     ErrorType,
     PluginType,
 )
+
+pytestmark = pytest.mark.unit
 
 NAV2 = json.loads(
     (Path(__file__).parent / "fixtures" / "nav2_recovery_conditions.json").read_text()

@@ -1,4 +1,4 @@
-"""Ready for a release (issue 27): one version in package.xml, pyproject.toml and the Python
+"""Ready for a release: one version in package.xml, pyproject.toml and the Python
 package; the wire protocol's version the same in both codecs, PROTOCOL.md and each release's
 changelog entry; a CHANGELOG.rst per ROS package as bloom reads it; one license, stated the
 same way in LICENSE, every package.xml and pyproject.toml.
@@ -9,6 +9,7 @@ catkin_prepare_release use.
 
 from __future__ import annotations
 
+import configparser
 import re
 import shutil
 from pathlib import Path
@@ -23,7 +24,10 @@ from nav2_pyif_protocol import PROTOCOL_VERSION
 from tests.rosdep_fixture import ROOT, package_xmls
 
 # catkin_pkg calls docutils' Node.traverse, which newer docutils deprecates.
-pytestmark = pytest.mark.filterwarnings("ignore:nodes.Node.traverse:DeprecationWarning")
+pytestmark = [
+    pytest.mark.unit,
+    pytest.mark.filterwarnings("ignore:nodes.Node.traverse:DeprecationWarning"),
+]
 PYPROJECT = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
 #: The license texts LICENSE may hold, by SPDX identifier: their first lines.
 LICENSE_TITLES = {"Apache-2.0": ("Apache License", "Version 2.0, January 2004")}
@@ -97,3 +101,33 @@ def test_one_license_stated_everywhere() -> None:
     for xml in package_xmls():
         licenses = [str(license) for license in parse_package(str(xml)).licenses]
         assert licenses == [spdx], f"{xml.relative_to(ROOT)} states {licenses}, not {spdx}"
+
+
+def _ament_python_packages() -> list[Path]:
+    return [
+        xml for xml in package_xmls() if parse_package(str(xml)).get_build_type() == "ament_python"
+    ]
+
+
+def test_colcon_builds_what_pip_installs() -> None:
+    """Every folder pyproject.toml installs Python packages from is a ROS package colcon builds
+    (the benchmarks aside: a tool of this repository, not of a robot)."""
+    match = re.search(r"^where = \[(.*?)\]", PYPROJECT, re.M)
+    assert match, "pyproject.toml has no [tool.setuptools.packages.find] where"
+    folders = set(re.findall(r'"([^"]+)"', match.group(1))) - {"benchmarks"}
+    assert folders == {str(xml.parent.relative_to(ROOT)) for xml in _ament_python_packages()}
+
+
+@pytest.mark.parametrize("xml", _ament_python_packages(), ids=lambda p: p.parent.name)
+def test_ament_python_packages_install_where_ros_looks(xml: Path) -> None:
+    """The ament index marker, and console scripts in lib/<package> (`ros2 run`) run by the
+    python3 on PATH (a venv with system site packages, README's Install)."""
+    name = parse_package(str(xml)).name
+    assert (xml.parent / "resource" / name).is_file(), f"no resource/{name} (ament index)"
+    config = configparser.ConfigParser(interpolation=None)
+    config.read(xml.parent / "setup.cfg", encoding="utf-8")
+    assert config.get("install", "install_scripts") == f"$base/lib/{name}"
+    assert config.get("develop", "script_dir") == f"$base/lib/{name}"
+    assert config.get("build_scripts", "executable") == "/usr/bin/env python3"
+    setup_py = (xml.parent / "setup.py").read_text(encoding="utf-8")
+    assert 'ElementTree.parse("package.xml")' in setup_py, "setup.py reads its name and version"

@@ -1,13 +1,17 @@
 """``nav2-pyif reload`` against a real planner host: a swap that changes a key's plugin type
-is refused unless asked for (issue 24, item 10), every refusal is in the host's log (item 12),
-and each swap is said there once (item 14)."""
+is refused unless asked for, every refusal is in the host's log, and each swap is said there
+once."""
 
 from __future__ import annotations
 
 from pathlib import Path
 from typing import Any
 
+import pytest
+
 from tests.conftest import nav2_pyif_tool, wait_until
+
+pytestmark = pytest.mark.integration
 
 KEY = "nav2_pyif/swap/FollowPath"
 CONTROLLER = "echo_planners:EchoController"

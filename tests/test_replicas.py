@@ -9,6 +9,7 @@ from typing import Any
 
 import nav2_pyif as api
 import numpy as np
+import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
@@ -16,6 +17,8 @@ from nav2_pyif.common.zenoh_config import connect_to
 
 from tests.conftest import free_port, host_process, make_costmap
 from tests.test_host_e2e import pose
+
+pytestmark = pytest.mark.integration
 
 KEY = "nav2_pyif/replicas/FollowPath"
 

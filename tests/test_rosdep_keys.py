@@ -1,6 +1,6 @@
 """Every key of every package.xml resolves, through rosdistro's rosdep files, to packages that
 really provide what the build uses, on the Debian and Ubuntu releases of Humble, Jazzy and
-Lyrical (issue 27: `rosdep install` said yes to `msgpack`, then the build stopped at
+Lyrical (`rosdep install` once said yes to `msgpack`, then the build stopped at
 "msgpack.hpp not found" where libmsgpack-dev carries only msgpack-c).
 
 Checked without network against tests/fixtures/rosdep/ (see tests/rosdep_fixture.py, which
@@ -29,6 +29,8 @@ from tests.rosdep_fixture import (
     resolve,
     rosdep_entry,
 )
+
+pytestmark = pytest.mark.unit
 
 BRIDGE = ROOT / "bridge_plugin"
 EXCERPT = load_yaml(ROSDISTRO)

@@ -22,6 +22,8 @@ from nav2_pyif_protocol.constants import PROTOCOL_VERSION, Op
 from tests.conftest import CONTROLLER_ERRORS, make_costmap
 from tests.fixtures.echo_planners import FaultyController, LinePlanner
 
+pytestmark = pytest.mark.unit
+
 POSE = {"frame_id": "odom", "stamp_ns": 7, "pose": [1.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]}
 
 

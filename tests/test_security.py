@@ -43,6 +43,8 @@ from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS, pose
 from tests.test_network import start_remote_host, stop
 
+pytestmark = pytest.mark.integration
+
 ROOT = Path(__file__).resolve().parents[1]
 DOCS_ZENOH = ROOT / "docs" / "zenoh"
 PLACEHOLDER = "/etc/nav2_pyif/"  # the guide's files name tls/*.pem and passwords.txt in it

@@ -19,6 +19,8 @@ from nav2_pyif.common.zenoh_config import ZenohOptions, build_config
 
 from tests.conftest import ROOT
 
+pytestmark = pytest.mark.unit
+
 #: What every session the project configures gets: a 1 s lease with 4 keep-alives per lease,
 #: no multicast scouting.
 EVERYWHERE = [

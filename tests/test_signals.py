@@ -33,6 +33,8 @@ from tests.conftest import (
 )
 from tests.test_host_e2e import GENEROUS, pose
 
+pytestmark = pytest.mark.integration
+
 ROOT = Path(__file__).resolve().parents[1]
 SIGNALS = [signal.SIGINT, signal.SIGTERM, signal.SIGHUP]
 WORKER, TRACKER = "spawn_main", "resource_tracker"

@@ -36,6 +36,8 @@ from nav2_pyif.testing import assert_reaches_goal, drive
 from tests.conftest import FIXTURES, free_port
 from tests.test_host_e2e import controller
 
+pytestmark = pytest.mark.integration
+
 NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
 
@@ -258,8 +260,8 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
     report = result.stdout.splitlines()
     assert report[0] == "Traceback (most recent call last):", result.stdout
     tb = report[: report.index("")]
-    assert 'user_faults.py", line 13, in configure' in tb[1]
-    assert 'user_faults.py", line 16, in load_model' in tb[3]
+    assert 'user_faults.py", line 15, in configure' in tb[1]
+    assert 'user_faults.py", line 18, in load_model' in tb[3]
     assert tb[-1] == "RuntimeError: my configure is broken"
     assert not [line for line in tb if "nav2_pyif" in line]  # none of the host's frames
     assert report[len(tb) + 1].startswith(
@@ -267,16 +269,39 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
         "InvalidController"
     )
     record = json.loads((tmp_path / "office_user_faults.BrokenConfigure.json").read_text())
-    assert "line 16, in load_model" in record["traceback"]
+    assert "line 18, in load_model" in record["traceback"]
 
 
 def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
     result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan")
     assert result.returncode == 1, result.stderr  # not reached; no traceback of the runner
     assert "Traceback" not in result.stderr
-    assert "NOT REACHED: set_plan failed: NoValidControl" in result.stdout
+    # as in Nav2: the plan the host failed is owed, and the cycle that sends it first fails
+    outcome = "controller failed: NoValidControl: set_plan got no reply"
+    assert f"NOT REACHED: {outcome}" in result.stdout
     record = json.loads((tmp_path / "office_user_faults.SlowSetPlan.json").read_text())
-    assert record["summary"]["outcome"].startswith("set_plan failed: NoValidControl")
+    assert record["summary"]["outcome"].startswith(outcome)
+
+
+def test_a_recovery_behaviour_runs_when_the_controller_keeps_failing(tmp_path: Path) -> None:
+    """As Nav2's behaviour tree: past the failure tolerance, a BackUp (the Python
+    FreestBackUp, served by the host), then the controller follows the plan again."""
+    stuck = ("--controller", "user_faults:StuckUntilMoved", "--timeout", "60")
+    alone = run_sim_command(tmp_path / "alone", *stuck)
+    assert alone.returncode == 1, alone.stderr
+    assert re.search(r"NOT REACHED: controller failed: NoValidControl: .*stuck here", alone.stdout)
+
+    recovered = run_sim_command(tmp_path / "recovered", *stuck, "--recovery", "free_backup")
+    assert recovered.returncode == 0, recovered.stdout + recovered.stderr
+    assert "REACHED" in recovered.stdout.splitlines()[0]
+    assert re.search(r"recoveries by free_backup: 1 \(t=0\.\d s succeeded", recovered.stdout)
+    name = "office_user_faults.StuckUntilMoved_free_backup.json"
+    record = json.loads((tmp_path / "recovered" / name).read_text())
+    (backup,) = record["summary"]["recoveries"]
+    assert backup["outcome"] == "succeeded" and backup["seconds"] > 1.0  # 0.3 m at 0.15 m/s
+    moved = [row for row in record["trajectory"] if row[0] <= backup["t_s"] + backup["seconds"]]
+    start = record["trajectory"][0]
+    assert math.dist(moved[-1][1:3], start[1:3]) > 0.25  # the behaviour drove the robot
 
 
 def test_built_in_zenoh_configs_make_no_shared_memory_pool_on_the_first_large_message() -> None:

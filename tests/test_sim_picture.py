@@ -5,11 +5,14 @@ from __future__ import annotations
 
 import matplotlib.pyplot as plt
 import numpy as np
+import pytest
 from nav2_pyif.runner.cli import default_stem
 from nav2_pyif.runner.maps import map_path
 from nav2_pyif.runner.plot import figure
 from nav2_pyif.runner.run import SimConfig, SimResult, prepare
 from nav2_pyif.runner.swaps import Swap
+
+pytestmark = pytest.mark.unit
 
 
 def driven(result: SimResult, cycles: int = 200) -> SimResult:

@@ -1,4 +1,4 @@
-"""The runner with Nav2's other plugins (issue 12 item 6): a smoother, a goal checker and a
+"""The runner with Nav2's other plugins: a smoother, a goal checker and a
 progress checker, a costmap layer, each served by a real planner host over Zenoh."""
 
 from __future__ import annotations
@@ -14,6 +14,8 @@ from nav2_pyif.costmap import Costmap
 from nav2_pyif.runner.extras import _cells_of
 from nav2_pyif.runner.maps import map_path
 from nav2_pyif.runner.run import SimConfig, run_sim
+
+pytestmark = pytest.mark.integration
 
 #: Across the office corridor's upper half, on the plan A* makes without it.
 KEEPOUT = "[[[11, 7.0], [12, 7.0], [12, 8], [11, 8]]]"

@@ -1,4 +1,4 @@
-"""The runner's simulated laser and debug outputs (issue 13 items 2 and 3): a controller that
+"""The runner's simulated laser and debug outputs: a controller that
 needs input "scan" drives offline with ``--scan``, the scan shipped as the plugin ships a
 topic of its ``inputs`` parameter (also inside the goal check's carried query); the reference
 controllers' debug outputs come back when asked for and are drawn in the PNG."""
@@ -11,12 +11,15 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 from nav2_pyif.runner.laser import LaserSpec
 from nav2_pyif.runner.plot import draw
 from nav2_pyif.runner.sensing import SensingConfig
 from nav2_pyif.testing import assert_reaches_goal, drive
 
 from tests.conftest import FIXTURES
+
+pytestmark = pytest.mark.integration
 
 # A short route on the office map: out of the start room, round the corner and north.
 START, GOAL = (2.0, 2.5, 0.0), (3.2, 5.5, 1.5708)

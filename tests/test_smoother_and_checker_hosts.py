@@ -27,6 +27,8 @@ from nav2_pyif.messages import ns_to_stamp
 
 from tests.conftest import make_costmap, wait_until, worker_pid_in
 
+pytestmark = pytest.mark.integration
+
 SMOOTHER = "nav2_pyif/test_robot/simple_smoother"
 GOAL = "nav2_pyif/test_robot/goal_checker"
 PROGRESS = "nav2_pyif/test_robot/progress_checker"

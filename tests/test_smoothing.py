@@ -17,6 +17,8 @@ from nav2_pyif_planners.smoothing import (
     smooth_path,
 )
 
+pytestmark = pytest.mark.unit
+
 
 def _zigzag(n: int = 40) -> np.ndarray:
     x = np.linspace(0.0, 4.0, n)

@@ -43,6 +43,8 @@ from tests.test_env_and_router import start_router
 from tests.test_host_e2e import GENEROUS, pose
 from tests.test_network import start_remote_host, stop
 
+pytestmark = pytest.mark.integration
+
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"  # what nav2-pyif sim --connect drives
 PLANNER_KEY = "nav2_pyif/sim/GridBased"
 CONTROLLER = "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"

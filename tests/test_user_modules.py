@@ -15,6 +15,8 @@ import pytest
 from tests.conftest import ROOT, in_project_env
 from tests.docs_blocks import blocks
 
+pytestmark = pytest.mark.integration
+
 SPEC = "my_planners.go_to:GoTo"
 USER_FILE = "my_planners/go_to.py"
 

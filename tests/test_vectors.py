@@ -17,6 +17,8 @@ from nav2_pyif_protocol.codec import (
 from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.vectors import build_vectors, rendered_files, to_json_tree
 
+pytestmark = pytest.mark.unit
+
 VECTORS = Path(__file__).resolve().parents[1] / "protocol" / "vectors"
 INDEX = json.loads((VECTORS / "index.json").read_text())["vectors"]
 
@@ -36,7 +38,7 @@ def test_vector_decodes_and_reencodes_byte_for_byte(entry: dict[str, str]) -> No
     assert to_json_tree(msgpack.unpackb(data, raw=False)) == expected
     op = Op(entry["op"])
     if entry["kind"] == "request":
-        if entry["name"] == "activate_version_2":
+        if entry["name"] == "activate_newer_version":
             with pytest.raises(ProtocolError) as info:
                 decode_request(data)
             assert info.value.error_type is ErrorType.VERSION_MISMATCH

@@ -21,6 +21,8 @@ from tests.test_faults import (  # fresh_rig: the fault suite's fixture, a rig p
     worker_pid,
 )
 
+pytestmark = pytest.mark.integration
+
 SIZES = [0, 1, 3, 4, 5, 200, 65_531, 65_536, 65_540, 1_000_000, 7]
 
 

@@ -1,5 +1,5 @@
-"""The control cycle with Python goal and progress checkers (issue 12, PROTOCOL.md section
-15), side by side in one run against one planner host (worker processes, the default):
+"""The control cycle with Python goal and progress checkers (PROTOCOL.md section 15),
+side by side in one run against one planner host (worker processes, the default):
 
 - controller only: compute_velocity_commands, one query;
 - checkers, a query each: is_goal_reached, check, compute_velocity_commands (Nav2's order);

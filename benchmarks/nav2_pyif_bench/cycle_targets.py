@@ -1,4 +1,4 @@
-"""Issue 15's control-cycle targets, as ratios within one run so that they hold on a noisy
+"""The control-cycle targets, as ratios within one run so that they hold on a noisy
 machine: the default (crash-isolated) cycle against the bare Zenoh get, against
 ``--isolation none`` and against the rclpy-node workaround, and its spread at a real rate."""
 

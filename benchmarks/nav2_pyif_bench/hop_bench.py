@@ -1,4 +1,4 @@
-"""What one more hop on the control cycle's path costs, by kind of hop (issue 15):
+"""What one more hop on the control cycle's path costs, by kind of hop:
 
 - ``pipe``: two Python processes echoing a 300-byte request over a multiprocessing pipe — the
   host ↔ worker hop that crash isolation adds to every call;
@@ -16,8 +16,9 @@
   the call path with no supervisor watching); ``routed_pipe``, the host's queryable relaying
   through the call pipe to a worker process (today's crash isolation); ``routed_guard``, the
   worker's own queryable replying while the host's queryable holds each query until the
-  worker's done-notice (issue 15 item 1 with the supervisor still able to answer a query the
-  worker dies on), the client asking with consolidation NONE and taking the first reply.
+  worker's done-notice (the worker owning the call path, with the supervisor still able to
+  answer a query the worker dies on), the client asking with consolidation NONE and taking
+  the first reply.
 
 Each in a tight loop and at a real control rate (rows spread over the period), with a
 300-byte request like compute_velocity_commands'.

@@ -1,4 +1,4 @@
-"""Inputs' cost (issue 13): a 720-beam LaserScan at 20 Hz, a 30 000-point PointCloud2 at 10 Hz
+"""Inputs' cost: a 720-beam LaserScan at 20 Hz, a 30 000-point PointCloud2 at 10 Hz
 and a 640 x 480 rgb8 Image at 10 Hz, a new one with every control cycle, through the protocol
 to a planner host whose controller gets it as NumPy (``self.inputs``), beside the same message
 published on a ROS topic to an rclpy node that converts it alike and acknowledges it.

@@ -1,4 +1,4 @@
-"""A Python costmap layer's cost per costmap update (issue 12): the reference keep-out layer
+"""A Python costmap layer's cost per costmap update: the reference keep-out layer
 on a 400 x 400 master grid (20 m at 5 cm), through a planner host (worker process), as
 nav2_pyif's C++ layer plugin calls it every update: update_bounds, then update_costs for the
 window, whose uint8 costs are all that crosses the wire. Paced at 5 Hz (a costmap's usual

@@ -5,7 +5,7 @@ python -m nav2_pyif_bench.routed_peer --connect tcp/127.0.0.1:7447 --key bench/k
 
 - ``pipe`` (today's): the host's queryable hands each request to a worker process over the
   call pipe (``FramedPipe``) and replies with what comes back;
-- ``guard`` (issue 15 item 1, "the worker owns the call path"): the worker has its own session
+- ``guard`` ("the worker owns the call path"): the worker has its own session
   and queryable and replies itself, then posts a one-way done-notice on the pipe; the host's
   queryable on the same key receives every query too and holds it until that notice, so that
   it could answer Unavailable or TimedOut if the worker died or overran (the fault suite's

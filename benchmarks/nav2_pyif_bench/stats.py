@@ -39,7 +39,7 @@ def verdict(value: float, op: str, target: float, digits: int) -> str:
 
 
 def cycle_target_lines(bare_us: float, workaround_us: float, cycles: dict[str, float]) -> list[str]:
-    """Issue 2's two control-cycle targets, for each nav2_pyif row (label -> median µs):
+    """The two absolute control-cycle targets, for each nav2_pyif row (label -> median µs):
     within 50 µs of the bare Zenoh round trip, and at least 2x below the rclpy workaround."""
     lines = []
     for label, median in cycles.items():

@@ -10,10 +10,17 @@ The host serves <key_prefix>/FollowPath (the controller) and <key_prefix>/GridBa
 planner), listening on `listen`; the plugins in `params_file` name those keys and connect to
 that endpoint (zenoh_connect) or to a Zenoh router that does. Restart the host alone to load a
 new version of a planner: the plugins re-send their state to it.
+
+The host is the ROS package nav2_pyif's planner-host (what `ros2 run nav2_pyif planner-host`
+starts) when a workspace or /opt/ros provides that package, else the planner-host on PATH
+(pip); `planner_host:=EXECUTABLE` names another.
 """
 
-from launch import LaunchDescription
-from launch.actions import DeclareLaunchArgument, ExecuteProcess, GroupAction
+import os
+
+from ament_index_python.packages import PackageNotFoundError, get_package_prefix
+from launch import LaunchContext, LaunchDescription
+from launch.actions import DeclareLaunchArgument, ExecuteProcess, GroupAction, OpaqueFunction
 from launch.conditions import IfCondition
 from launch.substitutions import LaunchConfiguration, PathJoinSubstitution
 from launch_ros.actions import Node
@@ -43,7 +50,9 @@ def generate_launch_description() -> LaunchDescription:
             description="where the host listens (no Zenoh router needed)",
         ),
         DeclareLaunchArgument(
-            "planner_host", default_value="planner-host", description="the host executable"
+            "planner_host",
+            default_value="",
+            description="the host executable (default: nav2_pyif's, else planner-host on PATH)",
         ),
         DeclareLaunchArgument("start_nav2", default_value="true"),
         DeclareLaunchArgument("use_sim_time", default_value="false"),
@@ -51,21 +60,8 @@ def generate_launch_description() -> LaunchDescription:
         DeclareLaunchArgument("log_level", default_value="info"),
     ]
 
-    host = ExecuteProcess(
-        cmd=[
-            arg("planner_host"),
-            "--listen",
-            arg("listen"),
-            "--serve",
-            [arg("key_prefix"), "/FollowPath=", arg("controller")],
-            "--serve",
-            [arg("key_prefix"), "/GridBased=", arg("planner")],
-        ],
-        name="planner_host",
-        output="screen",
-        additional_env={"PYTHONUNBUFFERED": "1"},
-        sigterm_timeout="10",
-    )
+    def host(context: LaunchContext) -> list[ExecuteProcess]:
+        return [_host_process(arg("planner_host").perform(context) or _installed_host())]
 
     ros_args = ["--ros-args", "--log-level", arg("log_level")]
     common = [params_file, {"use_sim_time": use_sim_time}]
@@ -103,4 +99,32 @@ def generate_launch_description() -> LaunchDescription:
             ),
         ],
     )
-    return LaunchDescription([*arguments, host, nav2])
+    return LaunchDescription([*arguments, OpaqueFunction(function=host), nav2])
+
+
+def _installed_host() -> str:
+    """nav2_pyif's planner-host where the ament index has that package, else the one on PATH."""
+    try:
+        prefix = get_package_prefix("nav2_pyif")
+    except PackageNotFoundError:
+        return "planner-host"
+    return os.path.join(prefix, "lib", "nav2_pyif", "planner-host")
+
+
+def _host_process(executable: str) -> ExecuteProcess:
+    arg = LaunchConfiguration
+    return ExecuteProcess(
+        cmd=[
+            executable,
+            "--listen",
+            arg("listen"),
+            "--serve",
+            [arg("key_prefix"), "/FollowPath=", arg("controller")],
+            "--serve",
+            [arg("key_prefix"), "/GridBased=", arg("planner")],
+        ],
+        name="planner_host",
+        output="screen",
+        additional_env={"PYTHONUNBUFFERED": "1"},
+        sigterm_timeout="10",
+    )

@@ -14,14 +14,23 @@ from nav2_pyif_protocol.constants import GENERIC_ERROR, HOST_FAILURE_ERROR, Erro
 
 class Nav2Error(Exception):
     """Base of every nav2_core-named exception. ``remote_traceback`` is set on the client side
-    when the error came from a planner host."""
+    when the error came from a planner host; ``host_failed`` when the host, not its planner,
+    failed the call (none alive, no reply in time, Unavailable)."""
 
     error_type: ClassVar[ErrorType]
 
-    def __init__(self, message: str = "", *, remote_traceback: str = "", python_type: str = ""):
+    def __init__(
+        self,
+        message: str = "",
+        *,
+        remote_traceback: str = "",
+        python_type: str = "",
+        host_failed: bool = False,
+    ):
         super().__init__(message)
         self.remote_traceback = remote_traceback
         self.python_type = python_type
+        self.host_failed = host_failed
 
 
 class ControllerException(Nav2Error):

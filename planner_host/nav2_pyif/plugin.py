@@ -34,7 +34,7 @@ class PluginContext:
         self.costmap = costmap
         self.params = params
         self.logger = logger
-        # a controller's extra inputs and debug outputs (issue 13); set up at configure
+        # a controller's extra inputs and debug outputs; set up at configure
         self.inputs = Inputs()
         self.debug = DebugOutputs({})
 

@@ -34,14 +34,41 @@ def _load(target: str) -> Callable[[], int]:
     return command
 
 
+ROS_HINT = "source a ROS 2 setup.bash, or pip install the ros extra: 'nav2-pyif[ros]'"
+#: Where each third-party module the commands import comes from, for the message when one is
+#: missing: a colcon workspace gets all but eclipse-zenoh from rosdep (README, Install).
+INSTALL_HINTS = {
+    "zenoh": "pip install eclipse-zenoh (no rosdep key has it; in a ROS 2 workspace, into a "
+    "venv made with --system-site-packages: README, Install)",
+    "msgpack": "pip install msgpack, or apt install python3-msgpack",
+    "numpy": "pip install numpy, or apt install python3-numpy",
+    "yaml": "pip install pyyaml, or apt install python3-yaml",
+    **dict.fromkeys(("rclpy", "geometry_msgs", "nav_msgs", "std_msgs"), ROS_HINT),
+    # Not the core's: the runner's and the benchmarks' extras.
+    "tqdm": "pip install 'nav2-pyif[runner]'",
+    "matplotlib": "pip install 'nav2-pyif[runner]' (nav2-pyif-bench: 'nav2-pyif[bench]')",
+    "cryptography": "pip install 'nav2-pyif[bench]'",
+}
+
+
 def run(target: str, prog: str) -> int:
     """Run the command ``target`` (``module:function``); 130 if SIGINT comes before it has
-    its own handlers."""
+    its own handlers; 1, saying how to install it, if a dependency cannot be imported."""
     try:
         return _load(target)()
     except KeyboardInterrupt:
         print(f"{prog}: stopped by SIGINT", file=sys.stderr)
         return SIGINT_EXIT
+    except ModuleNotFoundError as exc:
+        top = (exc.name or "").split(".")[0]
+        if top not in INSTALL_HINTS:
+            raise
+        print(
+            f"{prog}: the Python module {top!r} cannot be imported by {sys.executable}: "
+            f"{INSTALL_HINTS[top]}",
+            file=sys.stderr,
+        )
+        return 1
 
 
 #: Each command's real main, imported once the signals are held.

@@ -4,6 +4,6 @@ astar.AStar                     global planner: cost-aware 8-connected A* on the
 pure_pursuit.RegulatedPurePursuit  controller: Nav2's regulated pure pursuit, in NumPy
 mppi.MPPI                       controller: model predictive path integral, >= 1000 rollouts
 mppi_jax.MPPIJax                controller: the same in JAX (GPU when present; needs jax)
-apf                             controller: the seed paper's artificial potential field, in
-                                its function-delegate style (module functions)
+apf                             controller: an artificial potential field, in the
+                                function-delegate style (module functions)
 """

@@ -1,4 +1,4 @@
-"""The seed paper's artificial potential field controller, in its function-delegate style:
+"""An artificial potential field controller in the function-delegate style:
 plain module functions named in the plugin YAML (``python_module`` / ``python_delegates``).
 
     planner-host --key nav2_pyif/robot1/FollowPath --module nav2_pyif_planners.apf
@@ -9,7 +9,7 @@ The robot is pulled towards a point ``lookahead`` metres down the plan and pushe
 every costmap cell within ``influence_radius`` whose cost is at least ``obstacle_cost``.
 Costs are read as unsigned bytes (0..255): 253/254 are the strongest obstacles, not negative
 numbers as a signed int8 view of an OccupancyGrid would make them.
-State lives in the module (the seed's style), so one host process serves one APF robot.
+State lives in the module (as function delegates keep it), so one host process serves one APF robot.
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@ from __future__ import annotations
 from enum import Enum
 
 #: Sent in every request and reply; a host answers a different version with VersionMismatch.
-PROTOCOL_VERSION = 1
+PROTOCOL_VERSION = 2
 
 
 class PluginType(str, Enum):

@@ -77,6 +77,7 @@ STRUCT_DOCS: dict[str, str] = {
     "Error": "The error of a failed reply (PROTOCOL.md section 7).",
     "Input": "The latest message of one of the plugin's input topics, ROS-serialized (CDR).",
     "DebugOutput": "A message the planner publishes for debugging, ROS-serialized (CDR).",
+    "CarriedCall": "One call carried in another plugin's query (PROTOCOL.md section 15).",
 }
 
 
@@ -151,6 +152,10 @@ STRUCTS: dict[str, tuple[Field, ...]] = {
         _f("type", STR, "ROS message type, one the configure reply listed for this name"),
         _f("cdr", BIN, "the message as ROS serializes it (CDR with its 4-byte header)"),
     ),
+    "CarriedCall": (
+        _f("key", STR, "key prefix of the plugin it is for"),
+        _f("payload", BIN, "its encoded request (in a request) or reply (in a reply)"),
+    ),
 }
 
 REQUEST_ENVELOPE: tuple[Field, ...] = (
@@ -197,16 +202,21 @@ _CONFIGURE_REQUEST = (
 )
 
 #: op -> (request body fields, reply body fields)
-# The controller's call carried in a goal check's or a progress check's request
-# (PROTOCOL.md section 15).
-_THEN_COMPUTE = (
-    _f("then_compute_key", STR, "key prefix of the controller to run next", False),
-    _f(
-        "then_compute",
-        BIN,
-        "an encoded compute_velocity_commands request for then_compute_key",
-        False,
-    ),
+# The rest of the control cycle, carried in one of its calls' query (PROTOCOL.md section 15):
+# which ops may carry which is CARRIES below.
+_CARRY = _f(
+    "carry",
+    "CarriedCall",
+    "calls to run after this one, in order, as far as Nav2 would go; absent when none",
+    False,
+    many=True,
+)
+_CARRIED = _f(
+    "carried",
+    "CarriedCall",
+    "the replies of the carried calls that ran, in order; absent when none ran",
+    False,
+    many=True,
 )
 
 # A behaviour's step (PROTOCOL.md section 17): TimedBehavior's ResultStatus, by name.
@@ -276,6 +286,7 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
                 False,
                 many=True,
             ),
+            _CARRY,
         ),
         (
             _f("cmd_vel", "TwistStamped", "the command; every component finite"),
@@ -286,6 +297,7 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
                 False,
                 many=True,
             ),
+            _CARRIED,
         ),
     ),
     Op.SET_SPEED_LIMIT: (
@@ -329,16 +341,9 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             _f("pose", FLOAT7, "robot pose (x, y, z, qx, qy, qz, qw), the costmap's global frame"),
             _f("goal", FLOAT7, "goal pose, same frame"),
             _f("velocity", FLOAT6, "current velocity in the robot base frame"),
-            # The rest of the control cycle, carried along (PROTOCOL.md section 15).
-            _f("then_check_key", STR, "key prefix of the progress checker to run next", False),
-            _f("then_check", BIN, "an encoded check request for then_check_key", False),
-            *_THEN_COMPUTE,
+            _CARRY,
         ),
-        (
-            _f("reached", BOOL, "the goal is reached"),
-            _f("then_check", BIN, "the encoded reply to then_check, when it ran", False),
-            _f("then_compute", BIN, "the encoded reply to then_compute, when it ran", False),
-        ),
+        (_f("reached", BOOL, "the goal is reached"), _CARRIED),
     ),
     Op.GET_TOLERANCES: (
         (),
@@ -356,13 +361,11 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     Op.CHECK: (
         (
             _f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),
-            # The command, carried when the goal check's carried calls did not fit
-            # (PROTOCOL.md section 15).
-            *_THEN_COMPUTE,
+            _CARRY,
         ),
         (
             _f("making_progress", BOOL, "check()'s return: false = failed to make progress"),
-            _f("then_compute", BIN, "the encoded reply to then_compute, when it ran", False),
+            _CARRIED,
         ),
     ),
     Op.UPDATE_BOUNDS: (
@@ -503,4 +506,21 @@ OP_TIMEOUT: dict[Op, Timeout] = {
     Op.ON_RUN: Timeout.LIFECYCLE,
     Op.ON_CYCLE_UPDATE: Timeout.CALL,
     Op.ON_ACTION_COMPLETION: Timeout.LIFECYCLE,
+}
+
+
+#: The control cycle in fewer queries (PROTOCOL.md section 15): op -> the ops its request may
+#: carry. Nav2's controller_server calls the goal check, the progress check and the command
+#: in one of two orders (goal check first or last); a call carries those that follow it.
+CARRIES: dict[Op, tuple[Op, ...]] = {
+    Op.IS_GOAL_REACHED: (Op.CHECK, Op.COMPUTE_VELOCITY_COMMANDS),
+    Op.CHECK: (Op.COMPUTE_VELOCITY_COMMANDS,),
+    Op.COMPUTE_VELOCITY_COMMANDS: (Op.IS_GOAL_REACHED,),
+}
+
+#: After a successful reply of op, whether Nav2 goes on to the next call of the cycle:
+#: (reply field, the value it must have). An op not here goes on whenever it succeeds.
+GOES_ON: dict[Op, tuple[str, bool]] = {
+    Op.IS_GOAL_REACHED: ("reached", False),  # reached: controller_server stops
+    Op.CHECK: ("making_progress", True),  # no progress: FailedToMakeProgress
 }

@@ -27,7 +27,7 @@ import numpy as np
 
 from nav2_pyif_protocol.arrays import pack_poses, pack_xy
 from nav2_pyif_protocol.codec import ErrorInfo, Reply, Request, encode_reply, encode_request
-from nav2_pyif_protocol.constants import ErrorType, Op
+from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
 
 INLINE_BIN_LIMIT = 4096
 SID = "3f2a9c7e5b1d4e8f9a0b1c2d3e4f5a6b"
@@ -238,15 +238,25 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     compute = encode_request(req(Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=91))
     carrying = dict(
         reached,
-        then_check_key="nav2_pyif/robot1/progress_checker",
-        then_check=check,
-        then_compute_key="nav2_pyif/robot1/FollowPath",
-        then_compute=compute,
+        carry=[
+            {"key": "nav2_pyif/robot1/progress_checker", "payload": check},
+            {"key": "nav2_pyif/robot1/FollowPath", "payload": compute},
+        ],
     )
     yield (
         "is_goal_reached_carrying_the_cycle",
         req(Op.IS_GOAL_REACHED, carrying, seq=16),
         "the progress check and the controller's call carried along (encoded requests)",
+    )
+    goal_check = encode_request(req(Op.IS_GOAL_REACHED, reached, seq=93))
+    yield (
+        "compute_velocity_commands_carrying_the_goal_check",
+        req(
+            Op.COMPUTE_VELOCITY_COMMANDS,
+            dict(minimal, carry=[{"key": "nav2_pyif/robot1/goal_checker", "payload": goal_check}]),
+            seq=94,
+        ),
+        "the goal check last (Humble's order): the command carries it (encoded request)",
     )
     yield "get_tolerances_request", req(Op.GET_TOLERANCES, {}, seq=14), "empty body"
     yield "check_request", req(Op.CHECK, {"pose": pose(3.0, -1.0, 1.0, "odom")}, seq=15), ""
@@ -256,8 +266,7 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
             Op.CHECK,
             {
                 "pose": pose(1.0, 2.0, 0.5, "odom"),
-                "then_compute_key": "nav2_pyif/robot1/FollowPath",
-                "then_compute": compute,
+                "carry": [{"key": "nav2_pyif/robot1/FollowPath", "payload": compute}],
             },
             seq=92,
         ),
@@ -386,13 +395,17 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         ok(Op.IS_GOAL_REACHED, {"reached": True}, seq=13),
         "",
     )
-    carried = {
-        "reached": False,
-        "then_check": encode_reply(ok(Op.CHECK, {"making_progress": True}, seq=90), Op.CHECK),
-        "then_compute": encode_reply(
+    command = {
+        "key": "nav2_pyif/robot1/FollowPath",
+        "payload": encode_reply(
             ok(Op.COMPUTE_VELOCITY_COMMANDS, {"cmd_vel": cmd}, seq=91),
             Op.COMPUTE_VELOCITY_COMMANDS,
         ),
+    }
+    progress = encode_reply(ok(Op.CHECK, {"making_progress": True}, seq=90), Op.CHECK)
+    carried = {
+        "reached": False,
+        "carried": [{"key": "nav2_pyif/robot1/progress_checker", "payload": progress}, command],
     }
     yield (
         "is_goal_reached_reply_carrying_the_cycle",
@@ -451,7 +464,7 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
     yield (
         "check_reply_carrying_the_command",
         Op.CHECK,
-        ok(Op.CHECK, {"making_progress": True, "then_compute": carried["then_compute"]}, seq=92),
+        ok(Op.CHECK, {"making_progress": True, "carried": [command]}, seq=92),
         "making progress: the carried command's reply (encoded)",
     )
     errors = [
@@ -484,7 +497,8 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
             "error_version_mismatch",
             Op.ACTIVATE,
             ErrorType.VERSION_MISMATCH,
-            "request speaks protocol version 2; this host speaks 1",
+            f"request speaks protocol version {PROTOCOL_VERSION + 1}; this host speaks "
+            f"{PROTOCOL_VERSION}",
             "",
             "",
         ),
@@ -525,14 +539,14 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
 def build_vectors() -> list[Vector]:
     vectors = [Vector(n, "request", r.op, encode_request(r), d) for n, r, d in _requests()]
     # A request from a newer protocol version; hosts must answer VersionMismatch.
-    future = Request(op=Op.ACTIVATE, sid=SID, epoch=1, seq=1, v=2)
+    future = Request(op=Op.ACTIVATE, sid=SID, epoch=1, seq=1, v=PROTOCOL_VERSION + 1)
     vectors.append(
         Vector(
-            "activate_version_2",
+            "activate_newer_version",
             "request",
             Op.ACTIVATE,
             encode_request(future),
-            "protocol version 2: VersionMismatch",
+            f"protocol version {PROTOCOL_VERSION + 1}: VersionMismatch",
         )
     )
     vectors += [Vector(n, "reply", op, encode_reply(r, op), d) for n, op, r, d in _replies()]

@@ -1,9 +1,9 @@
 // nav2_pyif_bridge::PyGoalChecker and PyProgressChecker: controller_server's goal and progress
 // checkers answered by Python checkers in a planner host, over Zenoh. Nav2 only initializes
 // checkers: the session is configured at initialize and ends when the checker is destroyed.
-// With a Python controller and progress checker in the same controller_server, each goal
-// check's query carries their calls of the cycle (PROTOCOL.md section 15, carried_cycle.hpp):
-// one round trip per cycle.
+// With a Python controller and progress checker in the same controller_server, a call's query
+// carries the calls of the cycle that follow it (PROTOCOL.md section 15, carried_cycle.hpp):
+// one round trip per cycle when Nav2 checks the goal first, two when it checks it last.
 #pragma once
 
 #include <memory>

@@ -41,119 +41,212 @@ void CarriedCycle::forget(const PluginSession & session)
   if (progress_checker_ == &session) {
     progress_checker_ = nullptr;
   }
+  if (goal_checker_ == &session) {
+    goal_checker_ = nullptr;
+  }
   if (check_ && check_->session == &session) {
     check_.reset();
   }
   if (compute_ && compute_->session == &session) {
     compute_.reset();
   }
+  if (goal_check_ && goal_check_->session == &session) {
+    goal_check_.reset();
+  }
+}
+
+namespace
+{
+
+// The pending call prepared for `session`, taken out of `slot` (which is emptied either way:
+// a call prepared for another session is not coming).
+template<class Pending>
+std::optional<Pending> take_for(std::optional<Pending> & slot, const PluginSession & session)
+{
+  std::optional<Pending> pending = std::exchange(slot, std::nullopt);
+  if (pending && pending->session != &session) {
+    pending.reset();
+  }
+  return pending;
+}
+
+template<class Prepared>
+void add(
+  CarriedCalls & carry, std::optional<Prepared> & pending, const PluginSession & session,
+  const Carried & carried)
+{
+  carry.push_back(proto::CarriedCall{session.keys().prefix(), carried.payload});
+  pending->session = &session;
+}
+
+}  // namespace
+
+template<class Prepared>
+void CarriedCycle::keep(
+  std::optional<Pending<Prepared>> & slot, std::optional<Pending<Prepared>> pending,
+  CarriedCalls & replies, std::size_t & next, const PluginSession * current)
+{
+  if (!pending) {
+    return;
+  }
+  if (next < replies.size()) {
+    pending->reply = std::move(replies[next].payload);
+  }
+  ++next;
+  if (pending->session == current) {  // not cleaned up meanwhile
+    slot = std::move(pending);
+  }
+}
+
+void CarriedCycle::learn(bool goal_last_seen, bool seen)
+{
+  (goal_last_seen ? seen_last_ : seen_first_) = seen;
+  if (seen_last_ != seen_first_) {
+    goal_last_ = seen_last_;
+  }
+}
+
+void CarriedCycle::count(bool carried)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  carried_used_ += carried ? 1 : 0;
 }
 
 bool CarriedCycle::is_goal_reached(
-  GoalCheckerSession & checker, const proto::PoseStamped & pose,
-  const std::array<double, 7> & goal, const std::array<double, 6> & velocity,
-  const std::optional<proto::GoalChecker> & tolerances)
+  GoalCheckerSession & checker, const std::optional<proto::PoseStamped> & robot,
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity, const std::optional<proto::GoalChecker> & tolerances)
 {
-  std::optional<PendingCheck> check;
-  std::optional<PendingCompute> compute;
-  std::optional<CarriedCall> then_check;
-  std::optional<CarriedCall> then_compute;
+  std::optional<Pending<Carried>> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    check_.reset();  // a previous cycle's, unused: Nav2 went another way
-    compute_.reset();
-    command_inputs_ = CommandInputs{velocity, tolerances};
-    if (progress_checker_ != nullptr) {
-      if (auto carried = progress_checker_->prepare_check(pose)) {
-        then_check = CarriedCall{progress_checker_->keys().prefix(), carried->payload};
-        check = PendingCheck{progress_checker_, std::move(*carried), std::nullopt};
+    last_goal_check_ = Seen{pose, velocity};
+    learn(true, last_command_ == last_goal_check_);
+    goal_checker_ = &checker;
+    mine = take_for(goal_check_, checker);
+  }
+  std::optional<bool> reached;
+  if (mine) {
+    reached = checker.take_goal_check(std::move(mine->prepared), mine->reply, pose, goal, velocity);
+    count(reached.has_value());
+  }
+  if (!reached) {
+    std::optional<Pending<Carried>> check;
+    std::optional<Pending<PreparedCommand>> compute;
+    CarriedCalls carry;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      check_.reset();  // a previous cycle's, unused: Nav2 went another way
+      compute_.reset();
+      if (!goal_last_ && robot) {
+        command_inputs_ = CommandInputs{*robot, velocity, tolerances};
+        if (progress_checker_ != nullptr) {
+          if (auto carried = progress_checker_->prepare_check(*robot)) {
+            check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
+            add(carry, check, *progress_checker_, check->prepared);
+          }
+        }
+        if (controller_ != nullptr) {
+          if (auto prepared = controller_->prepare_command(*robot, velocity, tolerances)) {
+            compute = Pending<PreparedCommand>{nullptr, std::move(*prepared), std::nullopt};
+            add(carry, compute, *controller_, compute->prepared.carried);
+          }
+        }
       }
+      ++queries_;
     }
-    if (controller_ != nullptr) {
-      if (auto prepared = controller_->prepare_command(pose, velocity, tolerances)) {
-        then_compute = CarriedCall{controller_->keys().prefix(), prepared->carried.payload};
-        compute = PendingCompute{controller_, std::move(*prepared), std::nullopt};
-      }
-    }
-  }
-  GoalCheckReplies replies = checker.is_goal_reached(
-    pose.pose, goal, velocity, std::move(then_check), std::move(then_compute));
-  std::lock_guard<std::mutex> lock(mutex_);
-  // Kept only for the sessions still in use (one may have been cleaned up meanwhile).
-  if (check && check->session == progress_checker_) {
-    check->reply = std::move(replies.check);
-    check_ = std::move(check);
-  }
-  if (compute && compute->session == controller_) {
-    compute->reply = std::move(replies.compute);
-    compute_ = std::move(compute);
-  }
-  return replies.reached;
-}
-
-std::optional<bool> CarriedCycle::take_check(
-  ProgressCheckerSession & session, const proto::PoseStamped & pose)
-{
-  std::optional<PendingCheck> pending;
-  {
+    GoalCheckReplies replies = checker.is_goal_reached(pose, goal, velocity, std::move(carry));
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!check_ || check_->session != &session) {
-      return std::nullopt;
-    }
-    pending = std::exchange(check_, std::nullopt);
+    std::size_t next = 0;
+    keep(check_, std::move(check), replies.carried, next, progress_checker_);
+    keep(compute_, std::move(compute), replies.carried, next, controller_);
+    reached = replies.reached;
   }
-  std::optional<bool> answer = session.settle_check(pending->carried, pending->reply, pose);
   std::lock_guard<std::mutex> lock(mutex_);
-  ++(answer ? carried_used_ : sent_alone_);
-  return answer;
+  goal_ = goal;  // what a command's query may carry next, until the checker is reset
+  goal_seq_ = checker.last_seq();
+  return *reached;
 }
 
 bool CarriedCycle::check(ProgressCheckerSession & session, const proto::PoseStamped & pose)
 {
-  if (const std::optional<bool> carried = take_check(session, pose)) {
-    return *carried;
+  std::optional<Pending<Carried>> mine;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    mine = take_for(check_, session);
   }
-  std::optional<PendingCompute> compute;
-  std::optional<CarriedCall> then_compute;
+  if (mine) {
+    const std::optional<bool> carried =
+      session.take_check(std::move(mine->prepared), mine->reply, pose);
+    count(carried.has_value());
+    if (carried) {
+      return *carried;
+    }
+  }
+  std::optional<Pending<PreparedCommand>> compute;
+  CarriedCalls carry;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const std::optional<CommandInputs> inputs = std::exchange(command_inputs_, std::nullopt);
-    const bool still_fits = compute_ && same_pose(compute_->prepared.pose, pose);
-    if (inputs && controller_ != nullptr && !still_fits) {
-      compute_.reset();  // prepared for the goal check's pose
+    // Goal first, TF moved on since the goal check: the command prepared for it will not fit
+    if (!goal_last_ && inputs && controller_ != nullptr && !same_pose(inputs->pose, pose)) {
+      compute_.reset();
       if (auto prepared = controller_->prepare_command(pose, inputs->velocity, inputs->tolerances))
       {
-        then_compute = CarriedCall{controller_->keys().prefix(), prepared->carried.payload};
-        compute = PendingCompute{controller_, std::move(*prepared), std::nullopt};
+        compute = Pending<PreparedCommand>{nullptr, std::move(*prepared), std::nullopt};
+        add(carry, compute, *controller_, compute->prepared.carried);
       }
     }
+    ++queries_;
   }
-  CheckReplies replies = session.check(pose, std::move(then_compute));
+  CheckReplies replies = session.check(pose, std::move(carry));
   std::lock_guard<std::mutex> lock(mutex_);
-  if (compute && compute->session == controller_) {
-    compute->reply = std::move(replies.compute);
-    compute_ = std::move(compute);
-  }
+  std::size_t next = 0;
+  keep(compute_, std::move(compute), replies.carried, next, controller_);
   return replies.making_progress;
 }
 
-std::optional<proto::TwistStamped> CarriedCycle::take_compute(
+proto::TwistStamped CarriedCycle::compute_velocity_commands(
   ControllerSession & session, const proto::PoseStamped & pose,
   const std::array<double, 6> & velocity, const std::optional<proto::GoalChecker> & goal_checker)
 {
-  std::optional<PendingCompute> pending;
+  std::optional<Pending<PreparedCommand>> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!compute_ || compute_->session != &session) {
-      return std::nullopt;
-    }
-    pending = std::exchange(compute_, std::nullopt);
+    command_inputs_.reset();
+    last_command_ = Seen{pose.pose, velocity};
+    learn(false, last_goal_check_ == last_command_);
+    mine = take_for(compute_, session);
   }
-  std::optional<proto::TwistStamped> command =
-    session.settle_command(pending->prepared, pending->reply, pose, velocity, goal_checker);
+  if (mine) {
+    std::optional<proto::TwistStamped> carried = session.take_command(
+      std::move(mine->prepared), mine->reply, pose, velocity, goal_checker);
+    count(carried.has_value());
+    if (carried) {
+      return std::move(*carried);
+    }
+  }
+  std::optional<Pending<Carried>> goal_check;
+  CarriedCalls carry;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    goal_check_.reset();
+    // Goal last: the goal check for the goal its checker was last given, unless it was
+    // reset since (controller_server resets it with every new plan)
+    if (goal_last_ && goal_ && goal_checker_ != nullptr && goal_checker_->last_seq() == goal_seq_) {
+      if (auto carried = goal_checker_->prepare_goal_check(pose.pose, *goal_, velocity)) {
+        goal_check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
+        add(carry, goal_check, *goal_checker_, goal_check->prepared);
+      }
+    }
+    ++queries_;
+  }
+  CommandReplies replies =
+    session.compute_velocity_commands(pose, velocity, goal_checker, std::move(carry));
   std::lock_guard<std::mutex> lock(mutex_);
-  ++(command ? carried_used_ : sent_alone_);
-  return command;
+  std::size_t next = 0;
+  keep(goal_check_, std::move(goal_check), replies.carried, next, goal_checker_);
+  return std::move(replies.cmd_vel);
 }
 
 std::uint64_t CarriedCycle::carried_used() const
@@ -162,10 +255,16 @@ std::uint64_t CarriedCycle::carried_used() const
   return carried_used_;
 }
 
-std::uint64_t CarriedCycle::sent_alone() const
+std::uint64_t CarriedCycle::queries() const
 {
   std::lock_guard<std::mutex> lock(mutex_);
-  return sent_alone_;
+  return queries_;
+}
+
+bool CarriedCycle::goal_last() const
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  return goal_last_;
 }
 
 }  // namespace nav2_pyif_bridge::client

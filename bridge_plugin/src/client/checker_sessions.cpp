@@ -10,29 +10,60 @@ bool GoalCheckerSession::is_goal_reached(
   const std::array<double, 7> & pose, const std::array<double, 7> & goal,
   const std::array<double, 6> & velocity)
 {
-  return is_goal_reached(pose, goal, velocity, std::nullopt, std::nullopt).reached;
+  return is_goal_reached(pose, goal, velocity, {}).reached;
 }
 
-GoalCheckReplies GoalCheckerSession::is_goal_reached(
-  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
-  const std::array<double, 6> & velocity, std::optional<CarriedCall> then_check,
-  std::optional<CarriedCall> then_compute)
+namespace
 {
-  std::lock_guard<std::recursive_mutex> lock(mutex());
+
+proto::IsGoalReachedRequest goal_check(
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity)
+{
   proto::IsGoalReachedRequest body;
   body.pose = pose;
   body.goal = goal;
   body.velocity = velocity;
-  if (then_check) {
-    body.then_check_key = std::move(then_check->key);
-    body.then_check = std::move(then_check->payload);
-  }
-  if (then_compute) {
-    body.then_compute_key = std::move(then_compute->key);
-    body.then_compute = std::move(then_compute->payload);
-  }
+  return body;
+}
+
+std::optional<std::vector<proto::CarriedCall>> some(CarriedCalls carry)
+{
+  return carry.empty() ? std::nullopt : std::make_optional(std::move(carry));
+}
+
+}  // namespace
+
+GoalCheckReplies GoalCheckerSession::is_goal_reached(
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity, CarriedCalls carry)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::IsGoalReachedRequest body = goal_check(pose, goal, velocity);
+  body.carry = some(std::move(carry));
   auto reply = call_for<proto::IsGoalReachedReply>(body);
-  return {reply.reached, std::move(reply.then_check), std::move(reply.then_compute)};
+  return {reply.reached, reply.carried.value_or(CarriedCalls{})};
+}
+
+std::optional<Carried> GoalCheckerSession::prepare_goal_check(
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  return prepare(goal_check(pose, goal, velocity), CostmapMode::None);
+}
+
+std::optional<bool> GoalCheckerSession::take_goal_check(
+  Carried carried, const std::optional<proto::Bytes> & reply,
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  auto body = take(std::move(carried), reply, goal_check(pose, goal, velocity));
+  if (!body) {
+    return std::nullopt;
+  }
+  return std::get<proto::IsGoalReachedReply>(*body).reached;
 }
 
 proto::GetTolerancesReply GoalCheckerSession::get_tolerances()
@@ -49,21 +80,17 @@ void GoalCheckerSession::reset()
 
 bool ProgressCheckerSession::check(const proto::PoseStamped & pose)
 {
-  return check(pose, std::nullopt).making_progress;
+  return check(pose, {}).making_progress;
 }
 
-CheckReplies ProgressCheckerSession::check(
-  const proto::PoseStamped & pose, std::optional<CarriedCall> then_compute)
+CheckReplies ProgressCheckerSession::check(const proto::PoseStamped & pose, CarriedCalls carry)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
   proto::CheckRequest body;
   body.pose = pose;
-  if (then_compute) {
-    body.then_compute_key = std::move(then_compute->key);
-    body.then_compute = std::move(then_compute->payload);
-  }
+  body.carry = some(std::move(carry));
   auto reply = call_for<proto::CheckReply>(body);
-  return {reply.making_progress, std::move(reply.then_compute)};
+  return {reply.making_progress, reply.carried.value_or(CarriedCalls{})};
 }
 
 std::optional<Carried> ProgressCheckerSession::prepare_check(const proto::PoseStamped & pose)
@@ -74,19 +101,17 @@ std::optional<Carried> ProgressCheckerSession::prepare_check(const proto::PoseSt
   return prepare(body, CostmapMode::None);
 }
 
-std::optional<bool> ProgressCheckerSession::settle_check(
-  const Carried & carried, const std::optional<proto::Bytes> & reply,
-  const proto::PoseStamped & pose)
+std::optional<bool> ProgressCheckerSession::take_check(
+  Carried carried, const std::optional<proto::Bytes> & reply, const proto::PoseStamped & pose)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  if (!same_pose(std::get<proto::CheckRequest>(carried.request.body).pose, pose)) {
+  proto::CheckRequest body;
+  body.pose = pose;
+  auto answer = take(std::move(carried), reply, body);
+  if (!answer) {
     return std::nullopt;
   }
-  auto body = settle(carried, reply);
-  if (!body) {
-    return std::nullopt;
-  }
-  return std::get<proto::CheckReply>(*body).making_progress;
+  return std::get<proto::CheckReply>(*answer).making_progress;
 }
 
 void ProgressCheckerSession::reset()

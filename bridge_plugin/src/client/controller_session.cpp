@@ -8,25 +8,56 @@ namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
-void ControllerSession::set_plan(const proto::Path & path)
+std::optional<CallError> ControllerSession::set_plan(const proto::Path & path)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  call(proto::SetPlanRequest{path}, {});
   plan_ = path;
-  ++plan_generation_;
+  plan_owed_ = true;
+  try {
+    send_plan({});
+  } catch (const CallError & error) {
+    if (!error.host_failed()) {
+      plan_owed_ = false;
+      throw;
+    }
+    return error;
+  }
+  return std::nullopt;
+}
+
+void ControllerSession::send_plan(const CallOptions & options)
+{
+  call(proto::SetPlanRequest{*plan_}, options);
+  plan_owed_ = false;
 }
 
 proto::TwistStamped ControllerSession::compute_velocity_commands(
   const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
   const std::optional<proto::GoalChecker> & goal_checker)
 {
+  return compute_velocity_commands(pose, velocity, goal_checker, {}).cmd_vel;
+}
+
+CommandReplies ControllerSession::compute_velocity_commands(
+  const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
+  const std::optional<proto::GoalChecker> & goal_checker, std::vector<proto::CarriedCall> carry)
+{
   std::lock_guard<std::recursive_mutex> lock(mutex());
+  if (plan_owed_) {
+    send_plan({});  // a host failure here fails this cycle, as the cycle's own would
+  }
   std::vector<std::pair<std::string, std::uint64_t>> attached;
-  const proto::ComputeVelocityCommandsRequest body =
+  proto::ComputeVelocityCommandsRequest body =
     command_body(pose, velocity, goal_checker, attached);
+  if (!carry.empty()) {
+    body.carry = std::move(carry);
+  }
   CallOptions options;
   options.costmap = CostmapMode::IfChanged;
-  return command_of(call_for<proto::ComputeVelocityCommandsReply>(body, options), attached);
+  auto reply = call_for<proto::ComputeVelocityCommandsReply>(body, options);
+  std::vector<proto::CarriedCall> carried = std::move(reply.carried).value_or(
+    std::vector<proto::CarriedCall>{});
+  return {command_of(std::move(reply), attached), std::move(carried)};
 }
 
 std::optional<PreparedCommand> ControllerSession::prepare_command(
@@ -34,6 +65,9 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
+  if (plan_owed_) {
+    return std::nullopt;  // it would run on the host's old plan
+  }
   PreparedCommand prepared;
   auto carried = prepare(
     command_body(pose, velocity, goal_checker, prepared.inputs), CostmapMode::IfChanged);
@@ -41,42 +75,21 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
     return std::nullopt;
   }
   prepared.carried = std::move(*carried);
-  prepared.pose = pose;
-  prepared.velocity = velocity;
-  prepared.goal_checker = goal_checker;
-  prepared.plan_generation = plan_generation_;
   return prepared;
 }
 
-namespace
-{
-
-bool same(const std::optional<proto::GoalChecker> & a, const std::optional<proto::GoalChecker> & b)
-{
-  if (!a || !b) {
-    return a.has_value() == b.has_value();
-  }
-  return a->xy_goal_tolerance == b->xy_goal_tolerance &&
-         a->yaw_goal_tolerance == b->yaw_goal_tolerance &&
-         a->trans_stopped_velocity == b->trans_stopped_velocity &&
-         a->rot_stopped_velocity == b->rot_stopped_velocity;
-}
-
-}  // namespace
-
-std::optional<proto::TwistStamped> ControllerSession::settle_command(
-  const PreparedCommand & prepared, const std::optional<proto::Bytes> & reply,
+std::optional<proto::TwistStamped> ControllerSession::take_command(
+  PreparedCommand prepared, const std::optional<proto::Bytes> & reply,
   const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  if (!same_pose(pose, prepared.pose) || velocity != prepared.velocity ||
-    !same(goal_checker, prepared.goal_checker) || prepared.plan_generation != plan_generation_ ||
-    !costmap_unchanged_since(prepared.carried))
-  {
-    return std::nullopt;
+  if (plan_owed_) {
+    return std::nullopt;  // set_plan sent nothing (no host): the plan is news to the host too
   }
-  auto body = settle(prepared.carried, reply);
+  std::vector<std::pair<std::string, std::uint64_t>> attached;
+  auto body = take(
+    std::move(prepared.carried), reply, command_body(pose, velocity, goal_checker, attached));
   if (!body) {
     return std::nullopt;
   }
@@ -189,8 +202,8 @@ void ControllerSession::restore_state()
   }
   CallOptions options;
   options.allow_resync = false;
-  if (plan_) {
-    call(proto::SetPlanRequest{*plan_}, options);
+  if (plan_ && !plan_owed_) {
+    send_plan(options);  // an owed plan is sent by the call that owes it, right after
   }
   if (speed_limit_) {
     call(*speed_limit_, options);
@@ -206,6 +219,7 @@ void ControllerSession::forget_state()
     }
   }
   plan_.reset();
+  plan_owed_ = false;
   speed_limit_.reset();
 }
 

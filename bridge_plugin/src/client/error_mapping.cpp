@@ -69,6 +69,12 @@ CallError::CallError(ErrorKind kind, Cause cause, const std::string & message, R
 {
 }
 
+bool CallError::host_failed() const noexcept
+{
+  return unreachable() ||
+         (cause_ == Cause::Remote && remote_.type == protocol::error_type::kUnavailable);
+}
+
 std::string CallError::log_text() const
 {
   std::string text = what();

@@ -34,6 +34,19 @@ void attach_costmap(proto::RequestBody & body, proto::Costmap costmap)
     }, body);
 }
 
+void move_costmap(proto::RequestBody & from, proto::RequestBody & to)
+{
+  std::visit(
+    [&to](auto & request) {
+      using Body = std::decay_t<decltype(request)>;
+      if constexpr (HasCostmap<Body>::value) {
+        if (auto * target = std::get_if<Body>(&to)) {
+          target->costmap = std::move(request.costmap);
+        }
+      }
+    }, from);
+}
+
 std::string milliseconds(Duration d)
 {
   std::array<char, 32> text{};
@@ -257,7 +270,14 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
       generic_error(config_.kind), Cause::NotConfigured,
       op_text + " before configure on " + keys_.prefix());
   }
-  if (!transport_.hosts_alive()) {
+  // A plan-class op (create_plan, smooth) runs in its server's own thread while the robot
+  // follows its last path: without a host it waits, up to its timeout, for one to come back,
+  // as it would for a slow planner, so that a host restart costs no recovery. The control
+  // loop's and the lifecycle's ops fail at once.
+  if (!transport_.hosts_alive() &&
+    !(proto::timeout_class(op) == proto::TimeoutClass::Plan &&
+    transport_.wait_for_host(options.timeout.value_or(config_.timeouts.for_op(op)))))
+  {
     fail(
       host_failure_error(config_.kind), Cause::NoHost,
       "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +
@@ -405,10 +425,34 @@ std::optional<proto::ReplyBody> PluginSession::settle(
   throw error_from_reply(error, config_.kind);
 }
 
-bool PluginSession::costmap_unchanged_since(const Carried & carried)
+std::optional<proto::ReplyBody> PluginSession::take(
+  Carried carried, const std::optional<proto::Bytes> & answer, proto::RequestBody body)
 {
-  // Reading with the prepared version as the known one copies nothing when it is current.
-  return costmap_.read(carried.costmap_version).version == carried.costmap_version;
+  if (seq_ != carried.request.seq) {
+    return std::nullopt;  // something else went on this session since: the host has moved on
+  }
+  if (carried.costmap_version) {
+    // Reading with the prepared version as the known one copies nothing when it is current.
+    if (costmap_.read(carried.costmap_version).version != *carried.costmap_version) {
+      return std::nullopt;  // call() would attach the newer costmap
+    }
+    // The same version, and the same delivered one (nothing sent since): call() would
+    // attach the costmap the prepared request has, or none as it has none.
+    move_costmap(carried.request.body, body);
+  }
+  proto::Request real;
+  real.sid = sid_;
+  real.epoch = epoch_;
+  real.seq = carried.request.seq;
+  real.body = std::move(body);
+  try {
+    if (proto::encode_request(real) != carried.payload) {
+      return std::nullopt;
+    }
+  } catch (const proto::EncodeError &) {
+    return std::nullopt;  // the call on its own reports it
+  }
+  return settle(carried, answer);
 }
 
 proto::Reply PluginSession::exchange(const proto::Request & request, const CallOptions & options)

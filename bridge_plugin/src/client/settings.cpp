@@ -290,8 +290,8 @@ PluginParameters split_parameters(const proto::Params & params)
   if (!local.planner.empty() && !local.module.empty()) {
     bad("python_planner", "give either python_planner (module:Class) or python_module, not both");
   }
-  // python_module alone: the host binds the module's functions named after the roles, as
-  // the seed paper's examples are written (planner-host --module m).
+  // python_module alone: the host binds the module's functions named after the roles, so a
+  // module written with those names needs no map (planner-host --module m).
   if (local.module.empty() && !local.delegates.empty()) {
     bad("python_delegates", "given without python_module");
   }

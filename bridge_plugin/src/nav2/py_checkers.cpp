@@ -49,18 +49,19 @@ bool PyGoalChecker::isGoalReached(
   const geometry_msgs::msg::Twist & velocity)
 {
   // controller_server's pose lookup once more: the same message (its stamp included) when
-  // TF has not moved on, which the cycle's other calls then get.
+  // TF has not moved on, which the cycle's other calls then get (goal check first).
   geometry_msgs::msg::PoseStamped robot;
-  const bool carry = cycle_ && costmap_ros_ && costmap_ros_->getRobotPose(robot) &&
-    robot.pose == query_pose;
+  const bool looked_up = cycle_ && !cycle_->goal_last() && costmap_ros_ &&
+    costmap_ros_->getRobotPose(robot) && robot.pose == query_pose;
   const std::optional<protocol::GoalChecker> tolerances =
-    carry ? ros::tolerances(this) : std::nullopt;
+    looked_up ? ros::tolerances(this) : std::nullopt;
   return plugin_.bridge().forward(
     [&]() {
-      if (carry) {
+      if (cycle_) {
         return cycle_->is_goal_reached(
-          plugin_.session(), ros::to_wire(robot), pose7(goal_pose), ros::to_wire(velocity),
-          tolerances);
+          plugin_.session(),
+          looked_up ? std::make_optional(ros::to_wire(robot)) : std::nullopt,
+          pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity), tolerances);
       }
       return plugin_.session().is_goal_reached(
         pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity));

@@ -104,8 +104,13 @@ void PyController::setPlan(const nav_msgs::msg::Path & path)
         reset_owed_ = false;
         send_reset();
       }
-      session_->set_plan(ros::to_wire(plan_.set(
+      const std::optional<client::CallError> deferred = session_->set_plan(ros::to_wire(plan_.set(
         path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
+      if (deferred) {
+        RCLCPP_WARN(
+          bridge_->ros_logger(), "%s: plan kept, sent when the host answers: %s", name_.c_str(),
+          deferred->log_text().c_str());
+      }
       if (client::CarriedCycle * cycle = session_->cycle()) {
         cycle->use_controller(*session_);  // the next goal checks prepare for this plan
       }
@@ -124,19 +129,20 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
       if (auto fresh = plan_.refreshed(
           costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance()))
       {
-        session_->set_plan(ros::to_wire(*fresh));  // localisation moved the plan's frame
+        // Localisation moved the plan's frame. A host failure leaves it owed, and the cycle
+        // below sends it first (and fails as the host does).
+        session_->set_plan(ros::to_wire(*fresh));
       }
       sync_debug_publishers();
       const protocol::PoseStamped wire_pose = ros::to_wire(global);
       const std::array<double, 6> wire_velocity = ros::to_wire(velocity);
       const std::optional<protocol::GoalChecker> wire_tolerances = ros::tolerances(goal_checker);
       try {
-        // The command the goal check's query carried, when it was prepared for this call
+        // The command another call's query carried, when it was prepared for this call; else
+        // the call on its own, carrying the goal check when Nav2 calls that last
         client::CarriedCycle * cycle = session_->cycle();
-        std::optional<protocol::TwistStamped> carried = cycle ?
-          cycle->take_compute(*session_, wire_pose, wire_velocity, wire_tolerances) :
-          std::nullopt;
-        const protocol::TwistStamped cmd = carried ? std::move(*carried) :
+        const protocol::TwistStamped cmd = cycle ?
+          cycle->compute_velocity_commands(*session_, wire_pose, wire_velocity, wire_tolerances) :
           session_->compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
         host_silent_ = false;
         publish_debug();

@@ -122,6 +122,15 @@ void write(Writer & w, const DebugOutput & value, const FieldPath & where)
   w.bin(value.cdr);
 }
 
+void write(Writer & w, const CarriedCall & value, const FieldPath & where)
+{
+  w.map(2);
+  w.key("key");
+  w.str(value.key, where.key("key"));
+  w.key("payload");
+  w.bin(value.payload);
+}
+
 void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
 {
   w.map(7);
@@ -220,7 +229,7 @@ void write(Writer & w, const SetPlanReply &, const FieldPath &)
 void write(Writer & w, const ComputeVelocityCommandsRequest & value, const FieldPath & where)
 {
   w.map(std::size_t{2} + (value.goal_checker ? 1u : 0u) + (value.costmap ? 1u : 0u)
-      + (value.inputs ? 1u : 0u) + (value.debug_wanted ? 1u : 0u));
+      + (value.inputs ? 1u : 0u) + (value.debug_wanted ? 1u : 0u) + (value.carry ? 1u : 0u));
   w.key("pose");
   write(w, value.pose, where.key("pose"));
   w.key("velocity");
@@ -241,16 +250,24 @@ void write(Writer & w, const ComputeVelocityCommandsRequest & value, const Field
     w.key("debug_wanted");
     write(w, *value.debug_wanted, where.key("debug_wanted"));
   }
+  if (value.carry) {
+    w.key("carry");
+    write(w, *value.carry, where.key("carry"));
+  }
 }
 
 void write(Writer & w, const ComputeVelocityCommandsReply & value, const FieldPath & where)
 {
-  w.map(std::size_t{1} + (value.debug ? 1u : 0u));
+  w.map(std::size_t{1} + (value.debug ? 1u : 0u) + (value.carried ? 1u : 0u));
   w.key("cmd_vel");
   write(w, value.cmd_vel, where.key("cmd_vel"));
   if (value.debug) {
     w.key("debug");
     write(w, *value.debug, where.key("debug"));
+  }
+  if (value.carried) {
+    w.key("carried");
+    write(w, *value.carried, where.key("carried"));
   }
 }
 
@@ -348,44 +365,27 @@ void write(Writer & w, const SmoothReply & value, const FieldPath & where)
 
 void write(Writer & w, const IsGoalReachedRequest & value, const FieldPath & where)
 {
-  w.map(std::size_t{3} + (value.then_check_key ? 1u : 0u) + (value.then_check ? 1u : 0u)
-      + (value.then_compute_key ? 1u : 0u) + (value.then_compute ? 1u : 0u));
+  w.map(std::size_t{3} + (value.carry ? 1u : 0u));
   w.key("pose");
   w.floats(value.pose);
   w.key("goal");
   w.floats(value.goal);
   w.key("velocity");
   w.floats(value.velocity);
-  if (value.then_check_key) {
-    w.key("then_check_key");
-    w.str(*value.then_check_key, where.key("then_check_key"));
-  }
-  if (value.then_check) {
-    w.key("then_check");
-    w.bin(*value.then_check);
-  }
-  if (value.then_compute_key) {
-    w.key("then_compute_key");
-    w.str(*value.then_compute_key, where.key("then_compute_key"));
-  }
-  if (value.then_compute) {
-    w.key("then_compute");
-    w.bin(*value.then_compute);
+  if (value.carry) {
+    w.key("carry");
+    write(w, *value.carry, where.key("carry"));
   }
 }
 
-void write(Writer & w, const IsGoalReachedReply & value, const FieldPath &)
+void write(Writer & w, const IsGoalReachedReply & value, const FieldPath & where)
 {
-  w.map(std::size_t{1} + (value.then_check ? 1u : 0u) + (value.then_compute ? 1u : 0u));
+  w.map(std::size_t{1} + (value.carried ? 1u : 0u));
   w.key("reached");
   w.boolean(value.reached);
-  if (value.then_check) {
-    w.key("then_check");
-    w.bin(*value.then_check);
-  }
-  if (value.then_compute) {
-    w.key("then_compute");
-    w.bin(*value.then_compute);
+  if (value.carried) {
+    w.key("carried");
+    write(w, *value.carried, where.key("carried"));
   }
 }
 
@@ -407,27 +407,23 @@ void write(Writer & w, const GetTolerancesReply & value, const FieldPath &)
 
 void write(Writer & w, const CheckRequest & value, const FieldPath & where)
 {
-  w.map(std::size_t{1} + (value.then_compute_key ? 1u : 0u) + (value.then_compute ? 1u : 0u));
+  w.map(std::size_t{1} + (value.carry ? 1u : 0u));
   w.key("pose");
   write(w, value.pose, where.key("pose"));
-  if (value.then_compute_key) {
-    w.key("then_compute_key");
-    w.str(*value.then_compute_key, where.key("then_compute_key"));
-  }
-  if (value.then_compute) {
-    w.key("then_compute");
-    w.bin(*value.then_compute);
+  if (value.carry) {
+    w.key("carry");
+    write(w, *value.carry, where.key("carry"));
   }
 }
 
-void write(Writer & w, const CheckReply & value, const FieldPath &)
+void write(Writer & w, const CheckReply & value, const FieldPath & where)
 {
-  w.map(std::size_t{1} + (value.then_compute ? 1u : 0u));
+  w.map(std::size_t{1} + (value.carried ? 1u : 0u));
   w.key("making_progress");
   w.boolean(value.making_progress);
-  if (value.then_compute) {
-    w.key("then_compute");
-    w.bin(*value.then_compute);
+  if (value.carried) {
+    w.key("carried");
+    write(w, *value.carried, where.key("carried"));
   }
 }
 
@@ -687,6 +683,15 @@ DebugOutput read_debug_output(const Object & object, const FieldPath & where)
   return out;
 }
 
+CarriedCall read_carried_call(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  CarriedCall out;
+  out.key = m.required("key", read_str);
+  out.payload = m.required("payload", read_bin);
+  return out;
+}
+
 ConfigureRequest read_configure_request(const Object & object, const FieldPath & where)
 {
   const MapReader m(object, where);
@@ -789,6 +794,7 @@ ComputeVelocityCommandsRequest read_compute_velocity_commands_request(
   out.costmap = m.optional("costmap", read_costmap);
   out.inputs = m.optional("inputs", read_array<read_input>);
   out.debug_wanted = m.optional("debug_wanted", read_array<read_str>);
+  out.carry = m.optional("carry", read_array<read_carried_call>);
   return out;
 }
 
@@ -799,6 +805,7 @@ ComputeVelocityCommandsReply read_compute_velocity_commands_reply(
   ComputeVelocityCommandsReply out;
   out.cmd_vel = m.required("cmd_vel", read_twist_stamped);
   out.debug = m.optional("debug", read_array<read_debug_output>);
+  out.carried = m.optional("carried", read_array<read_carried_call>);
   return out;
 }
 
@@ -903,10 +910,7 @@ IsGoalReachedRequest read_is_goal_reached_request(const Object & object, const F
   out.pose = m.required("pose", read_f64_array<7>);
   out.goal = m.required("goal", read_f64_array<7>);
   out.velocity = m.required("velocity", read_f64_array<6>);
-  out.then_check_key = m.optional("then_check_key", read_str);
-  out.then_check = m.optional("then_check", read_bin);
-  out.then_compute_key = m.optional("then_compute_key", read_str);
-  out.then_compute = m.optional("then_compute", read_bin);
+  out.carry = m.optional("carry", read_array<read_carried_call>);
   return out;
 }
 
@@ -915,8 +919,7 @@ IsGoalReachedReply read_is_goal_reached_reply(const Object & object, const Field
   const MapReader m(object, where);
   IsGoalReachedReply out;
   out.reached = m.required("reached", read_bool);
-  out.then_check = m.optional("then_check", read_bin);
-  out.then_compute = m.optional("then_compute", read_bin);
+  out.carried = m.optional("carried", read_array<read_carried_call>);
   return out;
 }
 
@@ -941,8 +944,7 @@ CheckRequest read_check_request(const Object & object, const FieldPath & where)
   const MapReader m(object, where);
   CheckRequest out;
   out.pose = m.required("pose", read_pose_stamped);
-  out.then_compute_key = m.optional("then_compute_key", read_str);
-  out.then_compute = m.optional("then_compute", read_bin);
+  out.carry = m.optional("carry", read_array<read_carried_call>);
   return out;
 }
 
@@ -951,7 +953,7 @@ CheckReply read_check_reply(const Object & object, const FieldPath & where)
   const MapReader m(object, where);
   CheckReply out;
   out.making_progress = m.required("making_progress", read_bool);
-  out.then_compute = m.optional("then_compute", read_bin);
+  out.carried = m.optional("carried", read_array<read_carried_call>);
   return out;
 }
 
@@ -1224,6 +1226,11 @@ std::size_t payload_size(const DebugOutput & value)
   return value.name.size() + value.type.size() + value.cdr.size();
 }
 
+std::size_t payload_size(const CarriedCall & value)
+{
+  return value.key.size() + value.payload.size();
+}
+
 std::size_t payload_size(const ConfigureRequest & value)
 {
   return value.plugin_type.size() + value.name.size() + value.node.size()
@@ -1264,12 +1271,14 @@ std::size_t payload_size(const ComputeVelocityCommandsRequest & value)
   return payload_size(value.pose) + (value.goal_checker ? payload_size((*value.goal_checker)) : 0)
            + (value.costmap ? payload_size((*value.costmap)) : 0)
            + (value.inputs ? payload_size((*value.inputs)) : 0)
-           + (value.debug_wanted ? payload_size((*value.debug_wanted)) : 0);
+           + (value.debug_wanted ? payload_size((*value.debug_wanted)) : 0)
+           + (value.carry ? payload_size((*value.carry)) : 0);
 }
 
 std::size_t payload_size(const ComputeVelocityCommandsReply & value)
 {
-  return payload_size(value.cmd_vel) + (value.debug ? payload_size((*value.debug)) : 0);
+  return payload_size(value.cmd_vel) + (value.debug ? payload_size((*value.debug)) : 0)
+           + (value.carried ? payload_size((*value.carried)) : 0);
 }
 
 std::size_t payload_size(const SetSpeedLimitRequest &) {return 0;}
@@ -1311,16 +1320,12 @@ std::size_t payload_size(const SmoothReply & value)
 
 std::size_t payload_size(const IsGoalReachedRequest & value)
 {
-  return (value.then_check_key ? (*value.then_check_key).size() : 0)
-           + (value.then_check ? (*value.then_check).size() : 0)
-           + (value.then_compute_key ? (*value.then_compute_key).size() : 0)
-           + (value.then_compute ? (*value.then_compute).size() : 0);
+  return (value.carry ? payload_size((*value.carry)) : 0);
 }
 
 std::size_t payload_size(const IsGoalReachedReply & value)
 {
-  return (value.then_check ? (*value.then_check).size() : 0)
-           + (value.then_compute ? (*value.then_compute).size() : 0);
+  return (value.carried ? payload_size((*value.carried)) : 0);
 }
 
 std::size_t payload_size(const GetTolerancesRequest &) {return 0;}
@@ -1329,13 +1334,12 @@ std::size_t payload_size(const GetTolerancesReply &) {return 0;}
 
 std::size_t payload_size(const CheckRequest & value)
 {
-  return payload_size(value.pose) + (value.then_compute_key ? (*value.then_compute_key).size() : 0)
-           + (value.then_compute ? (*value.then_compute).size() : 0);
+  return payload_size(value.pose) + (value.carry ? payload_size((*value.carry)) : 0);
 }
 
 std::size_t payload_size(const CheckReply & value)
 {
-  return (value.then_compute ? (*value.then_compute).size() : 0);
+  return (value.carried ? payload_size((*value.carried)) : 0);
 }
 
 std::size_t payload_size(const UpdateBoundsRequest &) {return 0;}

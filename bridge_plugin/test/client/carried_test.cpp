@@ -1,6 +1,6 @@
-// Requests carried in the goal check's query (PROTOCOL.md section 15), plugin side: the
-// controller's and the progress checker's prepared calls answered by a fake host, then used
-// only when Nav2's call is the prepared one, and their sessions leaving the carried cycle.
+// Requests carried in another call's query (PROTOCOL.md section 15), plugin side: prepared
+// calls answered by a fake host, then used only when Nav2's call is the prepared one; the
+// carried cycle in both of controller_server's orders; sessions leaving the cycle.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -28,7 +28,7 @@ const proto::GoalChecker kTolerances{0.25, 0.3, 0.05, 0.1};
 class CarriedTest : public ::testing::Test
 {
 protected:
-  void SetUp() override
+  static SessionConfig session_config()
   {
     SessionConfig config;
     config.key_prefix = kKey;
@@ -36,7 +36,12 @@ protected:
     config.node = "controller_server";
     config.global_frame = "odom";
     config.timeouts.call = 2s;
-    session = std::make_unique<ControllerSession>(config, host, costmap, log.logger());
+    return config;
+  }
+
+  void SetUp() override
+  {
+    session = std::make_unique<ControllerSession>(session_config(), host, costmap, log.logger());
     session->configure();
     session->activate();
     session->set_plan(straight_path(40, 3.0, 0.0));
@@ -93,7 +98,7 @@ TEST_F(CarriedTest, ThePreparedCommandIsUsedWhenNav2CallsWithTheSameInputs)
   const auto reply = run(prepared.carried);
   const std::size_t queries = host.received.size();
   const auto cmd =
-    session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
+    session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
   ASSERT_TRUE(cmd.has_value());
   // the fake host echoes: plan size, default gain, no speed limit, costmap v1, tolerances, call 1
   EXPECT_EQ(cmd->twist, (std::array<double, 6>{40.0, 1.5, -1.0, 1.0, 1.0, 1.0}));
@@ -121,7 +126,7 @@ TEST_F(CarriedTest, AnyOtherInputMakesTheCallGoOnItsOwn)
       std::tuple{pose_at(1.0, 1.0), kVelocity, std::optional<proto::GoalChecker>{}}})
   {
     const PreparedCommand prepared = prepare();
-    EXPECT_FALSE(session->settle_command(prepared, run(prepared.carried), pose, velocity,
+    EXPECT_FALSE(session->take_command(prepared, run(prepared.carried), pose, velocity,
       tolerances).has_value());
   }
 }
@@ -132,29 +137,29 @@ TEST_F(CarriedTest, ACostmapOrPlanChangedSinceMakesTheCallGoOnItsOwn)
   auto reply = run(prepared.carried);
   costmap.data[5] = 99;
   EXPECT_FALSE(
-    session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
+    session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
 
   prepared = prepare();
   reply = run(prepared.carried);
   session->set_plan(straight_path(10, 1.0, 0.0));  // localisation moved the plan's frame
   EXPECT_FALSE(
-    session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
+    session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
 }
 
 TEST_F(CarriedTest, NoReplyUnavailableOrSessionUnknownMakeTheCallGoOnItsOwn)
 {
   PreparedCommand prepared = prepare();
-  EXPECT_FALSE(session->settle_command(
+  EXPECT_FALSE(session->take_command(
     prepared, std::nullopt, pose_at(1.0, 1.0), kVelocity, kTolerances));  // did not run
 
   prepared = prepare();
   host.restart();  // the new host knows no session
-  EXPECT_FALSE(session->settle_command(
+  EXPECT_FALSE(session->take_command(
     prepared, run(prepared.carried), pose_at(1.0, 1.0), kVelocity, kTolerances));
 
   prepared = prepare();
   host.error_once = proto::Error{"Unavailable", "restarting", "", ""};
-  EXPECT_FALSE(session->settle_command(
+  EXPECT_FALSE(session->take_command(
     prepared, run(prepared.carried), pose_at(1.0, 1.0), kVelocity, kTolerances));
 }
 
@@ -164,14 +169,14 @@ TEST_F(CarriedTest, AnErrorReplyIsTheCallsError)
   host.error_once = proto::Error{"NoValidControl", "blocked", "Traceback ...", "x.Y"};
   const auto reply = run(prepared.carried);
   const CallError e = error_of([&] {
-        session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
+        session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
       });
   EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
   EXPECT_EQ(std::string(e.what()), "blocked");
 
   prepared = prepare();
   const CallError bad = error_of([&] {
-        session->settle_command(
+        session->take_command(
           prepared, proto::Bytes{1, 2, 3}, pose_at(1.0, 1.0), kVelocity, kTolerances);
       });
   EXPECT_EQ(bad.cause(), Cause::BadReply);
@@ -183,7 +188,7 @@ TEST_F(CarriedTest, ANonFiniteCarriedCommandIsRefusedAsOnItsOwn)
   host.nan_once = true;
   const auto reply = run(prepared.carried);
   const CallError e = error_of([&] {
-        session->settle_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
+        session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
       });
   EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
 }
@@ -202,7 +207,9 @@ TEST_F(CarriedTest, TheCycleUsesACarriedAnswerOnceAndForgetsALeavingSession)
   session->join(cycle);
   cycle->use_controller(*session);
   // Nothing pending: the controller calls on its own.
-  EXPECT_FALSE(cycle->take_compute(*session, pose_at(1.0, 1.0), kVelocity, kTolerances));
+  const std::size_t before = host.received.size();
+  cycle->compute_velocity_commands(*session, pose_at(1.0, 1.0), kVelocity, kTolerances);
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"compute_velocity_commands"}));
   session.reset();  // destroyed: leaves the cycle, which then prepares nothing for it
   EXPECT_EQ(cycle->carried_used(), 0u);
 }
@@ -239,52 +246,186 @@ TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
   cycle->use_controller(*session);
   cycle->use_progress_checker(progress_checker);
   const std::array<double, 7> goal{3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  const proto::PoseStamped robot = pose_at(1.0, 1.0);
+  auto goal_check = [&] {
+      return cycle->is_goal_reached(goal_checker, robot, robot.pose, goal, kVelocity, kTolerances);
+    };
   auto moved = pose_at(1.05, 1.0);  // TF moved on between Nav2's two pose lookups
   moved.stamp_ns += 20000000;
 
   std::size_t before = host.received.size();
-  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
-    kTolerances));
+  EXPECT_FALSE(goal_check());
   EXPECT_TRUE(cycle->check(progress_checker, moved));
-  const auto cmd = cycle->take_compute(*session, moved, kVelocity, kTolerances);
-  ASSERT_TRUE(cmd.has_value());
-  EXPECT_EQ(cmd->twist[5], 2.0);  // its second run: the first was for the goal check's pose
+  const auto cmd = cycle->compute_velocity_commands(*session, moved, kVelocity, kTolerances);
+  EXPECT_EQ(cmd.twist[5], 2.0);  // its second run: the first was for the goal check's pose
   // two queries, not three: the command came in the check's reply
   EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"is_goal_reached", "check"}));
   EXPECT_EQ(host.carried_ops, (std::vector<std::string>{"check", "compute_velocity_commands",
     "compute_velocity_commands"}));
-  const proto::Request & check = host.last();
-  ASSERT_TRUE(std::get<proto::CheckRequest>(check.body).then_compute_key.has_value());
-  EXPECT_EQ(*std::get<proto::CheckRequest>(check.body).then_compute_key, kKey);
+  const auto & carry = std::get<proto::CheckRequest>(host.last().body).carry;
+  ASSERT_TRUE(carry.has_value());
+  EXPECT_EQ(carry->at(0).key, kKey);
 
   // Another velocity than the goal check's (odometry moved on too): the command goes alone.
   before = host.received.size();
-  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
-    kTolerances));
+  EXPECT_FALSE(goal_check());
   EXPECT_TRUE(cycle->check(progress_checker, moved));
   std::array<double, 6> faster = kVelocity;
   faster[0] += 0.01;
-  EXPECT_FALSE(cycle->take_compute(*session, moved, faster, kTolerances));
-  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"is_goal_reached", "check"}));
+  cycle->compute_velocity_commands(*session, moved, faster, kTolerances);
+  EXPECT_EQ(
+    host.ops_since(before),
+    (std::vector<std::string>{"is_goal_reached", "check", "compute_velocity_commands"}));
 
   // No progress: Nav2 stops there, and so did the host: the carried command did not run.
   host.making_progress = false;
   host.carried_ops.clear();
-  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
-    kTolerances));
+  EXPECT_FALSE(goal_check());
   EXPECT_FALSE(cycle->check(progress_checker, moved));
   EXPECT_EQ(host.carried_ops, (std::vector<std::string>{"check"}));
-  EXPECT_FALSE(cycle->take_compute(*session, moved, kVelocity, kTolerances));
 
   // The same pose as the goal check's: its carried answers are used, nothing more is sent.
   host.making_progress = true;
+  EXPECT_FALSE(goal_check());
   before = host.received.size();
-  EXPECT_FALSE(cycle->is_goal_reached(goal_checker, pose_at(1.0, 1.0), goal, kVelocity,
-    kTolerances));
-  EXPECT_TRUE(cycle->check(progress_checker, pose_at(1.0, 1.0)));
-  EXPECT_TRUE(cycle->take_compute(*session, pose_at(1.0, 1.0), kVelocity, kTolerances));
-  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"is_goal_reached"}));
+  EXPECT_TRUE(cycle->check(progress_checker, robot));
+  cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{}));
+  EXPECT_FALSE(cycle->goal_last());
 }
+
+TEST_F(CarriedTest, GoalLastAResetOrAMovedPoseSendsTheGoalCheckOnItsOwn)
+{
+  Timeouts timeouts;
+  timeouts.call = 2s;
+  auto made = checkers(timeouts);
+  GoalCheckerSession & goal_checker = *made.goal;
+  auto cycle = CarriedCycle::of("/carried_test_goal_last");
+  session->join(cycle);
+  cycle->use_controller(*session);
+  const std::array<double, 7> goal{3.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  auto command_then_goal_check = [&](const proto::PoseStamped & robot, const auto & looked_up) {
+      cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);
+      return cycle->is_goal_reached(
+        goal_checker, std::nullopt, looked_up.pose, goal, kVelocity, std::nullopt);
+    };
+  command_then_goal_check(pose_at(0.5, 1.0), pose_at(0.5, 1.0));  // shows the order
+  ASSERT_TRUE(cycle->goal_last());
+  std::size_t before = host.received.size();
+  command_then_goal_check(pose_at(0.6, 1.0), pose_at(0.6, 1.0));
+  EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"compute_velocity_commands"}));
+  EXPECT_EQ(host.carried_ops.back(), "is_goal_reached");
+  // A reset (a new plan): the goal checker may have another goal; the command carries none.
+  goal_checker.reset();
+  before = host.received.size();
+  command_then_goal_check(pose_at(0.7, 1.0), pose_at(0.7, 1.0));
+  EXPECT_EQ(
+    host.ops_since(before),
+    (std::vector<std::string>{"compute_velocity_commands", "is_goal_reached"}));
+  // TF moved on between the command's pose lookup and the goal check's: on its own.
+  before = host.received.size();
+  command_then_goal_check(pose_at(0.8, 1.0), pose_at(0.81, 1.0));
+  EXPECT_EQ(
+    host.ops_since(before),
+    (std::vector<std::string>{"compute_velocity_commands", "is_goal_reached"}));
+  EXPECT_TRUE(cycle->goal_last());  // a cycle that fits neither order changes nothing
+  EXPECT_EQ(cycle->carried_used(), 1u);
+}
+
+// What one control cycle's calls answered, in controller_server's order (`goal_last`: the goal
+// check ends the cycle, as in Humble), up to where Nav2 stops (the goal reached).
+std::vector<double> drive(
+  bool goal_last, const std::function<bool()> & goal_check, const std::function<bool()> & check,
+  const std::function<proto::TwistStamped()> & compute)
+{
+  std::vector<double> seen;
+  auto goal = [&] {
+      seen.push_back(goal_check() ? 1.0 : 0.0);
+      return seen.back() == 1.0;
+    };
+  if (!goal_last && goal()) {
+    return seen;
+  }
+  if (check) {
+    seen.push_back(check() ? 1.0 : 0.0);
+  }
+  const auto cmd = compute();
+  seen.insert(seen.end(), cmd.twist.begin(), cmd.twist.end());
+  if (goal_last) {
+    goal();
+  }
+  return seen;
+}
+
+// Queries per cycle, each order, and the answers of the same calls each sent on its own.
+class CarriedOrderTest : public CarriedTest, public ::testing::WithParamInterface<bool>
+{
+protected:
+  // The queries `steps` cycles took, the robot moving on between cycles and arriving in the
+  // last; with a Python progress checker when `progress`.
+  std::size_t run_cycles(bool goal_last, bool progress, int steps = 5)
+  {
+    Timeouts timeouts;
+    timeouts.call = 2s;
+    auto made = checkers(timeouts);
+    auto cycle = CarriedCycle::of(goal_last ? "/order_last" : "/order_first");
+    session->join(cycle);
+    cycle->use_controller(*session);
+    if (progress) {
+      made.progress->join(cycle);
+      cycle->use_progress_checker(*made.progress);
+    }
+    // the same plugins on their own: a controller with the same plan, checkers
+    ControllerSession alone(session_config(), host, costmap, log.logger());
+    alone.configure();
+    alone.activate();
+    alone.set_plan(straight_path(40, 3.0, 0.0));
+    auto plain = checkers(timeouts);
+    const std::array<double, 7> goal{2.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+    host.reached_x = 2.0;
+    std::size_t queries = 0;
+    for (int step = 0; step < steps; ++step) {
+      proto::PoseStamped robot = pose_at(0.5 + 0.375 * step, 1.0);
+      robot.stamp_ns += step * 50000000;
+      std::size_t before = host.received.size();
+      const std::vector<double> carried = drive(
+        goal_last,
+        [&] {
+          return cycle->is_goal_reached(*made.goal, robot, robot.pose, goal, kVelocity,
+          kTolerances);
+        },
+        progress ? std::function<bool()>{[&] {return cycle->check(*made.progress, robot);}} :
+        nullptr,
+        [&] {return cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);});
+      queries += host.received.size() - before;
+      const std::vector<double> uncarried = drive(
+        goal_last, [&] {return plain.goal->is_goal_reached(robot.pose, goal, kVelocity);},
+        progress ? std::function<bool()>{[&] {return plain.progress->check(robot);}} : nullptr,
+        [&] {return alone.compute_velocity_commands(robot, kVelocity, kTolerances);});
+      EXPECT_EQ(carried, uncarried) << "cycle " << step;
+    }
+    EXPECT_EQ(cycle->goal_last(), goal_last);
+    return queries;
+  }
+};
+
+TEST_P(CarriedOrderTest, GoalCheckFirstTakesOneQueryPerCycle)
+{
+  EXPECT_EQ(run_cycles(false, GetParam()), 5u);  // the goal check carries the rest
+}
+
+TEST_P(CarriedOrderTest, GoalCheckLastTakesTwoWithAProgressCheckerElseOne)
+{
+  // The first goal check shows the order; from then on the command carries the goal check
+  // and the progress check goes on its own.
+  EXPECT_EQ(run_cycles(true, GetParam()), GetParam() ? 11u : 6u);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+  ProgressChecker, CarriedOrderTest, ::testing::Bool(),
+  [](const ::testing::TestParamInfo<bool> & info) {
+    return info.param ? "WithProgressChecker" : "GoalCheckerOnly";
+  });
 
 }  // namespace
 }  // namespace nav2_pyif_bridge::client::test

@@ -294,7 +294,13 @@ TEST_F(ControllerSessionTest, EachOpUsesItsTimeout)
   host.call_time = 0s;
   s.set_plan(straight_path(2, 1, 0));  // re-establishes: configure, activate, set_plan
   host.call_time = 100s;
-  EXPECT_EQ(waited([&] {s.set_plan(straight_path(2, 1, 0));}), Duration{40ms});
+  EXPECT_EQ(
+    waited(
+      [&] {
+        if (auto deferred = s.set_plan(straight_path(2, 1, 0))) {
+          throw *deferred;  // kept as owed, not thrown: the 40 ms is what is measured
+        }
+      }), Duration{40ms});
   EXPECT_EQ(waited([&] {s.set_speed_limit(1.0, false);}), Duration{40ms});
   EXPECT_EQ(waited([&] {compute();}), Duration{40ms});
   EXPECT_EQ(waited([&] {s.cancel();}), Duration{40ms});
@@ -398,7 +404,9 @@ TEST_F(ControllerSessionTest, DeferredConfigureEstablishesAtTheFirstCall)
   changes.set("gain", 3.0);
   EXPECT_TRUE(s.set_parameters(changes).empty());  // kept for configure
   EXPECT_TRUE(host.received.empty());
-  EXPECT_THROW(s.set_plan(straight_path(5, 1, 0)), CallError);  // still no host: fail fast
+  // still no host: fail fast, the plan kept as owed
+  EXPECT_TRUE(s.set_plan(straight_path(5, 1, 0)).has_value());
+  EXPECT_TRUE(host.received.empty());
 
   host.start();
   s.set_plan(straight_path(5, 1, 0));
@@ -482,6 +490,29 @@ TEST_F(ControllerSessionTest, ASpeedLimitSetWhileNoHostIsAliveReachesTheNextHost
   EXPECT_THROW(s.set_speed_limit(0.2, false), CallError);  // a slow zone, no host
   host.start();
   EXPECT_EQ(compute().twist[2], 0.2);
+}
+
+TEST_F(ControllerSessionTest, APlanTheHostFailedIsKeptAndSentFirstNotThrown)
+{
+  auto & s = make();
+  s.configure();
+  s.activate();
+  s.set_plan(straight_path(9, 1, 0));
+  host.transport_error_once = true;  // the BT's replan while the host is unreachable
+  const std::optional<CallError> deferred = s.set_plan(straight_path(12, 1, 0));
+  ASSERT_TRUE(deferred.has_value());
+  EXPECT_TRUE(deferred->host_failed());
+  EXPECT_EQ(deferred->kind(), ErrorKind::NoValidControl);
+  const std::size_t sent = host.received.size();
+  EXPECT_EQ(compute().twist[0], 12.0);
+  EXPECT_EQ(
+    host.ops_since(sent), (std::vector<std::string>{"set_plan", "compute_velocity_commands"}));
+  EXPECT_EQ(compute().twist[0], 12.0);  // owed once
+  EXPECT_EQ(host.ops_since(sent + 2), (std::vector<std::string>{"compute_velocity_commands"}));
+  host.kill();
+  EXPECT_TRUE(s.set_plan(straight_path(5, 1, 0)).has_value());  // no host: not thrown either
+  host.start();
+  EXPECT_EQ(compute().twist[0], 5.0);
 }
 
 TEST_F(ControllerSessionTest, ABrokenTransportIsUnreachableNotAPlannerError)

@@ -286,11 +286,27 @@ proto::Reply FakeHost::error(
   return reply;
 }
 
-proto::Bytes FakeHost::carried(Replica & replica, const std::string & id, const proto::Bytes & bytes)
+std::optional<std::vector<proto::CarriedCall>> FakeHost::carried(
+  Replica & replica, const std::string & id,
+  const std::optional<std::vector<proto::CarriedCall>> & carry)
 {
-  const proto::Request request = proto::decode_request(bytes);
-  carried_ops.emplace_back(proto::op_name(request.op()));
-  return proto::encode_reply(handle(replica, id, request, Duration{0}));
+  if (!carry) {
+    return std::nullopt;
+  }
+  std::vector<proto::CarriedCall> replies;
+  for (const proto::CarriedCall & call : *carry) {
+    const proto::Request request = proto::decode_request(call.payload);
+    carried_ops.emplace_back(proto::op_name(request.op()));
+    const proto::Reply reply = handle(replica, id, request, Duration{0});
+    replies.push_back({call.key, proto::encode_reply(reply)});
+    const auto * body = std::get_if<proto::ReplyBody>(&reply.outcome);
+    const auto * goal = body ? std::get_if<proto::IsGoalReachedReply>(body) : nullptr;
+    const auto * check = body ? std::get_if<proto::CheckReply>(body) : nullptr;
+    if (!body || (goal && goal->reached) || (check && !check->making_progress)) {
+      break;  // Nav2 stops here
+    }
+  }
+  return replies;
 }
 
 proto::Reply FakeHost::handle(
@@ -395,17 +411,16 @@ proto::Reply FakeHost::handle(
           cmd.twist[0] = std::numeric_limits<double>::quiet_NaN();
           nan_once = false;
         }
-        reply.outcome = proto::ReplyBody{proto::ComputeVelocityCommandsReply{cmd, std::nullopt}};
+        reply.outcome = proto::ReplyBody{
+          proto::ComputeVelocityCommandsReply{cmd, std::nullopt, carried(replica, id, body.carry)}};
         break;
       }
     case proto::Op::IsGoalReached: {
         const auto & body = std::get<proto::IsGoalReachedRequest>(request.body);
         proto::IsGoalReachedReply out;
-        if (body.then_check) {
-          out.then_check = carried(replica, id, *body.then_check);
-        }
-        if (body.then_compute && making_progress) {
-          out.then_compute = carried(replica, id, *body.then_compute);
+        out.reached = body.pose[0] >= reached_x;
+        if (!out.reached) {
+          out.carried = carried(replica, id, body.carry);
         }
         reply.outcome = proto::ReplyBody{out};
         break;
@@ -414,8 +429,8 @@ proto::Reply FakeHost::handle(
         const auto & body = std::get<proto::CheckRequest>(request.body);
         proto::CheckReply out;
         out.making_progress = making_progress;
-        if (body.then_compute && making_progress) {
-          out.then_compute = carried(replica, id, *body.then_compute);
+        if (making_progress) {
+          out.carried = carried(replica, id, body.carry);
         }
         reply.outcome = proto::ReplyBody{out};
         break;

@@ -126,7 +126,8 @@ public:
   bool nan_once{false};                      // the next command has vx = NaN (host not checking)
   std::optional<protocol::Bytes> raw_reply_once;  // the next reply is these bytes
   bool transport_error_once{false};          // the next query throws (a broken Zenoh session)
-  bool making_progress{true};                // what progress checks answer (goals: not reached)
+  bool making_progress{true};                // what progress checks answer
+  double reached_x{1e9};                     // goal checks answer reached from this pose x on
 
   // What one session knows, echoed by compute_velocity_commands.
   struct Session
@@ -159,8 +160,11 @@ private:
   protocol::Reply error(
     const std::string & id, const protocol::Request & request, std::string type,
     std::string message);
-  // A request carried in another's query (PROTOCOL.md section 15), answered as on its own.
-  protocol::Bytes carried(Replica & replica, const std::string & id, const protocol::Bytes & bytes);
+  // The requests carried in another's query (PROTOCOL.md section 15), each answered as on
+  // its own, in order, as far as Nav2 would go (the host's carried.py).
+  std::optional<std::vector<protocol::CarriedCall>> carried(
+    Replica & replica, const std::string & id,
+    const std::optional<std::vector<protocol::CarriedCall>> & carry);
 
   FakeClock & clock_;
   HostWatcher watcher_;

@@ -63,6 +63,24 @@ TEST_F(PlannerSessionTest, PlansAndSendsTheCostmapOnce)
   EXPECT_TRUE(host.last_had_costmap());
 }
 
+TEST_F(PlannerSessionTest, APlanWaitsForARestartingHostWithinItsTimeout)
+{
+  auto & s = make();
+  host.kill();
+  const Duration killed = clock.elapsed();
+  clock.at(killed + 2s, [&] {host.start();});  // the host is back 2 s later
+  const proto::Path plan = s.create_plan(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map"));
+  EXPECT_EQ(plan.pose_count(), 25u);
+  EXPECT_EQ(clock.elapsed() - killed, Duration{2s});  // waited for it, not a recovery
+  EXPECT_EQ(s.resyncs(), 1u);
+
+  host.kill();
+  const Duration before = clock.elapsed();
+  const CallError e = error_of([&] {s.create_plan(pose_at(0, 0), pose_at(1, 1));});
+  EXPECT_EQ(e.cause(), Cause::NoHost);
+  EXPECT_EQ(clock.elapsed() - before, Duration{5s});  // no host came: the plan timeout
+}
+
 TEST_F(PlannerSessionTest, PlannerErrorsAreTyped)
 {
   make();

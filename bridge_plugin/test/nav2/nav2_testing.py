@@ -37,6 +37,17 @@ def find(relative: str) -> Path | None:
     return None
 
 
+def goal_check_first() -> bool:
+    """Whether this Nav2's controller_server checks the goal first in its control cycle
+    (Jazzy from 1.3.13, Kilted, Lyrical) or last (Humble, Jazzy 1.3.8 to 1.3.12), read from
+    nav2_controller's package.xml (PROTOCOL.md section 15)."""
+    xml = find("share/nav2_controller/package.xml")
+    found = re.search(r"<version>(\d+)\.(\d+)\.(\d+)</version>", xml.read_text()) if xml else None
+    assert found, "no nav2_controller version in this environment"
+    version = tuple(map(int, found.groups()))
+    return version >= (1, 3, 13) if version[:2] == (1, 3) else version[:2] > (1, 3)
+
+
 def project_command(name: str) -> list[str] | None:
     """A command of the nav2_pyif package (planner-host, nav2-pyif): through $NAV2_PYIF_RUN
     (a wrapper that runs its arguments in the project's environment), else from PATH."""
@@ -67,8 +78,13 @@ def host_queries(endpoint: str) -> dict[str, int]:
 
 
 def host_command() -> list[str] | None:
+    """$NAV2_PYIF_PLANNER_HOST, else planner-host through $NAV2_PYIF_RUN or on PATH (pip),
+    else the ROS package nav2_pyif's (a colcon workspace: `ros2 run nav2_pyif planner-host`)."""
     command = os.environ.get("NAV2_PYIF_PLANNER_HOST")
-    return shlex.split(command) if command else project_command("planner-host")
+    if command:
+        return shlex.split(command)
+    installed = find("lib/nav2_pyif/planner-host")
+    return project_command("planner-host") or ([str(installed)] if installed else None)
 
 
 def missing() -> list[str]:
@@ -91,7 +107,7 @@ def missing() -> list[str]:
     ):
         absent.append("nav2_pyif_bridge built and sourced")
     if host_command() is None:
-        absent.append("planner-host on PATH or $NAV2_PYIF_PLANNER_HOST")
+        absent.append("planner-host on PATH, in a workspace or $NAV2_PYIF_PLANNER_HOST")
     return absent
 
 
@@ -342,6 +358,7 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             self.speeds: list[tuple[float, float]] = []  # (monotonic time, speed), recorded
             self.recording = False
             self.recoveries = 0  # NavigateToPose feedback's number_of_recoveries, last seen
+            self.messages_lost = 0  # incoming messages rclpy failed to take (spin_until)
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
 
         def _on_odom(self, msg: Any) -> None:
@@ -355,7 +372,16 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             while time.monotonic() < end:
                 if done():
                     return True
-                rclpy.spin_once(self, timeout_sec=0.05)
+                try:
+                    rclpy.spin_once(self, timeout_sec=0.05)
+                except RuntimeError as exc:
+                    # rclpy's take of one incoming message (odometry, action feedback) fails
+                    # now and then over a long run ("Unable to convert call argument '0' to
+                    # Python object", as in ros2/rclpy#848): that message is lost, the node
+                    # goes on. Anything else is the test's failure.
+                    if "Unable to convert call argument" not in str(exc):
+                        raise
+                    self.messages_lost += 1
             return bool(done())
 
         def wait(self, future: Any, timeout: float) -> Any:
@@ -436,11 +462,13 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             assert handle is not None and handle.accepted, "SmoothPath not accepted"
             return self.wait(handle.get_result_async(), timeout)
 
-        def navigate(self, x: float, y: float) -> Any:
-            """NavigateToPose (bt_navigator, its default BT): the goal handle. Feedback
-            updates ``recoveries``; the odometry's speeds are recorded from now on."""
+        def navigate(self, x: float, y: float, behavior_tree: str = "") -> Any:
+            """NavigateToPose (bt_navigator, its default BT or the ``behavior_tree`` file): the
+            goal handle. Feedback updates ``recoveries``; the odometry's speeds are recorded
+            from now on."""
             assert self.navigate_client.wait_for_server(timeout_sec=10.0)
             goal = NavigateToPose.Goal()
+            goal.behavior_tree = behavior_tree
             goal.pose.header.frame_id = "map"
             goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
             goal.pose.pose.orientation.w = 1.0

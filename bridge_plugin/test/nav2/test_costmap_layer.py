@@ -1,4 +1,4 @@
-"""Issue 12's costmap layer in the real Nav2: the Python keep-out layer (KeepOutLayer) as a
+"""A Python costmap layer in the real Nav2: the Python keep-out layer (KeepOutLayer) as a
 plugin (PyCostmapLayer) of the global and the local costmap, one planner host serving both:
 
 1. its polygon's cells are lethal in the published local costmap, and the plan and the robot
@@ -43,7 +43,8 @@ def with_keepout_layers(text: str) -> str:
         wait_for_host: 20.0
         polygons: "{POLYGONS}\""""
     out = text.replace(
-        'plugins: ["inflation_layer"]', f'plugins: ["keepout", "inflation_layer"]\n{layer}'
+        'plugins: ["obstacle_layer", "inflation_layer"]',
+        f'plugins: ["obstacle_layer", "keepout", "inflation_layer"]\n{layer}',
     )
     # a robot standing still gets only costmap_updates otherwise: the test reads whole grids
     out = out.replace(

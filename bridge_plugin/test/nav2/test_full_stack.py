@@ -1,4 +1,4 @@
-"""The whole Nav2 stack (issue 25): NavigateToPose through bt_navigator and the distribution's
+"""The whole Nav2 stack: NavigateToPose through bt_navigator and the distribution's
 default navigate_to_pose BT, with behavior_server's recoveries, controller_server with
 PyController (the reference regulated pure pursuit, misbehaving on demand:
 planners/fault_pursuit.py) and planner_server with PyGlobalPlanner (A*), each served by its
@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import re
 import signal
 import statistics
 import time
@@ -35,6 +36,9 @@ import pytest
 from test_host_recovery import record
 
 RUNS = int(os.environ.get("NAV2_PYIF_FULL_STACK_RUNS", "20"))
+# Each test drives RUNS navigations of about 10 s (30 s with recoveries): the project's
+# 120 s per-test timeout is for one navigation's worth.
+pytestmark = pytest.mark.timeout(120 + 60 * RUNS)
 FULL_STACK = (*nav2_testing.SERVERS, "behavior_server", "bt_navigator")
 GOALS = ((2.0, 0.5), (0.0, 0.0))  # around the wall, and back
 FAULT_AT = 3.0  # [s] into a navigation
@@ -44,17 +48,26 @@ CONTROLLER = (
     *("--serve", f"{nav2_testing.PREFIX}/FollowPath=fault_pursuit:FaultPursuit"),
 )
 PLANNER = ("--serve", f"{nav2_testing.PREFIX}/GridBased=nav2_pyif_planners.astar:AStar")
+BEHAVIOR = (
+    "--serve",
+    f"{nav2_testing.PREFIX}/backup=nav2_pyif_planners.free_backup:FreestBackUp",
+)
+BACKUP_BT = nav2_testing.HERE / "backup_recovery_bt.xml"
 
 
 def full_stack_params(text: str) -> str:
     """nav2_params.yaml with bt_navigator and behavior_server, managed too, and
-    failure_tolerance as the shipped params set it."""
+    failure_tolerance as the shipped params set it; the Python BackUp reaches its host as the
+    other plugins do (zenoh-pico: zenoh_connect; zenoh-c: zenoh_config)."""
     text = text.replace("failure_tolerance: 0.0", "failure_tolerance: 3.0")
+    zenoh = re.search(r"zenoh_(?:connect|config): .+", text)
+    assert zenoh is not None, "nav2_params.yaml names no zenoh_connect or zenoh_config"
     text = text.replace(
         'node_names: ["controller_server", "planner_server"]',
         f"node_names: {list(FULL_STACK)!r}".replace("'", '"'),
     )
-    return text + (nav2_testing.HERE / "full_stack_params.yaml").read_text()
+    added = (nav2_testing.HERE / "full_stack_params.yaml").read_text()
+    return text + added.replace("@ZENOH@", zenoh.group(0))
 
 
 def _through_a_router(procs: nav2_testing.Processes, endpoint: str) -> tuple[list[str], list[str]]:
@@ -81,6 +94,10 @@ def stack(tmp_path_factory: pytest.TempPathFactory) -> Iterator[dict[str, Any]]:
             procs.start("planner_host_plans", command)
 
         start_planner_host()
+        procs.start(
+            "planner_host_behavior",
+            [*(nav2_testing.host_command() or []), "--connect", endpoint, *BEHAVIOR],
+        )
         NAVIGATIONS.clear()  # a new robot, at the origin
         client = up["client"]
         states = client.wait_active(FULL_STACK, 120.0)
@@ -111,8 +128,10 @@ def _longest_stop(speeds: list[tuple[float, float]]) -> float:
     return max(b - a for a, b in itertools.pairwise(moving))
 
 
-def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] | None) -> Run:
-    handle = client.navigate(*goal)
+def _navigate(
+    client: Any, goal: tuple[float, float], fault: Callable[[], None] | None, tree: str = ""
+) -> Run:
+    handle = client.navigate(*goal, behavior_tree=tree)
     started = time.monotonic()
     result_future = handle.get_result_async()
     faulted = False
@@ -135,7 +154,9 @@ def _navigate(client: Any, goal: tuple[float, float], fault: Callable[[], None] 
     )
 
 
-def _runs(stack: dict[str, Any], fault: Callable[[], None] | None) -> list[Run]:
+def _runs(stack: dict[str, Any], fault: Callable[[], None] | None, tree: str = "") -> list[Run]:
+    """RUNS navigations, each through ``fault`` at FAULT_AT s, with bt_navigator's default
+    tree or the behaviour tree file ``tree``."""
     client, procs = stack["client"], stack["procs"]
     runs = []
     for _ in range(RUNS):
@@ -143,7 +164,7 @@ def _runs(stack: dict[str, Any], fault: Callable[[], None] | None) -> list[Run]:
         # over before its fault
         goal = GOALS[len(NAVIGATIONS) % 2]
         NAVIGATIONS.append(goal)
-        run = _navigate(client, goal, fault)
+        run = _navigate(client, goal, fault, tree)
         runs.append(run)
         assert fault is None or run.faulted, f"run {len(runs)} ended before its fault: {run}"
         logs = "\n".join(
@@ -200,12 +221,13 @@ def test_a_killed_and_restarted_controller_host_costs_at_most_one_recovery(
 
 
 def _fault_once(stack: dict[str, Any], kind: str, seconds: float = 1.0) -> Callable[[], None]:
-    """Start FaultPursuit's ``kind`` for ``seconds`` through `ros2 param set`, then set the
-    fault back to none (so that the next run's set is a change again)."""
+    """Start FaultPursuit's ``kind`` for ``seconds`` through `ros2 param set`. The fault is
+    set back to none first, so that setting it is a change on every run (not after: a hung
+    worker refuses parameters until it is restarted)."""
     client = stack["client"]
 
     def fault() -> None:
-        for name, value in (("fault_for", seconds), ("fault", kind), ("fault", "none")):
+        for name, value in (("fault", "none"), ("fault_for", seconds), ("fault", kind)):
             ok, reason = client.set_parameter("controller_server", f"FollowPath.{name}", value)
             assert ok, reason
 
@@ -240,3 +262,23 @@ def test_a_hot_swap_mid_navigation(stack: dict[str, Any]) -> None:
     runs = _runs(stack, swap)
     _record("hot_swap", runs)
     assert max(r.recoveries for r in runs) == 0, runs
+
+
+def test_the_behaviour_tree_recovers_with_the_python_backup(stack: dict[str, Any]) -> None:
+    """The controller fails for longer than failure_tolerance (PatienceExceeded), and the
+    tree's recovery, BackUp, is behavior_server's PyBackUp, served by FreestBackUp."""
+    procs = stack["procs"]
+
+    def backups() -> tuple[int, int]:
+        """behavior_server's BackUps so far: begun, completed successfully."""
+        log = procs.log("behavior_server", 100_000)
+        return log.count("Running backup"), log.count("backup completed successfully")
+
+    before = backups()
+    runs = _runs(stack, _fault_once(stack, "no_valid_control", 4.0), str(BACKUP_BT))
+    _record("python_backup", runs)
+    # One BackUp per navigation, each successful (read from behavior_server's log: the
+    # feedback's number_of_recoveries can miss its last update before the result)
+    begun, completed = (now - then for now, then in zip(backups(), before, strict=True))
+    assert begun == completed == len(runs), (begun, completed, runs)
+    assert "behavior_server/backup" in procs.log("planner_host_behavior", 400)

@@ -10,12 +10,21 @@ from typing import Any
 
 import nav2_testing
 import pytest
-from test_full_stack import FULL_STACK, NAVIGATIONS, PLANNER, _record, _runs, full_stack_params
+from test_full_stack import (
+    FULL_STACK,
+    NAVIGATIONS,
+    PLANNER,
+    _record,
+    _runs,
+    full_stack_params,
+    pytestmark,  # noqa: F401  (the same per-test timeout)
+)
 
 NATIVE = {
     "nav2_pyif_bridge::PyController": "nav2_regulated_pure_pursuit_controller::"
     "RegulatedPurePursuitController",
     "nav2_pyif_bridge::PyGlobalPlanner": "nav2_navfn_planner::NavfnPlanner",
+    "nav2_pyif_bridge::PyBackUp": "nav2_behaviors::BackUp",
 }
 
 

@@ -1,5 +1,5 @@
-"""How fast Nav2 notices a lost planner host and moves again once one is back (issue 10,
-RELIABILITY.md "Recovery in Nav2"), through the deployment guide's router topology: a
+"""How fast Nav2 notices a lost planner host and moves again once one is back
+(RELIABILITY.md "Recovery in Nav2"), through the deployment guide's router topology: a
 `nav2-pyif router` on the robot (on rmw_zenoh: ROS's own router, which Nav2's traffic, the
 plugins and the host then share), the plugins its clients, the planner host on another
 "machine" (a network namespace behind a veth link; where namespaces cannot be made, the host

@@ -1,4 +1,4 @@
-"""Messages of any size through the real Nav2 on each zenoh-cpp backend (issue 10): a 50 m map
+"""Messages of any size through the real Nav2 on each zenoh-cpp backend: a 50 m map
 at 5 cm, so the global costmap the planner gets is 1000 x 1000 cells (1 MB in the request),
 and a planner whose every plan has 10 000 poses (0.56 MB in its reply, and again in the
 controller's setPlan). The plan arrives whole in ComputePathToPose, and FollowPath drives it

@@ -22,6 +22,9 @@ import pytest
 HERE = Path(__file__).resolve().parent
 PREFIX = nav2_testing.PREFIX
 GOAL = (2.0, 0.5)
+#: The host the launch file is given; without it, the launch file's own choice (nav2_pyif's
+#: planner-host from the install space, else the one on PATH) is tested.
+CHOSEN_HOST = os.environ.get("NAV2_PYIF_PLANNER_HOST")
 
 
 def _launch_missing() -> list[str]:
@@ -34,7 +37,7 @@ def _launch_missing() -> list[str]:
     except ImportError:
         absent.append("launch and launch_ros")
     host = nav2_testing.host_command()
-    if host is not None and len(host) != 1:
+    if CHOSEN_HOST and host is not None and len(host) != 1:
         absent.append("$NAV2_PYIF_PLANNER_HOST as one executable (the launch file's argument)")
     return absent
 
@@ -57,6 +60,13 @@ def _descendants(pid: int) -> set[int]:
     return found
 
 
+def _cmdline(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
+    except OSError:
+        return ""
+
+
 def _running(pid: int) -> bool:
     try:
         state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
@@ -70,7 +80,8 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
     if missing:
         pytest.skip("the launch-file test needs: " + ", ".join(missing))
     endpoint, params, procs = nav2_testing.prepare(tmp_path)
-    (host,) = nav2_testing.host_command() or []
+    host_argument = [f"planner_host:={CHOSEN_HOST}"] if CHOSEN_HOST else []
+    installed = None if CHOSEN_HOST else nav2_testing.find("lib/nav2_pyif/planner-host")
     procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py")])
     procs.start(
         "launch",
@@ -82,7 +93,7 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
             f"params_file:={params}",
             f"listen:={endpoint}",
             f"key_prefix:={PREFIX}",
-            f"planner_host:={host}",
+            *host_argument,
         ],
     )
     launch = procs.procs["launch"]
@@ -105,6 +116,9 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
         started = _descendants(launch.pid)
         names = {Path(f"/proc/{p}/comm").read_text().strip() for p in started if _running(p)}
         assert {"controller_serv", "planner_server"} <= names, names  # comm: 15 characters
+        if installed is not None:  # a workspace's: the host runs from its install space
+            commands = [_cmdline(p) for p in started if _running(p)]
+            assert any(str(installed) in c for c in commands), commands
         os.killpg(launch.pid, signal.SIGINT)  # Ctrl-C in the launch's terminal
         code = launch.wait(60)
         deadline = time.monotonic() + 10

@@ -1,4 +1,4 @@
-"""A plan that stays fresh (issue 15): the simulated robot's odometry drifts, and map -> odom
+"""A plan that stays fresh: the simulated robot's odometry drifts, and map -> odom
 jumps 10 cm at a time (40 cm in all) while the robot drives, as AMCL's corrections do. The
 plugin transformed the plan into the local costmap's frame (odom) at setPlan; it re-sends it,
 transformed anew, when that transform moves. The robot reaches the goal in the map frame.

@@ -1,4 +1,4 @@
-"""The launch test of issue 4: Nav2's controller_server and planner_server with the nav2_pyif
+"""The first launch test: Nav2's controller_server and planner_server with the nav2_pyif
 plugins, a lifecycle manager, a real planner host and a small simulated robot.
 
 1. ComputePathToPose (Python A*) and FollowPath (Python regulated pure pursuit): the robot

@@ -1,4 +1,4 @@
-"""The seed paper's configuration in Nav2: no planner host started by hand. The controller's
+"""The function-delegate configuration in Nav2: no planner host started by hand. The controller's
 YAML names only `python_module` (the APF controller of nav2_pyif_planners.apf: plain functions
 named after the roles, so no `python_delegates` is needed) and the planner's
 `python_planner`; each plugin starts
@@ -25,7 +25,7 @@ GOAL = (2.0, 0.5)
 
 
 def seed_params(host: str) -> str:
-    """The launch test's params with the plugins' key and endpoint replaced by the seed style."""
+    """The launch test's params with the plugins' key and endpoint set to function delegates."""
     out = []
     for line in (HERE / "nav2_params.yaml").read_text().splitlines():
         stripped = line.strip()

@@ -1,4 +1,4 @@
-"""Sensor inputs and debug outputs in the real Nav2 (issue 13 item 5): the simulated robot
+"""Sensor inputs and debug outputs in the real Nav2: the simulated robot
 publishes /scan; the Python controller (planners/scan_guard.py) gets each new scan through the
 plugin's `inputs` parameter and will not drive without one; it returns the nearest return
 ahead and its local plan as debug outputs, which the plugin publishes on FollowPath/... while

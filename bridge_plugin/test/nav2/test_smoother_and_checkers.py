@@ -1,4 +1,4 @@
-"""Issue 12 in the real Nav2: smoother_server with the Python smoother (PySmoother), and
+"""Other plugin types in the real Nav2: smoother_server with the Python smoother (PySmoother), and
 controller_server whose only goal checker and progress checker are Python ones
 (PyGoalChecker, PyProgressChecker), all served by one planner host:
 
@@ -152,22 +152,29 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     assert result is not None and result.status == SUCCEEDED, f"FollowPath: {result}\n{logs}"
     x, y = client.pose
     assert math.hypot(x - GOAL_A[0], y - GOAL_A[1]) < 0.35, f"robot at {(x, y)}"
-    # Each goal check's query carried the progress check and the command (PROTOCOL.md section
-    # 15): three calls a cycle in about one query. The command goes on its own when Nav2 calls
-    # it with another velocity than the goal check got (its odometry smoother moved on between
-    # the two reads), or after set_plan.
+    # A call's query carried the calls of the cycle after it (PROTOCOL.md section 15), in
+    # the order this controller_server calls them. Goal check first: the goal check carries
+    # the check and the command, about one query a cycle. The command goes on its own when
+    # Nav2 calls it with another velocity than the goal check got (its odometry smoother moved
+    # on between the two reads), or after set_plan; the check goes on its own at its reset and
+    # in cycles where TF moved on between the goal check's pose lookup and the next one (1-50 %
+    # of them here, as the sim's 50 Hz TF and the 20 Hz loop lock in phase: BENCHMARKS.md,
+    # "Goal and progress checkers"), carrying the command: two queries; a fully locked phase
+    # (50 %) costs 1.51 and fails this target. Goal check last: the check goes on its own
+    # and the command carries the goal check, two queries; the goal check goes on its own too
+    # when TF moved on between the command's pose lookup and its own, a window of two queries
+    # (2.07 to 2.47 here, loaded); the same half of the cycles missing fails the target. The
+    # mechanism is tested call by call in carried_test.cpp.
     after = nav2_testing.host_queries(nav2["endpoint"])
     sent = {key.rsplit("/", 1)[1]: after[key] - before.get(key, 0) for key in after}
-    cycles = sent["general_goal_checker"]
+    first = nav2_testing.goal_check_first()
+    # Every cycle sends its goal check (goal first) or its progress check (goal last) alone.
+    cycles = sent["general_goal_checker" if first else "progress_checker"]
     assert cycles > 40, sent  # 20 Hz for a few seconds
-    # The progress check goes on its own at its reset and in cycles where TF moved on between
-    # the goal check's pose lookup and the next one (1-50 % of them here, as the sim's 50 Hz TF
-    # and the 20 Hz loop lock in phase: BENCHMARKS.md, "Goal and progress checkers"). Then it
-    # carries the command, so those cycles cost two queries; a fully locked phase (50 %) costs
-    # 1.51 and fails this target. The mechanism is tested call by call in carried_test.cpp.
     queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
-    assert queries < 1.5 * cycles, sent  # 3 a cycle without carrying
-    print(f"queries during FollowPath: {sent}, {queries / cycles:.2f} per control cycle")
+    assert queries < (1.5 if first else 2.5) * cycles, sent  # 3 a cycle without carrying
+    order = "goal check first" if first else "goal check last"
+    print(f"queries during FollowPath ({order}): {sent}, {queries / cycles:.2f} per control cycle")
     assert "general_goal_checker.stateful" in client.list_parameters(
         "controller_server", "general_goal_checker"
     )  # declared by the Python goal checker

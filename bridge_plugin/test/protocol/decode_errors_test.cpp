@@ -183,27 +183,27 @@ TEST(DecodeErrors, UnknownOpListsTheKnownOnes)
 TEST(DecodeErrors, VersionIsCheckedFirst)
 {
   Json tree = cvc();
-  tree["v"] = 2;
-  tree.erase("sid");  // a version 2 message may differ in anything else
+  tree["v"] = 3;
+  tree.erase("sid");  // a newer version's message may differ in anything else
   EXPECT_EQ(request_outcome(tree),
-    "VersionMismatch: request.v: request speaks protocol version 2; this codec speaks 1");
+    "VersionMismatch: request.v: request speaks protocol version 3; this codec speaks 2");
 
   tree = cvc();
   tree.erase("v");
   EXPECT_EQ(request_outcome(tree),
     "VersionMismatch: request.v: request speaks protocol version missing; "
-    "this codec speaks 1");
+    "this codec speaks 2");
 
   tree = cvc();
   tree["v"] = "1";
   EXPECT_EQ(request_outcome(tree),
     "VersionMismatch: request.v: request speaks protocol version of type str; "
-    "this codec speaks 1");
+    "this codec speaks 2");
 
   Json reply = read_vector_json("cancel_reply");
   reply["v"] = 0;
   EXPECT_EQ(reply_outcome(reply, Op::Cancel),
-    "VersionMismatch: reply.v: reply speaks protocol version 0; this codec speaks 1");
+    "VersionMismatch: reply.v: reply speaks protocol version 0; this codec speaks 2");
 }
 
 TEST(DecodeErrors, NotAMapAtTheTop)
@@ -347,9 +347,9 @@ TEST(DecodeErrors, ParamsAreScalarsOrArraysOfOneScalarType)
 TEST(DecodeErrors, ParamNamesMustBeStrings)
 {
   // JSON has only string keys, so this one map is written by hand:
-  // request {v: 1, op: set_parameters, sid: s, epoch: 1, seq: 1, body: {params: {1: true}}}
-  Bytes bytes = pack_json(Json{{"v", 1}, {"op", "set_parameters"}, {"sid", "s"}, {"epoch", 1},
-      {"seq", 1}});
+  // request {v: 2, op: set_parameters, sid: s, epoch: 1, seq: 1, body: {params: {1: true}}}
+  Bytes bytes = pack_json(Json{{"v", kProtocolVersion}, {"op", "set_parameters"}, {"sid", "s"},
+      {"epoch", 1}, {"seq", 1}});
   bytes[0] = 0x86;  // six entries: append the body
   const Bytes body{0xA4, 'b', 'o', 'd', 'y', 0x81, 0xA6, 'p', 'a', 'r', 'a', 'm', 's', 0x81,
     0x01, 0xC3};

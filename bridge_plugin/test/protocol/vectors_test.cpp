@@ -95,16 +95,16 @@ TEST(VectorIndex, CoversEveryOpInBothDirections)
   EXPECT_EQ(replies, all);
 }
 
-TEST(VectorIndex, ActivateVersion2IsRefusedWithVersionMismatch)
+TEST(VectorIndex, ANewerVersionIsRefusedWithVersionMismatch)
 {
-  const auto bytes = read_vector_bytes("activate_version_2");
+  const auto bytes = read_vector_bytes("activate_newer_version");
   try {
     decode_request(bytes);
-    FAIL() << "a version 2 request was accepted";
+    FAIL() << "a newer version's request was accepted";
   } catch (const DecodeError & e) {
     EXPECT_EQ(e.error_type(), error_type::kVersionMismatch);
     EXPECT_EQ(e.field_path(), "request.v");
-    EXPECT_STREQ(e.what(), "request.v: request speaks protocol version 2; this codec speaks 1");
+    EXPECT_STREQ(e.what(), "request.v: request speaks protocol version 3; this codec speaks 2");
   }
 }
 

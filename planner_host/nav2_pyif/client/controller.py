@@ -7,7 +7,8 @@ from typing import Any
 
 from nav2_pyif_protocol.constants import Op, PluginType
 
-from nav2_pyif.client.plugin_client import PluginClient
+from nav2_pyif.client.plugin_client import Carried, PluginClient, log
+from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
 from nav2_pyif.plan import Plan
@@ -22,15 +23,40 @@ class ControllerClient(PluginClient):
         kwargs.setdefault("node", "controller_server")
         super().__init__(*args, **kwargs)
         self._plan: dict[str, Any] | None = None
+        # The plan's set_plan failed on the host (not on its planner): sent before the next
+        # cycle, or with the state a re-established session gets.
+        self._plan_owed = False
         self._speed_limit: tuple[float, bool] | None = None
         #: the debug outputs the last cycle returned, name -> rclpy message
         self.debug: dict[str, Any] = {}
 
-    def set_plan(self, path: Plan | Any) -> None:
-        """``path``: a Plan or a nav_msgs/Path, in the costmap's global frame."""
+    def set_plan(self, path: Plan | Any) -> Nav2Error | None:
+        """``path``: a Plan or a nav_msgs/Path, in the costmap's global frame.
+
+        Returns None when the host has it. When the host failed the call (none alive, no
+        reply in time, Unavailable) the plan is kept as owed and that failure is returned, not
+        raised: the next cycle sends the plan first, as does a re-established session. Nav2's
+        behaviour tree replans about once a second, and a raise here would end FollowPath at
+        once, where a failing cycle gets the controller server's failure_tolerance. The
+        planner's own errors (InvalidPath, ...) raise.
+        """
         plan = path if isinstance(path, Plan) else Plan.from_msg(path)
-        self._plan = plan.to_wire()  # kept even if this call fails: re-sent on re-establishment
-        self._call(Op.SET_PLAN, {"path": self._plan})
+        self._plan = plan.to_wire()
+        self._plan_owed = True
+        try:
+            self._send_plan()
+        except Nav2Error as exc:
+            if not exc.host_failed:
+                self._plan_owed = False
+                raise
+            log.warning("%s: plan kept, sent when the host answers: %s", self.keys.prefix, exc)
+            return exc
+        return None
+
+    def _send_plan(self, *, allow_resync: bool = True) -> None:
+        assert self._plan is not None
+        self._call(Op.SET_PLAN, {"path": self._plan}, allow_resync=allow_resync)
+        self._plan_owed = False
 
     def compute_velocity_commands(
         self,
@@ -46,7 +72,13 @@ class ControllerClient(PluginClient):
         as the plugin sends them; debug_wanted: debug outputs to return (into ``self.debug``).
         """
         body = self.compute_body(pose, velocity, goal_checker, inputs, debug_wanted)
-        return self.command_of(self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True))
+        return self.command_of(self._compute(body))
+
+    def _compute(self, body: dict[str, Any]) -> dict[str, Any]:
+        """The compute_velocity_commands call with ``body``; its reply body."""
+        if self._plan_owed:
+            self._send_plan()  # a host failure here fails this cycle, as the cycle's own would
+        return self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
 
     @staticmethod
     def compute_body(
@@ -89,12 +121,32 @@ class ControllerClient(PluginClient):
         self._call(Op.RESET, {})
 
     def cleanup(self) -> None:
-        self._plan, self._speed_limit = None, None
+        self._plan, self._speed_limit, self._plan_owed = None, None, False
         super().cleanup()
 
+    def _prepare(
+        self, op: Op, body: dict[str, Any], *, with_costmap: bool = False
+    ) -> Carried | None:
+        # A command prepared while the plan is owed would run on the host's old plan.
+        return None if self._plan_owed else super()._prepare(op, body, with_costmap=with_costmap)
+
+    def _take(
+        self,
+        carried: Carried | None,
+        reply_bytes: bytes | None,
+        body: dict[str, Any],
+        *,
+        with_costmap: bool = False,
+    ) -> dict[str, Any] | None:
+        # A plan that became owed (set_plan sent nothing: no host) is news to the host too.
+        if self._plan_owed:
+            return None
+        return super()._take(carried, reply_bytes, body, with_costmap=with_costmap)
+
     def _restore_state(self) -> None:
-        if self._plan is not None:
-            self._call(Op.SET_PLAN, {"path": self._plan}, allow_resync=False)
+        if self._plan is not None and not self._plan_owed:
+            # an owed plan is sent by the call that owes it, right after
+            self._send_plan(allow_resync=False)
         if self._speed_limit is not None:
             limit, percentage = self._speed_limit
             self._call(

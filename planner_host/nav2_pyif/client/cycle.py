@@ -1,42 +1,39 @@
-"""Nav2's control cycle with Python checkers in one query (PROTOCOL.md section 15).
+"""Nav2's control cycle with Python checkers in fewer queries (PROTOCOL.md section 15).
 
-controller_server (Jazzy) calls, every cycle: the goal checker's ``isGoalReached(pose, goal,
-velocity)``, then (not reached) the progress checker's ``check(pose)``, then (progress) the
-controller's ``computeVelocityCommands(pose, velocity, goal_checker)``; three round trips
-when each is its own query. Here the goal check carries the other two, prepared for the same
-pose and velocity; the host runs them in that order, as far as Nav2 would go. When Nav2 then
-makes those calls with the inputs they were prepared for (it looks the pose up again, which
-is nearly always the same), their carried replies are used: one round trip per cycle. With
-other inputs, or when a carried call did not run (another host, an unknown session), the call
-goes on its own, so the results are always those of Nav2's order. When TF moved on between
-the goal check's pose and the progress check's, the progress check goes on its own carrying
-the command, prepared for its pose (Nav2 gives both the same pose): two round trips.
+controller_server calls, every cycle, the goal checker's ``isGoalReached(pose, goal,
+velocity)``, the progress checker's ``check(pose)`` and the controller's
+``computeVelocityCommands(pose, velocity, goal_checker)``, in one of two orders:
+
+- goal check first (Jazzy from 1.3.13, Kilted, Lyrical): the goal check's query carries the
+  check and the command, prepared for its pose and velocity; one round trip per cycle;
+- goal check last (Humble, Jazzy 1.3.8 to 1.3.12): the check goes on its own, and the
+  command's query carries the goal check, prepared for its pose and velocity and the goal the
+  goal checker was last given; two round trips (one without a Python progress checker).
+
+The order is learned from the calls: a goal check with the pose and velocity of the command
+before it says "last", a command with those of the goal check before it says "first" (a robot
+standing still says neither). A prepared request is used only when Nav2's call encodes to the
+same bytes and nothing else went on that plugin's session since it was prepared
+(``PluginClient._take``); otherwise the call goes on its own, so the results are always those
+of Nav2's order. When TF moved on between the goal check's pose and the check's (goal check
+first), the check goes on its own carrying the command prepared for its pose: two round trips.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
 from typing import Any
 
 from nav2_pyif_protocol.constants import Op
 
 from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient, pose7
 from nav2_pyif.client.controller import ControllerClient
-from nav2_pyif.client.plugin_client import Carried
+from nav2_pyif.client.plugin_client import Body, Carried, PluginClient
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.messages import pose_to_wire, twist_to_list
 
-
-@dataclass
-class _Pending:
-    pose: dict[str, Any]
-    compute_body: dict[str, Any]
-    check: tuple[Carried, bytes | None] | None
-    compute: tuple[Carried, bytes | None] | None
-    # The goal check's velocity, tolerances, inputs and debug_wanted: the command's inputs
-    # other than the pose, for a command the progress check carries instead.
-    compute_inputs: tuple[Any, ...]
+#: A request prepared for a carrier's query, and the reply that query brought back for it.
+_Pending = tuple[Carried, bytes | None]
 
 
 class ControlCycle:
@@ -51,9 +48,17 @@ class ControlCycle:
         self.controller = controller
         self.goal_checker = goal_checker
         self.progress_checker = progress_checker
-        self._pending: _Pending | None = None
+        self._pending: dict[Op, _Pending] = {}
+        self.goal_last = False  # the order learned: the goal check ends the cycle
+        self._evidence = {"first": False, "last": False}
+        self._goal_check: tuple[Any, ...] | None = None  # (pose7, velocity) of the last one
+        self._command: tuple[Any, ...] | None = None  # likewise, of the last command
+        self._goal: list[float] | None = None  # the goal the goal checker was last given
+        self._goal_seq = -1  # the goal checker's seq after it: nothing sent since?
+        self._compute_inputs: tuple[Any, ...] | None = None  # the goal check's, goal first
         self.carried_used = 0  # calls answered from a carried reply
-        self.sent_alone = 0  # calls that went on their own
+        self.sent_alone = 0  # queries that carried nothing
+        self.queries = 0  # queries sent, carrying or not
 
     def is_goal_reached(
         self,
@@ -67,69 +72,37 @@ class ControlCycle:
         """``pose``: PoseStamped (the robot, global frame), ``goal``: Pose, ``velocity``:
         Twist; ``tolerances``: what the controller will be given (getTolerances); ``inputs``
         and ``debug_wanted``: what the controller's call will carry (ControllerClient's)."""
-        wire_pose, speed = pose_to_wire(pose), twist_to_list(velocity)
-        body: dict[str, Any] = {"pose": pose7(pose.pose), "goal": pose7(goal), "velocity": speed}
-        check = None
-        if self.progress_checker is not None:
-            check = self.progress_checker._prepare(Op.CHECK, {"pose": wire_pose})
-            if check is not None:
-                body["then_check_key"] = self.progress_checker.keys.prefix
-                body["then_check"] = check.payload
-        compute_inputs = (velocity, tolerances, inputs, debug_wanted)
-        compute_body, compute = self._carry_compute(body, pose, compute_inputs)
-        self._pending = None
-        reply = self.goal_checker._call(Op.IS_GOAL_REACHED, body)
-        self._pending = _Pending(
-            wire_pose,
-            compute_body,
-            None if check is None else (check, reply.get("then_check")),
-            None if compute is None else (compute, reply.get("then_compute")),
-            compute_inputs,
-        )
-        reached: bool = reply["reached"]
+        body = {"pose": pose7(pose.pose), "goal": pose7(goal), "velocity": twist_to_list(velocity)}
+        self._goal_check = (body["pose"], body["velocity"])
+        self._learn("last", self._command == self._goal_check)
+        answer = self._take(self.goal_checker, Op.IS_GOAL_REACHED, body)
+        if answer is None:
+            carry: list[tuple[PluginClient, Carried | None]] = []
+            if not self.goal_last:
+                self._compute_inputs = (pose, velocity, tolerances, inputs, debug_wanted)
+                if self.progress_checker is not None:
+                    check = self.progress_checker._prepare(Op.CHECK, {"pose": pose_to_wire(pose)})
+                    carry.append((self.progress_checker, check))
+                carry.append((self.controller, self._prepare_command(*self._compute_inputs)))
+            answer = self._send(self.goal_checker, Op.IS_GOAL_REACHED, body, carry)
+        self._goal, self._goal_seq = body["goal"], self.goal_checker._seq
+        reached: bool = answer["reached"]
         return reached
-
-    def _carry_compute(
-        self, body: dict[str, Any], pose: Any, compute_inputs: tuple[Any, ...]
-    ) -> tuple[dict[str, Any], Carried | None]:
-        """The command's body for ``pose``, and its request added to ``body`` to be carried."""
-        compute_body = self.controller.compute_body(pose, *compute_inputs)
-        compute = self.controller._prepare(
-            Op.COMPUTE_VELOCITY_COMMANDS, compute_body, with_costmap=True
-        )
-        if compute is not None:
-            body["then_compute_key"] = self.controller.keys.prefix
-            body["then_compute"] = compute.payload
-        return compute_body, compute
 
     def check(self, pose: Any) -> bool:
         """The progress checker's ``check(pose)``."""
         assert self.progress_checker is not None
-        pending = self._pending
-        same_pose = pending is not None and pose_to_wire(pose) == pending.pose
-        carried = pending.check if pending and same_pose else None
-        if pending is not None:
-            pending.check = None
-        body = self.progress_checker._settle(*carried) if carried else None
-        if body is None:
-            self.sent_alone += 1
-            if pending is None or same_pose:  # the goal check's command still fits
-                return self.progress_checker.check(pose)
-            return self._check_carrying_the_command(pose, pending)
-        self.carried_used += 1
-        progress: bool = body["making_progress"]
-        return progress
-
-    def _check_carrying_the_command(self, pose: Any, pending: _Pending) -> bool:
-        """The check on its own, carrying the command prepared for its pose."""
-        assert self.progress_checker is not None
-        body: dict[str, Any] = {"pose": pose_to_wire(pose)}
-        pending.compute_body, compute = self._carry_compute(body, pose, pending.compute_inputs)
-        pending.compute = None
-        reply = self.progress_checker._call(Op.CHECK, body)
-        if compute is not None:
-            pending.compute = (compute, reply.get("then_compute"))
-        progress: bool = reply["making_progress"]
+        body = {"pose": pose_to_wire(pose)}
+        answer = self._take(self.progress_checker, Op.CHECK, body)
+        if answer is None:
+            carry: list[tuple[PluginClient, Carried | None]] = []
+            inputs, self._compute_inputs = self._compute_inputs, None
+            moved = inputs is not None and pose_to_wire(inputs[0]) != body["pose"]
+            if inputs is not None and moved and not self.goal_last:
+                # TF moved on since the goal check: the command prepared for it will not fit
+                carry.append((self.controller, self._prepare_command(pose, *inputs[1:])))
+            answer = self._send(self.progress_checker, Op.CHECK, body, carry)
+        progress: bool = answer["making_progress"]
         return progress
 
     def compute_velocity_commands(
@@ -141,21 +114,61 @@ class ControlCycle:
         debug_wanted: Iterable[str] = (),
     ) -> Any:
         """The controller's ``compute_velocity_commands``."""
-        pending, self._pending = self._pending, None
-        carried = None
+        self._compute_inputs = None
         body = self.controller.compute_body(pose, velocity, tolerances, inputs, debug_wanted)
-        if (
-            pending is not None
-            and body == pending.compute_body
-            and pending.compute is not None
-            and pending.compute[0].costmap_version == self.controller.costmap.version
-        ):
-            carried = pending.compute
-        reply = self.controller._settle(*carried) if carried else None
-        if reply is None:
+        speed = body["velocity"]
+        self._command = (pose7(pose.pose), speed)
+        self._learn("first", self._goal_check == self._command)
+        answer = self._take(self.controller, Op.COMPUTE_VELOCITY_COMMANDS, body)
+        if answer is None:
+            carry: list[tuple[PluginClient, Carried | None]] = []
+            # the goal checker's last goal, unless it was reset since (a new plan, a new goal)
+            if self.goal_last and self._goal and self.goal_checker._seq == self._goal_seq:
+                goal_check = {"pose": self._command[0], "goal": self._goal, "velocity": speed}
+                prepared = self.goal_checker._prepare(Op.IS_GOAL_REACHED, goal_check)
+                carry.append((self.goal_checker, prepared))
+            answer = self._send(self.controller, Op.COMPUTE_VELOCITY_COMMANDS, body, carry)
+        return self.controller.command_of(answer)
+
+    # --- the machinery ---------------------------------------------------------------------
+    def _learn(self, order: str, seen: bool) -> None:
+        """Evidence of the order: switch when this cycle matches one order and not the other."""
+        self._evidence[order] = seen
+        if self._evidence["last"] != self._evidence["first"]:
+            self.goal_last = self._evidence["last"]
+
+    def _prepare_command(self, pose: Any, *inputs: Any) -> Carried | None:
+        body = self.controller.compute_body(pose, *inputs)
+        return self.controller._prepare(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+
+    def _take(self, client: PluginClient, op: Op, body: Body) -> Body | None:
+        """The carried reply of this call, when it was prepared for exactly this call."""
+        carried, reply = self._pending.pop(op, (None, None))
+        with_costmap = op is Op.COMPUTE_VELOCITY_COMMANDS
+        answer = client._take(carried, reply, body, with_costmap=with_costmap)
+        self.carried_used += answer is not None
+        return answer
+
+    def _send(
+        self,
+        client: PluginClient,
+        op: Op,
+        body: Body,
+        carry: list[tuple[PluginClient, Carried | None]],
+    ) -> Body:
+        """The call on its own query, carrying the requests prepared in ``carry``."""
+        prepared = [(c, p) for c, p in carry if p is not None]
+        if prepared:
+            carried = [{"key": c.keys.prefix, "payload": p.payload} for c, p in prepared]
+            body = dict(body, carry=carried)
+        else:
             self.sent_alone += 1
-            return self.controller.compute_velocity_commands(
-                pose, velocity, tolerances, inputs, debug_wanted
-            )
-        self.carried_used += 1
-        return self.controller.command_of(reply)
+        self.queries += 1
+        if op is Op.COMPUTE_VELOCITY_COMMANDS:
+            reply = self.controller._compute(body)
+        else:
+            reply = client._call(op, body)
+        replies = [r["payload"] for r in reply.pop("carried", [])]
+        for i, (_, request) in enumerate(prepared):
+            self._pending[request.request.op] = (request, replies[i] if i < len(replies) else None)
+        return reply

@@ -17,7 +17,7 @@ import logging
 import time
 import uuid
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import zenoh
@@ -31,7 +31,7 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
-from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT
+from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT, Timeout
 
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import HostWatcher
@@ -71,7 +71,12 @@ def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
     else:
         cls = generic_error(plugin_type)
     message = error.message if error.type in named else f"[{error.type}] {error.message}"
-    return cls(message, remote_traceback=error.traceback, python_type=error.python_type)
+    return cls(
+        message,
+        remote_traceback=error.traceback,
+        python_type=error.python_type,
+        host_failed=error.type == ErrorType.UNAVAILABLE.value,
+    )
 
 
 class PluginClient:
@@ -224,22 +229,47 @@ class PluginClient:
         return Request(op=op, sid=self.sid, epoch=self.epoch, seq=self._seq, body=body)
 
     # --- calls carried in another plugin's query (PROTOCOL.md section 15) -----------------
+    def _with_costmap(self, op: Op, body: Body, with_costmap: bool) -> tuple[Body, bool, int]:
+        """The body as sent (the costmap attached, in schema order, when it changed since
+        delivered), whether it carries the costmap, and the costmap's version."""
+        version = self.costmap.version
+        send_costmap = with_costmap and version != self._delivered_costmap
+        if send_costmap:
+            merged = dict(body, costmap=self.costmap.to_wire())
+            body = {name: merged[name] for name in _REQUEST_FIELDS[op] if name in merged}
+        return body, send_costmap, version
+
     def _prepare(self, op: Op, body: Body, *, with_costmap: bool = False) -> Carried | None:
         """An encoded request another plugin's query carries to this plugin's host; None
         when this plugin cannot send one now (not configured)."""
         if not self.configured:
             return None
-        version = self.costmap.version
-        send_costmap = with_costmap and version != self._delivered_costmap
-        request = self._next_request(
-            op, dict(body, costmap=self.costmap.to_wire()) if send_costmap else body
-        )
+        wire, send_costmap, version = self._with_costmap(op, body, with_costmap)
+        request = self._next_request(op, wire)
         return Carried(request, encode_request(request), version, send_costmap)
 
+    def _take(
+        self,
+        carried: Carried | None,
+        reply_bytes: bytes | None,
+        body: Body,
+        *,
+        with_costmap: bool = False,
+    ) -> Body | None:
+        """The reply body for Nav2's call ``body``, from the reply ``carried`` got, as
+        ``_call`` would return it. None, and the call goes on its own, unless the call is
+        the prepared one: its request encodes to the same bytes (seq aside) and nothing was
+        sent on this session since it was prepared; or the carried call did not run, its
+        host does not serve this key or know this session (SessionUnknown: the call on its
+        own re-establishes it)."""
+        if carried is None or self._seq != carried.request.seq:
+            return None
+        wire, _, _ = self._with_costmap(carried.request.op, body, with_costmap)
+        if encode_request(replace(carried.request, body=wire)) != carried.payload:
+            return None
+        return self._settle(carried, reply_bytes)
+
     def _settle(self, carried: Carried, reply_bytes: bytes | None) -> Body | None:
-        """The body of the reply to a carried request, as ``_call`` would return it; None
-        when it must be sent on its own (it did not run, its host does not serve this key,
-        or does not know this session: the call on its own re-establishes it)."""
         if reply_bytes is None:
             return None
         op = carried.request.op
@@ -256,6 +286,7 @@ class PluginClient:
         if reply.ok:
             if carried.sent_costmap:
                 self._delivered_costmap = carried.costmap_version
+            self.last_host = reply.host
             assert reply.body is not None
             return reply.body
         assert reply.error is not None
@@ -278,18 +309,21 @@ class PluginClient:
                 f"{op.value} before configure on {self.keys.prefix}"
             )
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
+        if not alive and OP_TIMEOUT[op] is Timeout.PLAN:
+            # create_plan and smooth run in their server's own thread while the robot follows
+            # its last path: they wait, up to their timeout, for a host to come back, as for a
+            # slow planner, so that a host restart costs no recovery. The others fail at once.
+            self.hosts.wait_for(bool, self._timeout(op))
+            alive = self.hosts.alive
         if not alive:
             raise host_failure_error(self.plugin_type)(
                 f"no planner host is alive on {self.keys.prefix} (start one: planner-host "
-                f"--key {self.keys.prefix} ...); {op.value} not sent"
+                f"--key {self.keys.prefix} ...); {op.value} not sent",
+                host_failed=True,
             )
         self._pin_host(alive)
-        version = self.costmap.version
-        send_costmap = with_costmap and version != self._delivered_costmap
-        if send_costmap:
-            # in schema order, as the validation skipped for the control cycle would write it
-            merged = dict(body, costmap=self.costmap.to_wire())
-            body = {name: merged[name] for name in _REQUEST_FIELDS[op] if name in merged}
+        # in schema order, as the validation skipped for the control cycle would write it
+        body, send_costmap, version = self._with_costmap(op, body, with_costmap)
         request = self._next_request(op, body)
         retry = {"with_costmap": with_costmap, "allow_failover": False, "wait": wait}
         try:
@@ -345,7 +379,8 @@ class PluginClient:
             self._record(request, elapsed, 0, len(payload), False)
             raise host_failure_error(self.plugin_type)(
                 f"{request.op.value} got no reply from {self.keys.prefix} within "
-                f"{timeout * 1000:.0f} ms"
+                f"{timeout * 1000:.0f} ms",
+                host_failed=True,
             )
         try:
             reply = decode_reply(sample.payload.to_bytes(), request.op)

@@ -8,9 +8,10 @@ ALIASES = {
     "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
     "learned": "nav2_pyif_planners.learned.controller:LearnedController",  # needs --scan
     "apf": "nav2_pyif_planners.apf",  # function-delegate style: its functions are the roles
-    # Nav2's other plugins (--smoother, --goal-checker, --progress-checker, --layer)
+    # Nav2's other plugins (--smoother, --goal-checker, --progress-checker, --layer, --recovery)
     "simple_smoother": "nav2_pyif_planners.simple_smoother:SimpleSmoother",
     "stopped_goal_checker": "nav2_pyif_planners.checker_plugins:StoppedGoalChecker",
     "simple_progress_checker": "nav2_pyif_planners.checker_plugins:SimpleProgressChecker",
     "keepout": "nav2_pyif_planners.keepout_layer:KeepOutLayer",
+    "free_backup": "nav2_pyif_planners.free_backup:FreestBackUp",
 }

@@ -13,6 +13,7 @@ from nav2_pyif.common.option_types import (
     endpoint,
     finite_float,
     non_negative_float,
+    non_negative_int,
     number,
     positive_float,
     positive_int,
@@ -66,6 +67,8 @@ PLUGIN_FLAGS = {
     "goal_checker": "the goal checker of every control cycle (e.g. stopped_goal_checker)",
     "progress_checker": "end the run when no progress is made (e.g. simple_progress_checker)",
     "layer": "a costmap layer applied to the costmap before planning (e.g. keepout)",
+    "recovery": "the behaviour run when the controller keeps failing, as Nav2's BackUp "
+    "recovery (e.g. free_backup)",
 }
 
 
@@ -147,6 +150,14 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
             metavar="NAME=VALUE",
             help=f"parameter of the --{flag} plugin (YAML value), repeatable",
         )
+    p.add_argument(
+        "--max-recoveries",
+        type=non_negative_int,
+        default=3,
+        metavar="N",
+        help="with --recovery: how many recoveries the run may make before the controller's "
+        "failure ends it (default 3)",
+    )
     p.add_argument(
         "--smoother-max-time",
         type=positive_float,
@@ -260,8 +271,14 @@ def _params(items: list[str]) -> dict[str, object]:
 def run_command(args: argparse.Namespace) -> int:
     logging.getLogger("nav2_pyif.runner").setLevel(logging.INFO)  # what runs, on stderr
     from nav2_pyif.runner.maps import map_path
+    from nav2_pyif.runner.needs import INSTALL_HINT, missing
     from nav2_pyif.runner.report import format_report
 
+    progress = not args.no_progress and sys.stderr.isatty()
+    absent = missing(progress=progress)
+    if absent:  # found now, not after a run whose picture could not be drawn
+        print(f"nav2-pyif sim: needs {' and '.join(absent)}: {INSTALL_HINT}", file=sys.stderr)
+        return 1
     try:
         config = SimConfig(
             map=map_path(args.map),
@@ -280,10 +297,11 @@ def run_command(args: argparse.Namespace) -> int:
             controller_key=args.controller_key,
             planner_key=args.planner_key,
             path=args.path,
-            progress=not args.no_progress and sys.stderr.isatty(),
+            progress=progress,
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
             plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
             smoother_max_time=args.smoother_max_time,
+            max_recoveries=args.max_recoveries,
             sensing=sensing_config(args),
         )
         result = run_sim(config)

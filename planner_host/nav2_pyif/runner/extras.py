@@ -16,6 +16,7 @@ import numpy.typing as npt
 import zenoh
 
 from nav2_pyif.client import (
+    BehaviorClient,
     ControlCycle,
     ControllerClient,
     CostmapLayerClient,
@@ -36,12 +37,14 @@ KEYS = {
     "goal_checker": "nav2_pyif/sim/goal_checker",
     "progress_checker": "nav2_pyif/sim/progress_checker",
     "layer": "nav2_pyif/sim/keepout",
+    "recovery": "nav2_pyif/sim/backup",
 }
 CLIENTS: dict[str, Callable[..., PluginClient]] = {
     "smoother": SmootherClient,
     "goal_checker": GoalCheckerClient,
     "progress_checker": ProgressCheckerClient,
     "layer": CostmapLayerClient,
+    "recovery": BehaviorClient,
 }
 
 
@@ -74,6 +77,10 @@ class Extras:
     @property
     def layer(self) -> CostmapLayerClient | None:
         return self.clients.get("layer")  # type: ignore[return-value]
+
+    @property
+    def recovery(self) -> BehaviorClient | None:
+        return self.clients.get("recovery")  # type: ignore[return-value]
 
     def records(self) -> list[Any]:
         return [r for client in self.clients.values() for r in client.records or []]
@@ -149,8 +156,9 @@ Sensed = tuple[dict[str, tuple[Any, int]], list[str]]
 
 
 class CycleCalls:
-    """One control cycle's calls in Nav2's order (controller_server's computeControl): the
-    goal check, the progress check, the command; with Python checkers through ControlCycle."""
+    """One control cycle's calls in Nav2's order (controller_server's computeControl, the goal
+    check first as in Jazzy from 1.3.13): the goal check, the progress check, the command;
+    with Python checkers through ControlCycle."""
 
     def __init__(
         self, controller: ControllerClient, extras: Extras, tolerances: GoalChecker

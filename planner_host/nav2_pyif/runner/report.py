@@ -82,6 +82,10 @@ def summary(result: SimResult) -> dict[str, Any]:
         "raw_plan_length_m": round(_length(result.raw_plan), 3),
         "scans": result.scans,
         "debug_outputs": _debug_counts(result),
+        "recoveries": [
+            {"t_s": round(r.sim_time, 3), "seconds": round(r.seconds, 3), "outcome": r.outcome}
+            for r in result.recoveries
+        ],
     }
 
 
@@ -159,6 +163,16 @@ def _errors_text(s: dict[str, Any]) -> str:
     return f"{errors} ({errors - 1} in the {s['cycles']} cycles driven, 1 that ended the run)"
 
 
+def _recoveries_line(result: SimResult, s: dict[str, Any]) -> list[str]:
+    """The recovery behaviour's runs, when the run had one."""
+    if not s["recoveries"]:
+        return []
+    runs = ", ".join(
+        f"t={r['t_s']:.1f} s {r['outcome']} in {r['seconds']:.1f} s" for r in s["recoveries"]
+    )
+    return [f"  recoveries by {result.name_of('recovery')}: {len(s['recoveries'])} ({runs})"]
+
+
 def format_report(result: SimResult) -> str:
     s = summary(result)
     # The planner's own traceback first (the error that ended the run), then what happened.
@@ -174,6 +188,7 @@ def format_report(result: SimResult) -> str:
         f"collisions {s['collisions']}, controller errors {_errors_text(s)}",
         *_plugins_line(s),
         *_sensing_line(result, s),
+        *_recoveries_line(result, s),
         "",
         "latency per call (µs)                  calls   round trip         host compute       "
         "transport",

@@ -16,9 +16,14 @@ from typing import Any
 import numpy as np
 import zenoh
 from geometry_msgs.msg import PoseStamped, Twist
-from tqdm import tqdm
 
-from nav2_pyif.client import ControllerClient, GlobalPlannerClient, PluginClient, Timeouts
+from nav2_pyif.client import (
+    BehaviorClient,
+    ControllerClient,
+    GlobalPlannerClient,
+    PluginClient,
+    Timeouts,
+)
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import visible_hosts
 from nav2_pyif.client.reach import open_tool_session
@@ -35,6 +40,7 @@ from nav2_pyif.runner.host_log import HostLogFollower
 from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
 from nav2_pyif.runner.maps import BUNDLED
+from nav2_pyif.runner.recovery import Recovery, back_up
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.runner.sensing import DebugLines, Sensing, SensingConfig, lines_of
 from nav2_pyif.runner.swaps import Swap, swaps_during
@@ -96,6 +102,7 @@ class SimConfig:
     plugins: dict[str, str] = field(default_factory=dict)
     plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
     smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
+    max_recoveries: int = 3  # with a recovery behaviour: how many the run may make
     # the simulated laser fed to the controller as input "scan", and the debug outputs kept
     sensing: SensingConfig = field(default_factory=SensingConfig)
 
@@ -133,6 +140,7 @@ class SimResult:
     carried: tuple[int, int] = (0, 0)  # checker cycle: calls answered carried / sent alone
     debug: list[DebugLines] = field(default_factory=list)  # the controller's, every few cycles
     scans: int = 0  # simulated scans sent to the controller
+    recoveries: list[Recovery] = field(default_factory=list)  # the recovery behaviour's runs
 
     @property
     def path_length(self) -> float:
@@ -447,6 +455,89 @@ def _note_served(config: SimConfig, result: SimResult, served: dict[str, str | N
             )
 
 
+def _advance(
+    result: SimResult,
+    robot: DiffDrive,
+    checker: WorldChecker,
+    cmd_v: float,
+    cmd_w: float,
+    dt: float,
+    began: float,
+) -> bool:
+    """The robot driven by (cmd_v, cmd_w) for ``dt``, recorded; False when it collided (the
+    outcome says where)."""
+    robot.step(cmd_v, cmd_w, dt)
+    result.sim_time += dt
+    result.trajectory.append((result.sim_time, robot.x, robot.y, robot.yaw, robot.v, robot.w))
+    result.clock.append(began)
+    result.min_clearance = min(result.min_clearance, checker.clearance(robot.x, robot.y, robot.yaw))
+    if checker.collides(robot.x, robot.y, robot.yaw):
+        result.collisions += 1
+        result.outcome = f"collision at ({robot.x:.2f}, {robot.y:.2f})"
+        return False
+    return True
+
+
+def _recover(
+    behavior: BehaviorClient,
+    result: SimResult,
+    robot: DiffDrive,
+    checker: WorldChecker,
+    dt: float,
+) -> bool:
+    """The recovery behaviour's BackUp on the robot; False when the run ends with it (it
+    failed, or the robot collided)."""
+
+    def pose_now() -> Any:
+        return pose_msg(robot.x, robot.y, robot.yaw, stamp_s=CLOCK_START + result.sim_time)
+
+    def drive(v: float, w: float) -> bool:
+        return _advance(result, robot, checker, v, w, dt, time.time())
+
+    what = result.name_of("recovery")
+    log.info("t=%.2fs: the controller keeps failing; recovery %s", result.sim_time, what)
+    try:
+        recovery = back_up(behavior, pose_now, drive, dt, result.sim_time)
+    except Nav2Error as exc:
+        _ended_by(result, f"the recovery {what} failed", exc)
+        return False
+    result.recoveries.append(recovery)
+    log.info("recovery %s %s after %.1f s", what, recovery.outcome, recovery.seconds)
+    if recovery.outcome == "collision":
+        return False  # the outcome names the collision
+    if recovery.outcome != "succeeded":
+        result.outcome = f"{CONTROLLER_FAILED}, and the recovery {what}: {recovery.outcome}"
+        return False
+    return True
+
+
+class _NoBar:
+    """What the loop calls on a progress bar, doing nothing: no bar is shown."""
+
+    def update(self, n: float) -> None:
+        pass
+
+    def set_postfix_str(self, text: str) -> None:
+        pass
+
+    def close(self) -> None:
+        pass
+
+
+def _progress_bar(config: SimConfig) -> Any:
+    """tqdm's bar on stderr when progress is shown, else one that does nothing: tqdm belongs
+    to the runner extra (runner/needs.py), so nav2_pyif.testing and the host run without it."""
+    if not config.progress:
+        return _NoBar()
+    from tqdm import tqdm
+
+    return tqdm(
+        total=round(config.timeout, 1),
+        unit="sim s",
+        bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
+    )
+
+
 def _control_loop(
     config: SimConfig, result: SimResult, calls: CycleCalls, local_version: int
 ) -> None:
@@ -460,12 +551,7 @@ def _control_loop(
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
     failure_traceback = ""  # the latest planner traceback since the controller began failing
-    bar = tqdm(
-        total=round(config.timeout, 1),
-        unit="sim s",
-        disable=not config.progress,
-        bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
-    )
+    bar = _progress_bar(config)
     wall_start = time.perf_counter()
     cycle = 0
     try:
@@ -515,22 +601,18 @@ def _control_loop(
                 failing_since = result.sim_time if failing_since is None else failing_since
                 failure_traceback = exc.remote_traceback or failure_traceback
                 if result.sim_time - failing_since > config.failure_tolerance:
-                    _ended_by(result, CONTROLLER_FAILED, exc, failure_traceback)
-                    return
-            robot.step(cmd_v, cmd_w, dt)
-            result.sim_time += dt
-            cycle += 1
-            result.trajectory.append(
-                (result.sim_time, robot.x, robot.y, robot.yaw, robot.v, robot.w)
-            )
-            result.clock.append(began)
-            result.min_clearance = min(
-                result.min_clearance, checker.clearance(robot.x, robot.y, robot.yaw)
-            )
-            if checker.collides(robot.x, robot.y, robot.yaw):
-                result.collisions += 1
-                result.outcome = f"collision at ({robot.x:.2f}, {robot.y:.2f})"
+                    recovery = calls.extras.recovery
+                    if recovery is None or len(result.recoveries) >= config.max_recoveries:
+                        _ended_by(result, CONTROLLER_FAILED, exc, failure_traceback)
+                        return
+                    if not _recover(recovery, result, robot, checker, dt):
+                        return
+                    failing_since, failure_traceback = None, ""
+                    calls.start()  # a new FollowPath goal: the checkers reset
+                    continue
+            if not _advance(result, robot, checker, cmd_v, cmd_w, dt, began):
                 return
+            cycle += 1
             distance = math.hypot(goal[0] - robot.x, goal[1] - robot.y)
             if calls.cycle is None and config.goal_checker.is_goal_reached(
                 robot.x, robot.y, robot.yaw, *goal

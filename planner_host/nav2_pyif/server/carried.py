@@ -1,10 +1,9 @@
-"""The control cycle in one query (PROTOCOL.md section 15): an ``is_goal_reached`` request may
-carry the progress checker's ``check`` and the controller's ``compute_velocity_commands``
-requests, encoded, for keys this host serves. They run after the goal check, in Nav2's order
-and only as far as Nav2 would go: the check when the goal is not reached, the controller when
-the robot is making progress. Their replies travel back, encoded, in the goal check's reply.
-A ``check`` request may carry the command the same way (when the goal check's carried calls
-were prepared for a pose TF has since moved on from).
+"""The control cycle in fewer queries (PROTOCOL.md section 15): a goal check, a progress check or
+a command may carry, in its request's ``carry``, the encoded requests of the calls that
+follow it in Nav2's control cycle, for keys this host serves (which op may carry which is
+``schema.CARRIES``). They run after it, in order and only as far as Nav2 would go
+(``schema.GOES_ON``: not when the goal is reached, nor without progress, nor after an error);
+their encoded replies travel back in the reply's ``carried``.
 
 Each carried request is served exactly as if it had come on its own key (its session, its
 worker, its journal), so the plugins that prepared them read the replies as their own.
@@ -17,11 +16,15 @@ from typing import Any
 
 import msgpack
 from nav2_pyif_protocol.constants import ErrorType, Op
+from nav2_pyif_protocol.schema import CARRIES, GOES_ON
 
 from nav2_pyif.server.runtime import error_reply, peek_seq
 
 #: (key prefix, op, request bytes) -> reply bytes, or None when this host does not serve it
 Route = Callable[[str, str, bytes], bytes | None]
+
+#: the ops whose requests may carry others, by their key's last chunk
+CARRIERS: frozenset[str] = frozenset(op.value for op in CARRIES)
 
 
 def _unpack(data: bytes) -> dict[str, Any]:
@@ -32,30 +35,42 @@ def _unpack(data: bytes) -> dict[str, Any]:
     return tree if isinstance(tree, dict) else {}
 
 
-_CHECK = ("then_check", Op.CHECK.value, "making_progress")
-_COMPUTE = ("then_compute", Op.COMPUTE_VELOCITY_COMMANDS.value, "")
-#: op that carries -> (what its own reply must say for Nav2 to go on, the calls it carries)
-CARRIERS: dict[str, tuple[Callable[[dict[str, Any]], bool], tuple[tuple[str, str, str], ...]]] = {
-    Op.IS_GOAL_REACHED.value: (lambda body: not body.get("reached"), (_CHECK, _COMPUTE)),
-    Op.CHECK.value: (lambda body: bool(body.get("making_progress")), (_COMPUTE,)),
-}
+def _goes_on(op: Op, answer: dict[str, Any]) -> bool:
+    """Whether Nav2 makes the next call of the cycle after this reply."""
+    if not answer.get("ok") or not isinstance(answer.get("body"), dict):
+        return False
+    field, wanted = GOES_ON.get(op, ("", True))
+    return not field or answer["body"].get(field) is wanted
+
+
+def _op_of(request: bytes) -> Op | None:
+    try:
+        return Op(_unpack(request).get("op"))
+    except ValueError:
+        return None
 
 
 def carry_on(op: str, payload: bytes, reply: bytes, route: Route, host_id: str) -> bytes:
-    """The reply of ``op`` (a goal check or a progress check) with the carried calls' replies
-    added, as far as Nav2 would go; ``reply`` unchanged when nothing was carried, the call
-    failed, or Nav2 would stop there (goal reached, no progress)."""
-    goes_on, chain = CARRIERS[op]
-    body = _unpack(payload).get("body")
+    """The reply of ``op`` with the carried calls' replies added, as far as Nav2 would go;
+    ``reply`` unchanged when nothing was carried, the call failed, or Nav2 would stop."""
+    carrier = Op(op)
+    carry = (_unpack(payload).get("body") or {}).get("carry")
     answer = _unpack(reply)
-    if not isinstance(body, dict) or not answer.get("ok") or not goes_on(answer["body"]):
+    if not isinstance(carry, list) or not carry or not _goes_on(carrier, answer):
         return reply
-    carried = answer["body"]
-    for key_field, carried_op, verdict in chain:
-        request, key = body.get(key_field), body.get(f"{key_field}_key")
-        if not isinstance(request, bytes) or not isinstance(key, str):
-            continue
-        result = route(key, carried_op, request)
+    carried: list[dict[str, Any]] = []
+    for call in carry:
+        key, request = call.get("key"), call.get("payload")
+        if not isinstance(key, str) or not isinstance(request, bytes):
+            break
+        carried_op = _op_of(request)
+        if carried_op not in CARRIES[carrier]:
+            why = f"{op} may not carry {carried_op and carried_op.value}: send it on its own"
+            result: bytes | None = error_reply(
+                peek_seq(request), host_id, ErrorType.BAD_REQUEST, why
+            )
+        else:
+            result = route(key, carried_op.value, request)
         if result is None:
             result = error_reply(
                 peek_seq(request),
@@ -63,8 +78,8 @@ def carry_on(op: str, payload: bytes, reply: bytes, route: Route, host_id: str) 
                 ErrorType.UNAVAILABLE,
                 f"host {host_id} does not serve {key}: send {carried_op} there on its own",
             )
-        carried[key_field] = result
-        outcome = _unpack(result)
-        if not outcome.get("ok") or (verdict and not outcome["body"].get(verdict)):
-            break  # Nav2 stops here: the controller is not called
+        carried.append({"key": key, "payload": result})
+        if carried_op is None or not _goes_on(carried_op, _unpack(result)):
+            break  # Nav2 stops here: the next call is not made
+    answer["body"]["carried"] = carried
     return msgpack.packb(answer, use_bin_type=True)

@@ -43,7 +43,7 @@ examples:
   # a controller class, on the key the Nav2 params YAML names
   planner-host --key nav2_pyif/robot1/FollowPath --planner my_pkg.ctrl:MyController
 
-  # the seed paper's function-delegate style: a module and a role -> function map
+  # the function-delegate style: a module and a role -> function map
   planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
       --delegate compute_velocity_commands=compute,set_plan=set_plan
 
@@ -90,14 +90,14 @@ def build_parser() -> argparse.ArgumentParser:
         help=f"a {PLUGIN_BASES_TEXT} subclass, e.g. my_pkg.ctrl:MyController",
     )
     what.add_argument(
-        "--module", metavar="MODULE", help="module of plain functions (the seed's python_module)"
+        "--module", metavar="MODULE", help="module of plain functions (the plugin's python_module)"
     )
     what.add_argument(
         "--delegate",
         action="append",
         default=[],
         metavar="ROLE=FUNCTION",
-        help="role -> function of --module (the seed's python_delegates), repeatable "
+        help="role -> function of --module (the plugin's python_delegates), repeatable "
         "or comma-separated; without it, the functions named after the roles",
     )
     what.add_argument(

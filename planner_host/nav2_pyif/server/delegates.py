@@ -1,4 +1,4 @@
-"""The seed paper's function-delegate style: a module of plain functions plus a role map.
+"""The function-delegate style: a module of plain functions plus a role map.
 
     planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf \\
         --delegate compute_velocity_commands=compute --delegate set_plan=set_plan
@@ -7,7 +7,7 @@ Without ``--delegate``, the module's functions named after the roles are bound (
 defining ``compute_velocity_commands`` and ``set_plan`` needs no map). Each role left without a
 function is logged as a warning saying what Nav2's call then does.
 
-Signatures (the seed's, with the costmap first where the seed passed the occupancy grid):
+Signatures (a function that reads the costmap gets it as its first argument):
     compute_velocity_commands(costmap: Costmap, pose: PoseStamped, twist: Twist) -> TwistStamped
     set_plan(plan: Plan)                      # reads like nav_msgs/Path
     set_speed_limit(speed_limit: float, is_percentage: bool)

@@ -53,7 +53,7 @@ class ServedPlanner:
     ) -> None:
         self.keys = keys
         self.runtime = runtime
-        self.route = route  # the host's other keys, for calls carried in a goal check
+        self.route = route  # the host's other keys, for calls carried in a cycle's query
         self.host_id = host_id
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
@@ -87,7 +87,7 @@ class ServedPlanner:
                 op = str(query.key_expr).rsplit("/", 1)[-1]
                 payload = _payload(query)
                 reply = self.runtime.handle(payload, key_op=op)
-                if op in CARRIERS and self.route is not None and b"then_" in payload:
+                if op in CARRIERS and self.route is not None and b"carry" in payload:
                     reply = carry_on(op, payload, reply, self.route, self.host_id)
                 query.reply(query.key_expr, reply)
             except Exception:

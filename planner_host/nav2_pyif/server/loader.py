@@ -1,4 +1,4 @@
-"""Find a planner: ``pkg.module:Class`` or a module of functions (the seed's delegate style)."""
+"""Find a planner: ``pkg.module:Class`` or a module of functions (the function-delegate style)."""
 
 from __future__ import annotations
 

@@ -1,9 +1,16 @@
-// PROTOCOL.md section 15 on the plugin side: in one controller_server, the Python goal
-// checker's query carries the Python progress checker's check and the Python controller's
-// command, prepared for the same pose and velocity; the progress checker and the controller
-// use the carried replies when Nav2 then calls them with those very inputs, and call on their
-// own otherwise (other inputs, a call that did not run, another host): one round trip per
-// control cycle instead of three, and always Nav2's outcome.
+// PROTOCOL.md section 15 on the plugin side: in one controller_server, a call of the control
+// cycle carries the calls of the Python plugins that follow it, prepared for the same pose
+// and velocity. controller_server calls them in one of two orders:
+// - goal check first (Jazzy from 1.3.13, Kilted): the goal check's query carries the
+//   progress check and the command: one round trip per cycle;
+// - goal check last (Humble, Jazzy 1.3.8 to 1.3.12): the progress check goes on its own, and
+//   the command's query carries the goal check, for the goal the goal checker was last
+//   given: two round trips (one without a Python progress checker).
+// The order is learned from the calls (as the reference client's ControlCycle): a goal check
+// with the pose and velocity of the command before it says "last", a command with those of
+// the goal check before it says "first"; a robot standing still says neither. A prepared
+// call's reply is used only when Nav2's call is the prepared one (PluginSession::take);
+// otherwise the call goes on its own, so the outcome is always that of Nav2's order.
 //
 // Nav2 does not tell a goal checker which controller and progress checker it calls next: the
 // cycle holds the controller that got the latest plan and the progress checker reset last
@@ -37,60 +44,70 @@ public:
   void use_progress_checker(ProgressCheckerSession & session);
   void forget(const PluginSession & session);
 
-  // The goal check for the robot's `pose` (the message Nav2's pose lookup gives, header
-  // included), carrying the check and the command prepared for it.
+  // Nav2's three calls. `robot`: the goal checker's own lookup of the robot's pose when it
+  // gives Nav2's `pose` (the stamped message the other calls then get, when TF has not
+  // moved on); without it the goal check carries nothing. `tolerances`: what the
+  // controller will be given.
   bool is_goal_reached(
-    GoalCheckerSession & checker, const protocol::PoseStamped & pose,
-    const std::array<double, 7> & goal, const std::array<double, 6> & velocity,
+    GoalCheckerSession & checker, const std::optional<protocol::PoseStamped> & robot,
+    const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+    const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & tolerances);
-
-  // The carried answer for this call, if it is the prepared one; taken once. std::nullopt:
-  // call on your own.
-  std::optional<bool> take_check(
-    ProgressCheckerSession & session, const protocol::PoseStamped & pose);
-  // The progress check of this cycle: the carried answer when it was prepared for `pose`;
-  // else the check on its own, carrying the command prepared for `pose` with the goal check's
-  // velocity and tolerances when TF moved on since the goal check (Nav2 gives the progress
-  // checker and the controller the same pose): two round trips that cycle, not three.
   bool check(ProgressCheckerSession & session, const protocol::PoseStamped & pose);
-  std::optional<protocol::TwistStamped> take_compute(
+  protocol::TwistStamped compute_velocity_commands(
     ControllerSession & session, const protocol::PoseStamped & pose,
     const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
 
-  // Calls answered from a carried reply, and calls that went on their own after all.
+  // Calls answered from a carried reply; queries sent (carrying or not); whether the goal
+  // check was found to end the cycle.
   std::uint64_t carried_used() const;
-  std::uint64_t sent_alone() const;
+  std::uint64_t queries() const;
+  bool goal_last() const;
 
 private:
-  struct PendingCheck
+  template<class Prepared>
+  struct Pending
   {
     const PluginSession * session{nullptr};
-    Carried carried;
+    Prepared prepared;
     std::optional<protocol::Bytes> reply;
   };
-  struct PendingCompute
+  // The goal check's inputs, for the command the check carries when TF moved on (goal first).
+  struct CommandInputs
   {
-    const PluginSession * session{nullptr};
-    PreparedCommand prepared;
-    std::optional<protocol::Bytes> reply;
+    protocol::PoseStamped pose;
+    std::array<double, 6> velocity{};
+    std::optional<protocol::GoalChecker> tolerances;
   };
+  using Seen = std::pair<std::array<double, 7>, std::array<double, 6>>;  // pose, velocity
+
+  // Evidence of the order; switches when one cycle fits one order and not the other.
+  void learn(bool goal_last_seen, bool seen);
+  // The carried replies of a carrier's query, handed to the pending calls prepared for it.
+  template<class Prepared>
+  void keep(
+    std::optional<Pending<Prepared>> & slot, std::optional<Pending<Prepared>> pending,
+    CarriedCalls & replies, std::size_t & next, const PluginSession * current);
+  void count(bool carried);
 
   mutable std::mutex mutex_;
   ControllerSession * controller_{nullptr};
   ProgressCheckerSession * progress_checker_{nullptr};
-  // The goal check's velocity and tolerances: the command's inputs besides the pose.
-  struct CommandInputs
-  {
-    std::array<double, 6> velocity{};
-    std::optional<protocol::GoalChecker> tolerances;
-  };
-
-  std::optional<PendingCheck> check_;
-  std::optional<PendingCompute> compute_;
+  GoalCheckerSession * goal_checker_{nullptr};  // the one Nav2 called last
+  std::optional<Pending<Carried>> check_;
+  std::optional<Pending<PreparedCommand>> compute_;
+  std::optional<Pending<Carried>> goal_check_;
   std::optional<CommandInputs> command_inputs_;  // this cycle's, until the progress check
+  bool goal_last_{false};
+  bool seen_first_{false};
+  bool seen_last_{false};
+  std::optional<Seen> last_goal_check_;
+  std::optional<Seen> last_command_;
+  std::optional<std::array<double, 7>> goal_;  // the goal checker's last goal
+  std::uint64_t goal_seq_{0};  // the goal checker's seq after that call: reset since?
   std::uint64_t carried_used_{0};
-  std::uint64_t sent_alone_{0};
+  std::uint64_t queries_{0};
 };
 
 }  // namespace nav2_pyif_bridge::client

@@ -6,32 +6,29 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge::client
 {
 
-// A request the goal check's query carries for another key (PROTOCOL.md section 15).
-struct CarriedCall
-{
-  std::string key;        // the key prefix of the plugin it is for
-  protocol::Bytes payload;
-};
+// The encoded requests a call's query carries for other keys, or the encoded replies of
+// those that ran, in order (PROTOCOL.md section 15).
+using CarriedCalls = std::vector<protocol::CarriedCall>;
 
-// The goal check's answer and the encoded replies of the calls it carried, those that ran.
+// The goal check's answer and the replies of the calls it carried.
 struct GoalCheckReplies
 {
   bool reached{false};
-  std::optional<protocol::Bytes> check;
-  std::optional<protocol::Bytes> compute;
+  CarriedCalls carried;
 };
 
-// The progress check's answer and the encoded reply of the command it carried, if that ran.
+// The progress check's answer and the replies of the calls it carried.
 struct CheckReplies
 {
   bool making_progress{false};
-  std::optional<protocol::Bytes> compute;
+  CarriedCalls carried;
 };
 
 class GoalCheckerSession : public KindSession<PluginKind::GoalChecker>
@@ -44,12 +41,22 @@ public:
   bool is_goal_reached(
     const std::array<double, 7> & pose, const std::array<double, 7> & goal,
     const std::array<double, 6> & velocity);
-  // The same, carrying the progress check and the command of the cycle (either may be
-  // absent); the host runs them in Nav2's order, as far as Nav2 would go.
+  // The same, carrying the calls that follow it in the cycle; the host runs them in order,
+  // as far as Nav2 would go.
   GoalCheckReplies is_goal_reached(
     const std::array<double, 7> & pose, const std::array<double, 7> & goal,
-    const std::array<double, 6> & velocity, std::optional<CarriedCall> then_check,
-    std::optional<CarriedCall> then_compute);
+    const std::array<double, 6> & velocity, CarriedCalls carry);
+  // The same call prepared for another plugin's query to carry; std::nullopt when the
+  // session cannot prepare one now.
+  std::optional<Carried> prepare_goal_check(
+    const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+    const std::array<double, 6> & velocity);
+  // The answer from the carried reply when Nav2's call is the prepared one
+  // (PluginSession::take); else std::nullopt: the call goes on its own.
+  std::optional<bool> take_goal_check(
+    Carried carried, const std::optional<protocol::Bytes> & reply,
+    const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+    const std::array<double, 6> & velocity);
   protocol::GetTolerancesReply get_tolerances();
   void reset();
 };
@@ -62,14 +69,11 @@ public:
   // False when the robot failed to make progress.
   bool check(const protocol::PoseStamped & pose);
   // The same, carrying the command of the cycle; the host runs it when Nav2 would (progress).
-  CheckReplies check(const protocol::PoseStamped & pose, std::optional<CarriedCall> then_compute);
-  // The same call prepared for the goal check's query to carry; std::nullopt when the
-  // session cannot prepare one now.
+  CheckReplies check(const protocol::PoseStamped & pose, CarriedCalls carry);
+  // As GoalCheckerSession's prepare_goal_check and take_goal_check.
   std::optional<Carried> prepare_check(const protocol::PoseStamped & pose);
-  // The answer from the carried reply, when Nav2's call is the prepared one (the same pose,
-  // header included) and it ran; else std::nullopt: the call goes on its own.
-  std::optional<bool> settle_check(
-    const Carried & carried, const std::optional<protocol::Bytes> & reply,
+  std::optional<bool> take_check(
+    Carried carried, const std::optional<protocol::Bytes> & reply,
     const protocol::PoseStamped & pose);
   void reset();
 };

@@ -17,15 +17,18 @@
 namespace nav2_pyif_bridge::client
 {
 
-// A control cycle's command request prepared for the goal check's query to carry.
+// A control cycle's command request prepared for another plugin's query to carry.
 struct PreparedCommand
 {
   Carried carried;
-  protocol::PoseStamped pose;
-  std::array<double, 6> velocity{};
-  std::optional<protocol::GoalChecker> goal_checker;
   std::vector<std::pair<std::string, std::uint64_t>> inputs;  // attached: name, generation
-  std::uint64_t plan_generation{0};
+};
+
+// The command and the encoded replies of the calls its query carried (those that ran).
+struct CommandReplies
+{
+  protocol::TwistStamped cmd_vel;
+  std::vector<protocol::CarriedCall> carried;
 };
 
 class ControllerSession : public KindSession<PluginKind::Controller>
@@ -33,8 +36,13 @@ class ControllerSession : public KindSession<PluginKind::Controller>
 public:
   using KindSession::KindSession;
 
-  // The plan in the costmap's global frame; remembered (after an ok reply) for re-sending.
-  void set_plan(const protocol::Path & path);
+  // The plan in the costmap's global frame, remembered for re-sending. std::nullopt when the
+  // host has it. When the host failed the call (CallError::host_failed) the plan is kept as
+  // owed and the failure returned, not thrown: the next cycle sends the plan first, as does a
+  // re-established session. Nav2's behaviour tree replans about once a second, and a throw
+  // here would end FollowPath at once, where a failing cycle gets the controller server's
+  // failure_tolerance. The planner's own errors (InvalidPath, ...) throw.
+  std::optional<CallError> set_plan(const protocol::Path & path);
   // The latest message of an input topic (from a subscription's thread): sent with the next
   // control cycle, once; every input again after the host lost the session.
   void set_input(protocol::Input input);
@@ -53,13 +61,19 @@ public:
   std::optional<PreparedCommand> prepare_command(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
-  // The command from the carried reply, when Nav2's call is the prepared one (the same pose,
-  // velocity and tolerances, the costmap and plan unchanged since) and the call ran; else
-  // std::nullopt, and the call goes on its own. Errors throw as compute_velocity_commands.
-  std::optional<protocol::TwistStamped> settle_command(
-    const PreparedCommand & prepared, const std::optional<protocol::Bytes> & reply,
+  // The command from the carried reply, when Nav2's call is the prepared one
+  // (PluginSession::take) and no plan is owed; else std::nullopt, and the call goes on its
+  // own. Errors throw as compute_velocity_commands.
+  std::optional<protocol::TwistStamped> take_command(
+    PreparedCommand prepared, const std::optional<protocol::Bytes> & reply,
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
+  // compute_velocity_commands carrying the calls that follow it in the cycle (the goal
+  // check, when controller_server calls it last).
+  CommandReplies compute_velocity_commands(
+    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
+    const std::optional<protocol::GoalChecker> & goal_checker,
+    std::vector<protocol::CarriedCall> carry);
 
   // Remembered after an ok reply, and also when no host could be reached (the reference
   // client forgets it then), so a host that comes back drives at the latest limit.
@@ -86,8 +100,11 @@ private:
     protocol::ComputeVelocityCommandsReply reply,
     const std::vector<std::pair<std::string, std::uint64_t>> & attached);
 
+  // Sends plan_; it is no longer owed once the host has it.
+  void send_plan(const CallOptions & options);
+
   std::optional<protocol::Path> plan_;
-  std::uint64_t plan_generation_{0};  // set_plan calls: a prepared command is for one plan
+  bool plan_owed_{false};  // set_plan failed on the host: sent before the next cycle
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
   // The latest message of each input; `sent` is the generation the host acknowledged.

@@ -90,6 +90,9 @@ public:
   {
     return cause_ == Cause::NoHost || cause_ == Cause::TimedOut || cause_ == Cause::Transport;
   }
+  // The host, not its planner, failed the call: unreachable, or it answered Unavailable (its
+  // worker crashed, is restarting or overran its deadline).
+  bool host_failed() const noexcept;
   // The message, then the Python exception's type and traceback when the host sent them.
   std::string log_text() const;
 

@@ -1,4 +1,4 @@
-// The seed paper's configuration: with `python_module` + `python_delegates` (or
+// The plugin's own planner host: with `python_module` + `python_delegates` (or
 // `python_planner`) and no host of its own, the plugin starts a `planner-host` child process
 // serving that planner on a loopback endpoint, connects to it, and restarts it (with a
 // back-off) when it exits. POSIX only; needs neither Nav2 nor Zenoh.

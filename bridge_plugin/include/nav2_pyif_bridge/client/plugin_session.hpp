@@ -79,8 +79,8 @@ struct SessionConfig
 
 class CarriedCycle;
 
-// A request prepared to travel inside another plugin's query (PROTOCOL.md section 15): the
-// goal check's query carries the progress check and the command of the same control cycle.
+// A request prepared to travel inside another plugin's query (PROTOCOL.md section 15): a
+// call of the control cycle carries those that follow it.
 struct Carried
 {
   protocol::Request request;
@@ -169,9 +169,12 @@ protected:
   // errors throw as call() does. The caller holds mutex().
   std::optional<protocol::ReplyBody> settle(
     const Carried & carried, const std::optional<protocol::Bytes> & reply);
-  // Whether the costmap is the one `carried` was prepared with (else Nav2's call is not the
-  // prepared one). The caller holds mutex().
-  bool costmap_unchanged_since(const Carried & carried);
+  // The body of the reply to a carried request for Nav2's call `body`, when that call is the
+  // prepared one: its request encodes to the same bytes (the prepared seq, and the costmap
+  // as call() would attach it) and nothing was sent on this session since it was prepared;
+  // then as settle(). Else std::nullopt: the call goes on its own. mutex() held.
+  std::optional<protocol::ReplyBody> take(
+    Carried carried, const std::optional<protocol::Bytes> & reply, protocol::RequestBody body);
 
   // One call, following rules 1-6. The caller holds mutex().
   protocol::ReplyBody call(const protocol::RequestBody & body, const CallOptions & options);

@@ -11,7 +11,7 @@
 //   lifecycle_timeout   [s] activate, deactivate, cleanup, set_parameters, reset (5.0)
 //   wait_for_host       [s] how long configure waits for a host to appear (5.0; 60.0 for a
 //                       local host); without one, configure is deferred to the first call
-//   python_module       the seed paper's style: a module of functions ...
+//   python_module       the function-delegate style: a module of functions ...
 //   python_delegates    ... and its role -> function map: ["role=function", ...], one
 //                       "r1=f1,r2=f2" string, or nested python_delegates.<role>: function
 //   python_planner      or a planner class, module:Class

@@ -107,6 +107,8 @@ struct ComputeVelocityCommandsRequest
   std::optional<std::vector<Input>> inputs;
   // optional: names of the debug outputs someone subscribes to; absent when none
   std::optional<std::vector<std::string>> debug_wanted;
+  // optional: calls to run after this one, in order, as far as Nav2 would go; absent when none
+  std::optional<std::vector<CarriedCall>> carry;
 };
 
 struct ComputeVelocityCommandsReply
@@ -115,6 +117,8 @@ struct ComputeVelocityCommandsReply
   TwistStamped cmd_vel;
   // optional: debug outputs among debug_wanted the planner returned; absent when none
   std::optional<std::vector<DebugOutput>> debug;
+  // optional: the replies of the carried calls that ran, in order; absent when none ran
+  std::optional<std::vector<CarriedCall>> carried;
 };
 
 // --- set_speed_limit -----------------------------------------------------------------------------
@@ -200,24 +204,16 @@ struct IsGoalReachedRequest
   std::array<double, 7> goal{};
   // current velocity in the robot base frame
   std::array<double, 6> velocity{};
-  // optional: key prefix of the progress checker to run next
-  std::optional<std::string> then_check_key;
-  // optional: an encoded check request for then_check_key
-  std::optional<std::vector<std::uint8_t>> then_check;
-  // optional: key prefix of the controller to run next
-  std::optional<std::string> then_compute_key;
-  // optional: an encoded compute_velocity_commands request for then_compute_key
-  std::optional<std::vector<std::uint8_t>> then_compute;
+  // optional: calls to run after this one, in order, as far as Nav2 would go; absent when none
+  std::optional<std::vector<CarriedCall>> carry;
 };
 
 struct IsGoalReachedReply
 {
   // the goal is reached
   bool reached{false};
-  // optional: the encoded reply to then_check, when it ran
-  std::optional<std::vector<std::uint8_t>> then_check;
-  // optional: the encoded reply to then_compute, when it ran
-  std::optional<std::vector<std::uint8_t>> then_compute;
+  // optional: the replies of the carried calls that ran, in order; absent when none ran
+  std::optional<std::vector<CarriedCall>> carried;
 };
 
 // --- get_tolerances ------------------------------------------------------------------------------
@@ -238,18 +234,16 @@ struct CheckRequest
 {
   // robot pose, in the costmap's global frame
   PoseStamped pose;
-  // optional: key prefix of the controller to run next
-  std::optional<std::string> then_compute_key;
-  // optional: an encoded compute_velocity_commands request for then_compute_key
-  std::optional<std::vector<std::uint8_t>> then_compute;
+  // optional: calls to run after this one, in order, as far as Nav2 would go; absent when none
+  std::optional<std::vector<CarriedCall>> carry;
 };
 
 struct CheckReply
 {
   // check()'s return: false = failed to make progress
   bool making_progress{false};
-  // optional: the encoded reply to then_compute, when it ran
-  std::optional<std::vector<std::uint8_t>> then_compute;
+  // optional: the replies of the carried calls that ran, in order; absent when none ran
+  std::optional<std::vector<CarriedCall>> carried;
 };
 
 // --- update_bounds -------------------------------------------------------------------------------

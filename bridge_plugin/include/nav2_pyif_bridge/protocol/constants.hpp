@@ -13,7 +13,7 @@ namespace nav2_pyif_bridge::protocol
 {
 
 // Sent in every request and reply. Decoders refuse any other value (VersionMismatch).
-inline constexpr std::int64_t kProtocolVersion = 1;
+inline constexpr std::int64_t kProtocolVersion = 2;
 
 // The protocol's own error types (error.type). The nav2_core exception names travel as plain
 // strings too; mapping them to exceptions is the plugin's job (client/error_mapping.hpp).

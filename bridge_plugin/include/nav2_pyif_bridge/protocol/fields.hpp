@@ -88,6 +88,13 @@ void for_each_field(const DebugOutput & value, Visit && visit)
 }
 
 template<class Visit>
+void for_each_field(const CarriedCall & value, Visit && visit)
+{
+  visit("key", value.key);
+  visit("payload", value.payload);
+}
+
+template<class Visit>
 void for_each_field(const ConfigureRequest & value, Visit && visit)
 {
   visit("plugin_type", value.plugin_type);
@@ -156,6 +163,7 @@ void for_each_field(const ComputeVelocityCommandsRequest & value, Visit && visit
   visit("costmap", value.costmap);
   visit("inputs", value.inputs);
   visit("debug_wanted", value.debug_wanted);
+  visit("carry", value.carry);
 }
 
 template<class Visit>
@@ -163,6 +171,7 @@ void for_each_field(const ComputeVelocityCommandsReply & value, Visit && visit)
 {
   visit("cmd_vel", value.cmd_vel);
   visit("debug", value.debug);
+  visit("carried", value.carried);
 }
 
 template<class Visit>
@@ -237,18 +246,14 @@ void for_each_field(const IsGoalReachedRequest & value, Visit && visit)
   visit("pose", value.pose);
   visit("goal", value.goal);
   visit("velocity", value.velocity);
-  visit("then_check_key", value.then_check_key);
-  visit("then_check", value.then_check);
-  visit("then_compute_key", value.then_compute_key);
-  visit("then_compute", value.then_compute);
+  visit("carry", value.carry);
 }
 
 template<class Visit>
 void for_each_field(const IsGoalReachedReply & value, Visit && visit)
 {
   visit("reached", value.reached);
-  visit("then_check", value.then_check);
-  visit("then_compute", value.then_compute);
+  visit("carried", value.carried);
 }
 
 template<class Visit>
@@ -266,15 +271,14 @@ template<class Visit>
 void for_each_field(const CheckRequest & value, Visit && visit)
 {
   visit("pose", value.pose);
-  visit("then_compute_key", value.then_compute_key);
-  visit("then_compute", value.then_compute);
+  visit("carry", value.carry);
 }
 
 template<class Visit>
 void for_each_field(const CheckReply & value, Visit && visit)
 {
   visit("making_progress", value.making_progress);
-  visit("then_compute", value.then_compute);
+  visit("carried", value.carried);
 }
 
 template<class Visit>

@@ -133,4 +133,13 @@ struct DebugOutput
   std::vector<std::uint8_t> cdr;
 };
 
+// One call carried in another plugin's query (PROTOCOL.md section 15).
+struct CarriedCall
+{
+  // key prefix of the plugin it is for
+  std::string key;
+  // its encoded request (in a request) or reply (in a reply)
+  std::vector<std::uint8_t> payload;
+};
+
 }  // namespace nav2_pyif_bridge::protocol

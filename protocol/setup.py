@@ -1,0 +1,25 @@
+"""The ROS 2 package nav2_pyif_protocol (ament_python): what `colcon build` installs from this
+folder. Outside a colcon workspace, `pip install .` at the repository root installs the same
+code (pyproject.toml); the name and version are read from package.xml."""
+
+from xml.etree import ElementTree
+
+from setuptools import find_packages, setup
+
+PACKAGE = ElementTree.parse("package.xml").getroot()
+NAME = PACKAGE.findtext("name")
+
+setup(
+    name=NAME,
+    version=PACKAGE.findtext("version"),
+    packages=find_packages(include=["nav2_pyif_protocol", "nav2_pyif_protocol.*"]),
+    package_data={"": ["py.typed"]},
+    data_files=[
+        ("share/ament_index/resource_index/packages", [f"resource/{NAME}"]),
+        (f"share/{NAME}", ["package.xml"]),
+    ],
+    install_requires=["setuptools"],
+    zip_safe=False,
+    extras_require={"test": ["pytest"]},
+    entry_points={"console_scripts": ["nav2-pyif-vectors = nav2_pyif_protocol.vectors:main"]},
+)
