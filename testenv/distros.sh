@@ -93,6 +93,9 @@ distro_settings() {
       PYPI_BASE=0
       ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp)
       APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
+      # pybind11_vendor (rclpy) takes the system's pybind11 where there is one; otherwise it
+      # clones github.com/pybind/pybind11 (unreachable where the sources come from mirrors).
+      APT_PACKAGES+=(pybind11-dev)
       # What the core's Python packages import at build time (rosidl's generators) and ros2cli
       PIP_PACKAGES+=(argcomplete packaging psutil netifaces importlib-metadata)
       ;;
@@ -102,7 +105,8 @@ distro_settings() {
       # Humble's Nav2 uses BehaviorTree.CPP 3 (behaviortree_cpp_v3), whose CMake options differ.
       ROS_PACKAGES+=(behaviortree_cpp_v3)
       CMAKE_ARGS+=(-DBUILD_EXAMPLES=OFF -DBUILD_UNIT_TESTS=OFF -DBUILD_TOOLS=OFF)
-      APT_PACKAGES+=(libboost-coroutine-dev)
+      # (nav2_util 1.1's lifecycle_bringup takes its arguments with Boost.Program_options)
+      APT_PACKAGES+=(libboost-coroutine-dev libboost-program-options-dev)
       ;;
     lyrical)
       # Run with --root DIR: Debian 13's toolchain; its rosidl takes empy 4.

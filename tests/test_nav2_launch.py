@@ -9,15 +9,17 @@ certificates, access control) carries robot1's goal; and the function-delegate Y
 own hosts.
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
-colcon and zenoh-cpp, once per zenoh-cpp backend: NAV2_PYIF_NAV2_SETUP_ZENOHC and
-NAV2_PYIF_NAV2_SETUP_ZENOHPICO name the setup script of each; NAV2_PYIF_NAV2_SETUP (or
-/opt/ros/<distro>/setup.bash, whose zenoh_cpp_vendor is zenoh-c) serves for the backend its
-zenoh-cpp has. The rmw_zenoh variant (NAV2_PYIF_NAV2_SETUP_RMW_ZENOH, or the same fallbacks)
-needs rmw_zenoh_cpp there: it runs every launch test with RMW_IMPLEMENTATION=rmw_zenoh_cpp
-and its router on a free port, which test_host_recovery.py's plugins and host share. The test
-builds nav2_pyif_bridge with colcon into build/nav2_ws_<backend>,
-checks which Zenoh library the plugin links, then runs the launch tests with that
-environment. Each backend is skipped, saying what is missing, where its environment is absent.
+colcon and zenoh-cpp, once per distribution (humble, jazzy, lyrical) and zenoh-cpp backend:
+NAV2_PYIF_NAV2_SETUP_<DISTRO>_<BACKEND> (e.g. NAV2_PYIF_NAV2_SETUP_HUMBLE_ZENOHPICO) names the
+setup script of each; NAV2_PYIF_NAV2_SETUP_ZENOHC and NAV2_PYIF_NAV2_SETUP_ZENOHPICO, then
+NAV2_PYIF_NAV2_SETUP, then /opt/ros/<distro>/setup.bash (whose zenoh_cpp_vendor is zenoh-c)
+serve the distribution they source ($ROS_DISTRO) for the backend their zenoh-cpp has. The
+rmw_zenoh variant (NAV2_PYIF_NAV2_SETUP_<DISTRO>_RMW_ZENOH, or the same fallbacks) needs
+rmw_zenoh_cpp there: it runs every launch test with RMW_IMPLEMENTATION=rmw_zenoh_cpp and its
+router on a free port, which test_host_recovery.py's plugins and host share. The test builds
+nav2_pyif_bridge with colcon into build/nav2_ws_<distro>_<backend>, checks which Zenoh
+library the plugin links, then runs the launch tests with that environment. Each
+distribution and backend is skipped, saying what is missing, where its environment is absent.
 """
 
 from __future__ import annotations
@@ -37,6 +39,8 @@ ROOT = Path(__file__).resolve().parents[1]
 # Each variant: the Zenoh library the plugin must link. rmw_zenoh: Nav2's servers, the test's
 # nodes and the robot on rmw_zenoh_cpp with its router, which the plugins and host share.
 BACKENDS = {"zenoh-c": "libzenohc", "zenoh-pico": "libzenohpico", "rmw_zenoh": "libzenohc"}
+# The maintained Nav2 distributions: one variant each (testenv/ builds them).
+DISTROS = ("humble", "jazzy", "lyrical")
 RMW_ZENOH_CONFIGS = "share/rmw_zenoh_cpp/config/DEFAULT_RMW_ZENOH_{}_CONFIG.json5"
 # The PyPI ROS wheels name Python-only libraries as dependencies of C++ ones: link only what
 # is used. Harmless on a system ROS install.
@@ -48,16 +52,19 @@ CMAKE_ARGS = [
 ]
 
 
-def _setup_script(backend: str) -> str | None:
-    own = os.environ.get("NAV2_PYIF_NAV2_SETUP_" + backend.replace("-", "").upper())
-    given = own or os.environ.get("NAV2_PYIF_NAV2_SETUP")
-    if given:
-        return given
-    for distro in ("jazzy", "kilted", "humble"):
-        candidate = Path(f"/opt/ros/{distro}/setup.bash")
-        if candidate.is_file():
-            return str(candidate)
-    return None
+def _own_variable(distro: str, backend: str) -> str:
+    return f"NAV2_PYIF_NAV2_SETUP_{distro.upper()}_{backend.replace('-', '').upper()}"
+
+
+def _setup_script(distro: str, backend: str) -> str | None:
+    """The setup script of ``distro``'s variant: its own variable, else one that serves every
+    distribution (the probe then checks that it sources ``distro``)."""
+    shared = ("NAV2_PYIF_NAV2_SETUP_" + backend.replace("-", "").upper(), "NAV2_PYIF_NAV2_SETUP")
+    for variable in (_own_variable(distro, backend), *shared):
+        if os.environ.get(variable):
+            return os.environ[variable]
+    candidate = Path(f"/opt/ros/{distro}/setup.bash")
+    return str(candidate) if candidate.is_file() else None
 
 
 def _bash(script: str, timeout: float) -> subprocess.CompletedProcess[str]:
@@ -92,14 +99,16 @@ FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
 
 @pytest.mark.timeout(1800)
 @pytest.mark.parametrize("backend", BACKENDS)
-def test_nav2_launch_tests_pass_against_a_real_nav2(backend: str) -> None:
+@pytest.mark.parametrize("distro", DISTROS)
+def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in FULL_STACK)
-    _launch_tests(backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
+    _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
 
 
 @pytest.mark.timeout(4 * 3600)
 @pytest.mark.parametrize("backend", BACKENDS)
-def test_full_stack_navigations_survive_every_fault(backend: str) -> None:
+@pytest.mark.parametrize("distro", DISTROS)
+def test_full_stack_navigations_survive_every_fault(distro: str, backend: str) -> None:
     runs = os.environ.get("NAV2_PYIF_FULL_STACK_RUNS")
     if not runs:
         pytest.skip(
@@ -112,24 +121,25 @@ def test_full_stack_navigations_survive_every_fault(backend: str) -> None:
     select = os.environ.get("NAV2_PYIF_FULL_STACK_SELECT")
     chosen = f"-k {shlex.quote(select)} " if select else ""
     # -x: a failed navigation leaves the robot where the next test does not expect it
-    _launch_tests(backend, f"-s -x {chosen}{files}", timeout=4 * 3600 - 600)
+    _launch_tests(distro, backend, f"-s -x {chosen}{files}", timeout=4 * 3600 - 600)
 
 
-def _launch_tests(backend: str, selection: str, timeout: float) -> None:
-    """Build nav2_pyif_bridge for ``backend`` with colcon and run the launch tests
-    ``selection`` names (pytest arguments) in that environment; skips, saying what is missing,
-    where it is absent."""
-    setup = _setup_script(backend)
-    variable = "NAV2_PYIF_NAV2_SETUP_" + backend.replace("-", "").upper()
+def _launch_tests(distro: str, backend: str, selection: str, timeout: float) -> None:
+    """Build nav2_pyif_bridge for ``distro`` and ``backend`` with colcon and run the launch
+    tests ``selection`` names (pytest arguments) in that environment; skips, saying what is
+    missing, where it is absent."""
+    setup = _setup_script(distro, backend)
+    variable = _own_variable(distro, backend)
     if setup is None:
         pytest.skip(
-            f"Nav2 launch tests on {backend} skipped: no ROS 2 with Nav2 here (set {variable} "
-            "or NAV2_PYIF_NAV2_SETUP to a setup script of one, e.g. /opt/ros/jazzy/setup.bash)"
+            f"Nav2 launch tests on {distro} {backend} skipped: no ROS 2 {distro} with Nav2 here "
+            f"(set {variable} to a setup script of one: testenv/build.sh {distro} writes them)"
         )
-    workspace = ROOT / "build" / f"nav2_ws_{backend}"
+    workspace = ROOT / "build" / f"nav2_ws_{distro}_{backend}"
     source = f"set -e; source {shlex.quote(setup)} >/dev/null"
     probe = _bash(
-        f"{source}; command -v colcon >/dev/null || echo missing: colcon; "
+        f"{source}; echo distro: ${{ROS_DISTRO:-unset}}; "
+        "command -v colcon >/dev/null || echo missing: colcon; "
         "python -c 'import nav2_msgs.action, rclpy' 2>/dev/null || echo missing: nav2_msgs; "
         "for exe in nav2_controller/controller_server nav2_planner/planner_server "
         "nav2_lifecycle_manager/lifecycle_manager; do found=; "
@@ -137,7 +147,13 @@ def _launch_tests(backend: str, selection: str, timeout: float) -> None:
         '[ -n "$found" ] || echo missing: $exe; done',
         timeout=60,
     )
-    missing = [line for line in probe.stdout.splitlines() if line.startswith("missing:")]
+    lines = probe.stdout.splitlines()
+    sourced = next((line[8:] for line in lines if line.startswith("distro: ")), "")
+    if probe.returncode == 0 and sourced != distro:
+        # A setup script named for this distribution that sources another is a mistake.
+        assert not os.environ.get(variable), f"{variable}={setup} sources ROS 2 {sourced}"
+        pytest.skip(f"Nav2 launch tests on {distro} skipped: {setup} sources ROS 2 {sourced}")
+    missing = [line for line in lines if line.startswith("missing:")]
     if probe.returncode != 0 or missing:
         pytest.skip(
             f"Nav2 launch tests skipped: {setup} lacks {', '.join(missing) or _tail(probe, 5)}"

@@ -28,7 +28,9 @@ void PyGoalChecker::initialize(
   costmap_ros_ = costmap_ros;
   plugin_.start(parent, plugin_name, bind_costmap(costmap_ros));
   if (auto node = parent.lock()) {
-    cycle_ = client::CarriedCycle::of(node->get_fully_qualified_name());
+    // (through the node base interface: Humble's LifecycleNode has no get_fully_qualified_name)
+    cycle_ = client::CarriedCycle::of(
+      node->get_node_base_interface()->get_fully_qualified_name());
     plugin_.session().join(cycle_);
   }
 }
@@ -100,7 +102,8 @@ void PyProgressChecker::initialize(
   none.source = std::make_unique<client::NoCostmap>();
   plugin_.start(parent, plugin_name, std::move(none));
   if (auto node = parent.lock()) {
-    auto cycle = client::CarriedCycle::of(node->get_fully_qualified_name());
+    auto cycle = client::CarriedCycle::of(
+      node->get_node_base_interface()->get_fully_qualified_name());
     plugin_.session().join(cycle);
     cycle->use_progress_checker(plugin_.session());
   }

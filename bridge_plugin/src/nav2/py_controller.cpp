@@ -21,7 +21,9 @@ void PyController::configure(
   PyPlugin::configure(parent, std::move(name), std::move(tf), std::move(costmap_ros));
   node_ = parent;
   auto node = parent.lock();
-  session_->join(client::CarriedCycle::of(node->get_fully_qualified_name()));
+  // (through the node base interface: Humble's LifecycleNode has no get_fully_qualified_name)
+  session_->join(
+    client::CarriedCycle::of(node->get_node_base_interface()->get_fully_qualified_name()));
   for (const client::InputSpec & spec : bridge_->settings().inputs) {
     // Best effort with a short queue (SensorDataQoS) matches reliable publishers too; only
     // the latest message matters.

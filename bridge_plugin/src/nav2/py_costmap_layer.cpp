@@ -1,13 +1,41 @@
 #include "nav2_pyif_bridge/py_costmap_layer.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <utility>
 
+#include "nav2_costmap_2d/cost_values.hpp"
 #include "pluginlib/class_list_macros.hpp"
 
 namespace nav2_pyif_bridge
 {
 namespace proto = protocol;
+
+namespace
+{
+#if !NAV2_PYIF_NAV2_MAX_KEEP_UNKNOWN
+// What Nav2 1.3's CostmapLayer::updateWithMaxWithoutUnknownOverwrite does, which Humble's
+// (1.1) lacks: the larger cost where both are known; the master's unknown cells stay unknown
+// and the layer's unknown cells change nothing. `layer` is aligned with `master`.
+void update_with_max_keeping_unknown(
+  const unsigned char * layer, nav2_costmap_2d::Costmap2D & master, int min_i, int min_j,
+  int max_i, int max_j)
+{
+  unsigned char * grid = master.getCharMap();
+  const std::size_t span = master.getSizeInCellsX();
+  for (int j = min_j; j < max_j; ++j) {
+    for (int i = min_i; i < max_i; ++i) {
+      const std::size_t k = static_cast<std::size_t>(j) * span + static_cast<std::size_t>(i);
+      if (layer[k] != nav2_costmap_2d::NO_INFORMATION &&
+        grid[k] != nav2_costmap_2d::NO_INFORMATION && grid[k] < layer[k])
+      {
+        grid[k] = layer[k];
+      }
+    }
+  }
+}
+#endif
+}  // namespace
 
 void PyCostmapLayer::onInitialize()
 {
@@ -100,7 +128,11 @@ void PyCostmapLayer::updateCosts(
   } else if (reply.combine == "true_overwrite") {
     updateWithTrueOverwrite(master_grid, min_i, min_j, max_i, max_j);
   } else if (reply.combine == "max_keep_unknown") {
+#if NAV2_PYIF_NAV2_MAX_KEEP_UNKNOWN
     updateWithMaxWithoutUnknownOverwrite(master_grid, min_i, min_j, max_i, max_j);
+#else
+    update_with_max_keeping_unknown(costmap_, master_grid, min_i, min_j, max_i, max_j);
+#endif
   } else {
     updateWithMax(master_grid, min_i, min_j, max_i, max_j);  // "max", and the host checks
   }

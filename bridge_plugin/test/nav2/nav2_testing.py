@@ -192,6 +192,24 @@ class Processes:
 
 
 SUCCEEDED, ABORTED = 4, 6  # action_msgs/GoalStatus
+
+
+def error_code(result: Any) -> int | None:
+    """An action result's error code; None on Nav2 Humble, whose action results have none (the
+    goal's status is all that tells a failure there)."""
+    code = getattr(result, "error_code", None)
+    return None if code is None else int(code)
+
+
+def assert_error_code(result: Any, name: str, context: str = "") -> None:
+    """``result`` (an action's result) carries the error code its type names ``name`` (e.g.
+    "NO_VALID_CONTROL"), where the Nav2 has error codes (Jazzy on; not Humble)."""
+    code = error_code(result)
+    if code is not None:
+        expected = getattr(type(result), name)
+        assert code == expected, f"error code {code}, not {name} ({expected})\n{context}"
+
+
 SERVERS = ("controller_server", "planner_server")
 # Each Nav2 server a test may start, by the package whose lib/ holds it.
 PACKAGES = {
