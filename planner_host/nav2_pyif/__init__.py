@@ -8,8 +8,10 @@ The planner API (what a planner imports)::
     from nav2_pyif import Behavior, Status, Step, Failure  # behavior_server's plugins
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
     from nav2_pyif import carrot, pose_xy_yaw, wrap, ...  # geometry (nav2_pyif.geometry)
+    from nav2_pyif import Batch, one_cycle  # many robots' cycles in one call (nav2_pyif.batch)
 """
 
+from nav2_pyif.batch import Batch, one_cycle
 from nav2_pyif.behavior import Behavior, Command, Failure, Status, Step, arc
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap
@@ -65,6 +67,7 @@ from nav2_pyif.smoother import Smoother
 __version__ = "0.1.0"
 
 __all__ = [
+    "Batch",
     "Behavior",
     "Combine",
     "Command",
@@ -114,6 +117,7 @@ __all__ = [
     "carrot",
     "closest_index",
     "limit_speed",
+    "one_cycle",
     "path_xy_yaw",
     "point_at_distance",
     "pose_xy_yaw",

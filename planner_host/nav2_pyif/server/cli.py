@@ -9,7 +9,6 @@ import os
 import signal
 import sys
 import threading
-from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from types import FrameType
 from typing import Any
@@ -30,6 +29,7 @@ from nav2_pyif.common.zenoh_config import (
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import check_roles, parse_delegates
 from nav2_pyif.ros_types import check_serialization_rmw
+from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_arguments, start_all
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
@@ -57,6 +57,11 @@ examples:
 
   # from a YAML file: planners: [{key: K, planner: M:C}, {key: K, module: M, delegates: {..}}]
   planner-host --config planners.yaml
+
+  # one worker for a fleet's controllers, their control cycles batched (window 5 ms)
+  planner-host --batch --batch-window 5 \\
+      --serve nav2_pyif/robot1/FollowPath=nav2_pyif_planners.mppi_jax:MPPIJax \\
+      --serve nav2_pyif/robot2/FollowPath=nav2_pyif_planners.mppi_jax:MPPIJax
 
   # accept nav2-pyif reload from the network, to the served planners or my_planners.*
   planner-host --key nav2_pyif/robot1/FollowPath --planner my_planners.a:A \\
@@ -111,7 +116,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--config",
         type=Path,
         metavar="YAML",
-        help="YAML file with a 'planners' list of {key, planner | module+delegates}",
+        help="YAML file with a 'planners' list of {key, planner | module+delegates, batch?}",
     )
     what.add_argument(
         "--path",
@@ -161,6 +166,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="address-space limit of each worker process, >= 0; a planner exceeding it gets "
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
     )
+    add_batch_arguments(parser)
     swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")
     swap.add_argument(
         "--allow-remote-reload",
@@ -252,6 +258,7 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
                 entry.get("planner"),
                 entry.get("module"),
                 {str(k): str(v) for k, v in delegates.items()},
+                batch=entry.get("batch") is True,
             )
         )
     return specs
@@ -293,6 +300,7 @@ def main(argv: list[str] | None = None) -> int:
         signal.signal(signum, on_signal)
     if args.reload_allow and not args.allow_remote_reload:
         parser.error("--reload-allow needs --allow-remote-reload")
+    check_batch_arguments(args, parser)
     if args.pid_file and not os.access(args.pid_file.parent, os.W_OK):
         parser.error(f"--pid-file {args.pid_file}: its directory is missing or not writable")
     try:
@@ -352,21 +360,10 @@ def main(argv: list[str] | None = None) -> int:
 def start_services(
     specs: list[PlannerSpec], host_id: str, args: argparse.Namespace
 ) -> list[PlannerService]:
-    """Start every planner; workers load in parallel (a fleet host may serve dozens). If one
-    cannot load, the others are stopped and its PlannerLoadError is raised."""
-    with ThreadPoolExecutor(max_workers=min(8, len(specs))) as pool:
-        futures = [pool.submit(start_service, spec, host_id, args) for spec in specs]
-    started, error = [], None
-    for future in futures:
-        try:
-            started.append(future.result())
-        except PlannerLoadError as exc:
-            error = error or exc
-    if error is not None:
-        for service in started:
-            service.close()
-        raise error
-    return started
+    """Start every planner, one per key or one per batch group (batch_groups); workers load
+    in parallel (a fleet host may serve dozens). If one cannot load, the others are stopped
+    and its PlannerLoadError is raised."""
+    return start_all(specs, host_id, args, lambda spec: start_service(spec, host_id, args))
 
 
 def start_service(spec: PlannerSpec, host_id: str, args: argparse.Namespace) -> PlannerService:

@@ -125,7 +125,7 @@ class ServedPlanner:
             "started": self.started,
             "pid": os.getpid(),
             "hostname": socket.gethostname(),
-        }
+        } | ({"batch": batch} if (batch := getattr(self.runtime, "batch", None)) else {})
 
     def _on_info(self, query: Any) -> None:
         try:
@@ -310,8 +310,14 @@ class PlannerHost:
         return None if served is None else served.runtime.handle(payload, key_op=op)
 
     def reload_all(self) -> None:
-        """SIGHUP: re-import every planner (fresh worker processes) without dropping a key."""
+        """SIGHUP: re-import every planner (fresh worker processes) without dropping a key;
+        a planner the keys of a batch group share, once."""
+        reloaded: set[int] = set()
         for served in self.served.values():
+            owner = id(getattr(served.runtime, "owner", served.runtime))
+            if owner in reloaded:
+                continue
+            reloaded.add(owner)
             try:
                 log.info("%s", served.reload())
             except Exception as exc:

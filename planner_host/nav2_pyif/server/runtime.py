@@ -168,6 +168,25 @@ class PlannerRuntime:
     # --- entry points -------------------------------------------------------------------
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
         """Request bytes -> reply bytes. Never raises."""
+        admitted = self._admit(payload, key_op)
+        if isinstance(admitted, bytes):
+            return admitted
+        request = admitted
+        start = time.perf_counter_ns()
+        try:
+            if request.op is Op.CONFIGURE:
+                body = self._configure(request)
+            else:
+                session = self._session_of(request)
+                if isinstance(session, bytes):
+                    return session
+                body = self._handlers[request.op](session, request)
+        except BaseException as exc:  # a planner may raise anything; the host must survive
+            return self._exception_reply(request, exc, time.perf_counter_ns() - start)
+        return self.encode_ok(request, body, time.perf_counter_ns() - start)
+
+    def _admit(self, payload: bytes, key_op: str | None) -> Request | bytes:
+        """The decoded request, if this key serves its op; else the error reply."""
         try:
             request = decode_request(payload)
         except ProtocolError as exc:
@@ -185,26 +204,49 @@ class PlannerRuntime:
                 f"{request.op.value} is not an operation of a {self.plugin_type.value} "
                 f"(this key serves {self.label})",
             )
-        start = time.perf_counter_ns()
+        return request
+
+    def _session_of(self, request: Request) -> Session | bytes:
+        """The request's session, its costmap updated from the request; else the
+        SessionUnknown reply. Raises what decoding the costmap raises."""
+        session = self.sessions.get(request.sid)
+        if session is None or session.epoch != request.epoch:
+            return self._error_reply(
+                request.seq,
+                ErrorType.SESSION_UNKNOWN,
+                f"session {request.sid} epoch {request.epoch} is not known to host "
+                f"{self.host_id}; re-send configure",
+            )
+        if "costmap" in request.body:
+            session.context.costmap = Costmap.from_wire(request.body["costmap"])
+        return session
+
+    def open_cycle(self, payload: bytes) -> tuple[Request, Session, tuple[Any, ...]] | bytes:
+        """A batched cycle's request admitted, its session found (its costmap and inputs
+        taken) and its arguments (pose, velocity, goal checker) built; else its error reply."""
+        admitted = self._admit(payload, Op.COMPUTE_VELOCITY_COMMANDS.value)
+        if isinstance(admitted, bytes):
+            return admitted
         try:
-            if request.op is Op.CONFIGURE:
-                body = self._configure(request)
-            else:
-                session = self.sessions.get(request.sid)
-                if session is None or session.epoch != request.epoch:
-                    return self._error_reply(
-                        request.seq,
-                        ErrorType.SESSION_UNKNOWN,
-                        f"session {request.sid} epoch {request.epoch} is not known to host "
-                        f"{self.host_id}; re-send configure",
-                    )
-                if "costmap" in request.body:
-                    session.context.costmap = Costmap.from_wire(request.body["costmap"])
-                body = self._handlers[request.op](session, request)
-        except BaseException as exc:  # a planner may raise anything; the host must survive
-            return self._exception_reply(request, exc, time.perf_counter_ns() - start)
-        elapsed = time.perf_counter_ns() - start
-        reply = Reply(seq=request.seq, ok=True, host=self.host_id, body=body, compute_ns=elapsed)
+            session = self._session_of(admitted)
+            if isinstance(session, bytes):
+                return session
+            return admitted, session, self._cycle_arguments(session, admitted)
+        except BaseException as exc:
+            return self._exception_reply(admitted, exc, 0)
+
+    def close_cycle(
+        self, request: Request, session: Session, pose: Any, result: Any, elapsed_ns: int
+    ) -> bytes:
+        """A batched cycle's reply from what the planner returned for it. Never raises."""
+        try:
+            body = self._cycle_body(session, pose, result)
+        except BaseException as exc:
+            return self._exception_reply(request, exc, elapsed_ns)
+        return self.encode_ok(request, body, elapsed_ns)
+
+    def encode_ok(self, request: Request, body: Body, elapsed_ns: int) -> bytes:
+        reply = Reply(seq=request.seq, ok=True, host=self.host_id, body=body, compute_ns=elapsed_ns)
         try:
             # compute_velocity_commands' body comes from checked_twist_stamped: floats, in order.
             return encode_reply(
@@ -259,7 +301,9 @@ class PlannerRuntime:
     ) -> bytes:
         return error_reply(seq, self.host_id, error_type, message, tb, python_type, compute_ns)
 
-    def _exception_reply(self, request: Request, exc: BaseException, elapsed: int) -> bytes:
+    def _exception_reply(
+        self, request: Request, exc: BaseException, elapsed: int, *, log: bool = True
+    ) -> bytes:
         if isinstance(exc, Nav2Error):
             error_type = exc.error_type
             message = str(exc) or type(exc).__name__
@@ -272,8 +316,17 @@ class PlannerRuntime:
             message = "".join(traceback.format_exception_only(type(exc), exc)).strip()
         message = f"{self.label}.{request.op.value}: {message}"
         tb = _short_traceback(exc, self._return_site(request, exc))
-        self.log.error("%s failed [%s]: %s\n%s", request.op.value, error_type.value, message, tb)
+        if log:  # a batched call's error is logged once, not once per robot
+            self.log.error(
+                "%s failed [%s]: %s\n%s", request.op.value, error_type.value, message, tb
+            )
         return self._error_reply(request.seq, error_type, message, tb, _qualname(exc), elapsed)
+
+    def exception_reply(
+        self, request: Request, exc: BaseException, elapsed: int, *, log: bool = True
+    ) -> bytes:
+        """The typed error reply to ``request`` for ``exc`` (a batched call's errors)."""
+        return self._exception_reply(request, exc, elapsed, log=log)
 
     def _return_site(
         self, request: Request, exc: BaseException
@@ -377,16 +430,25 @@ class PlannerRuntime:
         return {}
 
     def _compute_velocity_commands(self, session: Session, request: Request) -> Body:
+        pose, velocity, checker = self._cycle_arguments(session, request)
+        result = session.planner.compute_velocity_commands(pose, velocity, checker)  # type: ignore[attr-defined]
+        return self._cycle_body(session, pose, result)
+
+    def _cycle_arguments(self, session: Session, request: Request) -> tuple[Any, Any, Any]:
+        """(pose, velocity, goal checker) of a cycle; the session's inputs and debug wishes
+        taken from the request first."""
         body, context = request.body, session.context
         checker = body.get("goal_checker")
         context.inputs.update(body.get("inputs", []))
         context.debug.begin(body.get("debug_wanted", ()))
-        pose = pose_from_wire(body["pose"])
-        result = session.planner.compute_velocity_commands(  # type: ignore[attr-defined]
-            pose,
+        return (
+            pose_from_wire(body["pose"]),
             twist_from_list(body["velocity"]),
             GoalChecker.from_wire(checker) if checker is not None else None,
         )
+
+    def _cycle_body(self, session: Session, pose: Any, result: Any) -> Body:
+        context = session.context
         values = checked_twist_stamped(result, "compute_velocity_commands")
         header = result.header
         reply: Body = {

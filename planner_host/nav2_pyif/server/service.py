@@ -8,9 +8,11 @@ import threading
 import time
 from typing import Protocol
 
+import msgpack
 from nav2_pyif_protocol.constants import PluginType
 
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.server.batch_runtime import CYCLE_OP, handle_batch
 from nav2_pyif.server.journal import Journal
 from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif.server.spec import PlannerSpec
@@ -19,10 +21,18 @@ log = logging.getLogger("nav2_pyif.server.host")
 
 
 class PlannerService(Protocol):
-    plugin_type: PluginType
-    isolation: str  # "process" or "none", as planner-host --isolation says
-    journal: Journal  # every live session, len() of it their number
-    swapped_at: float  # unix time of the last hot swap (0: none yet)
+    # read-only here: a batch group's keys read them from the planner they share
+    @property
+    def plugin_type(self) -> PluginType: ...
+
+    @property
+    def isolation(self) -> str: ...  # "process" or "none", as planner-host --isolation says
+
+    @property
+    def journal(self) -> Journal: ...  # every live session, len() of it their number
+
+    @property
+    def swapped_at(self) -> float: ...  # unix time of the last hot swap (0: none yet)
 
     @property
     def label(self) -> str: ...
@@ -33,6 +43,8 @@ class PlannerService(Protocol):
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes: ...
 
     def handle_cancel(self, payload: bytes) -> bytes: ...
+
+    def handle_batch(self, payloads: list[bytes]) -> list[bytes]: ...  # control cycles
 
     def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str: ...
 
@@ -70,6 +82,15 @@ class InProcessPlanner:
 
     def handle_cancel(self, payload: bytes) -> bytes:
         return self.runtime.handle_cancel(payload)
+
+    def handle_batch(self, payloads: list[bytes]) -> list[bytes]:
+        with self._lock:
+            replies: list[bytes] = msgpack.unpackb(
+                handle_batch(self.runtime, msgpack.packb(payloads))
+            )
+            for payload, reply in zip(payloads, replies, strict=True):
+                self.journal.note(CYCLE_OP, payload, reply)
+            return replies
 
     def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         new_spec = spec or self.spec

@@ -14,6 +14,9 @@ class PlannerSpec:
     planner: str | None = None  # package.module:Class
     module: str | None = None  # function-delegate style
     delegates: dict[str, str] = field(default_factory=dict)
+    # served in a batch group (planner-host --batch): not part of what is served, so a
+    # reload's "same planner?" comparison ignores it
+    batch: bool = field(default=False, compare=False)
 
     def load(self, *, reload: bool = False, quiet: bool = False) -> type[PlannerPlugin]:
         """The planner class; ``quiet``: no load-time warnings (a worker restart)."""
@@ -34,4 +37,4 @@ class PlannerSpec:
         """The same key with another planner (hot swap); None keeps the current one."""
         if planner is None and module is None:
             return self
-        return PlannerSpec(self.key, planner, module, dict(delegates or {}))
+        return PlannerSpec(self.key, planner, module, dict(delegates or {}), self.batch)

@@ -34,6 +34,7 @@ from nav2_pyif_protocol.constants import ErrorType, PluginType
 from nav2_pyif_protocol.schema import OP_TIMEOUT
 
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.server.batch_runtime import BATCH_OP, CYCLE_OP
 from nav2_pyif.server.frames import FramedPipe
 from nav2_pyif.server.journal import Journal, Snapshot, replay
 from nav2_pyif.server.runtime import error_reply, peek_seq
@@ -294,14 +295,46 @@ class SupervisedPlanner:
     # --- calls -------------------------------------------------------------------------
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
         op = key_op or ""
+        return self._exchange(
+            op,
+            payload,
+            lambda kind, message, tb: self._error(payload, kind, message, tb),
+            lambda reply: self.journal.note(op, payload, reply),
+        )
+
+    def handle_batch(self, payloads: list[bytes]) -> list[bytes]:
+        """Control cycles of several sessions in one worker call (batch_runtime): one reply
+        each, in order. A crash or hang fails each of them with Unavailable, as one call's."""
+
+        def failed(kind: ErrorType, message: str, tb: str) -> bytes:
+            return msgpack.packb([self._error(p, kind, message, tb) for p in payloads])
+
+        def note(reply: bytes) -> None:  # the costmap updates the cycles carried
+            for payload, answer in zip(payloads, msgpack.unpackb(reply), strict=True):
+                self.journal.note(CYCLE_OP, payload, answer)
+
+        replies: list[bytes] = msgpack.unpackb(
+            self._exchange(BATCH_OP, msgpack.packb(payloads), failed, note)
+        )
+        return replies
+
+    def _exchange(
+        self,
+        op: str,
+        payload: bytes,
+        error: Callable[[ErrorType, str, str], bytes],
+        note: Callable[[bytes], None],
+    ) -> bytes:
+        """The worker's reply to one call, or ``error(type, message, traceback)``'s when the
+        worker is unavailable, dies during the call or overruns its deadline. ``note``: the
+        reply recorded in the journal, under the lock (a hot swap replays between calls)."""
         with self._lock:
             worker = self.worker
             if worker is not None and self.overrun_since is not None and worker.drain():
                 self._set_reason("")  # the late call finished
                 self.overrun_since = None
             if worker is None or self.reason:
-                return self._error(
-                    payload,
+                return error(
                     ErrorType.UNAVAILABLE,
                     f"{self.spec.key}: planner unavailable: {self.reason}",
                     self.reason_stack,
@@ -311,8 +344,7 @@ class SupervisedPlanner:
                 reply = worker.call(op, payload, deadline)
             except WorkerDied as died:
                 self._on_death(worker, f"{died} during {op}")
-                return self._error(
-                    payload,
+                return error(
                     ErrorType.UNAVAILABLE,
                     f"{self.spec.key}: planner worker {died} during {op}; "
                     "restarting it and restoring every session",
@@ -340,13 +372,12 @@ class SupervisedPlanner:
                 # handle (it restarts the worker), and the plugin turns Unavailable into
                 # the exception Nav2 recovers from; ControllerTimedOut would end the
                 # navigation (constants.HOST_FAILURE_ERROR).
-                return self._error(
-                    payload,
+                return error(
                     ErrorType.UNAVAILABLE,
                     f"{self.label}.{op} overran its {deadline:g} s deadline",
                     stack,
                 )
-            self.journal.note(op, payload, reply)
+            note(reply)
             return reply
 
     def handle_cancel(self, payload: bytes) -> bytes:

@@ -2,9 +2,10 @@
 
 Call-pipe messages (frames.FramedPipe, length-prefixed): supervisor -> worker ``op NUL
 request-bytes`` (empty: exit); worker -> supervisor, first a load report (msgpack ``["loaded",
-plugin_type]`` or ``["load_error", message]``), then one reply per call. Cancellations arrive
-on a second pipe and are answered by a thread, while the main thread may be busy in the
-planner.
+plugin_type]`` or ``["load_error", message]``), then one reply per call (a batch of control
+cycles, op ``batch_runtime.BATCH_OP``: a msgpack list of requests, a list of replies).
+Cancellations arrive on a second pipe and are answered by a thread, while the main thread may
+be busy in the planner.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ import msgpack
 
 from nav2_pyif.common.planner_output import MarkedStream, print_marker
 from nav2_pyif.server import stacks
+from nav2_pyif.server.batch_runtime import BATCH_OP, handle_batch
 from nav2_pyif.server.frames import FramedPipe
 from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif.server.spec import PlannerSpec
@@ -92,5 +94,6 @@ def worker_main(
         if not message:
             break
         op, _, payload = message.partition(b"\0")
-        send(handle(payload, op.decode()))
+        name = op.decode()
+        send(handle_batch(served, payload) if name == BATCH_OP else handle(payload, name))
     served.close()

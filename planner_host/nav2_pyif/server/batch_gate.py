@@ -1,0 +1,231 @@
+"""One planner for a fleet: the keys of a batch group share one served planner (one worker),
+and their control cycles that arrive within the batch window become one batched call.
+
+A batch leaves when every key that called in the last two control periods has a cycle in it
+(a lone robot waits for nothing), or when its first cycle has waited the window, whichever
+is first; cycles that arrive while a batch runs form the next one. Every other call (configure,
+set_plan, parameters, ...) goes straight to the shared planner, between two batches.
+"""
+
+from __future__ import annotations
+
+import logging
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from nav2_pyif_protocol.constants import ErrorType, PluginType
+
+from nav2_pyif.server.batch_runtime import CYCLE_OP
+from nav2_pyif.server.journal import Journal
+from nav2_pyif.server.runtime import error_reply, peek_seq
+from nav2_pyif.server.service import PlannerService
+from nav2_pyif.server.spec import PlannerSpec
+
+log = logging.getLogger("nav2_pyif.server.host")
+
+#: The window may be at most this fraction of the control period: a cycle's wait for its
+#: batch must leave the period to the computation and the round trip.
+MAX_WINDOW_FRACTION = 0.25
+
+
+def check_window(window: float, period: float) -> None:
+    """A ValueError unless 0 <= ``window`` <= MAX_WINDOW_FRACTION x ``period``."""
+    if period <= 0:
+        raise ValueError(f"the control period must be > 0 s (got {period:g})")
+    if not 0 <= window <= MAX_WINDOW_FRACTION * period:
+        raise ValueError(
+            f"the batch window ({window * 1000:g} ms) must lie between 0 and "
+            f"{MAX_WINDOW_FRACTION:g} x the control period ({period * 1000:g} ms): at most "
+            f"{MAX_WINDOW_FRACTION * period * 1000:g} ms"
+        )
+
+
+@dataclass
+class _Cycle:
+    member: str
+    payload: bytes
+    arrived: float
+    reply: bytes = b""
+    done: threading.Event = field(default_factory=threading.Event)
+
+
+class Batcher:
+    """Gathers control cycles from several keys and runs them as one batch on a thread."""
+
+    def __init__(
+        self,
+        run: Callable[[list[bytes]], list[bytes]],
+        window: float,
+        period: float,
+        host_id: str,
+        name: str,
+    ) -> None:
+        self.run, self.window, self.period, self.host_id = run, window, period, host_id
+        self.batches = 0  # batched calls made
+        self.cycles = 0  # control cycles they served
+        self._cond = threading.Condition()
+        self._pending: list[_Cycle] = []
+        self._last_call: dict[str, float] = {}  # member key -> when it last sent a cycle
+        self._closing = False
+        self._thread = threading.Thread(target=self._serve, name=f"batch:{name}", daemon=True)
+        self._thread.start()
+
+    def submit(self, member: str, payload: bytes) -> bytes:
+        """The reply to one control cycle, once its batch ran."""
+        cycle = _Cycle(member, payload, time.monotonic())
+        with self._cond:
+            if self._closing:
+                return self._refused(payload, "the planner host is shutting down")
+            self._pending.append(cycle)
+            self._last_call[member] = cycle.arrived
+            self._cond.notify()
+        cycle.done.wait()
+        return cycle.reply
+
+    def _callers(self, now: float) -> int:
+        """Keys that sent a cycle in the last two control periods: the batch to wait for."""
+        recent = now - 2 * self.period
+        for member in [m for m, t in self._last_call.items() if t < recent]:
+            del self._last_call[member]
+        return len(self._last_call)
+
+    def _next_batch(self) -> list[_Cycle] | None:
+        with self._cond:
+            while not self._pending and not self._closing:
+                self._cond.wait()
+            if self._closing:
+                return None
+            leave_at = self._pending[0].arrived + self.window
+            while True:
+                now = time.monotonic()
+                waiting = {cycle.member for cycle in self._pending}
+                if len(waiting) >= self._callers(now) or now >= leave_at or self._closing:
+                    break
+                self._cond.wait(leave_at - now)
+            batch, self._pending = self._pending, []
+            return batch
+
+    def _serve(self) -> None:
+        while (batch := self._next_batch()) is not None:
+            try:
+                replies = self.run([cycle.payload for cycle in batch])
+            except Exception as exc:  # the service never raises; if it did, no robot hangs
+                log.exception("a batch of %d control cycles failed", len(batch))
+                replies = [self._refused(c.payload, f"the batch failed: {exc}") for c in batch]
+            self.batches += 1
+            self.cycles += len(batch)
+            for cycle, reply in zip(batch, replies, strict=True):
+                cycle.reply = reply
+                cycle.done.set()
+        with self._cond:  # closing: nobody is left waiting
+            for cycle in self._pending:
+                cycle.reply = self._refused(cycle.payload, "the planner host is shutting down")
+                cycle.done.set()
+            self._pending.clear()
+
+    def _refused(self, payload: bytes, why: str) -> bytes:
+        return error_reply(peek_seq(payload), self.host_id, ErrorType.UNAVAILABLE, why)
+
+    def close(self) -> None:
+        with self._cond:
+            self._closing = True
+            self._cond.notify_all()
+        self._thread.join(10.0)
+
+
+class BatchGroup:
+    """The keys served by one planner whose control cycles are batched."""
+
+    def __init__(self, service: PlannerService, host_id: str, window: float, period: float) -> None:
+        check_window(window, period)
+        self.service = service
+        self.window, self.period = window, period
+        self.members: dict[str, BatchMember] = {}
+        self.batcher = Batcher(service.handle_batch, window, period, host_id, service.label)
+        self._closed = False
+
+    def member(self, key: str) -> BatchMember:
+        self.members[key] = BatchMember(self, key)
+        return self.members[key]
+
+    def release(self, member: BatchMember) -> None:
+        """A key stops being served; the last one closes the shared planner."""
+        self.members.pop(member.key, None)
+        if not self.members and not self._closed:
+            self._closed = True
+            self.batcher.close()
+            self.service.close()
+
+
+class BatchMember:
+    """One key of a batch group, as the host serves it (a PlannerService)."""
+
+    def __init__(self, group: BatchGroup, key: str) -> None:
+        self.group, self.key = group, key
+
+    @property
+    def owner(self) -> object:
+        """What a reload acts on (SIGHUP reloads each owner once, not once per key)."""
+        return self.group
+
+    @property
+    def plugin_type(self) -> PluginType:
+        return self.group.service.plugin_type
+
+    @property
+    def isolation(self) -> str:
+        return self.group.service.isolation
+
+    @property
+    def journal(self) -> Journal:
+        return self.group.service.journal
+
+    @property
+    def swapped_at(self) -> float:
+        return self.group.service.swapped_at
+
+    @property
+    def spec(self) -> PlannerSpec | None:
+        spec = getattr(self.group.service, "spec", None)
+        return spec if isinstance(spec, PlannerSpec) else None
+
+    @property
+    def label(self) -> str:
+        return self.group.service.label
+
+    @property
+    def where(self) -> str:
+        return self.group.service.where
+
+    @property
+    def batch(self) -> dict[str, object]:
+        """What ``nav2-pyif hosts`` shows of the group."""
+        batcher = self.group.batcher
+        return {
+            "keys": sorted(self.group.members),
+            "window_s": self.group.window,
+            "period_s": self.group.period,
+            "batches": batcher.batches,
+            "cycles": batcher.cycles,
+        }
+
+    def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
+        if key_op == CYCLE_OP:
+            return self.group.batcher.submit(self.key, payload)
+        return self.group.service.handle(payload, key_op)
+
+    def handle_batch(self, payloads: list[bytes]) -> list[bytes]:
+        return self.group.service.handle_batch(payloads)
+
+    def handle_cancel(self, payload: bytes) -> bytes:
+        return self.group.service.handle_cancel(payload)
+
+    def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
+        """A hot swap of the whole group: its keys share one planner."""
+        message = self.group.service.reload(spec, allow_type_change=allow_type_change)
+        return f"{message}; batch group of {len(self.group.members)} key(s)"
+
+    def close(self) -> None:
+        self.group.release(self)
