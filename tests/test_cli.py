@@ -46,7 +46,7 @@ def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
         for block in examples
         if block.lstrip().startswith("# ")
     ]
-    assert len(commands) == 7
+    assert len(commands) == 8
     for command in commands:
         words = shlex.split(command)
         assert "\\" not in command and all(w for w in words), command
@@ -93,6 +93,15 @@ def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
             ],
             2,  # a usage error, before any worker starts
             "argument --zenoh-config: Zenoh config file '/nonexistent.json5' does not exist",
+        ),
+        (
+            [
+                *("--key", "k/a", "--planner", "echo_planners:EchoController", "--batch"),
+                *("--batch-window", "20", "--control-period", "0.05"),
+            ],
+            2,  # the window may take at most a quarter of the control period
+            "--batch-window: the batch window (20 ms) must lie between 0 and 0.25 x the "
+            "control period (50 ms): at most 12.5 ms",
         ),
     ],
 )

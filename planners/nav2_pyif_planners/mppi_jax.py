@@ -1,6 +1,14 @@
 """MPPI in JAX: the NumPy ``MPPI``'s optimisation as one jit-compiled function, on a GPU when
 JAX has one (the CUDA image: docker/compose.yaml's gpu profile), else on the CPU.
 
+Batched (``planner-host --batch``): the rollouts of every robot in a batch in one
+jit-compiled call (``mppi_fleet``, ``mppi_step`` vmapped over a robot axis). Robots of equal
+shapes (rollouts, steps, costmap size, footprint) share a call; their number is padded to
+``nav2_pyif.batch.bucket`` sizes, compiled in ``configure`` up to the ``fleet_size``
+parameter, so a robot joining never compiles mid-cycle. Each robot's state (PRNG key, warm
+start) lives in NumPy between cycles: one transfer to the device and one back per batch, none
+inside the step.
+
 Same parameters, cost terms and warm start as ``nav2_pyif_planners.mppi.MPPI``; what differs:
 sampling uses JAX's counter-based PRNG, arithmetic is float32, and the costmap is copied to the
 device once per costmap version. The function is compiled in ``configure`` for the costmap's
@@ -11,6 +19,8 @@ the bootstrap's default extras (dev) include it.
 
 from __future__ import annotations
 
+import math
+import time
 from functools import partial
 from typing import Any, ClassVar
 
@@ -28,15 +38,15 @@ except ImportError as exc:  # a clear reason at load time, not a NameError mid-r
         "in a checkout, NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh"
     ) from exc
 
-from nav2_pyif import Costmap
+from nav2_pyif import Batch, Costmap, NoValidControl
+from nav2_pyif.batch import bucket, buckets, pad_rows
 from nav2_pyif.geometry import limit_speed
 
 from nav2_pyif_planners.mppi import LOCAL_POINTS, MPPI
 
 
-@partial(jax.jit, static_argnames=("batch_size",))
-def mppi_step(
-    key: Any,
+def _mppi_update(
+    normal: Any,
     optimal: Any,
     state: Any,
     local: Any,
@@ -44,34 +54,36 @@ def mppi_step(
     origin: Any,
     outline: Any,
     settings: Any,
-    batch_size: int,
-) -> tuple[Any, Any, Any]:
-    """One MPPI iteration -> (next key, shifted optimum for warm start, command (vx, wz))."""
+) -> tuple[Any, Any]:
+    """One MPPI iteration from standard normal draws (2, rollouts, steps) -> (shifted
+    optimum for the warm start, command (vx, wz)).
+
+    Written for XLA on a CPU as much as a GPU: vx and wz as separate (rollouts, steps)
+    arrays (a trailing axis of 2 defeats vectorisation), cumulative sums as products with a
+    triangular matrix (XLA's cumsum is a quadratic reduce-window on a CPU), distances to the
+    plan from split coordinates: 5-25x faster on a CPU than the obvious form."""
     (dt, vx_min, vx_top, wz_max, vx_std, wz_std, temperature, gamma) = settings[:8]
     (w_path, w_progress, w_obstacle, w_collision, resolution) = settings[8:]
     steps = optimal.shape[0]
-    key, draw = jax.random.split(key)
-    sigma = jnp.stack([vx_std, wz_std])
-    controls = optimal[None] + jax.random.normal(draw, (batch_size, steps, 2)) * sigma
-    controls = jnp.stack(
-        [
-            jnp.clip(controls[..., 0], vx_min, vx_top),
-            jnp.clip(controls[..., 1], -wz_max, wz_max),
-        ],
-        axis=-1,
-    )
-    noise = controls - optimal[None]
+    # x @ upper: the running sum along the steps; x @ strict: the sum before each step
+    upper = jnp.triu(jnp.ones((steps, steps), jnp.float32))
+    strict = jnp.triu(jnp.ones((steps, steps), jnp.float32), k=1)
+    summed = partial(jnp.matmul, precision=jax.lax.Precision.HIGHEST)  # no TF32 on a GPU
+    vx = jnp.clip(optimal[:, 0] + normal[0] * vx_std, vx_min, vx_top)
+    wz = jnp.clip(optimal[:, 1] + normal[1] * wz_std, -wz_max, wz_max)
+    noise_vx, noise_wz = vx - optimal[:, 0], wz - optimal[:, 1]
 
-    # unicycle rollouts (batch, steps, 3), as MPPI._rollout
-    yaw = state[2] + jnp.cumsum(controls[..., 1] * dt, axis=1)
-    heading = jnp.concatenate([jnp.full((batch_size, 1), state[2]), yaw[:, :-1]], axis=1)
-    x = state[0] + jnp.cumsum(controls[..., 0] * jnp.cos(heading) * dt, axis=1)
-    y = state[1] + jnp.cumsum(controls[..., 0] * jnp.sin(heading) * dt, axis=1)
+    # unicycle rollouts (batch, steps), as MPPI._rollout: each step moves along the heading
+    # before its turn
+    yaw = state[2] + summed(wz * dt, upper)
+    heading = state[2] + summed(wz * dt, strict)
+    x = state[0] + summed(vx * jnp.cos(heading) * dt, upper)
+    y = state[1] + summed(vx * jnp.sin(heading) * dt, upper)
 
     # follow the path and progress along it, as MPPI._score
-    sub = jnp.stack([x[:, 3::4], y[:, 3::4]], axis=-1)
-    d2 = ((sub[:, :, None, :] - local[None, None]) ** 2).sum(axis=-1)
-    path_cost = jnp.sqrt(d2.min(axis=-1)).mean(axis=1)
+    dx = x[:, 3::4, None] - local[:, 0]
+    dy = y[:, 3::4, None] - local[:, 1]
+    path_cost = jnp.sqrt((dx * dx + dy * dy).min(axis=-1)).mean(axis=1)
     progress = jnp.hypot(x[:, -1] - local[-1, 0], y[:, -1] - local[-1, 1])
 
     # footprint costs at every other step: max over the outline; unknown and off-map cells
@@ -95,75 +107,193 @@ def mppi_step(
         + w_progress * progress
         + w_obstacle * obstacle
         + w_collision * collision
-        + temperature * gamma * jnp.einsum("tc,ktc->k", optimal / sigma**2, noise)
+        + temperature
+        * gamma
+        * (noise_vx @ (optimal[:, 0] / vx_std**2) + noise_wz @ (optimal[:, 1] / wz_std**2))
     )
     weights = jax.nn.softmax(-(total - total.min()) / temperature)
-    optimal = optimal + jnp.einsum("k,ktc->tc", weights, noise)
+    optimal = optimal + jnp.stack([weights @ noise_vx, weights @ noise_wz], axis=-1)
     command = optimal[0]
     shifted = jnp.concatenate([optimal[1:], optimal[-1:]], axis=0)
-    return key, shifted, command
+    return shifted, command
+
+
+@partial(jax.jit, static_argnames=("batch_size",))
+def mppi_step(
+    key: Any,
+    optimal: Any,
+    state: Any,
+    local: Any,
+    grid: Any,
+    origin: Any,
+    outline: Any,
+    settings: Any,
+    batch_size: int,
+) -> tuple[Any, Any, Any]:
+    """One MPPI iteration -> (next key, shifted optimum for warm start, command (vx, wz))."""
+    key, draw = jax.random.split(key)
+    normal = jax.random.normal(draw, (2, batch_size, optimal.shape[0]))
+    return (key, *_mppi_update(normal, optimal, state, local, grid, origin, outline, settings))
+
+
+@partial(jax.jit, static_argnames=("batch_size",))
+def mppi_fleet(
+    key: Any,
+    optimal: Any,
+    state: Any,
+    local: Any,
+    grid: Any,
+    origin: Any,
+    outline: Any,
+    settings: Any,
+    batch_size: int,
+) -> tuple[Any, Any, Any]:
+    """The MPPI iteration of R robots in one call: ``key`` (2,) uint32, the others with a
+    leading robot axis: optimal (R, T, 2), state (R, 3), local (R, LOCAL_POINTS, 2), grid
+    (R, H, W) uint8, origin (R, 2), outline (R, P, 2), settings (R, 13) -> (next key, shifted
+    optima (R, T, 2), commands (R, 2) vx [m/s], wz [rad/s]).
+
+    The robots share one draw of standard normal noise (common random numbers: each robot's
+    samples are still i.i.d. Gaussian, scaled by its own sigma), so sampling costs the same
+    for 1 robot or 100; on a CPU the draw is the largest cost of an iteration."""
+    key, draw = jax.random.split(key)
+    normal = jax.random.normal(draw, (2, batch_size, optimal.shape[1]))
+    update = jax.vmap(_mppi_update, in_axes=(None, 0, 0, 0, 0, 0, 0, 0))
+    return (key, *update(normal, optimal, state, local, grid, origin, outline, settings))
 
 
 class MPPIJax(MPPI):
-    """``MPPI`` with the optimisation in JAX. Parameters: those of ``MPPI``. Debug output:
-    ``local_plan`` (the rollouts stay on the device)."""
+    """``MPPI`` with the optimisation in JAX. Parameters: those of ``MPPI``, and
+    ``fleet_size``: the most robots a batched host serves with this planner (their batch
+    shapes are compiled in ``configure``). Debug output: ``local_plan`` (the rollouts stay on
+    the device)."""
 
     debug_outputs: ClassVar[dict[str, str]] = {"local_plan": "nav_msgs/msg/Path"}
 
     def configure(self) -> None:
         super().configure()
-        self._key = jax.random.PRNGKey(self.seed)
-        self._clear_optimum()
+        self.fleet_size = self.params.declare(
+            "fleet_size", 1, "robots a batched host serves at most: compiled in configure"
+        )
         self._grid_version: int | None = None
         self._upload_costmap()
-        # Compile now (configure may take seconds; a control cycle may not).
+        # Compile now (configure may take seconds; a control cycle may not): each padded
+        # batch size up to fleet_size, once per process (JAX caches compiled shapes).
         state = np.zeros(3)
         path = np.column_stack([np.linspace(0.0, 1.0, 5), np.zeros(5)])
-        self._optimise(state, path)
-        self._key = jax.random.PRNGKey(self.seed)  # the warm-up leaves no trace
-        self._clear_optimum()
+        for size in buckets(int(self.fleet_size)):
+            self._restart_sampling()
+            _optimise_fleet([(self, state, path)], pad_to=size)
+        self._restart_sampling()  # the warm-up leaves no trace
         self.logger.info("MPPI in JAX on %s", jax.devices()[0])
 
+    def _restart_sampling(self) -> None:
+        self._key = np.asarray(jax.random.PRNGKey(self.seed))
+        self._clear_optimum()
+
     def _clear_optimum(self) -> None:
-        self._optimal: Any = jnp.zeros((self.time_steps, 2), jnp.float32)
+        self._optimal = np.zeros((self.time_steps, 2), np.float32)
 
     def _upload_costmap(self) -> None:
         costmap = self.costmap
         if self._grid_version == costmap.version and self.outline is not None:
             return
         self._grid = jnp.asarray(costmap.data)
-        self._origin = jnp.asarray([costmap.origin_x, costmap.origin_y], jnp.float32)
+        self._origin = np.asarray([costmap.origin_x, costmap.origin_y], np.float32)
         self.outline = costmap.footprint_outline(spacing=max(costmap.resolution, 0.2))
         self._outline = jnp.asarray(self.outline, jnp.float32)
         self._grid_version = costmap.version
 
     def _optimise(self, state: np.ndarray, path_xy: np.ndarray) -> tuple[float, float]:
+        return _optimise_fleet([(self, state, path_xy)])[0]
+
+    def _step_inputs(self, state: np.ndarray, path_xy: np.ndarray) -> tuple[np.ndarray, ...]:
+        """This robot's (state, padded local plan, settings) for ``mppi_fleet``."""
         self._upload_costmap()
         vx_top = limit_speed(self.vx_max, self.speed_limit)
         local = self._local_path(path_xy, vx_top)
         # padded to LOCAL_POINTS with its last point: one compiled shape whatever its length
         padded = np.concatenate([local, np.repeat(local[-1:], LOCAL_POINTS - len(local), 0)])
-        settings = jnp.asarray(
+        settings = np.asarray(
             [
                 self.model_dt, self.vx_min, vx_top, self.wz_max, self.vx_std, self.wz_std,
                 self.temperature, self.gamma, self.w_path, self.w_progress, self.w_obstacle,
                 self.w_collision, self.costmap.resolution,
             ],
-            jnp.float32,
+            np.float32,
         )  # fmt: skip
-        self._key, self._optimal, command = mppi_step(
-            self._key,
-            self._optimal,
-            jnp.asarray(state, jnp.float32),
-            jnp.asarray(padded, jnp.float32),
-            self._grid,
-            self._origin,
-            self._outline,
-            settings,
-            batch_size=self.batch_size,
-        )
-        vx, wz = np.asarray(command, dtype=np.float64)
-        if self.debug_wanted("local_plan"):  # the optimum before its shift for the warm start
-            shifted = np.asarray(self._optimal, dtype=np.float64)
-            self._publish_optimal(state, np.vstack([[vx, wz], shifted[:-1]]))
-        return float(vx), float(wz)
+        return state.astype(np.float32), padded.astype(np.float32), settings
+
+    def _shape(self) -> tuple[Any, ...]:
+        """What must match for robots to share a compiled call."""
+        self._upload_costmap()
+        return (self.batch_size, self.time_steps, self._grid.shape, self._outline.shape)
+
+    @classmethod
+    def compute_velocity_commands_batch(cls, batch: Batch) -> list[Any]:
+        """Every robot's cycle: at the goal, its turn in place; else its MPPI iteration, all
+        of them in one ``mppi_fleet`` call per shape. A robot's own error is its item."""
+        out: list[Any] = [None] * len(batch)
+        todo: dict[tuple[Any, ...], list[tuple[int, MPPIJax, np.ndarray, np.ndarray]]] = {}
+        for i, robot in enumerate(batch.planners):
+            assert isinstance(robot, MPPIJax)
+            pose = batch.pose_messages[i]
+            try:
+                x, y, yaw, path = robot.track(pose)
+                out[i] = cmd = robot.command(pose)
+                if robot.turn_at_goal(cmd, x, y, yaw, path, batch.goal_checkers[i]):
+                    robot._clear_optimum()
+                    continue
+                todo.setdefault(robot._shape(), []).append(
+                    (i, robot, np.array([x, y, yaw]), path[:, :2])
+                )
+            except Exception as exc:  # this robot's own error (no plan, ...)
+                out[i] = exc
+        for group in todo.values():
+            started = time.perf_counter()
+            commands = _optimise_fleet([(robot, state, path) for _, robot, state, path in group])
+            for (i, robot, _, _), (vx, wz) in zip(group, commands, strict=True):
+                robot.last_compute_s = time.perf_counter() - started
+                if not (math.isfinite(vx) and math.isfinite(wz)):
+                    out[i] = NoValidControl("MPPI produced a non-finite command")
+                else:
+                    out[i].twist.linear.x, out[i].twist.angular.z = vx, wz
+        return out
+
+
+def _optimise_fleet(
+    robots: list[tuple[MPPIJax, np.ndarray, np.ndarray]], pad_to: int = 0
+) -> list[tuple[float, float]]:
+    """One MPPI iteration of each (robot, state (3,), plan xy (N, 2)), robots of one shape,
+    in one ``mppi_fleet`` call; their keys and warm starts updated. -> (vx, wz) per robot."""
+    inputs = [robot._step_inputs(state, path) for robot, state, path in robots]
+    size = max(pad_to, bucket(len(robots)))
+    grids = [robot._grid for robot, _, _ in robots]
+    outlines = [robot._outline for robot, _, _ in robots]
+    grids += grids[-1:] * (size - len(grids))
+    outlines += outlines[-1:] * (size - len(outlines))
+
+    def stacked(values: list[np.ndarray]) -> np.ndarray:
+        return pad_rows(np.stack(values), size)
+
+    key, optimal, commands = mppi_fleet(
+        robots[0][0]._key,  # the batch's draw: from its first robot's stream
+        stacked([robot._optimal for robot, _, _ in robots]),
+        stacked([state for state, _, _ in inputs]),
+        stacked([local for _, local, _ in inputs]),
+        jnp.stack(grids),
+        stacked([robot._origin for robot, _, _ in robots]),
+        jnp.stack(outlines),
+        stacked([settings for _, _, settings in inputs]),
+        batch_size=robots[0][0].batch_size,
+    )
+    key, optimal, commands = (np.asarray(a) for a in (key, optimal, commands))
+    results = []
+    for n, (robot, state, _) in enumerate(robots):
+        robot._key, robot._optimal = key, optimal[n]
+        vx, wz = (float(v) for v in commands[n])
+        if robot.debug_wanted("local_plan"):  # the optimum before its shift for the warm start
+            shifted = optimal[n].astype(np.float64)
+            robot._publish_optimal(state, np.vstack([[vx, wz], shifted[:-1]]))
+        results.append((vx, wz))
+    return results

@@ -1,14 +1,24 @@
 """The learned policy served as a Nav2 controller: features from input "scan", the plan and
 the velocity; inference with JAX on its default device (a GPU where one is present), one jit
-compiled function over a batch dimension."""
+compiled function over a batch dimension.
+
+Batched (``planner-host --batch``): the features of every robot in a batch stacked, one
+forward pass per policy (robots with another ``weights`` parameter get their own), the
+batch padded to ``nav2_pyif.batch.bucket`` sizes compiled in ``configure`` up to the
+``fleet_size`` parameter. Sessions of one weights file share its device copy and compiled
+function.
+"""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-from nav2_pyif import GoalChecker, NoValidControl
+from nav2_pyif import Batch, GoalChecker, NoValidControl, one_cycle
+from nav2_pyif.batch import bucket, buckets, pad_rows
 from nav2_pyif.geometry import limit_speed
 
 from nav2_pyif_planners.follower import PathFollower
@@ -16,38 +26,66 @@ from nav2_pyif_planners.learned.features import features
 from nav2_pyif_planners.learned.policy import Policy, default_weights, forward, import_jax
 
 
+@dataclass
+class _Served:
+    """A policy on the device: its weights, compiled forward pass and the device."""
+
+    policy: Policy
+    infer: Callable[[Any], Any]
+    device: str
+
+
+#: (weights path, modification time) -> the policy served from it, shared by its sessions
+_SERVED: dict[tuple[str, float], _Served] = {}
+
+
+def _served(path: Path) -> _Served:
+    key = (str(path), path.stat().st_mtime)
+    if key not in _SERVED:
+        jax = import_jax()
+        policy = Policy.load(path)
+        device = jax.devices()[0]  # a GPU when JAX has one, else the CPU
+        params = [(jax.device_put(w, device), jax.device_put(b, device)) for w, b in policy.layers]
+        _SERVED[key] = _Served(policy, jax.jit(lambda x: forward(params, x)), str(device))
+    return _SERVED[key]
+
+
 class LearnedController(PathFollower):
     """Needs input "scan" (sensor_msgs/LaserScan): in Nav2, the plugin's ``inputs``
     parameter; offline, ``nav2-pyif sim --scan``. Parameter ``weights``: the .npz written by
-    ``nav2-pyif learn`` (default: the user's data directory)."""
+    ``nav2-pyif learn`` (default: the user's data directory); ``fleet_size``: the most
+    robots a batched host serves with it (their batch shapes are compiled in configure)."""
 
     def configure(self) -> None:
-        jax = import_jax()
         p = self.params
         path = Path(str(p.declare("weights", str(default_weights()), "policy .npz")))
         if not path.is_file():
             raise FileNotFoundError(f"no policy weights at {path}: run nav2-pyif learn first")
-        self.policy = Policy.load(path)
         self.xy_goal_tolerance = p.declare("xy_goal_tolerance", 0.25, "[m] when no goal checker")
+        fleet = p.declare("fleet_size", 1, "robots a batched host serves at most")
         self.index = 0
-        device = jax.devices()[0]  # a GPU when JAX has one, else the CPU
-        params = [
-            (jax.device_put(w, device), jax.device_put(b, device)) for w, b in self.policy.layers
-        ]
-        self._infer = jax.jit(lambda x: forward(params, x))
-        self.device = str(device)
-        self._infer(np.zeros((1, len(self.policy.mean)), np.float32))  # compile now
+        served = _served(path)
+        self.policy, self._infer, self.device = served.policy, served.infer, served.device
+        self.weights = str(path)
+        for size in buckets(int(fleet)):  # compile now; cached per shape after the first
+            self._infer(np.zeros((size, len(self.policy.mean)), np.float32))
         self.logger.info("policy %s on %s", path, self.device)
 
     def act(self, batch: np.ndarray) -> np.ndarray:
-        """(B, F) features -> (B, 2) v [m/s], w [rad/s]: one call for a whole batch."""
+        """(B, F) features -> (B, 2) v [m/s], w [rad/s]: one call for a whole batch, padded
+        to a compiled size."""
         x = (batch - self.policy.mean) / self.policy.std
-        out: np.ndarray = np.asarray(self._infer(x.astype(np.float32))) * self.policy.scale
+        padded = pad_rows(x.astype(np.float32), bucket(len(x)))
+        out: np.ndarray = np.asarray(self._infer(padded))[: len(x)] * self.policy.scale
         return out
 
     def compute_velocity_commands(
         self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
     ) -> Any:
+        return one_cycle(self, pose, velocity, goal_checker)
+
+    def _features(self, pose: Any, velocity: Any, goal_checker: GoalChecker | None) -> Any:
+        """This robot's features, or its command when it is at the goal (turning in place)."""
         x, y, yaw, path = self.track(pose)
         cmd = self.command(pose)
         if self.turn_at_goal(cmd, x, y, yaw, path, goal_checker):
@@ -55,7 +93,7 @@ class LearnedController(PathFollower):
         scan = self.inputs.get("scan")
         if scan is None:
             raise NoValidControl("no laser scan yet: the policy needs input 'scan'")
-        f = features(
+        return features(
             scan.ranges,
             scan.angles,
             path[:, :2],
@@ -63,8 +101,30 @@ class LearnedController(PathFollower):
             (x, y, yaw),
             (velocity.linear.x, velocity.angular.z),
         )
-        v, w = self.act(f[None])[0]
-        top = limit_speed(float(self.policy.scale[0]), self.speed_limit)
-        cmd.twist.linear.x = float(min(max(v, 0.0), top))
-        cmd.twist.angular.z = float(w)
-        return cmd
+
+    @classmethod
+    def compute_velocity_commands_batch(cls, batch: Batch) -> list[Any]:
+        """Each robot's features, then one forward pass per policy for all of them."""
+        out: list[Any] = [None] * len(batch)
+        by_policy: dict[str, list[tuple[int, LearnedController, np.ndarray]]] = {}
+        for i, robot in enumerate(batch.planners):
+            assert isinstance(robot, LearnedController)
+            args = batch.pose_messages[i], batch.velocity_messages[i], batch.goal_checkers[i]
+            try:
+                f = robot._features(*args)
+            except Exception as exc:  # this robot's own error (no scan, no plan)
+                out[i] = exc
+                continue
+            if isinstance(f, np.ndarray):
+                by_policy.setdefault(robot.weights, []).append((i, robot, f))
+            else:
+                out[i] = f
+        for group in by_policy.values():
+            commands = group[0][1].act(np.stack([f for _, _, f in group]))
+            for (i, robot, _), (v, w) in zip(group, commands, strict=True):
+                cmd = robot.command(batch.pose_messages[i])
+                top = limit_speed(float(robot.policy.scale[0]), robot.speed_limit)
+                cmd.twist.linear.x = float(min(max(v, 0.0), top))
+                cmd.twist.angular.z = float(w)
+                out[i] = cmd
+        return out
