@@ -172,6 +172,19 @@ def test_a_lone_robot_does_not_wait_for_the_window(fleet: Fleet) -> None:
     assert statistics.median(times) < WINDOW_MS / 1000 / 2, times
 
 
+def test_a_robot_waits_at_most_the_window_for_one_that_stopped(fleet: Fleet) -> None:
+    fleet.batched_round()  # every robot called lately: the next batch waits for them all
+    started = time.perf_counter()
+    cmd = fleet.clients[0].compute_velocity_commands(pose(), Twist())
+    waited = time.perf_counter() - started
+    assert cmd.twist.angular.z == 1.0  # the others never came: it left alone ...
+    assert WINDOW_MS / 1000 * 0.9 < waited < WINDOW_MS / 1000 + 0.03, waited  # ... at the window
+    time.sleep(2.5 * PERIOD)  # two periods without a call: they no longer count
+    started = time.perf_counter()
+    fleet.clients[0].compute_velocity_commands(pose(), Twist())
+    assert time.perf_counter() - started < WINDOW_MS / 1000 / 2
+
+
 def test_one_robots_nan_fails_that_robot_only(fleet: Fleet) -> None:
     fleet.batched_round()
     fleet.set_fault(1, "nan")

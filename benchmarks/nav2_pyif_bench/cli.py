@@ -3,7 +3,7 @@
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers' rate through a host
-nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host
+nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
@@ -86,6 +86,35 @@ def build_parser() -> argparse.ArgumentParser:
         choices=["process", "none"],
         default="process",
         help="the planner host's --isolation (default process)",
+    )
+    fleet.add_argument(
+        "--planner",
+        choices=["trivial", "learned", "mppi_jax"],
+        default="trivial",
+        help="the controller every robot calls (default trivial: the path alone)",
+    )
+    fleet.add_argument(
+        "--rollouts", type=positive_int, default=1000, help="mppi_jax's batch_size (default 1000)"
+    )
+    fleet.add_argument(
+        "--batch", action="store_true", help="one worker for all robots, cycles batched"
+    )
+    fleet.add_argument(
+        "--batch-window",
+        type=positive_float,
+        default=5.0,
+        metavar="MS",
+        help="planner-host --batch-window with --batch or --compare (default 5)",
+    )
+    fleet.add_argument(
+        "--compare",
+        action="store_true",
+        help="each fleet size with one worker per robot, then batched",
+    )
+    fleet.add_argument(
+        "--stop-at-miss",
+        action="store_true",
+        help="a mode stops at the first fleet size that missed a period",
     )
     fleet.add_argument("--plot", metavar="PNG", help="draw latency and misses against robots")
     reliability = sub.add_parser("reliability", help="hot swap gap, memory over a long run")

@@ -1,13 +1,15 @@
-"""Many robots, one planner host: N controller keys served by one host (one worker process
-each, the default), N clients calling at 20 Hz from several client processes. Reports the
-latency, the missed deadlines (no valid reply within the 50 ms period) and the CPU the host
-and its workers used, to show where the 2-core limit is."""
+"""Many robots, one planner host: N controller keys served by one host, N clients calling at
+20 Hz from several client processes. Per-robot workers (the default: one worker process per
+key) or ``--batch`` (one worker for all keys, their cycles batched). Reports the latency, the
+missed periods (no valid reply within the 50 ms period) and the CPU the host and its workers
+used, to show where the 2-core limit is."""
 
 from __future__ import annotations
 
 import argparse
 import multiprocessing
 import os
+import shutil
 import threading
 import time
 from pathlib import Path
@@ -15,8 +17,17 @@ from typing import Any
 
 import numpy as np
 
+from nav2_pyif_bench.fleet_planners import (
+    FleetPlanner,
+    costmap,
+    fleet_planner,
+    plan,
+    robot_pose,
+    scan,
+    workdir,
+)
+
 PERIOD = 0.05
-PLANNER = "nav2_pyif_bench.planners:TrivialController"
 
 
 def key(i: int) -> str:
@@ -26,35 +37,43 @@ def key(i: int) -> str:
 def _robot(
     endpoint_session: Any,
     index: int,
+    planner: FleetPlanner,
     seconds: float,
     out: list[tuple[float, bool]],
-    start_at: float,
+    ready: Any,
+    go: Any,
 ) -> None:
-    from geometry_msgs.msg import PoseStamped, Twist
-    from nav2_pyif import Costmap, Plan
+    from geometry_msgs.msg import Twist
     from nav2_pyif.client import ControllerClient, Timeouts
     from nav2_pyif.exceptions import Nav2Error
 
     client = ControllerClient(
         endpoint_session,
         key(index),
-        Costmap(np.zeros((60, 60), np.uint8), 0.05, version=1),
-        timeouts=Timeouts(call=10.0, lifecycle=30, configure=60),
+        costmap(),
+        params=planner.params,
+        timeouts=Timeouts(call=10.0, lifecycle=60, configure=300),
     )
-    client.wait_for_host(180)
-    client.configure()  # dozens of robots set up at once: generous timeouts
-    client.activate()
-    client.set_plan(Plan(np.zeros((100, 3)), "odom"))
+    try:
+        client.wait_for_host(300)
+        client.configure()  # dozens of robots set up at once: generous timeouts
+        client.activate()
+        client.set_plan(plan())
+        client.compute_velocity_commands(robot_pose(), Twist(), inputs=_inputs(planner))
+    finally:
+        ready.put(index)  # set up (or failed: its cycles will say so)
     client.timeouts = Timeouts(call=PERIOD, lifecycle=30, configure=60)  # the control loop
-    pose, velocity = PoseStamped(), Twist()
+    pose, velocity = robot_pose(), Twist()
+    go.wait()
+    start_at = go.start_at.value
     time.sleep(max(0.0, start_at - time.monotonic()))
-    next_tick = time.monotonic() + (index % 20) * PERIOD / 20  # spread robots over a period
+    next_tick = start_at + (index % 20) * PERIOD / 20  # spread robots over a period
     end = next_tick + seconds
     while next_tick < end:
         time.sleep(max(0.0, next_tick - time.monotonic()))
         started = time.perf_counter()
         try:
-            client.compute_velocity_commands(pose, velocity)
+            client.compute_velocity_commands(pose, velocity, inputs=_inputs(planner))
             out.append((time.perf_counter() - started, True))
         except Nav2Error:
             out.append((time.perf_counter() - started, False))
@@ -62,15 +81,37 @@ def _robot(
     client.close()
 
 
+def _inputs(planner: FleetPlanner) -> dict[str, tuple[Any, int]] | None:
+    """A new scan with every cycle, as a 20 Hz laser gives one (the learned controller)."""
+    return {"scan": (scan(), time.time_ns())} if planner.scan else None
+
+
+class _Go:
+    """When to start, for every client process: an event and the start time."""
+
+    def __init__(self, ctx: Any) -> None:
+        self.event = ctx.Event()
+        self.start_at = ctx.Value("d", 0.0)
+
+    def wait(self) -> None:
+        self.event.wait()
+
+
 def _client_process(
-    endpoint: str, indices: list[int], seconds: float, start_at: float, queue: Any
+    endpoint: str,
+    indices: list[int],
+    planner: FleetPlanner,
+    seconds: float,
+    ready: Any,
+    go: _Go,
+    queue: Any,
 ) -> None:
     from nav2_pyif_bench.protocol_bench import open_session
 
     session = open_session([endpoint])
     results: list[tuple[float, bool]] = []
     threads = [
-        threading.Thread(target=_robot, args=(session, i, seconds, results, start_at))
+        threading.Thread(target=_robot, args=(session, i, planner, seconds, results, ready, go))
         for i in indices
     ]
     for t in threads:
@@ -92,30 +133,45 @@ def _cpu_seconds(pid: int) -> float:
     return total
 
 
-def run_one(robots: int, seconds: float, isolation: str) -> dict[str, Any]:
+def host_arguments(args: argparse.Namespace, batched: bool) -> list[str]:
+    extra = ["--isolation", args.isolation]
+    if batched:
+        extra += ["--batch", "--batch-window", f"{args.batch_window:g}"]
+    return extra
+
+
+def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, Any]:
     from nav2_pyif.common.host_process import PlannerHostProcess
 
-    entries = [{"key": key(i), "planner": PLANNER} for i in range(robots)]
-    host = PlannerHostProcess(entries, args=["--isolation", isolation])
+    directory = workdir()
+    planner = fleet_planner(args.planner, robots, args.rollouts, directory)
+    entries = [{"key": key(i), "planner": planner.spec} for i in range(robots)]
+    host = PlannerHostProcess(entries, args=host_arguments(args, batched))
     with host:
         assert host.proc is not None
         ctx = multiprocessing.get_context("spawn")
-        queue = ctx.Queue()
+        queue, ready, go = ctx.Queue(), ctx.Queue(), _Go(ctx)
         processes = min(robots, 4)
         groups = [list(range(robots))[g::processes] for g in range(processes)]
-        start_at = time.monotonic() + 15.0 + 1.0 * robots  # after every robot configured
         clients = [
-            ctx.Process(target=_client_process, args=(host.endpoint, g, seconds, start_at, queue))
+            ctx.Process(
+                target=_client_process,
+                args=(host.endpoint, g, planner, args.seconds, ready, go, queue),
+            )
             for g in groups
         ]
         try:
             for c in clients:
                 c.start()
-            time.sleep(max(0.0, start_at - time.monotonic()))
+            for _ in range(robots):  # every robot configured, compiled and warm
+                ready.get(timeout=600)
+            go.start_at.value = time.monotonic() + 1.0
+            go.event.set()
+            time.sleep(max(0.0, go.start_at.value - time.monotonic()))
             cpu_before, wall_before = _cpu_seconds(host.proc.pid), time.monotonic()
             samples: list[tuple[float, bool]] = []
             for _ in clients:
-                samples += queue.get(timeout=seconds + 300)
+                samples += queue.get(timeout=args.seconds + 300)
             cpu = _cpu_seconds(host.proc.pid) - cpu_before
             wall = time.monotonic() - wall_before
             for c in clients:
@@ -125,41 +181,64 @@ def run_one(robots: int, seconds: float, isolation: str) -> dict[str, Any]:
                 if c.pid is not None and c.is_alive():
                     c.terminate()
                     c.join(5)
+            shutil.rmtree(directory, ignore_errors=True)
     latency = np.array([s[0] for s in samples if s[1]]) * 1000
     missed = sum(1 for s in samples if not s[1] or s[0] > PERIOD)
     return {
         "robots": robots,
         "calls": len(samples),
-        "calls_per_s": len(samples) / seconds,
+        "calls_per_s": len(samples) / args.seconds,
         "median_ms": float(np.median(latency)) if len(latency) else float("nan"),
         "p99_ms": float(np.percentile(latency, 99)) if len(latency) else float("nan"),
         "missed": missed,
         "missed_pct": 100.0 * missed / max(1, len(samples)),
         "host_cpu_cores": cpu / wall,
-        "isolation": isolation,
+        "isolation": args.isolation,
+        "planner": args.planner,
+        "mode": _mode(args, batched),
     }
 
 
+def _mode(args: argparse.Namespace, batched: bool) -> str:
+    if batched:
+        return f"batched ({args.batch_window:g} ms window)"
+    return "one worker each" if args.isolation == "process" else "no workers: --isolation none"
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    results = {}
-    for n in args.robots:
-        print(f"  … {n} robot(s) at 20 Hz for {args.seconds:g} s ({args.isolation})", flush=True)
-        results[str(n)] = run_one(n, args.seconds, args.isolation)
+    """Each fleet size in each mode (per-robot workers, batched, or both with --compare);
+    with --stop-at-miss, a mode stops at its first size that missed a period."""
+    modes = [False, True] if args.compare else [args.batch]
+    results: dict[str, Any] = {}
+    for batched in modes:
+        for n in args.robots:
+            label = _mode(args, batched)
+            print(f"  … {n} robot(s) at 20 Hz for {args.seconds:g} s ({label})", flush=True)
+            result = run_one(args, n, batched)
+            results[f"{label}/{n}"] = result
+            if args.stop_at_miss and result["missed"]:
+                break
     return results
 
 
 def report(results: dict[str, Any]) -> str:
-    isolation = next(iter(results.values()))["isolation"] if results else "process"
-    workers = "one worker each" if isolation == "process" else "no workers: --isolation none"
+    first = next(iter(results.values()), {"planner": "trivial"})
     lines = [
-        f"fleet: N controllers on one host ({workers}), clients at 20 Hz",
-        f"  {'robots':>6} {'calls/s':>8} {'median':>9} {'p99':>9} {'missed':>12} {'host CPU':>9}",
+        f"fleet: N controllers on one host ({first['planner']} planner), clients at 20 Hz",
+        f"  {'mode':<28} {'robots':>6} {'calls/s':>8} {'median':>9} {'p99':>9} "
+        f"{'missed':>14} {'host CPU':>11}",
     ]
     for r in results.values():
         lines.append(
-            f"  {r['robots']:>6} {r['calls_per_s']:>8.0f} {r['median_ms']:>6.2f} ms "
-            f"{r['p99_ms']:>6.2f} ms {r['missed']:>5} ({r['missed_pct']:4.1f} %) "
-            f"{r['host_cpu_cores']:>6.2f} cores"
+            f"  {r['mode']:<28} {r['robots']:>6} {r['calls_per_s']:>8.0f} "
+            f"{r['median_ms']:>6.2f} ms {r['p99_ms']:>6.2f} ms "
+            f"{r['missed']:>7} ({r['missed_pct']:4.1f} %) "
+            f"{r['host_cpu_cores']:>5.2f} cores"
+        )
+    for mode in dict.fromkeys(r["mode"] for r in results.values()):
+        served = [r["robots"] for r in results.values() if r["mode"] == mode and not r["missed"]]
+        lines.append(
+            f"  {mode}: most robots served with no missed period: {max(served, default=0)}"
         )
     lines.append("  missed: no valid reply within the 50 ms control period")
     return "\n".join(lines)
