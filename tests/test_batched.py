@@ -22,7 +22,13 @@ from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.client.admin import request_reload
 from nav2_pyif.common.host_process import PlannerHostProcess
 
-from tests.conftest import free_port, host_process, make_costmap, open_client_session
+from tests.conftest import (
+    free_port,
+    host_process,
+    make_costmap,
+    open_client_session,
+    wait_until,
+)
 from tests.test_host_e2e import pose
 
 pytestmark = pytest.mark.integration
@@ -312,3 +318,29 @@ def test_a_hot_swap_replaces_the_planner_of_its_batch_group_only(tmp_path: Path)
         outsider.close()
     finally:
         fleet.close()
+
+
+def test_config_entries_ask_for_batching_one_by_one(tmp_path: Path) -> None:
+    planner = "batch_planners:BatchEcho"
+    entries = [{"key": key(i), "planner": planner, "batch": True} for i in range(2)]
+    host = PlannerHostProcess(
+        [*entries, {"key": key(2), "planner": planner}],
+        port=free_port(),
+        log_level="INFO",
+        log_path=tmp_path / "host.log",
+        env=host_process(0, [], tmp_path / "unused.log").env,
+    ).start()
+    try:
+        session = open_client_session(host.endpoint)
+        client = ControllerClient(session, key(2), make_costmap(), timeouts=TIMEOUTS)
+        assert client.wait_for_host(30), host.log()
+        client.close()
+        session.close()
+        assert wait_until(lambda: f"on {key(2)}/**" in host.log())  # logged once it serves
+        log = host.log()
+        assert f"batch group: {planner} serves 2 key(s)" in log, log
+        workers = re.findall(r"on (\S+)/\*\* \(controller, worker (\d+)\)", log)
+        by_key = dict(workers)
+        assert by_key[key(0)] == by_key[key(1)] != by_key[key(2)], workers
+    finally:
+        host.kill()

@@ -4,8 +4,10 @@ asserted: performance is judged from benchmark runs, not unit tests)."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
+from importlib.util import find_spec
 from pathlib import Path
 
 import pytest
@@ -110,6 +112,24 @@ def test_fleet_benchmark_prints_its_table_and_draws_it(tmp_path: Path) -> None:
     result = bench("fleet", "--robots", "1", "--seconds", "1", "--plot", str(png))
     assert_prints(result, "fleet: N controllers on one host", "missed:", f"wrote {png}")
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
+
+
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
+def test_fleet_benchmark_compares_per_robot_workers_with_one_batched_host(tmp_path: Path) -> None:
+    png = tmp_path / "fleet.png"
+    result = bench(
+        *("fleet", "--planner", "learned", "--compare", "--robots", "2", "--seconds", "1"),
+        *("--plot", str(png)),
+    )
+    assert_prints(
+        result,
+        "fleet: N controllers on one host (learned planner)",
+        "one worker each: most robots served with no missed period:",
+        "batched (5 ms window): most robots served with no missed period:",
+        f"wrote {png}",
+    )
+    rows = re.findall(r"^  (one worker each|batched .*?) +2 +(\d+) +[\d.]+ ms", result.stdout, re.M)
+    assert rows == [("one worker each", "40"), ("batched (5 ms window)", "40")], result.stdout
 
 
 def test_host_benchmark_without_a_router_says_where_it_looked() -> None:
