@@ -112,6 +112,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="each fleet size with one worker per robot, then batched",
     )
     fleet.add_argument(
+        "--batch-robots",
+        type=positive_int,
+        nargs="+",
+        metavar="N",
+        help="with --compare: the fleet sizes of the batched mode (default: --robots)",
+    )
+    fleet.add_argument(
         "--stop-at-miss",
         action="store_true",
         help="a mode stops at the first fleet size that missed a period",

@@ -68,8 +68,7 @@ def _robot(
     start_at = go.start_at.value
     time.sleep(max(0.0, start_at - time.monotonic()))
     next_tick = start_at + (index % 20) * PERIOD / 20  # spread robots over a period
-    end = next_tick + seconds
-    while next_tick < end:
+    for _ in range(round(seconds / PERIOD)):
         time.sleep(max(0.0, next_tick - time.monotonic()))
         started = time.perf_counter()
         try:
@@ -211,7 +210,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     modes = [False, True] if args.compare else [args.batch]
     results: dict[str, Any] = {}
     for batched in modes:
-        for n in args.robots:
+        sizes = (args.batch_robots if batched and args.compare else None) or args.robots
+        for n in sizes:
             label = _mode(args, batched)
             print(f"  … {n} robot(s) at 20 Hz for {args.seconds:g} s ({label})", flush=True)
             result = run_one(args, n, batched)
