@@ -72,7 +72,12 @@ class Fleet:
             tmp / "host.log",
         ).start()
         self.session = open_client_session(self.host.endpoint)
-        self.clients = [self.robot(i) for i in range(ROBOTS)]
+        self.clients: list[Any] = []
+        try:
+            self.clients += [self.robot(i) for i in range(ROBOTS)]
+        except BaseException:  # no host left behind by a set-up that failed
+            self.close()
+            raise
 
     def robot(self, i: int, speed: float | None = None, plan: int | None = None) -> Any:
         client = ControllerClient(
