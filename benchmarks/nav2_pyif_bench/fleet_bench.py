@@ -40,6 +40,7 @@ def _robot(
     planner: FleetPlanner,
     seconds: float,
     out: list[tuple[float, bool]],
+    errors: list[str],
     ready: Any,
     go: Any,
 ) -> None:
@@ -61,8 +62,9 @@ def _robot(
         client.activate()
         client.set_plan(plan())
         _warm_up(client, planner)
-    except Nav2Error:  # never set up: every cycle of its run is a miss
+    except Nav2Error as exc:  # never set up: every cycle of its run is a miss
         out.extend([(PERIOD, False)] * cycles)
+        errors.append(f"set-up failed: {exc}")
         client.close()
         return
     finally:
@@ -79,8 +81,9 @@ def _robot(
         try:
             client.compute_velocity_commands(pose, velocity, inputs=_inputs(planner))
             out.append((time.perf_counter() - started, True))
-        except Nav2Error:
+        except Nav2Error as exc:
             out.append((time.perf_counter() - started, False))
+            errors.append(str(exc).splitlines()[0])
         next_tick += PERIOD
     client.close()
 
@@ -130,8 +133,11 @@ def _client_process(
 
     session = open_session([endpoint])
     results: list[tuple[float, bool]] = []
+    errors: list[str] = []
     threads = [
-        threading.Thread(target=_robot, args=(session, i, planner, seconds, results, ready, go))
+        threading.Thread(
+            target=_robot, args=(session, i, planner, seconds, results, errors, ready, go)
+        )
         for i in indices
     ]
     for t in threads:
@@ -139,7 +145,7 @@ def _client_process(
     for t in threads:
         t.join()
     session.close()
-    queue.put(results)
+    queue.put((results, errors))
 
 
 def _cpu_seconds(pid: int) -> float:
@@ -190,8 +196,10 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
             time.sleep(max(0.0, go.start_at.value - time.monotonic()))
             cpu_before, wall_before = _cpu_seconds(host.proc.pid), time.monotonic()
             samples: list[tuple[float, bool]] = []
+            errors: list[str] = []
             for _ in clients:
-                samples += queue.get(timeout=args.seconds + 300)
+                got, failed = queue.get(timeout=args.seconds + 300)
+                samples, errors = samples + got, errors + failed
             cpu = _cpu_seconds(host.proc.pid) - cpu_before
             wall = time.monotonic() - wall_before
             for c in clients:
@@ -216,6 +224,7 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
         "isolation": args.isolation,
         "planner": args.planner,
         "mode": _mode(args, batched),
+        "errors": sorted(set(errors))[:5],  # what the failed calls said
     }
 
 
@@ -256,6 +265,9 @@ def report(results: dict[str, Any]) -> str:
             f"{r['missed']:>7} ({r['missed_pct']:4.1f} %) "
             f"{r['host_cpu_cores']:>5.2f} cores"
         )
+    for r in results.values():
+        for error in r["errors"]:
+            lines.append(f"  {r['mode']}, {r['robots']} robots: {error}")
     for mode in dict.fromkeys(r["mode"] for r in results.values()):
         served = [r["robots"] for r in results.values() if r["mode"] == mode and not r["missed"]]
         lines.append(
