@@ -263,6 +263,20 @@ def test_a_hang_in_a_batched_call_fails_that_cycle_and_the_worker_is_replaced(
     fleet.assert_sessions_intact()
 
 
+def test_a_cycle_that_waited_a_control_period_is_not_computed(fleet: Fleet) -> None:
+    fleet.set_fault(0, "hang", sleep_s=2 * PERIOD)  # under the 0.5 s deadline: no restart
+    slow: list[Any] = []
+    first = threading.Thread(target=lambda: slow.extend(fleet.round(fleet.clients[:1])))
+    first.start()
+    time.sleep(PERIOD / 4)  # robot 1's cycle queues behind the slow batch ...
+    with pytest.raises(api.NoValidControl, match=r"overloaded: this control cycle waited \d+ ms"):
+        fleet.clients[1].compute_velocity_commands(pose(), Twist())
+    first.join(10)
+    assert slow[0].twist.linear.x == SPEEDS[0]  # the slow one was served
+    fleet.set_fault(0, "none")
+    fleet.assert_sessions_intact()
+
+
 def test_robots_join_and_leave_while_others_cycle(fleet: Fleet) -> None:
     errors: list[Exception] = []
     served = [0, 0]

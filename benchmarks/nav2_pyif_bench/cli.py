@@ -112,6 +112,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="each fleet size with one worker per robot, then batched",
     )
     fleet.add_argument(
+        "--xla-single-thread",
+        action="store_true",
+        help="the host's JAX runs each computation on one thread (XLA_FLAGS): on a small CPU "
+        "shared with the clients, no core is lost to XLA's thread pool",
+    )
+    fleet.add_argument(
         "--batch-robots",
         type=positive_int,
         nargs="+",

@@ -166,13 +166,21 @@ def host_arguments(args: argparse.Namespace, batched: bool) -> list[str]:
     return extra
 
 
+#: one thread per XLA computation: no thread pool spinning on the cores the clients need
+XLA_SINGLE_THREAD = "--xla_cpu_multi_thread_eigen=false intra_op_parallelism_threads=1"
+
+
+def host_env(args: argparse.Namespace) -> dict[str, str]:
+    return {"XLA_FLAGS": XLA_SINGLE_THREAD} if args.xla_single_thread else {}
+
+
 def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, Any]:
     from nav2_pyif.common.host_process import PlannerHostProcess
 
     directory = workdir()
     planner = fleet_planner(args.planner, robots, args.rollouts, directory)
     entries = [{"key": key(i), "planner": planner.spec} for i in range(robots)]
-    host = PlannerHostProcess(entries, args=host_arguments(args, batched))
+    host = PlannerHostProcess(entries, args=host_arguments(args, batched), env=host_env(args))
     with host:
         assert host.proc is not None
         ctx = multiprocessing.get_context("spawn")
@@ -225,6 +233,7 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
         "planner": args.planner,
         "mode": _mode(args, batched),
         "errors": sorted(set(errors))[:5],  # what the failed calls said
+        "xla_single_thread": bool(args.xla_single_thread),
     }
 
 

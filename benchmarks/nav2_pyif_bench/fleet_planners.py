@@ -6,6 +6,7 @@ goal)."""
 
 from __future__ import annotations
 
+import functools
 import itertools
 import tempfile
 from dataclasses import dataclass, field
@@ -86,8 +87,10 @@ def robot_pose() -> Any:
     return pose
 
 
+@functools.cache
 def scan() -> Any:
-    """A 360-beam LaserScan, as the runner's simulated laser gives the learned controller."""
+    """A 360-beam LaserScan, as the runner's simulated laser gives the learned controller;
+    built once per client process (the C++ plugin passes each scan's bytes as they came)."""
     from sensor_msgs.msg import LaserScan
 
     msg = LaserScan(angle_min=-np.pi, angle_max=np.pi, range_min=0.05, range_max=12.0)

@@ -3,8 +3,10 @@ and their control cycles that arrive within the batch window become one batched 
 
 A batch leaves when every key that called in the last two control periods has a cycle in it
 (a lone robot waits for nothing), or when its first cycle has waited the window, whichever
-is first; cycles that arrive while a batch runs form the next one. Every other call (configure,
-set_plan, parameters, ...) goes straight to the shared planner, between two batches.
+is first; cycles that arrive while a batch runs form the next one. A cycle that waited more
+than a control period (an overloaded host) is answered Unavailable without being computed.
+Every other call (configure, set_plan, parameters, ...) goes straight to the shared planner,
+between two batches.
 """
 
 from __future__ import annotations
@@ -65,6 +67,7 @@ class Batcher:
         self.run, self.window, self.period, self.host_id = run, window, period, host_id
         self.batches = 0  # batched calls made
         self.cycles = 0  # control cycles they served
+        self.dropped = 0  # cycles answered without computing: older than a control period
         self._cond = threading.Condition()
         self._pending: list[_Cycle] = []
         self._last_call: dict[str, float] = {}  # member key -> when it last sent a cycle
@@ -107,8 +110,29 @@ class Batcher:
             batch, self._pending = self._pending, []
             return batch
 
+    def _drop_stale(self, batch: list[_Cycle]) -> list[_Cycle]:
+        """Overload: a cycle that waited a whole control period for its batch is answered
+        at once, not computed (its plugin, whose timeout is below the period, has given up;
+        a robot's next cycle is already on its way): late work never delays the next batch."""
+        oldest = time.monotonic() - self.period
+        fresh = [cycle for cycle in batch if cycle.arrived >= oldest]
+        for cycle in batch:
+            if cycle.arrived < oldest:
+                self.dropped += 1
+                waited = (time.monotonic() - cycle.arrived) * 1000
+                cycle.reply = self._refused(
+                    cycle.payload,
+                    f"overloaded: this control cycle waited {waited:.0f} ms for its batch, more "
+                    f"than the {self.period * 1000:g} ms control period; not computed",
+                )
+                cycle.done.set()
+        return fresh
+
     def _serve(self) -> None:
         while (batch := self._next_batch()) is not None:
+            batch = self._drop_stale(batch)
+            if not batch:
+                continue
             try:
                 replies = self.run([cycle.payload for cycle in batch])
             except Exception as exc:  # the service never raises; if it did, no robot hangs
@@ -209,6 +233,7 @@ class BatchMember:
             "period_s": self.group.period,
             "batches": batcher.batches,
             "cycles": batcher.cycles,
+            "dropped": batcher.dropped,
         }
 
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
