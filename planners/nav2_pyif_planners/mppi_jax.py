@@ -136,7 +136,15 @@ def mppi_step(
     return (key, *_mppi_update(normal, optimal, state, local, grid, origin, outline, settings))
 
 
-@partial(jax.jit, static_argnames=("batch_size",))
+@partial(jax.jit, static_argnames=("batch_size", "steps"))
+def _draw(key: Any, batch_size: int, steps: int) -> tuple[Any, Any]:
+    key, draw = jax.random.split(key)
+    return key, jax.random.normal(draw, (2, batch_size, steps))
+
+
+_update_fleet = jax.jit(jax.vmap(_mppi_update, in_axes=(None, 0, 0, 0, 0, 0, 0, 0)))
+
+
 def mppi_fleet(
     key: Any,
     optimal: Any,
@@ -155,11 +163,11 @@ def mppi_fleet(
 
     The robots share one draw of standard normal noise (common random numbers: each robot's
     samples are still i.i.d. Gaussian, scaled by its own sigma), so sampling costs the same
-    for 1 robot or 100; on a CPU the draw is the largest cost of an iteration."""
-    key, draw = jax.random.split(key)
-    normal = jax.random.normal(draw, (2, batch_size, optimal.shape[1]))
-    update = jax.vmap(_mppi_update, in_axes=(None, 0, 0, 0, 0, 0, 0, 0))
-    return (key, *update(normal, optimal, state, local, grid, origin, outline, settings))
+    for 1 robot or 100. Two compiled calls, the draw and the update, the noise staying on the
+    device between them: compiled together, XLA computes the draw many times over (measured
+    on a CPU: 18 ms of a 47 ms batch of 32 robots)."""
+    key, normal = _draw(key, batch_size=batch_size, steps=optimal.shape[1])
+    return (key, *_update_fleet(normal, optimal, state, local, grid, origin, outline, settings))
 
 
 class MPPIJax(MPPI):
