@@ -159,6 +159,22 @@ def _cpu_seconds(pid: int) -> float:
     return total
 
 
+def _batching(endpoint: str) -> dict[str, Any]:
+    """The batch group's counts, as ``nav2-pyif hosts`` shows them."""
+    from nav2_pyif.client.hosts import ask_info
+
+    from nav2_pyif_bench.protocol_bench import open_session
+
+    session = open_session([endpoint])
+    try:
+        answers = ask_info(session, {key(0)}, timeout=5.0)
+    finally:
+        session.close()
+    info = next(iter(answers.values()), {})
+    batch: dict[str, Any] = info.get("batch", {})
+    return batch
+
+
 def host_arguments(args: argparse.Namespace, batched: bool) -> list[str]:
     extra = ["--isolation", args.isolation]
     if batched:
@@ -210,6 +226,7 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
                 samples, errors = samples + got, errors + failed
             cpu = _cpu_seconds(host.proc.pid) - cpu_before
             wall = time.monotonic() - wall_before
+            batching = _batching(host.endpoint) if batched else {}
             for c in clients:
                 c.join(30)
         finally:  # also on a signal or an error: no client process is left behind
@@ -234,6 +251,9 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
         "mode": _mode(args, batched),
         "errors": sorted(set(errors))[:5],  # what the failed calls said
         "xla_single_thread": bool(args.xla_single_thread),
+        # the whole run's, set-up included: robots per batched call, cycles not computed
+        "cycles_per_batch": batching.get("cycles", 0) / max(1, batching.get("batches", 0)),
+        "dropped": batching.get("dropped", 0),
     }
 
 
@@ -275,7 +295,12 @@ def report(results: dict[str, Any]) -> str:
             f"{r['host_cpu_cores']:>5.2f} cores"
         )
     for r in results.values():
-        for error in r["errors"]:
+        if r["cycles_per_batch"]:
+            lines.append(
+                f"  {r['mode']}, {r['robots']} robots: {r['cycles_per_batch']:.1f} cycles per "
+                f"batched call, {r['dropped']} not computed (waited a whole period)"
+            )
+        for error in r["errors"][:2]:
             lines.append(f"  {r['mode']}, {r['robots']} robots: {error}")
     for mode in dict.fromkeys(r["mode"] for r in results.values()):
         served = [r["robots"] for r in results.values() if r["mode"] == mode and not r["missed"]]
