@@ -35,7 +35,7 @@ def plot_fleet(results: dict[str, Any], path: Path, machine: str) -> None:
     latency.set_title("compute_velocity_commands latency")
     latency.legend(fontsize=7)
     missed.set(xlabel="robots at 20 Hz on one host", ylabel="missed periods [%]", ylim=(-3, 105))
-    missed.set_title("missed 50 ms periods (labels: cores used by host + workers)")
+    missed.set_title("missed 50 ms periods (labels: host + workers CPU, cores)")
     missed.legend(fontsize=7)
     planner = next(iter(results.values()))["planner"] if results else "trivial"
     fig.suptitle(f"one planner host, {planner} controller\n{machine}", fontsize=8)
