@@ -9,6 +9,7 @@ from typing import Any
 
 import numpy as np
 
+from nav2_pyif.geometry import path_length
 from nav2_pyif.runner.robot import CLEARANCE_REACH
 from nav2_pyif.runner.run import CONTROLLER_FAILED, SimResult
 
@@ -79,7 +80,7 @@ def summary(result: SimResult) -> dict[str, Any]:
         "plugins": {role: result.name_of(role) for role in c.plugins},
         "carried_calls": list(result.carried),
         "layer_cells": int(result.layer.cells.sum()) if result.layer is not None else 0,
-        "raw_plan_length_m": round(_length(result.raw_plan), 3),
+        "raw_plan_length_m": round(path_length(result.raw_plan), 3),
         "scans": result.scans,
         "debug_outputs": _debug_counts(result),
         "recoveries": [
@@ -111,13 +112,6 @@ def _sensing_line(result: SimResult, s: dict[str, Any]) -> list[str]:
         kept = ", ".join(f"{name} x{n}" for name, n in s["debug_outputs"].items())
         lines.append(f"  debug outputs drawn: {kept}")
     return lines
-
-
-def _length(plan: Any) -> float:
-    if plan is None or len(plan) < 2:
-        return 0.0
-    d = np.diff(plan[:, :2], axis=0)
-    return float(np.hypot(d[:, 0], d[:, 1]).sum())
 
 
 def _plugins_line(s: dict[str, Any]) -> list[str]:

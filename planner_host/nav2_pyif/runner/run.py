@@ -5,6 +5,7 @@ reference client: the very protocol and path the Nav2 plugins use."""
 from __future__ import annotations
 
 import contextlib
+import importlib.machinery
 import logging
 import math
 import sys
@@ -32,6 +33,7 @@ from nav2_pyif.common.signals import Interrupted
 from nav2_pyif.common.zenoh_config import ZenohOptions, connect_to
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.geometry import path_length
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import ALIASES
@@ -144,14 +146,11 @@ class SimResult:
 
     @property
     def path_length(self) -> float:
-        d = np.diff(self.plan[:, :2], axis=0)
-        return float(np.hypot(d[:, 0], d[:, 1]).sum()) if len(d) else 0.0
+        return path_length(self.plan)
 
     @property
     def driven_distance(self) -> float:
-        t = np.array([p[1:3] for p in self.trajectory]) if self.trajectory else np.zeros((0, 2))
-        d = np.diff(t, axis=0)
-        return float(np.hypot(d[:, 0], d[:, 1]).sum()) if len(d) else 0.0
+        return path_length([p[1:3] for p in self.trajectory])
 
     @property
     def cycles(self) -> int:
@@ -188,18 +187,46 @@ def short_name(spec: str) -> str:
     return next((alias for alias, t in ALIASES.items() if t == target), target)
 
 
-def planner_entry(key: str, spec: str) -> dict[str, Any]:
-    """A host config entry for a planner name: a reference alias, ``module:Class``, or the
-    APF module (function-delegate style)."""
+#: The main role (the function-delegate style's) of each role the runner serves.
+MAIN_ROLE = {
+    "controller": "compute_velocity_commands",
+    "planner": "create_plan",
+    "smoother": "smooth",
+    "goal_checker": "is_goal_reached",
+    "progress_checker": "check",
+    "layer": "update_costs",
+}
+
+
+def planner_entry(
+    key: str, spec: str, role: str = "controller", search: list[str] | None = None
+) -> dict[str, Any]:
+    """A host config entry for what serves ``role`` ("controller", "planner", ...): a
+    reference alias, ``module:Class``, ``module:function`` (that function as the role's main
+    one, the module's others by name) or a module of functions named after the roles (the
+    function-delegate style). The host imports it: this process only checks that a module
+    named without ``:`` is found on ``search`` (default: sys.path), so a misspelt name is
+    refused here with the names the runner knows."""
     resolved = ALIASES.get(spec, spec)
-    if spec in ALIASES and ":" not in resolved:  # a reference module of functions (the APF)
-        return {"key": key, "module": resolved}
-    if ":" not in resolved:
+    top = resolved.partition(":")[0].split(".")[0]
+    module_found = ":" in resolved or (
+        top.isidentifier()
+        and importlib.machinery.PathFinder.find_spec(top, [*(search or []), *sys.path]) is not None
+    )
+    if not module_found or resolved.startswith(":") or resolved.endswith(":"):
         raise SimError(
-            f"unknown planner {spec!r}: give one of {', '.join(ALIASES)} "
-            "or package.module:ClassName"
+            f"unknown planner {spec!r}: give one of {', '.join(ALIASES)}, "
+            "package.module:ClassName, package.module:function, or a module of functions "
+            "named after the roles (found in the current directory or with --path)"
         )
-    return {"key": key, "planner": resolved}
+    entry: dict[str, Any] = {"key": key}
+    if ":" in resolved:
+        entry["planner"] = resolved
+    else:
+        entry["module"] = resolved
+    if role in MAIN_ROLE:
+        entry["kind"] = MAIN_ROLE[role]
+    return entry
 
 
 def import_path(config: SimConfig) -> list[str]:
@@ -253,8 +280,9 @@ def prepare(config: SimConfig) -> SimResult:
 
 def inflated(config: SimConfig, master: Costmap) -> Costmap:
     """The master grid after Nav2's inflation layer, for the run's robot."""
-    inscribed = float(np.min(np.abs(np.array(config.footprint)).max(axis=0)))  # half its width
-    return inflation_layer(master, inscribed, config.inflation_radius, config.cost_scaling_factor)
+    return inflation_layer(
+        master, master.inscribed_radius, config.inflation_radius, config.cost_scaling_factor
+    )
 
 
 def run_sim(config: SimConfig) -> SimResult:
@@ -262,10 +290,11 @@ def run_sim(config: SimConfig) -> SimResult:
     terminating signal (``nav2_pyif.common.signals``) stops the run: the host is stopped and
     RunInterrupted carries the result so far."""
     result = prepare(config)
+    search = [str(Path(d).resolve()) for d in config.path]
     entries = [
-        planner_entry(config.controller_key, config.spec("controller")),
-        planner_entry(config.planner_key, config.spec("planner")),
-        *(planner_entry(KEYS[role], spec) for role, spec in config.plugins.items()),
+        planner_entry(config.controller_key, config.spec("controller"), "controller", search),
+        planner_entry(config.planner_key, config.spec("planner"), "planner", search),
+        *(planner_entry(KEYS[role], spec, role, search) for role, spec in config.plugins.items()),
     ]
     started = time.perf_counter()
     try:
@@ -319,6 +348,7 @@ def _drive(
         timeouts=timeouts,
         params=config.controller_params,
         record_calls=True,
+        nav2_params={"controller_frequency": config.rate},  # the control period's source
     )
     extras_started = extra_clients(session, config.plugins, config.plugin_params, costmap, timeouts)
     try:
