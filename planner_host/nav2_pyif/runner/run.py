@@ -10,7 +10,7 @@ import logging
 import math
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -105,6 +105,7 @@ class SimConfig:
     plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
     smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
     max_recoveries: int = 3  # with a recovery behaviour: how many the run may make
+    plans: int = 1  # create_plan calls before driving, each timed (the first plan is driven)
     # the simulated laser fed to the controller as input "scan", and the debug outputs kept
     sensing: SensingConfig = field(default_factory=SensingConfig)
 
@@ -143,6 +144,7 @@ class SimResult:
     debug: list[DebugLines] = field(default_factory=list)  # the controller's, every few cycles
     scans: int = 0  # simulated scans sent to the controller
     recoveries: list[Recovery] = field(default_factory=list)  # the recovery behaviour's runs
+    failed_plans: int = 0  # create_plan calls that raised (of config.plans)
 
     @property
     def path_length(self) -> float:
@@ -330,7 +332,7 @@ def run_sim(config: SimConfig) -> SimResult:
 def _drive(
     config: SimConfig, result: SimResult, session: zenoh.Session, host: PlannerHostProcess | None
 ) -> None:
-    start, goal, costmap = result.start, result.goal, result.global_costmap
+    start, costmap = result.start, result.global_costmap
     timeouts = Timeouts(call=config.call_timeout, lifecycle=10.0, configure=60.0, plan=60.0)
     planner = GlobalPlannerClient(
         session,
@@ -370,12 +372,15 @@ def _drive(
             except _Ended:
                 return
             finally:
-                result.records = [r for client in roles.values() for r in client.records or []]
+                result.records = _records(roles)
             _note_served(
                 config, result, {"planner": planner.served, "controller": controller.served}
             )
             try:
-                plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
+                try:
+                    plan = _create_plans(config, result, planner)
+                finally:
+                    result.records = _records(roles)
                 result.plan = plan.xy_yaw.copy()
                 if extras.smoother is not None:
                     result.raw_plan = result.plan
@@ -403,7 +408,7 @@ def _drive(
                 _control_loop(config, result, calls, local_version)
             finally:
                 result.carried = calls.carried
-                result.records = [r for client in roles.values() for r in client.records or []]
+                result.records = _records(roles)
             sim_times = [row[0] for row in result.trajectory]
             result.swaps = swaps_during(session, roles, driving_since, result.clock, sim_times)
             for role, client in reversed(roles.items()):
@@ -421,6 +426,36 @@ def _drive(
     finally:
         planner.close()
         controller.close()
+
+
+def _records(roles: dict[str, PluginClient]) -> list[CallRecord]:
+    """Every client's calls, each tagged with its role (the latency table's rows per plugin)."""
+    return [replace(r, plugin=role) for role, c in roles.items() for r in c.records or []]
+
+
+def _create_plans(config: SimConfig, result: SimResult, planner: GlobalPlannerClient) -> Any:
+    """``config.plans`` create_plan calls from the start to the goal, each timed in the
+    latency table (failed ones in a row of their own): the first plan that came back, else
+    the last call's error."""
+    bar = _progress_bar(config.progress, config.plans, "plans") if config.plans > 1 else _NoBar()
+    first, error = None, None
+    try:
+        for _ in range(config.plans):
+            try:
+                plan = planner.create_plan(pose_msg(*result.start), pose_msg(*result.goal))
+                first = plan if first is None else first
+            except Nav2Error as exc:
+                result.failed_plans += 1
+                error = exc
+            bar.update(1)
+    finally:
+        bar.close()
+    if first is None:
+        assert error is not None
+        raise error
+    if config.plans > 1:
+        log.info("%d plans timed (%d failed)", config.plans, result.failed_plans)
+    return first
 
 
 def _keep_host_log(result: SimResult, host: PlannerHostProcess, follower: HostLogFollower) -> None:
@@ -554,16 +589,18 @@ class _NoBar:
         pass
 
 
-def _progress_bar(config: SimConfig) -> Any:
+def _progress_bar(show: bool, total: float, unit: str = "sim s") -> Any:
     """tqdm's bar on stderr when progress is shown, else one that does nothing: tqdm belongs
     to the runner extra (runner/needs.py), so nav2_pyif.testing and the host run without it."""
-    if not config.progress:
+    if not show:
         return _NoBar()
     from tqdm import tqdm
 
+    if unit != "sim s":
+        return tqdm(total=total, unit=unit, desc=f"timing {unit}")
     return tqdm(
-        total=round(config.timeout, 1),
-        unit="sim s",
+        total=round(total, 1),
+        unit=unit,
         bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
     )
 
@@ -581,7 +618,7 @@ def _control_loop(
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
     failure_traceback = ""  # the latest planner traceback since the controller began failing
-    bar = _progress_bar(config)
+    bar = _progress_bar(config.progress, config.timeout)
     wall_start = time.perf_counter()
     cycle = 0
     try:
