@@ -206,9 +206,9 @@ def format_report(result: SimResult) -> str:
     rows = latency_rows(result)
     width = max([36, *(len(r["op"]) + 1 for r in rows)])
     lines += [
-        f"{'latency per call (µs)':<{width + 2}}calls   round trip         host compute       "
+        f"{'latency per call (µs)':<{width + 3}}calls   round trip         host compute       "
         "transport",
-        f"{'':<{width + 10}}median     p99     median     p99     median     p99",
+        f"{'':<{width + 12}}median     p99     median     p99     median     p99",
     ]
     for r in rows:
         lines.append(

@@ -292,7 +292,8 @@ def run_sim(config: SimConfig) -> SimResult:
     terminating signal (``nav2_pyif.common.signals``) stops the run: the host is stopped and
     RunInterrupted carries the result so far."""
     result = prepare(config)
-    search = [str(Path(d).resolve()) for d in config.path]
+    # where the host will look: --path, the current directory (its own sys.path[0]), ours
+    search = [str(Path(d).resolve()) for d in config.path] + [str(Path.cwd())]
     entries = [
         planner_entry(config.controller_key, config.spec("controller"), "controller", search),
         planner_entry(config.planner_key, config.spec("planner"), "planner", search),
