@@ -96,10 +96,12 @@ def test_without_nav2_params_nothing_is_made_up() -> None:
     runtime = PlannerRuntime(Told, "test-host")
     configure(Driver(runtime), None)
     (session,) = runtime.sessions.values()
-    assert session.planner.control_period is None and session.planner.nav2_params == {}
+    planner = session.planner
+    assert isinstance(planner, Told)
+    assert planner.control_period is None and planner.nav2_params == {}
     with pytest.raises(ValueError, match="cost_scaling_factor is not known here"):
-        session.planner.costmap.circumscribed_cost()
-    assert session.planner.costmap.circumscribed_cost(3.0) > 0
+        planner.costmap.circumscribed_cost()
+    assert planner.costmap.circumscribed_cost(3.0) > 0
 
 
 def test_functions_get_the_keyword_arguments_they_name() -> None:
