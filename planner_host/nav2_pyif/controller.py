@@ -52,6 +52,16 @@ class Controller(PlannerPlugin):
         context.debug = DebugOutputs(self.debug_outputs)
 
     @property
+    def control_period(self) -> float | None:
+        """[s] the time between control cycles: 1 / the controller server's
+        ``controller_frequency`` (offline: 1 / ``nav2-pyif sim --rate``), what an MPC takes as
+        its time step; None when the plugin did not say (one older than this field)."""
+        hz = self._context.nav2_params.get("controller_frequency")
+        if isinstance(hz, int | float) and not isinstance(hz, bool) and hz > 0:
+            return 1.0 / float(hz)
+        return None
+
+    @property
     def inputs(self) -> Inputs:
         """The latest message of each input topic, by its name in the ``inputs`` parameter:
         NumPy forms for scans, clouds, images, odometry and IMU, else the rclpy message."""

@@ -199,6 +199,14 @@ _CONFIGURE_REQUEST = (
         "the costmap at configure time (0 x 0 when the plugin has none: a progress checker, "
         "a smoother before its costmap subscription delivered one)",
     ),
+    _f(
+        "nav2_params",
+        PARAMS,
+        "Nav2's parameters outside the plugin's namespace that a planner may need, by their "
+        "Nav2 names: controller_frequency [Hz] (controller_server's), inflation_radius [m] and "
+        "cost_scaling_factor [1/m] (the costmap's inflation layer); absent when none is known",
+        required=False,
+    ),
 )
 
 #: op -> (request body fields, reply body fields)

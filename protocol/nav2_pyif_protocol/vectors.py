@@ -113,6 +113,12 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         "costmap": costmap(4, 3, 1, "odom"),
     }
     yield "configure_controller", req(Op.CONFIGURE, configure, seq=0), "controller configure"
+    told = {"controller_frequency": 20.0, "inflation_radius": 0.55, "cost_scaling_factor": 3.0}
+    yield (
+        "configure_controller_nav2_params",
+        req(Op.CONFIGURE, dict(configure, nav2_params=told), seq=0),
+        "controller configure with Nav2's parameters beyond the plugin's (optional)",
+    )
     planner_configure = dict(
         configure,
         plugin_type="global_planner",

@@ -133,7 +133,7 @@ void write(Writer & w, const CarriedCall & value, const FieldPath & where)
 
 void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
 {
-  w.map(7);
+  w.map(std::size_t{7} + (value.nav2_params ? 1u : 0u));
   w.key("plugin_type");
   w.str(value.plugin_type, where.key("plugin_type"));
   w.key("name");
@@ -148,6 +148,10 @@ void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
   w.str(value.robot_base_frame, where.key("robot_base_frame"));
   w.key("costmap");
   write(w, value.costmap, where.key("costmap"));
+  if (value.nav2_params) {
+    w.key("nav2_params");
+    write_params(w, *value.nav2_params, where.key("nav2_params"));
+  }
 }
 
 void write(Writer & w, const ConfigureReply & value, const FieldPath & where)
@@ -703,6 +707,7 @@ ConfigureRequest read_configure_request(const Object & object, const FieldPath &
   out.global_frame = m.required("global_frame", read_str);
   out.robot_base_frame = m.required("robot_base_frame", read_str);
   out.costmap = m.required("costmap", read_costmap);
+  out.nav2_params = m.optional("nav2_params", read_params);
   return out;
 }
 

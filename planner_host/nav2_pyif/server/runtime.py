@@ -31,7 +31,7 @@ from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType
 
 from nav2_pyif.behavior import Behavior, Command, Status
 from nav2_pyif.controller import Controller
-from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.costmap_layer import CostmapLayer, LayerWindow
 from nav2_pyif.debug import check_declared
 from nav2_pyif.exceptions import (
@@ -199,7 +199,9 @@ class PlannerRuntime:
                         f"{self.host_id}; re-send configure",
                     )
                 if "costmap" in request.body:
-                    session.context.costmap = Costmap.from_wire(request.body["costmap"])
+                    session.context.costmap = Costmap.from_wire(
+                        request.body["costmap"], session.context.inflation
+                    )
                 body = self._handlers[request.op](session, request)
         except BaseException as exc:  # a planner may raise anything; the host must survive
             return self._exception_reply(request, exc, time.perf_counter_ns() - start)
@@ -305,14 +307,16 @@ class PlannerRuntime:
         if previous is not None:
             self._safe_cleanup(previous)
         planner = self.planner_class()
+        nav2_params = body.get("nav2_params") or {}
         context = PluginContext(
             name=body["name"],
             node_name=body["node"],
             global_frame=body["global_frame"],
             robot_base_frame=body["robot_base_frame"],
-            costmap=Costmap.from_wire(body["costmap"]),
+            costmap=Costmap.from_wire(body["costmap"], Inflation.from_params(nav2_params)),
             params=Parameters(body["params"]),
             logger=logging.getLogger(f"nav2_pyif.planner.{body['name']}"),
+            nav2_params=nav2_params,
         )
         planner._attach(context)
         if isinstance(planner, Controller) and planner.debug_outputs:

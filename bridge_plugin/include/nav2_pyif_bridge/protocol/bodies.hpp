@@ -39,6 +39,10 @@ struct ConfigureRequest
   // the costmap at configure time (0 x 0 when the plugin has none: a progress checker, a smoother
   // before its costmap subscription delivered one)
   Costmap costmap;
+  // optional: Nav2's parameters outside the plugin's namespace that a planner may need, by their
+  // Nav2 names: controller_frequency [Hz] (controller_server's), inflation_radius [m] and
+  // cost_scaling_factor [1/m] (the costmap's inflation layer); absent when none is known
+  std::optional<Params> nav2_params;
 };
 
 struct ConfigureReply

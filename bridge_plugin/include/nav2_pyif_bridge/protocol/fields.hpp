@@ -104,6 +104,7 @@ void for_each_field(const ConfigureRequest & value, Visit && visit)
   visit("global_frame", value.global_frame);
   visit("robot_base_frame", value.robot_base_frame);
   visit("costmap", value.costmap);
+  visit("nav2_params", value.nav2_params);
 }
 
 template<class Visit>
