@@ -1,4 +1,4 @@
-"""What a planner is told beyond its own parameters (issue 23): the control period and the
+"""What a planner is told beyond its own parameters: the control period and the
 inflation layer's parameters travel in configure's ``nav2_params``, reach the class style as
 ``Controller.control_period``, ``PlannerPlugin.nav2_params`` and ``Costmap.inflation`` (and
 ``circumscribed_cost()`` without an argument), and the function style as keyword arguments

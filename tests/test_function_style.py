@@ -1,4 +1,4 @@
-"""The function-delegate style works wherever the class style does (issue 23): a user's own
+"""The function-delegate style works wherever the class style does: a user's own
 module of plain functions, outside the repository, drives offline with one command —
 ``nav2-pyif sim --controller my_funcs:steer --planner my_funcs:bfs``, the module form
 ``--controller my_funcs``, and ``nav2_pyif.testing.drive`` — its functions get the goal's
