@@ -192,7 +192,13 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     )
     with_plan = dict(
         cvc,
-        goal_checker=dict(cvc["goal_checker"], path_length_tolerance=1.0),
+        goal_checker={
+            "xy_goal_tolerance": 0.25,
+            "yaw_goal_tolerance": 0.25,
+            "trans_stopped_velocity": 0.25,
+            "rot_stopped_velocity": 0.25,
+            "path_length_tolerance": 1.0,
+        },
         plan=path(4, "odom"),
         goal=pose(5.0, -2.0, 3.0, "odom"),
     )
