@@ -38,9 +38,7 @@ CHECKER = "nav2_pyif/test_robot/goal_checker"
 GENEROUS = Timeouts(call=2.0, lifecycle=5.0, configure=10.0, plan=5.0)
 
 
-def connect(
-    cls: type[PluginClient], zsession_factory: Any, host: Any, key: str, **kw: Any
-) -> Any:
+def connect(cls: type[PluginClient], zsession_factory: Any, host: Any, key: str, **kw: Any) -> Any:
     session = zsession_factory(host.endpoint)
     client = cls(session, key, make_costmap(), timeouts=GENEROUS, **kw)
     assert client.wait_for_host(15), host.log()
