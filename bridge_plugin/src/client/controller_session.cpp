@@ -52,6 +52,7 @@ bool same_place(const proto::PoseStamped & a, const proto::PoseStamped & b)
 void ControllerSession::follow(const proto::Path & plan, const proto::PoseStamped & goal)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
+  follows_cycle_plan_ = true;
   if (!plan_ || !same_place(*plan_, plan)) {
     plan_ = plan;
     plan_unsent_ = true;
@@ -96,7 +97,7 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  if (plan_owed_) {
+  if (plan_owed_ || follows_cycle_plan_) {
     return std::nullopt;  // it would run on the host's old plan
   }
   PreparedCommand prepared;
@@ -263,6 +264,7 @@ void ControllerSession::forget_state()
   goal_.reset();
   plan_unsent_ = false;
   goal_unsent_ = false;
+  follows_cycle_plan_ = false;
   speed_limit_.reset();
 }
 

@@ -29,6 +29,7 @@ class ControllerClient(PluginClient):
         # Lyrical (follow): the global goal, and which of plan and goal the host lacks
         self._goal: dict[str, Any] | None = None
         self._unsent: set[str] = set()
+        self._follows = False  # follow() called: no command is prepared for another query
         self._speed_limit: tuple[float, bool] | None = None
         #: the debug outputs the last cycle returned, name -> rclpy message
         self.debug: dict[str, Any] = {}
@@ -61,6 +62,7 @@ class ControllerClient(PluginClient):
         (PoseStamped), both in the costmap's global frame. Sends nothing: the next cycle
         carries each when it changed since the host got it (stamps aside), as the C++ plugin's
         ControllerSession::follow; a re-established session gets both with set_plan."""
+        self._follows = True
         wire = (path if isinstance(path, Plan) else Plan.from_msg(path)).to_wire()
         goal_wire = pose_to_wire(goal)
         old_plan, old_goal = self._plan, self._goal
@@ -157,15 +159,15 @@ class ControllerClient(PluginClient):
 
     def cleanup(self) -> None:
         self._plan, self._speed_limit, self._plan_owed = None, None, False
-        self._goal, self._unsent = None, set()
+        self._goal, self._unsent, self._follows = None, set(), False
         super().cleanup()
 
     def _prepare(
         self, op: Op, body: dict[str, Any], *, with_costmap: bool = False
     ) -> Carried | None:
-        # A command prepared while the plan is owed, or before the cycle carried the plan or
-        # goal it follows, would run on the host's old plan.
-        if self._plan_owed or self._unsent:
+        # A command prepared while the plan is owed, or before Nav2 transformed the cycle's
+        # plan (Lyrical: after the goal check), would run on the host's old plan.
+        if self._plan_owed or self._follows:
             return None
         return super()._prepare(op, body, with_costmap=with_costmap)
 

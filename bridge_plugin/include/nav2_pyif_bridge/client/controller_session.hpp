@@ -55,7 +55,9 @@ public:
   // goal, both in the costmap's global frame. Remembered as set_plan's plan is (a
   // re-established session gets both with set_plan), and carried by the next cycle's request
   // only when they changed since the host last got them (their stamps aside, which move every
-  // cycle). Sends nothing itself.
+  // cycle). Sends nothing itself. From then on no command is prepared for another call's query
+  // to carry: Nav2 transforms the cycle's plan after the goal check, so a command prepared
+  // there would run on the last cycle's plan (and the planner would compute twice).
   void follow(const protocol::Path & plan, const protocol::PoseStamped & goal);
   // The latest message of an input topic (from a subscription's thread): sent with the next
   // control cycle, once; every input again after the host lost the session.
@@ -121,6 +123,7 @@ private:
   std::optional<protocol::PoseStamped> goal_;
   bool plan_unsent_{false};
   bool goal_unsent_{false};
+  bool follows_cycle_plan_{false};
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
   // The latest message of each input; `sent` is the generation the host acknowledged.
