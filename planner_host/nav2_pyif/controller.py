@@ -43,6 +43,9 @@ class Controller(PlannerPlugin):
 
     #: The latest plan (set by the default ``set_plan``), None before the first.
     plan: Plan | None = None
+    #: The goal of the plan being followed (geometry_msgs/PoseStamped, the global frame), set
+    #: before each ``set_plan``: Nav2's global goal on Lyrical, the plan's last pose before.
+    global_goal: Any = None
     #: The latest speed limit: (value, is_percentage), None when unlimited.
     speed_limit: tuple[float, bool] | None = None
 
@@ -77,8 +80,11 @@ class Controller(PlannerPlugin):
         self._context.debug.publish(name, value)
 
     def set_plan(self, plan: Plan) -> None:
-        """A new global plan: ``plan.xy_yaw`` is (N, 3) x, y [m], yaw [rad]; ``plan`` also
-        reads like a nav_msgs/Path. The default stores it in ``self.plan``."""
+        """The plan to follow, in the global frame: ``plan.xy_yaw`` is (N, 3) x, y [m], yaw
+        [rad]; ``plan`` also reads like a nav_msgs/Path. The default stores it in
+        ``self.plan``. Humble and Jazzy: Nav2's global plan, called when it changes. Lyrical:
+        the part of it controller_server transformed and pruned for the cycle (its
+        PathHandler), called before each cycle in which it changed."""
         self.plan = plan
 
     @abstractmethod
