@@ -170,3 +170,12 @@ def test_inputs_benchmark_quick_run_prints_each_message_beside_the_topic() -> No
         "Image, 640 x 480 rgb8",
         "rclpy topic + ack (ms)",
     )
+
+
+def test_obstacles_benchmark_quick_run_prints_both_methods_per_costmap() -> None:
+    result = bench("obstacles", "--quick", timeout=120)
+    assert result.returncode == 0, result.stderr
+    for row in ("cluttered: global (280 x 200)", "office: local 5 m window (100 x 100)"):
+        assert row in result.stdout
+    assert result.stdout.count("obstacle_points() (edges)") == 4
+    assert result.stdout.count("naive + nearest to 400 poses") == 4

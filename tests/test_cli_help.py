@@ -160,6 +160,34 @@ def test_sim_help_explains_the_goal_and_each_plugin_s_parameters() -> None:
         assert re.search(rf"--{flag}-param NAME=VALUE \w", text), flag
 
 
+def test_sim_help_shows_every_default_and_what_the_simulator_does() -> None:
+    """Each option with a value shows its default (the call timeout's included), and the
+    simulator's hidden facts are in --help: the goal check's heading tolerance, the rolling
+    window, the control period, the inflation's threshold."""
+    done = tool("sim", "--help")
+    assert done.returncode == 0, done.stderr
+    text = re.sub(r"\s+", " ", done.stdout)
+    for option, default in [
+        ("--call-timeout SECONDS", "0.25"),
+        ("--rate RATE", "20.0"),
+        ("--timeout SECONDS", "180.0"),
+        ("--plans N", "1"),
+        ("--map MAP", "office"),
+        ("--scan-beams SCAN_BEAMS", "360"),
+        ("--max-recoveries N", "3"),
+    ]:
+        shown = re.search(rf"{re.escape(option)} .*?\(default: ([^)]+)\)", text)
+        assert shown and shown.group(1) == default, (option, text)
+    for fact in (
+        "0.25 m of the goal AND 0.25 rad of its heading",
+        "a 5 m x 5 m rolling window about the robot, updated at 5 Hz",
+        "control_period is 1 / --rate",
+        "cost_scaling_factor 3",
+        "circumscribed_cost() = 186",
+    ):
+        assert fact in text, fact
+
+
 def test_the_plugin_bases_are_every_kind_a_planner_can_be() -> None:
     """planner-host's --planner help and its not-a-subclass error name each base class."""
     import nav2_pyif

@@ -351,7 +351,8 @@ def test_delegate_modules_bind_by_name_and_say_what_a_missing_role_means(
     start_host: Any, zsession_factory: Any, tmp_path: Path
 ) -> None:
     """Function-delegate modules: ``--module m`` alone binds m's functions named after the roles;
-    a role left without a function is a warning at start, saying what Nav2's call then does."""
+    the roles left without a function are said once at start, at INFO, with what Nav2's call
+    then does: no warning names a role the user never bound."""
     by_name, one_liner = "nav2_pyif/apf/FollowPath", "nav2_pyif/seed/FollowPath"
     config = tmp_path / "planners.yaml"
     config.write_text(
@@ -370,15 +371,21 @@ def test_delegate_modules_bind_by_name_and_say_what_a_missing_role_means(
         "nav2_pyif_planners.apf: functions bound by name: compute_velocity_commands, "
         "configure, set_plan, set_speed_limit" in log
     )
-    assert not warned(log, "nav2_pyif_planners.apf: set_plan has no delegate")
-    assert warned(log, "nav2_pyif_planners.apf: activate has no delegate")
+    assert "[WARNING]" not in log, log
+    defaults = [line for line in log.splitlines() if "roles left to their default" in line]
+    apf_line, seed_line = (
+        next(line for line in defaults if f"{module}: roles" in line)
+        for module in ("nav2_pyif_planners.apf", "seed_delegates")
+    )
+    assert "[INFO]" in apf_line and "set_plan has no delegate" not in apf_line
+    assert "activate has no delegate: Nav2's activate does nothing" in apf_line
     for role, meaning in [
-        ("set_plan", "Nav2's global plan is kept in the controller's self.plan, but no function "),
+        ("set_plan", "Nav2's global plan reaches your functions only as compute_velocity_comm"),
         ("set_speed_limit", "Nav2's speed limits (speed filter zones) never reach your functions"),
         ("configure", "your functions get no Parameters"),
         ("cancel", "a cancel is answered at once as done"),
     ]:
-        assert warned(log, f"seed_delegates: {role} has no delegate: {meaning}"), log
+        assert f"{role} has no delegate: {meaning}" in seed_line, seed_line
 
 
 def test_a_misspelt_parameter_is_reported_and_an_undeclared_update_refused(

@@ -215,6 +215,8 @@ def test_loader_errors_are_clear() -> None:
     with pytest.raises(PlannerLoadError, match="has no class 'Nope'; planners it defines: Echo"):
         load_class("tests.fixtures.echo_planners:Nope")
     with pytest.raises(PlannerLoadError, match="not a nav2_pyif Controller"):
+        load_class("nav2_pyif:__version__")
+    with pytest.raises(PlannerLoadError, match="is a function, but which role it plays"):
         load_class("tests.fixtures.echo_planners:is_path_msg")
     with pytest.raises(PlannerLoadError, match="does not implement compute_velocity_commands"):
         load_class("nav2_pyif:Controller")

@@ -11,6 +11,7 @@ nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progr
 nav2-pyif-bench hops [--quick]                  one more hop: pipe, Zenoh thread, relay, router
 nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
 nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
+nav2-pyif-bench obstacles [--quick]             Costmap.obstacle_points() vs every lethal cell
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ from nav2_pyif_bench import (
     inputs_bench,
     layer_bench,
     mppi_bench,
+    obstacles_bench,
     protocol_bench,
     reliability_bench,
     tls_bench,
@@ -162,6 +164,10 @@ def build_parser() -> argparse.ArgumentParser:
     hop_bench.add_arguments(hops)
     layer = sub.add_parser("layer", help="a Python costmap layer on a 400 x 400 grid at 5 Hz")
     layer_bench.add_arguments(layer)
+    obstacles = sub.add_parser(
+        "obstacles", help="Costmap.obstacle_points() beside every lethal cell, per costmap"
+    )
+    obstacles_bench.add_arguments(obstacles)
     inputs = sub.add_parser(
         "inputs", help="a scan, a cloud, an image with each cycle, beside an rclpy topic"
     )
@@ -209,6 +215,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "layer":
         results = layer_bench.run(args)
         text = layer_bench.report(results)
+    elif args.bench == "obstacles":
+        results = obstacles_bench.run(args)
+        text = obstacles_bench.report(results)
     elif args.bench == "tls":
         results = tls_bench.run(protocol_bench.apply_quick_rounds(args))
         text = tls_bench.report(results)

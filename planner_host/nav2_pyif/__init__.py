@@ -14,7 +14,7 @@ The planner API (what a planner imports)::
 from nav2_pyif.batch import Batch, one_cycle
 from nav2_pyif.behavior import Behavior, Command, Failure, Status, Step, arc
 from nav2_pyif.controller import Controller
-from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.costmap_layer import Combine, CostmapLayer, LayerWindow
 from nav2_pyif.exceptions import (
     ControllerException,
@@ -48,12 +48,15 @@ from nav2_pyif.geometry import (
     carrot,
     closest_index,
     limit_speed,
+    path_length,
     path_xy_yaw,
     point_at_distance,
     pose_xy_yaw,
+    quaternion_to_yaw,
     remaining_length,
     wrap,
     yaw_of,
+    yaw_to_quaternion,
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
@@ -85,6 +88,7 @@ __all__ = [
     "GoalCheckerPlugin",
     "GoalOccupied",
     "GoalOutsideMapBounds",
+    "Inflation",
     "InvalidController",
     "InvalidPath",
     "InvalidPlanner",
@@ -118,10 +122,13 @@ __all__ = [
     "closest_index",
     "limit_speed",
     "one_cycle",
+    "path_length",
     "path_xy_yaw",
     "point_at_distance",
     "pose_xy_yaw",
+    "quaternion_to_yaw",
     "remaining_length",
     "wrap",
     "yaw_of",
+    "yaw_to_quaternion",
 ]

@@ -43,6 +43,9 @@ class Controller(PlannerPlugin):
 
     #: The latest plan (set by the default ``set_plan``), None before the first.
     plan: Plan | None = None
+    #: The goal of the plan being followed (geometry_msgs/PoseStamped, the global frame), set
+    #: before each ``set_plan``: Nav2's global goal on Lyrical, the plan's last pose before.
+    global_goal: Any = None
     #: The latest speed limit: (value, is_percentage), None when unlimited.
     speed_limit: tuple[float, bool] | None = None
 
@@ -50,6 +53,16 @@ class Controller(PlannerPlugin):
         super()._attach(context)
         # wanted by nobody until a call says otherwise: publish_debug is a no-op offline too
         context.debug = DebugOutputs(self.debug_outputs)
+
+    @property
+    def control_period(self) -> float | None:
+        """[s] the time between control cycles: 1 / the controller server's
+        ``controller_frequency`` (offline: 1 / ``nav2-pyif sim --rate``), what an MPC takes as
+        its time step; None when the plugin did not say (one older than this field)."""
+        hz = self._context.nav2_params.get("controller_frequency")
+        if isinstance(hz, int | float) and not isinstance(hz, bool) and hz > 0:
+            return 1.0 / float(hz)
+        return None
 
     @property
     def inputs(self) -> Inputs:
@@ -67,8 +80,11 @@ class Controller(PlannerPlugin):
         self._context.debug.publish(name, value)
 
     def set_plan(self, plan: Plan) -> None:
-        """A new global plan: ``plan.xy_yaw`` is (N, 3) x, y [m], yaw [rad]; ``plan`` also
-        reads like a nav_msgs/Path. The default stores it in ``self.plan``."""
+        """The plan to follow, in the global frame: ``plan.xy_yaw`` is (N, 3) x, y [m], yaw
+        [rad]; ``plan`` also reads like a nav_msgs/Path. The default stores it in
+        ``self.plan``. Humble and Jazzy: Nav2's global plan, called when it changes. Lyrical:
+        the part of it controller_server transformed and pruned for the cycle (its
+        PathHandler), called before each cycle in which it changed."""
         self.plan = plan
 
     @abstractmethod

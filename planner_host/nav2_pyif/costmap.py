@@ -6,11 +6,31 @@ Indices follow Nav2's Costmap2D: cell (mx, my) is ``data[my, mx]``; world coordi
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from dataclasses import dataclass
 from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
 from nav2_pyif_protocol.arrays import ByteArray, FloatArray, costmap_grid, pack_xy, unpack_xy
+
+
+@dataclass(frozen=True)
+class Inflation:
+    """The costmap's inflation layer's parameters (Nav2's names): costs decay from 253 at the
+    footprint's inscribed radius to 0 at ``inflation_radius``, as
+    ``252 * exp(-cost_scaling_factor * (d - inscribed_radius))`` (``Costmap.inflation_cost``)."""
+
+    inflation_radius: float  # [m]
+    cost_scaling_factor: float  # [1/m]
+
+    @classmethod
+    def from_params(cls, params: Mapping[str, Any]) -> Inflation | None:
+        """From configure's ``nav2_params``; None unless both are there."""
+        radius, factor = params.get("inflation_radius"), params.get("cost_scaling_factor")
+        if isinstance(radius, int | float) and isinstance(factor, int | float):
+            return cls(float(radius), float(factor))
+        return None
 
 
 class Costmap:
@@ -33,8 +53,10 @@ class Costmap:
         footprint: npt.ArrayLike | None = None,
         robot_radius: float = 0.0,
         version: int = 0,
+        inflation: Inflation | None = None,
     ) -> None:
-        """``data``: (size_y, size_x) uint8 costs; ``footprint``: (K, 2) x, y [m], robot frame."""
+        """``data``: (size_y, size_x) uint8 costs; ``footprint``: (K, 2) x, y [m], robot frame;
+        ``inflation``: the inflation layer's parameters, None when not known."""
         grid = np.asarray(data)
         if grid.ndim != 2 or grid.dtype != np.uint8:
             raise ValueError(
@@ -54,6 +76,9 @@ class Costmap:
         )
         self.robot_radius = float(robot_radius)
         self.version = version
+        #: The inflation layer's parameters (from Nav2's configuration, or the offline
+        #: runner's), None when the plugin did not say: ``circumscribed_cost()`` uses them.
+        self.inflation = inflation
 
     def with_costs(self, data: npt.ArrayLike, version: int | None = None) -> Costmap:
         """Another grid of costs over this costmap's cells (same geometry and robot)."""
@@ -66,12 +91,14 @@ class Costmap:
             footprint=self.footprint,
             robot_radius=self.robot_radius,
             version=self.version if version is None else version,
+            inflation=self.inflation,
         )
 
     # --- wire ---------------------------------------------------------------------------
     @classmethod
-    def from_wire(cls, wire: dict[str, Any]) -> Costmap:
-        """Zero-copy: ``data`` is a read-only view of the received bytes."""
+    def from_wire(cls, wire: dict[str, Any], inflation: Inflation | None = None) -> Costmap:
+        """Zero-copy: ``data`` is a read-only view of the received bytes. (The inflation's
+        parameters travel in configure, not with each costmap.)"""
         return cls(
             costmap_grid(wire["data"], wire["size_x"], wire["size_y"]),
             wire["resolution"],
@@ -81,6 +108,7 @@ class Costmap:
             unpack_xy(wire["footprint"]),
             wire["robot_radius"],
             wire["version"],
+            inflation,
         )
 
     def to_wire(self) -> dict[str, Any]:
@@ -277,13 +305,21 @@ class Costmap:
         costs: ByteArray = cost.astype(np.uint8)
         return costs
 
-    def circumscribed_cost(self, cost_scaling_factor: float) -> int:
-        """The cost at the footprint's circumscribed radius, with the inflation layer's
-        ``cost_scaling_factor`` (your Nav2 YAML's; the offline runner's is in ``nav2-pyif
-        sim --help``): a cell costing less cannot touch the robot whatever its heading, so a
-        global planner for a non-round robot that keeps below it plans paths the controller
-        can follow (Nav2's Smac planners and MPPI use this threshold; 253, INSCRIBED, is
-        only right for a round robot)."""
+    def circumscribed_cost(self, cost_scaling_factor: float | None = None) -> int:
+        """The cost at the footprint's circumscribed radius: a cell costing less cannot touch
+        the robot whatever its heading, so a global planner for a non-round robot that keeps
+        below it plans paths the controller can follow (Nav2's Smac planners and MPPI use this
+        threshold; 253, INSCRIBED, is only right for a round robot). ``cost_scaling_factor``
+        [1/m]: by default the inflation layer's (``self.inflation``: Nav2's, or the offline
+        runner's); raises ValueError when neither is known."""
+        if cost_scaling_factor is None:
+            if self.inflation is None:
+                raise ValueError(
+                    "the inflation layer's cost_scaling_factor is not known here (a plugin "
+                    "older than configure's nav2_params, or a costmap without an inflation "
+                    "layer): pass your Nav2 YAML's as circumscribed_cost(cost_scaling_factor)"
+                )
+            cost_scaling_factor = self.inflation.cost_scaling_factor
         cost = self.inflation_cost(
             self.circumscribed_radius, self.inscribed_radius, cost_scaling_factor
         )

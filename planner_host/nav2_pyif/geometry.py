@@ -1,8 +1,11 @@
 """Geometry a planner author needs and would otherwise copy: poses to (x, y, yaw), angles,
-paths as arrays, the closest point and the carrot ahead on a path, Nav2's speed limit.
+quaternions, paths as arrays, their length, the closest point and the carrot ahead on a path,
+Nav2's speed limit.
 
 Vectorised where it matters (NumPy arrays in, arrays out); shapes and units in each
-docstring. ``nav2_pyif`` re-exports these names; the reference planners use them too.
+docstring. ``nav2_pyif`` re-exports these names; the reference planners use them too. The
+array forms of the quaternion conversions are the protocol's own (``quaternion_to_yaw``,
+``yaw_to_quaternion``), re-exported here rather than copied.
 """
 
 from __future__ import annotations
@@ -11,13 +14,27 @@ import math
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
+from nav2_pyif_protocol.arrays import FloatArray, quaternion_to_yaw, yaw_to_quaternion
 
-FloatArray = npt.NDArray[np.float64]
+__all__ = [
+    "carrot",
+    "closest_index",
+    "limit_speed",
+    "path_length",
+    "path_xy_yaw",
+    "point_at_distance",
+    "pose_xy_yaw",
+    "quaternion_to_yaw",
+    "remaining_length",
+    "wrap",
+    "yaw_of",
+    "yaw_to_quaternion",
+]
 
 
 def yaw_of(orientation: Any) -> float:
-    """A geometry_msgs Quaternion's yaw [rad], in (-pi, pi]."""
+    """A geometry_msgs Quaternion's yaw [rad], in (-pi, pi]. (The scalar form of
+    ``quaternion_to_yaw``, which takes (..., 4) qx, qy, qz, qw arrays: ~20x faster on one.)"""
     q = orientation
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
@@ -52,10 +69,19 @@ def closest_index(
     return start + int(np.argmin(d))
 
 
+def path_length(path_xy: Any) -> float:
+    """Arc length [m] of a path: ``path_xy`` (N, 2+) x, y [m] (a ``Plan``'s ``xy`` or
+    ``xy_yaw``); 0 for None or fewer than two points."""
+    xy = np.zeros((0, 2)) if path_xy is None else np.asarray(path_xy, dtype=np.float64)
+    if len(xy) < 2:
+        return 0.0
+    seg = np.diff(xy[:, :2], axis=0)
+    return float(np.hypot(seg[:, 0], seg[:, 1]).sum())
+
+
 def remaining_length(path_xy: FloatArray, index: int) -> float:
     """Arc length [m] of ``path_xy`` ((N, 2+)) from point ``index`` to its end."""
-    seg = np.diff(path_xy[index:, :2], axis=0)
-    return float(np.hypot(seg[:, 0], seg[:, 1]).sum()) if len(seg) else 0.0
+    return path_length(path_xy[index:])
 
 
 def point_at_distance(path_xy: FloatArray, index: int, distance: float) -> FloatArray:

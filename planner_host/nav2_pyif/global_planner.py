@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from abc import abstractmethod
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any, ClassVar
 
 from nav2_pyif_protocol.constants import PluginType
@@ -15,6 +15,12 @@ class GlobalPlanner(PlannerPlugin):
     """Subclass and implement ``create_plan``; use ``self.costmap`` for the map."""
 
     plugin_type: ClassVar[PluginType] = PluginType.GLOBAL_PLANNER
+
+    #: The poses to pass through, in order, for the current ``create_plan``
+    #: (geometry_msgs/PoseStamped, the global frame): Nav2 Lyrical's viapoints; empty when
+    #: there are none, and on Humble and Jazzy. A planner that needs some and has none raises
+    #: NoViapointsGiven.
+    viapoints: Sequence[Any] = ()
 
     @abstractmethod
     def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:

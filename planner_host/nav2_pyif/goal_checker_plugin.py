@@ -6,6 +6,7 @@ receives (what getTolerances reports), which ``get_tolerances`` here returns.
 
 from __future__ import annotations
 
+import math
 from abc import abstractmethod
 from typing import Any, ClassVar
 
@@ -26,9 +27,21 @@ class GoalCheckerPlugin(PlannerPlugin):
         """``pose``, ``goal``: geometry_msgs/Pose in the costmap's global frame;
         ``velocity``: geometry_msgs/Twist in the robot base frame. True when reached."""
 
+    def is_goal_xy_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+        """Nav2 Lyrical's isGoalXYReached (its controllers ask it to turn in place at the goal):
+        the position only, yaw ignored. The default: within ``get_tolerances()``'s xy
+        tolerance, as Nav2's SimpleGoalChecker; without tolerances, ``is_goal_reached``."""
+        tolerances = self.get_tolerances()
+        if tolerances is None:
+            return bool(self.is_goal_reached(pose, goal, velocity))
+        dx = goal.position.x - pose.position.x
+        dy = goal.position.y - pose.position.y
+        return math.hypot(dx, dy) <= tolerances.xy_goal_tolerance
+
     def get_tolerances(self) -> GoalChecker | None:
         """The tolerances a controller sees through getTolerances; None when this checker
-        has none (getTolerances returns false)."""
+        has none (getTolerances returns false). ``path_length_tolerance`` reaches Nav2 on
+        Lyrical (its getTolerances' third value; None: Nav2's "not measured")."""
         return None
 
     def reset(self) -> None:

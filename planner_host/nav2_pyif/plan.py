@@ -20,6 +20,7 @@ from nav2_pyif_protocol.arrays import (
     unpack_poses,
 )
 
+from nav2_pyif.geometry import path_length
 from nav2_pyif.messages import ns_to_stamp, stamp_to_ns
 
 
@@ -84,12 +85,8 @@ class Plan:
         return self.array[:, :2]
 
     def length(self) -> float:
-        """Arc length [m]."""
-        return (
-            float(np.sum(np.linalg.norm(np.diff(self.xy, axis=0), axis=1)))
-            if len(self) > 1
-            else 0.0
-        )
+        """Arc length [m] (``nav2_pyif.path_length`` of ``xy``)."""
+        return path_length(self.xy)
 
     # --- nav_msgs/Path look-alike ---------------------------------------------------------
     @cached_property

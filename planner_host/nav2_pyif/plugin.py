@@ -8,7 +8,7 @@ from typing import ClassVar
 
 from nav2_pyif_protocol.constants import PluginType
 
-from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.debug import DebugOutputs
 from nav2_pyif.inputs import Inputs
 from nav2_pyif.params import Parameters, ParamValue
@@ -26,6 +26,7 @@ class PluginContext:
         costmap: Costmap,
         params: Parameters,
         logger: logging.Logger,
+        nav2_params: dict[str, ParamValue] | None = None,
     ) -> None:
         self.name = name
         self.node_name = node_name
@@ -34,6 +35,9 @@ class PluginContext:
         self.costmap = costmap
         self.params = params
         self.logger = logger
+        # configure's nav2_params: controller_frequency, the inflation layer's parameters
+        self.nav2_params: dict[str, ParamValue] = dict(nav2_params or {})
+        self.inflation = Inflation.from_params(self.nav2_params)
         # a controller's extra inputs and debug outputs; set up at configure
         self.inputs = Inputs()
         self.debug = DebugOutputs({})
@@ -75,6 +79,14 @@ class PlannerPlugin(ABC):
     @property
     def params(self) -> Parameters:
         return self._context.params
+
+    @property
+    def nav2_params(self) -> dict[str, ParamValue]:
+        """Nav2's parameters outside the plugin's namespace, by their Nav2 names, where the
+        plugin knows them: ``controller_frequency`` [Hz] (see ``Controller.control_period``),
+        ``inflation_radius`` [m] and ``cost_scaling_factor`` [1/m] (the costmap's inflation
+        layer: also ``self.costmap.inflation``). Empty from plugins older than this field."""
+        return self._context.nav2_params
 
     @property
     def logger(self) -> logging.Logger:

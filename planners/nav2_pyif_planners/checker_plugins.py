@@ -10,21 +10,14 @@ controller_server::
 
 from __future__ import annotations
 
-import math
 import time
 from typing import Any
 
-from nav2_pyif import GoalChecker, GoalCheckerPlugin, ProgressCheckerPlugin
+from nav2_pyif import GoalChecker, GoalCheckerPlugin, ProgressCheckerPlugin, pose_xy_yaw
 from nav2_pyif.messages import stamp_to_ns
 from nav2_pyif.params import ParamValue
 
 from nav2_pyif_planners.checkers import ProgressCheck, StoppedGoalCheck
-
-
-def _xy_yaw(pose: Any) -> tuple[float, float, float]:
-    q = pose.orientation
-    yaw = math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-    return pose.position.x, pose.position.y, yaw
 
 
 class StoppedGoalChecker(GoalCheckerPlugin):
@@ -53,7 +46,7 @@ class StoppedGoalChecker(GoalCheckerPlugin):
 
     def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
         v = (velocity.linear.x, velocity.linear.y, velocity.angular.z)
-        return self.rule.is_goal_reached(_xy_yaw(pose), _xy_yaw(goal), v)
+        return self.rule.is_goal_reached(pose_xy_yaw(pose), pose_xy_yaw(goal), v)
 
     def get_tolerances(self) -> GoalChecker:
         return self.rule.tolerances()

@@ -134,6 +134,13 @@ STRUCTS: dict[str, tuple[Field, ...]] = {
         _f("yaw_goal_tolerance", FLOAT, "[rad]"),
         _f("trans_stopped_velocity", FLOAT, "[m/s]"),
         _f("rot_stopped_velocity", FLOAT, "[rad/s]"),
+        _f(
+            "path_length_tolerance",
+            FLOAT,
+            "[m] the remaining plan length within which the goal may count as reached "
+            "(Lyrical's getTolerances); absent when the checker has none, or before Lyrical",
+            False,
+        ),
     ),
     "Error": (
         _f("type", STR, "nav2_core exception name or protocol error name"),
@@ -198,6 +205,14 @@ _CONFIGURE_REQUEST = (
         "Costmap",
         "the costmap at configure time (0 x 0 when the plugin has none: a progress checker, "
         "a smoother before its costmap subscription delivered one)",
+    ),
+    _f(
+        "nav2_params",
+        PARAMS,
+        "Nav2's parameters outside the plugin's namespace that a planner may need, by their "
+        "Nav2 names: controller_frequency [Hz] (controller_server's), inflation_radius [m] and "
+        "cost_scaling_factor [1/m] (the costmap's inflation layer); absent when none is known",
+        required=False,
     ),
 )
 
@@ -264,13 +279,38 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         (_f("params", PARAMS, "changed parameters"),),
         (_f("rejected", STR_MAP, "name -> reason, for each change not applied"),),
     ),
-    Op.SET_PLAN: ((_f("path", "Path", "the global plan, in the costmap's global frame"),), ()),
+    Op.SET_PLAN: (
+        (
+            _f("path", "Path", "the plan to follow, in the costmap's global frame (section 14)"),
+            _f(
+                "goal",
+                "PoseStamped",
+                "the global goal, same frame: Nav2's (Lyrical); absent: the plan's last pose",
+                False,
+            ),
+        ),
+        (),
+    ),
     Op.COMPUTE_VELOCITY_COMMANDS: (
         (
             _f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),
             _f("velocity", FLOAT6, "current velocity in the robot base frame"),
             _f("goal_checker", "GoalChecker", "tolerances, when Nav2 gave a goal checker", False),
             _f("costmap", "Costmap", "present only when changed since last sent", False),
+            _f(
+                "plan",
+                "Path",
+                "the plan Nav2 transformed for this cycle, costmap's global frame (Lyrical); "
+                "present only when it changed since the host last got it",
+                False,
+            ),
+            _f(
+                "goal",
+                "PoseStamped",
+                "the global goal, same frame (Lyrical); present only when it changed since "
+                "the host last got it",
+                False,
+            ),
             _f(
                 "inputs",
                 "Input",
@@ -314,6 +354,12 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             _f("start", "PoseStamped", "start pose, in the costmap's global frame"),
             _f("goal", "PoseStamped", "goal pose, in the costmap's global frame"),
             _f("costmap", "Costmap", "present only when changed since last sent", False),
+            _f(
+                "viapoints",
+                "Path",
+                "poses to pass through, in order, same frame (Lyrical); absent when none",
+                False,
+            ),
         ),
         (_f("path", "Path", "the plan; every value finite"),),
     ),
@@ -341,6 +387,12 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             _f("pose", FLOAT7, "robot pose (x, y, z, qx, qy, qz, qw), the costmap's global frame"),
             _f("goal", FLOAT7, "goal pose, same frame"),
             _f("velocity", FLOAT6, "current velocity in the robot base frame"),
+            _f(
+                "xy_only",
+                BOOL,
+                "true: isGoalXYReached, the position only (Lyrical); absent: isGoalReached",
+                False,
+            ),
             _CARRY,
         ),
         (_f("reached", BOOL, "the goal is reached"), _CARRIED),
@@ -356,6 +408,12 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
                 default=(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0),
             ),
             _f("velocity_tolerance", FLOAT6, "vx, vy, vz [m/s], wx, wy, wz [rad/s]"),
+            _f(
+                "path_length_tolerance",
+                FLOAT,
+                "[m] (Lyrical's getTolerances); absent when the checker has none",
+                False,
+            ),
         ),
     ),
     Op.CHECK: (

@@ -113,6 +113,12 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         "costmap": costmap(4, 3, 1, "odom"),
     }
     yield "configure_controller", req(Op.CONFIGURE, configure, seq=0), "controller configure"
+    told = {"controller_frequency": 20.0, "inflation_radius": 0.55, "cost_scaling_factor": 3.0}
+    yield (
+        "configure_controller_nav2_params",
+        req(Op.CONFIGURE, dict(configure, nav2_params=told), seq=0),
+        "controller configure with Nav2's parameters beyond the plugin's (optional)",
+    )
     planner_configure = dict(
         configure,
         plugin_type="global_planner",
@@ -129,6 +135,11 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     yield "set_plan_request", req(Op.SET_PLAN, {"path": path(5)}), "5-pose path"
     yield "set_plan_empty", req(Op.SET_PLAN, {"path": path(0)}), "empty path: zero-length bin"
     yield "set_plan_1000", req(Op.SET_PLAN, {"path": path(1000)}), "1000-pose path"
+    yield (
+        "set_plan_with_goal",
+        req(Op.SET_PLAN, {"path": path(3, "odom"), "goal": pose(5.0, -2.0, 3.0, "odom")}),
+        "Lyrical: the plan and Nav2's global goal, re-sent to a new session",
+    )
     cvc = {
         "pose": pose(1.0, 2.0, 0.5, "odom"),
         "velocity": [0.3, 0.0, 0.0, 0.0, 0.0, 0.1],
@@ -185,6 +196,23 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         req(Op.COMPUTE_VELOCITY_COMMANDS, with_inputs, seq=1236),
         "a new scan (real CDR) and two debug outputs someone subscribes to",
     )
+    with_plan = dict(
+        cvc,
+        goal_checker={
+            "xy_goal_tolerance": 0.25,
+            "yaw_goal_tolerance": 0.25,
+            "trans_stopped_velocity": 0.25,
+            "rot_stopped_velocity": 0.25,
+            "path_length_tolerance": 1.0,
+        },
+        plan=path(4, "odom"),
+        goal=pose(5.0, -2.0, 3.0, "odom"),
+    )
+    yield (
+        "compute_velocity_commands_transformed_plan",
+        req(Op.COMPUTE_VELOCITY_COMMANDS, with_plan, seq=1237),
+        "Lyrical: the plan Nav2 transformed and the global goal, both changed since last sent",
+    )
     yield (
         "set_speed_limit_absolute",
         req(Op.SET_SPEED_LIMIT, {"speed_limit": 0.35, "percentage": False}),
@@ -199,6 +227,11 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     yield "create_plan_request", req(Op.CREATE_PLAN, plan_body, seq=3), ""
     big = dict(plan_body, costmap=costmap(1000, 1000, 2))
     yield "create_plan_costmap_1000", req(Op.CREATE_PLAN, big, seq=4), "1000x1000 costmap"
+    yield (
+        "create_plan_viapoints",
+        req(Op.CREATE_PLAN, dict(plan_body, viapoints=path(2)), seq=6),
+        "Lyrical: two viapoints",
+    )
     yield "cancel_plan_request", req(Op.CANCEL_PLAN, {"target_seq": 3}, seq=5), ""
     smoother_configure = dict(
         planner_configure,
@@ -234,6 +267,11 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
         "velocity": [0.01, 0.0, 0.0, 0.0, 0.0, -0.02],
     }
     yield "is_goal_reached_request", req(Op.IS_GOAL_REACHED, reached, seq=13), ""
+    yield (
+        "is_goal_xy_reached_request",
+        req(Op.IS_GOAL_REACHED, dict(reached, xy_only=True), seq=17),
+        "Lyrical's isGoalXYReached",
+    )
     check = encode_request(req(Op.CHECK, {"pose": pose(1.0, 2.0, 0.5, "odom")}, seq=90))
     compute = encode_request(req(Op.COMPUTE_VELOCITY_COMMANDS, minimal, seq=91))
     carrying = dict(
@@ -454,6 +492,12 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         Op.GET_TOLERANCES,
         ok(Op.GET_TOLERANCES, tolerances, seq=14),
         "",
+    )
+    yield (
+        "get_tolerances_path_length_reply",
+        Op.GET_TOLERANCES,
+        ok(Op.GET_TOLERANCES, dict(tolerances, path_length_tolerance=1.0), seq=18),
+        "Lyrical's path length tolerance",
     )
     yield (
         "check_reply",

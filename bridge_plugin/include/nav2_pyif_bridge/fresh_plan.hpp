@@ -9,7 +9,7 @@
 
 #include "geometry_msgs/msg/transform.hpp"
 #include "nav_msgs/msg/path.hpp"
-#include "tf2_ros/buffer.h"
+#include "nav2_pyif_bridge/nav2_api.hpp"
 
 namespace nav2_pyif_bridge
 {
@@ -24,12 +24,12 @@ public:
   // Nav2's new plan: returns it in `frame`, to send. Throws client::CallError
   // (ControllerTFError) when it cannot be transformed.
   nav_msgs::msg::Path set(
-    const nav_msgs::msg::Path & path, const std::string & frame, tf2_ros::Buffer & tf,
+    const nav_msgs::msg::Path & path, const std::string & frame, TfBuffer & tf,
     double timeout_s);
 
   // The plan in `frame` again when its frame has moved since it was last sent, else nothing.
   std::optional<nav_msgs::msg::Path> refreshed(
-    const std::string & frame, tf2_ros::Buffer & tf, double timeout_s);
+    const std::string & frame, TfBuffer & tf, double timeout_s);
 
   void clear() {plan_.reset();}
 

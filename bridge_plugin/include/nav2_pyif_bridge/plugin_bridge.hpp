@@ -30,6 +30,9 @@ struct CostmapBinding
   std::string global_frame;
   std::string robot_base_frame;
   double transform_tolerance{0.1};  // [s]
+  // the inflation layer's inflation_radius and cost_scaling_factor, for configure's
+  // nav2_params (empty: the costmap has no inflation layer)
+  protocol::Params inflation;
 };
 
 // The binding of a Costmap2DROS: its costmap, frames and transform tolerance.
@@ -113,6 +116,7 @@ private:
 
   client::BridgeSettings settings_;
   protocol::Params forwarded_;
+  protocol::Params nav2_params_;  // configure's nav2_params: Nav2's, outside our namespace
   std::string key_;
   std::unique_ptr<client::LocalHost> local_host_;
   std::unique_ptr<ZenohTransport> transport_;

@@ -10,8 +10,9 @@
 // Python exception, a non-finite command) ends the action as FAILED with the action's UNKNOWN
 // error code, the robot stopped and the traceback in the log (client/behavior_session.hpp).
 //
-// Built against Nav2 Jazzy and Kilted (TimedBehavior's ResultStatus, two collision checkers,
-// getResourceInfo); CMake leaves it out where nav2_behaviors differs (Humble, Lyrical).
+// Built against Nav2 Jazzy, Kilted and Lyrical (TimedBehavior's ResultStatus, two collision
+// checkers, getResourceInfo; Lyrical's node and TF types and its result message); CMake
+// leaves it out on Humble, whose TimedBehavior differs.
 #pragma once
 
 #include <memory>

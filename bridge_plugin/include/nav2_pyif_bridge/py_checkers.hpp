@@ -16,6 +16,7 @@
 #include "nav2_core/goal_checker.hpp"
 #include "nav2_core/progress_checker.hpp"
 #include "nav2_costmap_2d/costmap_2d_ros.hpp"
+#include "nav_msgs/msg/path.hpp"
 
 #include "nav2_pyif_bridge/bridged_session.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
@@ -28,18 +29,39 @@ class PyGoalChecker : public nav2_core::GoalChecker
 {
 public:
   void initialize(
-    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, const std::string & plugin_name,
+    const Nav2Node::WeakPtr & parent, const std::string & plugin_name,
     const std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
   // Every new goal: the checker's reset, then its tolerances again (they are cached between:
   // a controller asks for them every cycle, and a parameter change shows from the next goal).
   void reset() override;
+#if NAV2_PYIF_LYRICAL_API
+  // The transformed plan is not forwarded: the Python checker has the poses (PROTOCOL.md
+  // section 14).
+  bool isGoalReached(
+    const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+    const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &) override;
+  bool isGoalXYReached(
+    const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+    const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &) override;
+  // path_length_tolerance: lowest() (Nav2's "not measured") when the host gives none.
+  bool getTolerances(
+    geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance,
+    double & path_length_tolerance) override;
+#else
   bool isGoalReached(
     const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
     const geometry_msgs::msg::Twist & velocity) override;
   bool getTolerances(
     geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance) override;
+#endif
 
 private:
+  bool goal_reached(
+    const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+    const geometry_msgs::msg::Twist & velocity);
+  // The tolerances, asked once per goal.
+  const protocol::GetTolerancesReply & cached_tolerances();
+
   BridgedSession<client::GoalCheckerSession> plugin_;
   std::optional<protocol::GetTolerancesReply> tolerances_;
   // The robot's pose as controller_server looks it up (header included): what the carried
@@ -52,7 +74,7 @@ class PyProgressChecker : public nav2_core::ProgressChecker
 {
 public:
   void initialize(
-    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent,
+    const Nav2Node::WeakPtr & parent,
     const std::string & plugin_name) override;
   bool check(geometry_msgs::msg::PoseStamped & current_pose) override;
   void reset() override;

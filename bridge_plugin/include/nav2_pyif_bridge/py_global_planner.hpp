@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 
 #include "geometry_msgs/msg/pose_stamped.hpp"
 #include "nav2_core/global_planner.hpp"
@@ -18,7 +19,13 @@ namespace nav2_pyif_bridge
 class PyGlobalPlanner : public PyPlugin<nav2_core::GlobalPlanner, client::PlannerSession>
 {
 public:
-#if NAV2_PYIF_JAZZY_API
+#if NAV2_PYIF_LYRICAL_API
+  // The viapoints travel in the costmap's global frame, as start and goal do.
+  nav_msgs::msg::Path createPlan(
+    const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
+    const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
+    std::function<bool()> cancel_checker) override;
+#elif NAV2_PYIF_JAZZY_API
   nav_msgs::msg::Path createPlan(
     const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
     std::function<bool()> cancel_checker) override;
@@ -31,6 +38,7 @@ public:
 private:
   nav_msgs::msg::Path plan(
     const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
+    const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
     const std::function<bool()> & cancel_checker);
 };
 

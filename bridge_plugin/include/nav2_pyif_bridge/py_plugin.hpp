@@ -9,7 +9,7 @@
 
 #include "nav2_costmap_2d/costmap_2d_ros.hpp"
 #include "rclcpp_lifecycle/lifecycle_node.hpp"
-#include "tf2_ros/buffer.h"
+#include "nav2_pyif_bridge/nav2_api.hpp"
 
 #include "nav2_pyif_bridge/plugin_bridge.hpp"
 
@@ -26,8 +26,8 @@ public:
   ~PyPlugin() override;
 
   void configure(
-    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-    std::shared_ptr<tf2_ros::Buffer> tf,
+    const Nav2Node::WeakPtr & parent, std::string name,
+    std::shared_ptr<TfBuffer> tf,
     std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
   void cleanup() override;
   void activate() override;
@@ -35,7 +35,7 @@ public:
 
 protected:
   std::string name_;
-  std::shared_ptr<tf2_ros::Buffer> tf_;
+  std::shared_ptr<TfBuffer> tf_;
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
   // Destroyed in this order: the session uses the bridge's transport and costmap source.
   std::unique_ptr<PluginBridge> bridge_;

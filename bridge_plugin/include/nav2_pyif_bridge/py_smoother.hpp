@@ -20,8 +20,8 @@ class PySmoother : public nav2_core::Smoother
 {
 public:
   void configure(
-    const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-    std::shared_ptr<tf2_ros::Buffer> tf,
+    const Nav2Node::WeakPtr & parent, std::string name,
+    std::shared_ptr<TfBuffer> tf,
     std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> costmap_sub,
     std::shared_ptr<nav2_costmap_2d::FootprintSubscriber> footprint_sub) override;
   void cleanup() override;

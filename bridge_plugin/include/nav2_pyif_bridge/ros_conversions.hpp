@@ -15,7 +15,7 @@
 #include "nav2_core/goal_checker.hpp"
 #include "nav_msgs/msg/path.hpp"
 #include "rclcpp/parameter_value.hpp"
-#include "tf2_ros/buffer.h"
+#include "nav2_pyif_bridge/nav2_api.hpp"
 
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 #include "nav2_pyif_bridge/protocol/params.hpp"
@@ -49,13 +49,13 @@ rclcpp::ParameterValue to_ros(const protocol::ParamValue & value);
 // The latest transform `from` -> `frame`. Throws client::CallError of `tf_error`
 // (ControllerTFError / PlannerTFError) naming `what` and the frames.
 geometry_msgs::msg::TransformStamped latest_transform(
-  const std::string & frame, const std::string & from, tf2_ros::Buffer & tf, double timeout_s,
+  const std::string & frame, const std::string & from, TfBuffer & tf, double timeout_s,
   client::ErrorKind tf_error, const std::string & what);
 
 // `pose` in `frame`, with the latest transform (unchanged when already in it). The plan's own
 // frame change is FreshPlan's.
 geometry_msgs::msg::PoseStamped in_frame(
   const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
-  tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error);
+  TfBuffer & tf, double timeout_s, client::ErrorKind tf_error);
 
 }  // namespace nav2_pyif_bridge::ros

@@ -66,6 +66,16 @@ std::optional<bool> GoalCheckerSession::take_goal_check(
   return std::get<proto::IsGoalReachedReply>(*body).reached;
 }
 
+bool GoalCheckerSession::is_goal_xy_reached(
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  proto::IsGoalReachedRequest body = goal_check(pose, goal, velocity);
+  body.xy_only = true;
+  return call_for<proto::IsGoalReachedReply>(body).reached;
+}
+
 proto::GetTolerancesReply GoalCheckerSession::get_tolerances()
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());

@@ -27,8 +27,40 @@ std::optional<CallError> ControllerSession::set_plan(const proto::Path & path)
 
 void ControllerSession::send_plan(const CallOptions & options)
 {
-  call(proto::SetPlanRequest{*plan_}, options);
+  call(proto::SetPlanRequest{*plan_, goal_}, options);
   plan_owed_ = false;
+  plan_unsent_ = false;
+  goal_unsent_ = false;
+}
+
+namespace
+{
+
+// Equal but for the stamp (controller_server stamps the plan and goal anew every cycle).
+bool same_place(const proto::Path & a, const proto::Path & b)
+{
+  return a.frame_id == b.frame_id && a.poses == b.poses;
+}
+
+bool same_place(const proto::PoseStamped & a, const proto::PoseStamped & b)
+{
+  return a.frame_id == b.frame_id && a.pose == b.pose;
+}
+
+}  // namespace
+
+void ControllerSession::follow(const proto::Path & plan, const proto::PoseStamped & goal)
+{
+  std::lock_guard<std::recursive_mutex> lock(mutex());
+  follows_cycle_plan_ = true;
+  if (!plan_ || !same_place(*plan_, plan)) {
+    plan_ = plan;
+    plan_unsent_ = true;
+  }
+  if (!goal_ || !same_place(*goal_, goal)) {
+    goal_ = goal;
+    goal_unsent_ = true;
+  }
 }
 
 proto::TwistStamped ControllerSession::compute_velocity_commands(
@@ -46,7 +78,7 @@ CommandReplies ControllerSession::compute_velocity_commands(
   if (plan_owed_) {
     send_plan({});  // a host failure here fails this cycle, as the cycle's own would
   }
-  std::vector<std::pair<std::string, std::uint64_t>> attached;
+  Attached attached;
   proto::ComputeVelocityCommandsRequest body =
     command_body(pose, velocity, goal_checker, attached);
   if (!carry.empty()) {
@@ -65,12 +97,12 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
   const std::optional<proto::GoalChecker> & goal_checker)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  if (plan_owed_) {
+  if (plan_owed_ || follows_cycle_plan_) {
     return std::nullopt;  // it would run on the host's old plan
   }
   PreparedCommand prepared;
   auto carried = prepare(
-    command_body(pose, velocity, goal_checker, prepared.inputs), CostmapMode::IfChanged);
+    command_body(pose, velocity, goal_checker, prepared.attached), CostmapMode::IfChanged);
   if (!carried) {
     return std::nullopt;
   }
@@ -87,25 +119,32 @@ std::optional<proto::TwistStamped> ControllerSession::take_command(
   if (plan_owed_) {
     return std::nullopt;  // set_plan sent nothing (no host): the plan is news to the host too
   }
-  std::vector<std::pair<std::string, std::uint64_t>> attached;
+  Attached attached;
   auto body = take(
     std::move(prepared.carried), reply, command_body(pose, velocity, goal_checker, attached));
   if (!body) {
     return std::nullopt;
   }
   return command_of(
-    std::get<proto::ComputeVelocityCommandsReply>(std::move(*body)), prepared.inputs);
+    std::get<proto::ComputeVelocityCommandsReply>(std::move(*body)), prepared.attached);
 }
 
 proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
   const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
-  const std::optional<proto::GoalChecker> & goal_checker,
-  std::vector<std::pair<std::string, std::uint64_t>> & attached)
+  const std::optional<proto::GoalChecker> & goal_checker, Attached & attached)
 {
   proto::ComputeVelocityCommandsRequest body;
   body.pose = pose;
   body.velocity = velocity;
   body.goal_checker = goal_checker;
+  if (plan_unsent_) {
+    body.plan = plan_;
+    attached.plan = true;
+  }
+  if (goal_unsent_) {
+    body.goal = goal_;
+    attached.goal = true;
+  }
   std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
   for (const auto & [name, latest] : inputs_) {
     if (latest.sent != latest.generation) {
@@ -113,7 +152,7 @@ proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
         body.inputs.emplace();
       }
       body.inputs->push_back(latest.input);
-      attached.emplace_back(name, latest.generation);
+      attached.inputs.emplace_back(name, latest.generation);
     }
   }
   if (!debug_wanted_.empty()) {
@@ -123,12 +162,14 @@ proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
 }
 
 proto::TwistStamped ControllerSession::command_of(
-  proto::ComputeVelocityCommandsReply reply,
-  const std::vector<std::pair<std::string, std::uint64_t>> & attached)
+  proto::ComputeVelocityCommandsReply reply, const Attached & attached)
 {
   check_command(reply.cmd_vel, last_host());
+  // (the caller holds mutex(): plan_ and goal_ are still what was attached)
+  plan_unsent_ = plan_unsent_ && !attached.plan;
+  goal_unsent_ = goal_unsent_ && !attached.goal;
   std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
-  for (const auto & [name, generation] : attached) {
+  for (const auto & [name, generation] : attached.inputs) {
     inputs_[name].sent = generation;
   }
   debug_ = reply.debug ? std::move(*reply.debug) : std::vector<proto::DebugOutput>{};
@@ -220,6 +261,10 @@ void ControllerSession::forget_state()
   }
   plan_.reset();
   plan_owed_ = false;
+  goal_.reset();
+  plan_unsent_ = false;
+  goal_unsent_ = false;
+  follows_cycle_plan_ = false;
   speed_limit_.reset();
 }
 

@@ -12,10 +12,20 @@ proto::Path PlannerSession::create_plan(
   const proto::PoseStamped & start, const proto::PoseStamped & goal,
   const std::function<bool()> & cancel_checker)
 {
+  return create_plan(start, goal, std::nullopt, cancel_checker);
+}
+
+proto::Path PlannerSession::create_plan(
+  const proto::PoseStamped & start, const proto::PoseStamped & goal,
+  const std::optional<proto::Path> & viapoints, const std::function<bool()> & cancel_checker)
+{
   std::lock_guard<std::recursive_mutex> lock(mutex());
   proto::CreatePlanRequest body;
   body.start = start;
   body.goal = goal;
+  if (viapoints && viapoints->pose_count() > 0) {
+    body.viapoints = viapoints;
+  }
   CallOptions options;
   options.costmap = CostmapMode::IfChanged;
   if (cancel_checker) {

@@ -122,6 +122,9 @@ proto::Params PluginSession::configure_locked()
   body.params = config_.params;
   body.global_frame = config_.global_frame;
   body.robot_base_frame = config_.robot_base_frame;
+  if (!config_.nav2_params.empty()) {
+    body.nav2_params = config_.nav2_params;
+  }
   CallOptions options;
   options.costmap = CostmapMode::Always;
   options.allow_resync = false;

@@ -1,6 +1,7 @@
 #include "nav2_pyif_bridge/costmap_ros_source.hpp"
 
 #include "nav2_pyif_bridge/plugin_bridge.hpp"
+#include "nav2_pyif_bridge/ros_conversions.hpp"
 
 #include <string>
 #include <utility>
@@ -22,6 +23,30 @@ template<class T>
 double robot_radius(T &, long)
 {
   return 0.0;
+}
+
+// The first layer with both inflation parameters (Nav2's InflationLayer, whatever its name in
+// the YAML), read as the costmap node's parameters: the layer classes' getters differ between
+// Nav2 versions, the parameter names do not.
+protocol::Params inflation_parameters(nav2_costmap_2d::Costmap2DROS & costmap_ros)
+{
+  protocol::Params out;
+  auto * layers = costmap_ros.getLayeredCostmap()->getPlugins();
+  for (const auto & layer : *layers) {
+    const std::string radius = layer->getName() + ".inflation_radius";
+    const std::string factor = layer->getName() + ".cost_scaling_factor";
+    if (!costmap_ros.has_parameter(radius) || !costmap_ros.has_parameter(factor)) {
+      continue;
+    }
+    auto r = ros::to_wire(costmap_ros.get_parameter(radius).get_parameter_value());
+    auto f = ros::to_wire(costmap_ros.get_parameter(factor).get_parameter_value());
+    if (r && f) {
+      out.set("inflation_radius", std::move(*r));
+      out.set("cost_scaling_factor", std::move(*f));
+      break;
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -67,6 +92,7 @@ CostmapBinding bind_costmap(std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costm
   binding.global_frame = costmap_ros->getGlobalFrameID();
   binding.robot_base_frame = costmap_ros->getBaseFrameID();
   binding.transform_tolerance = costmap_ros->getTransformTolerance();
+  binding.inflation = inflation_parameters(*costmap_ros);
   binding.source = std::make_unique<CostmapRosSource>(std::move(costmap_ros));
   return binding;
 }

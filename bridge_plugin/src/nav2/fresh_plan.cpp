@@ -2,9 +2,7 @@
 
 #include <cmath>
 
-#include "tf2/LinearMath/Quaternion.h"
-#include "tf2/utils.h"
-#include "tf2_geometry_msgs/tf2_geometry_msgs.hpp"
+#include "nav2_pyif_bridge/tf2_headers.hpp"
 
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 #include "nav2_pyif_bridge/ros_conversions.hpp"
@@ -16,7 +14,7 @@ namespace
 {
 
 geometry_msgs::msg::Transform lookup(
-  const std::string & frame, const std::string & from, tf2_ros::Buffer & tf, double timeout_s)
+  const std::string & frame, const std::string & from, TfBuffer & tf, double timeout_s)
 {
   return ros::latest_transform(
     frame, from, tf, timeout_s, client::ErrorKind::ControllerTFError, "the plan").transform;
@@ -30,7 +28,7 @@ bool in_frame_already(const nav_msgs::msg::Path & path, const std::string & fram
 }  // namespace
 
 nav_msgs::msg::Path FreshPlan::set(
-  const nav_msgs::msg::Path & path, const std::string & frame, tf2_ros::Buffer & tf,
+  const nav_msgs::msg::Path & path, const std::string & frame, TfBuffer & tf,
   double timeout_s)
 {
   plan_ = path;
@@ -41,7 +39,7 @@ nav_msgs::msg::Path FreshPlan::set(
 }
 
 std::optional<nav_msgs::msg::Path> FreshPlan::refreshed(
-  const std::string & frame, tf2_ros::Buffer & tf, double timeout_s)
+  const std::string & frame, TfBuffer & tf, double timeout_s)
 {
   if (!plan_ || in_frame_already(*plan_, frame)) {
     return std::nullopt;

@@ -71,8 +71,15 @@ PluginBridge::PluginBridge(
   global_frame_(std::move(costmap.global_frame)),
   robot_base_frame_(std::move(costmap.robot_base_frame)),
   transform_tolerance_(costmap.transform_tolerance),
+  nav2_params_(std::move(costmap.inflation)),
   costmap_source_(std::move(costmap.source))
 {
+  // The controller server's rate: a controller's control period (an MPC's time step).
+  if (node->has_parameter("controller_frequency")) {
+    if (auto hz = ros::to_wire(node->get_parameter("controller_frequency").get_parameter_value())) {
+      nav2_params_.set("controller_frequency", std::move(*hz));
+    }
+  }
   try {
     client::PluginParameters parameters = client::split_parameters(read_parameters(*node, name));
     settings_ = std::move(parameters.settings);
@@ -110,6 +117,7 @@ client::SessionConfig PluginBridge::session_config() const
   config.name = name_;
   config.node = node_name_;
   config.params = forwarded_;
+  config.nav2_params = nav2_params_;
   config.global_frame = global_frame_;
   config.robot_base_frame = robot_base_frame_;
   config.timeouts = settings_.timeouts;

@@ -1,6 +1,7 @@
 #include "nav2_pyif_bridge/py_behavior.hpp"
 
 #include <cstdint>
+#include <string>
 #include <type_traits>
 #include <utility>
 
@@ -83,6 +84,20 @@ std::uint16_t error_code(BehaviorFailure failure)
   }
 }
 
+// TimedBehavior's ResultStatus; Lyrical's also carries a message for the action's result.
+ResultStatus result_status(Status status, std::uint16_t code, const std::string & message = {})
+{
+  ResultStatus result{};
+  result.status = status;
+  result.error_code = code;
+#if NAV2_PYIF_LYRICAL_API
+  result.error_msg = message;
+#else
+  static_cast<void>(message);
+#endif
+  return result;
+}
+
 }  // namespace
 
 protocol::Params BehaviorAction<nav2_msgs::action::BackUp>::fields(
@@ -124,11 +139,18 @@ template<class ActionT>
 void PyBehavior<ActionT>::onConfigure()
 {
   auto node = this->node_.lock();
-  auto nav2_node = std::dynamic_pointer_cast<nav2_util::LifecycleNode>(node);
+  // Jazzy's costmap subscribers take nav2_util::LifecycleNode (Lyrical's the nav2::LifecycleNode
+  // the behaviour already has).
+#if NAV2_PYIF_LYRICAL_API
+  using BehaviorNode = nav2::LifecycleNode;
+#else
+  using BehaviorNode = nav2_util::LifecycleNode;
+#endif
+  auto nav2_node = std::dynamic_pointer_cast<BehaviorNode>(node);
   if (!nav2_node) {
     throw std::runtime_error(
-      "nav2_pyif_bridge: " + this->behavior_name_ + ": behavior_server's node is not a "
-      "nav2_util::LifecycleNode");
+      "nav2_pyif_bridge: " + this->behavior_name_ + ": behavior_server's node is not a Nav2 "
+      "LifecycleNode");
   }
   // behavior_server's own topics (its subscriptions for the collision checker are its own).
   auto topic = [&](const char * name, const char * fallback) {
@@ -189,11 +211,11 @@ ResultStatus PyBehavior<ActionT>::result_of(const client::BehaviorStep & step, c
   }
   switch (step.status) {
     case BehaviorStatus::Succeeded:
-      return ResultStatus{Status::SUCCEEDED, Result::NONE};
+      return result_status(Status::SUCCEEDED, Result::NONE);
     case BehaviorStatus::Running:
-      return ResultStatus{Status::RUNNING, Result::NONE};
+      return result_status(Status::RUNNING, Result::NONE);
     default:
-      return ResultStatus{Status::FAILED, error_code<Result>(step.failure)};
+      return result_status(Status::FAILED, error_code<Result>(step.failure), step.error);
   }
 }
 
@@ -204,7 +226,7 @@ ResultStatus PyBehavior<ActionT>::onRun(
   geometry_msgs::msg::PoseStamped pose;
   if (!robot_pose(pose)) {
     RCLCPP_ERROR(this->logger_, "Initial robot pose is not available.");
-    return ResultStatus{Status::FAILED, Result::TF_ERROR};
+    return result_status(Status::FAILED, Result::TF_ERROR, "Initial robot pose is not available.");
   }
   start_ = this->clock_->now();
   outcome_ = "cancelled";
@@ -223,7 +245,7 @@ ResultStatus PyBehavior<ActionT>::onCycleUpdate()
     this->stopRobot();
     RCLCPP_ERROR(this->logger_, "Current robot pose is not available.");
     outcome_ = "failed";
-    return ResultStatus{Status::FAILED, Result::TF_ERROR};
+    return result_status(Status::FAILED, Result::TF_ERROR, "Current robot pose is not available.");
   }
   const double elapsed = (this->clock_->now() - start_).seconds();
   const client::BehaviorStep step = plugin_.session().cycle_update(ros::to_wire(pose), elapsed);

@@ -1,6 +1,7 @@
 #include "nav2_pyif_bridge/py_checkers.hpp"
 
 #include <array>
+#include <limits>
 #include <utility>
 
 #include "pluginlib/class_list_macros.hpp"
@@ -18,10 +19,31 @@ std::array<double, 7> pose7(const geometry_msgs::msg::Pose & pose) noexcept
     pose.orientation.y, pose.orientation.z, pose.orientation.w};
 }
 
+void fill_tolerances(
+  const protocol::GetTolerancesReply & tolerances, geometry_msgs::msg::Pose & pose_tolerance,
+  geometry_msgs::msg::Twist & vel_tolerance) noexcept
+{
+  const auto & p = tolerances.pose_tolerance;
+  const auto & v = tolerances.velocity_tolerance;
+  pose_tolerance.position.x = p[0];
+  pose_tolerance.position.y = p[1];
+  pose_tolerance.position.z = p[2];
+  pose_tolerance.orientation.x = p[3];
+  pose_tolerance.orientation.y = p[4];
+  pose_tolerance.orientation.z = p[5];
+  pose_tolerance.orientation.w = p[6];
+  vel_tolerance.linear.x = v[0];
+  vel_tolerance.linear.y = v[1];
+  vel_tolerance.linear.z = v[2];
+  vel_tolerance.angular.x = v[3];
+  vel_tolerance.angular.y = v[4];
+  vel_tolerance.angular.z = v[5];
+}
+
 }  // namespace
 
 void PyGoalChecker::initialize(
-  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, const std::string & plugin_name,
+  const Nav2Node::WeakPtr & parent, const std::string & plugin_name,
   const std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
 {
   tolerances_.reset();
@@ -44,7 +66,59 @@ void PyGoalChecker::reset()
     });
 }
 
+#if NAV2_PYIF_LYRICAL_API
 bool PyGoalChecker::isGoalReached(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &)
+{
+  return goal_reached(query_pose, goal_pose, velocity);
+}
+
+bool PyGoalChecker::isGoalXYReached(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      return plugin_.session().is_goal_xy_reached(
+        pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity));
+    });
+}
+
+bool PyGoalChecker::getTolerances(
+  geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance,
+  double & path_length_tolerance)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      const protocol::GetTolerancesReply & tolerances = cached_tolerances();
+      fill_tolerances(tolerances, pose_tolerance, vel_tolerance);
+      path_length_tolerance = tolerances.path_length_tolerance.value_or(
+        std::numeric_limits<double>::lowest());
+      return tolerances.available;
+    });
+}
+#else
+bool PyGoalChecker::isGoalReached(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity)
+{
+  return goal_reached(query_pose, goal_pose, velocity);
+}
+
+bool PyGoalChecker::getTolerances(
+  geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      const protocol::GetTolerancesReply & tolerances = cached_tolerances();
+      fill_tolerances(tolerances, pose_tolerance, vel_tolerance);
+      return tolerances.available;
+    });
+}
+#endif
+
+bool PyGoalChecker::goal_reached(
   const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
   const geometry_msgs::msg::Twist & velocity)
 {
@@ -68,35 +142,16 @@ bool PyGoalChecker::isGoalReached(
     });
 }
 
-bool PyGoalChecker::getTolerances(
-  geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance)
+const protocol::GetTolerancesReply & PyGoalChecker::cached_tolerances()
 {
-  return plugin_.bridge().forward(
-    [&]() {
-      if (!tolerances_) {
-        tolerances_ = plugin_.session().get_tolerances();
-      }
-      const auto & p = tolerances_->pose_tolerance;
-      const auto & v = tolerances_->velocity_tolerance;
-      pose_tolerance.position.x = p[0];
-      pose_tolerance.position.y = p[1];
-      pose_tolerance.position.z = p[2];
-      pose_tolerance.orientation.x = p[3];
-      pose_tolerance.orientation.y = p[4];
-      pose_tolerance.orientation.z = p[5];
-      pose_tolerance.orientation.w = p[6];
-      vel_tolerance.linear.x = v[0];
-      vel_tolerance.linear.y = v[1];
-      vel_tolerance.linear.z = v[2];
-      vel_tolerance.angular.x = v[3];
-      vel_tolerance.angular.y = v[4];
-      vel_tolerance.angular.z = v[5];
-      return tolerances_->available;
-    });
+  if (!tolerances_) {
+    tolerances_ = plugin_.session().get_tolerances();
+  }
+  return *tolerances_;
 }
 
 void PyProgressChecker::initialize(
-  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, const std::string & plugin_name)
+  const Nav2Node::WeakPtr & parent, const std::string & plugin_name)
 {
   CostmapBinding none;  // Nav2 gives a progress checker no costmap
   none.source = std::make_unique<client::NoCostmap>();

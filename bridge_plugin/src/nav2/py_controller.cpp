@@ -14,8 +14,8 @@ namespace nav2_pyif_bridge
 {
 
 void PyController::configure(
-  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-  std::shared_ptr<tf2_ros::Buffer> tf,
+  const Nav2Node::WeakPtr & parent, std::string name,
+  std::shared_ptr<TfBuffer> tf,
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
 {
   PyPlugin::configure(parent, std::move(name), std::move(tf), std::move(costmap_ros));
@@ -51,7 +51,9 @@ void PyController::cleanup()
   input_subscriptions_.clear();  // before the session their callbacks feed goes
   debug_publishers_.clear();
   PyPlugin::cleanup();
+#if !NAV2_PYIF_LYRICAL_API
   plan_.clear();
+#endif
 }
 
 void PyController::sync_debug_publishers()
@@ -96,23 +98,53 @@ void PyController::publish_debug()
   }
 }
 
+void PyController::new_plan_begins()
+{
+  if (reset_owed_) {
+    reset_owed_ = false;
+    send_reset();
+  }
+  if (client::CarriedCycle * cycle = session_->cycle()) {
+    cycle->use_controller(*session_);  // the next goal checks prepare for this plan
+  }
+}
+
+#if NAV2_PYIF_LYRICAL_API
+void PyController::newPathReceived(const nav_msgs::msg::Path &)
+{
+  new_plan_begins();
+}
+
+geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
+  const geometry_msgs::msg::PoseStamped & pose, const geometry_msgs::msg::Twist & velocity,
+  nav2_core::GoalChecker * goal_checker, const nav_msgs::msg::Path & transformed_global_plan,
+  const geometry_msgs::msg::PoseStamped & global_goal)
+{
+  return bridge_->forward(
+    [&]() {
+      // Already in the costmap's global frame (Nav2's path handler); the transform is a
+      // no-op then, and keeps the protocol's one-frame rule should a handler differ.
+      const std::string & frame = costmap_ros_->getGlobalFrameID();
+      const auto tf_error = client::ErrorKind::ControllerTFError;
+      const double tolerance = bridge_->transform_tolerance();
+      session_->follow(
+        ros::to_wire(transformed_global_plan),
+        ros::to_wire(ros::in_frame(global_goal, frame, *tf_, tolerance, tf_error)));
+      return command(pose, velocity, goal_checker);
+    });
+}
+#else
 void PyController::setPlan(const nav_msgs::msg::Path & path)
 {
   bridge_->forward(
     [&]() {
-      if (reset_owed_) {
-        reset_owed_ = false;
-        send_reset();
-      }
+      new_plan_begins();
       const std::optional<client::CallError> deferred = session_->set_plan(ros::to_wire(plan_.set(
         path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
       if (deferred) {
         RCLCPP_WARN(
           bridge_->ros_logger(), "%s: plan kept, sent when the host answers: %s", name_.c_str(),
           deferred->log_text().c_str());
-      }
-      if (client::CarriedCycle * cycle = session_->cycle()) {
-        cycle->use_controller(*session_);  // the next goal checks prepare for this plan
       }
     });
 }
@@ -123,9 +155,6 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
 {
   return bridge_->forward(
     [&]() {
-      const geometry_msgs::msg::PoseStamped global = ros::in_frame(
-        pose, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
-        client::ErrorKind::ControllerTFError);
       if (auto fresh = plan_.refreshed(
           costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance()))
       {
@@ -133,25 +162,36 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
         // below sends it first (and fails as the host does).
         session_->set_plan(ros::to_wire(*fresh));
       }
-      sync_debug_publishers();
-      const protocol::PoseStamped wire_pose = ros::to_wire(global);
-      const std::array<double, 6> wire_velocity = ros::to_wire(velocity);
-      const std::optional<protocol::GoalChecker> wire_tolerances = ros::tolerances(goal_checker);
-      try {
-        // The command another call's query carried, when it was prepared for this call; else
-        // the call on its own, carrying the goal check when Nav2 calls that last
-        client::CarriedCycle * cycle = session_->cycle();
-        const protocol::TwistStamped cmd = cycle ?
-          cycle->compute_velocity_commands(*session_, wire_pose, wire_velocity, wire_tolerances) :
-          session_->compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
-        host_silent_ = false;
-        publish_debug();
-        return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
-      } catch (const client::CallError & error) {
-        host_silent_ = error.cause() == client::Cause::TimedOut;
-        throw;
-      }
+      return command(pose, velocity, goal_checker);
     });
+}
+#endif
+
+geometry_msgs::msg::TwistStamped PyController::command(
+  const geometry_msgs::msg::PoseStamped & pose, const geometry_msgs::msg::Twist & velocity,
+  nav2_core::GoalChecker * goal_checker)
+{
+  const geometry_msgs::msg::PoseStamped global = ros::in_frame(
+    pose, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
+    client::ErrorKind::ControllerTFError);
+  sync_debug_publishers();
+  const protocol::PoseStamped wire_pose = ros::to_wire(global);
+  const std::array<double, 6> wire_velocity = ros::to_wire(velocity);
+  const std::optional<protocol::GoalChecker> wire_tolerances = ros::tolerances(goal_checker);
+  try {
+    // The command another call's query carried, when it was prepared for this call; else
+    // the call on its own, carrying the goal check when Nav2 calls that last
+    client::CarriedCycle * cycle = session_->cycle();
+    const protocol::TwistStamped cmd = cycle ?
+      cycle->compute_velocity_commands(*session_, wire_pose, wire_velocity, wire_tolerances) :
+      session_->compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
+    host_silent_ = false;
+    publish_debug();
+    return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
+  } catch (const client::CallError & error) {
+    host_silent_ = error.cause() == client::Cause::TimedOut;
+    throw;
+  }
 }
 
 void PyController::setSpeedLimit(const double & speed_limit, const bool & percentage)

@@ -7,23 +7,32 @@
 namespace nav2_pyif_bridge
 {
 
-#if NAV2_PYIF_JAZZY_API
+#if NAV2_PYIF_LYRICAL_API
+nav_msgs::msg::Path PyGlobalPlanner::createPlan(
+  const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
+  const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
+  std::function<bool()> cancel_checker)
+{
+  return plan(start, goal, viapoints, cancel_checker);
+}
+#elif NAV2_PYIF_JAZZY_API
 nav_msgs::msg::Path PyGlobalPlanner::createPlan(
   const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
   std::function<bool()> cancel_checker)
 {
-  return plan(start, goal, cancel_checker);
+  return plan(start, goal, {}, cancel_checker);
 }
 #else
 nav_msgs::msg::Path PyGlobalPlanner::createPlan(
   const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal)
 {
-  return plan(start, goal, {});
+  return plan(start, goal, {}, {});
 }
 #endif
 
 nav_msgs::msg::Path PyGlobalPlanner::plan(
   const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
+  const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
   const std::function<bool()> & cancel_checker)
 {
   return bridge_->forward(
@@ -33,7 +42,18 @@ nav_msgs::msg::Path PyGlobalPlanner::plan(
       const auto tf_error = client::ErrorKind::PlannerTFError;
       const auto wire_start = ros::to_wire(ros::in_frame(start, frame, *tf_, tolerance, tf_error));
       const auto wire_goal = ros::to_wire(ros::in_frame(goal, frame, *tf_, tolerance, tf_error));
-      const protocol::Path path = session_->create_plan(wire_start, wire_goal, cancel_checker);
+      std::optional<protocol::Path> wire_viapoints;
+      if (!viapoints.empty()) {
+        wire_viapoints.emplace();
+        wire_viapoints->frame_id = frame;
+        wire_viapoints->stamp_ns = wire_goal.stamp_ns;
+        for (const geometry_msgs::msg::PoseStamped & viapoint : viapoints) {
+          const auto & pose = ros::to_wire(ros::in_frame(viapoint, frame, *tf_, tolerance, tf_error));
+          wire_viapoints->poses.insert(wire_viapoints->poses.end(), pose.pose.begin(), pose.pose.end());
+        }
+      }
+      const protocol::Path path =
+        session_->create_plan(wire_start, wire_goal, wire_viapoints, cancel_checker);
       return ros::to_ros(path, frame, bridge_->clock()->now());
     });
 }

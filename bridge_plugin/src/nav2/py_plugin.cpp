@@ -21,8 +21,8 @@ PyPlugin<Interface, Session>::~PyPlugin()
 
 template<class Interface, class Session>
 void PyPlugin<Interface, Session>::configure(
-  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-  std::shared_ptr<tf2_ros::Buffer> tf,
+  const Nav2Node::WeakPtr & parent, std::string name,
+  std::shared_ptr<TfBuffer> tf,
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
 {
   auto node = parent.lock();

@@ -13,8 +13,8 @@ namespace nav2_pyif_bridge
 {
 
 void PySmoother::configure(
-  const rclcpp_lifecycle::LifecycleNode::WeakPtr & parent, std::string name,
-  std::shared_ptr<tf2_ros::Buffer>,
+  const Nav2Node::WeakPtr & parent, std::string name,
+  std::shared_ptr<TfBuffer>,
   std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> costmap_sub,
   std::shared_ptr<nav2_costmap_2d::FootprintSubscriber>)
 {

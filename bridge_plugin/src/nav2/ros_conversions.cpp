@@ -1,13 +1,11 @@
 #include "nav2_pyif_bridge/ros_conversions.hpp"
 
+#include <limits>
 #include <utility>
 #include <variant>
 #include <vector>
 
-#include "tf2/exceptions.h"
-#include "tf2/utils.h"
-#include "tf2/time.h"
-#include "tf2_geometry_msgs/tf2_geometry_msgs.hpp"
+#include "nav2_pyif_bridge/tf2_headers.hpp"
 
 namespace nav2_pyif_bridge::ros
 {
@@ -147,7 +145,7 @@ rclcpp::ParameterValue to_ros(const proto::ParamValue & value)
 }
 
 geometry_msgs::msg::TransformStamped latest_transform(
-  const std::string & frame, const std::string & from, tf2_ros::Buffer & tf, double timeout_s,
+  const std::string & frame, const std::string & from, TfBuffer & tf, double timeout_s,
   client::ErrorKind tf_error, const std::string & what)
 {
   try {
@@ -161,7 +159,7 @@ geometry_msgs::msg::TransformStamped latest_transform(
 
 geometry_msgs::msg::PoseStamped in_frame(
   const geometry_msgs::msg::PoseStamped & pose, const std::string & frame,
-  tf2_ros::Buffer & tf, double timeout_s, client::ErrorKind tf_error)
+  TfBuffer & tf, double timeout_s, client::ErrorKind tf_error)
 {
   if (pose.header.frame_id == frame || pose.header.frame_id.empty()) {
     return pose;
@@ -180,12 +178,26 @@ std::optional<proto::GoalChecker> tolerances(nav2_core::GoalChecker * goal_check
   }
   geometry_msgs::msg::Pose pose_tolerance;
   geometry_msgs::msg::Twist velocity_tolerance;
+#if NAV2_PYIF_LYRICAL_API
+  double path_length_tolerance = std::numeric_limits<double>::lowest();
+  if (!goal_checker->getTolerances(pose_tolerance, velocity_tolerance, path_length_tolerance)) {
+    return std::nullopt;
+  }
+#else
   if (!goal_checker->getTolerances(pose_tolerance, velocity_tolerance)) {
     return std::nullopt;
   }
-  return proto::GoalChecker{
+#endif
+  proto::GoalChecker wire{
     pose_tolerance.position.x, tf2::getYaw(pose_tolerance.orientation),
-    velocity_tolerance.linear.x, velocity_tolerance.angular.z};
+    velocity_tolerance.linear.x, velocity_tolerance.angular.z, std::nullopt};
+#if NAV2_PYIF_LYRICAL_API
+  // Nav2 marks a tolerance the checker does not measure with lowest()
+  if (path_length_tolerance != std::numeric_limits<double>::lowest()) {
+    wire.path_length_tolerance = path_length_tolerance;
+  }
+#endif
+  return wire;
 }
 
 }  // namespace nav2_pyif_bridge::ros

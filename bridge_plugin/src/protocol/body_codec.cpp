@@ -74,7 +74,7 @@ void write(Writer & w, const Costmap & value, const FieldPath & where)
 
 void write(Writer & w, const GoalChecker & value, const FieldPath &)
 {
-  w.map(4);
+  w.map(std::size_t{4} + (value.path_length_tolerance ? 1u : 0u));
   w.key("xy_goal_tolerance");
   w.f64(value.xy_goal_tolerance);
   w.key("yaw_goal_tolerance");
@@ -83,6 +83,10 @@ void write(Writer & w, const GoalChecker & value, const FieldPath &)
   w.f64(value.trans_stopped_velocity);
   w.key("rot_stopped_velocity");
   w.f64(value.rot_stopped_velocity);
+  if (value.path_length_tolerance) {
+    w.key("path_length_tolerance");
+    w.f64(*value.path_length_tolerance);
+  }
 }
 
 void write(Writer & w, const Error & value, const FieldPath & where)
@@ -133,7 +137,7 @@ void write(Writer & w, const CarriedCall & value, const FieldPath & where)
 
 void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
 {
-  w.map(7);
+  w.map(std::size_t{7} + (value.nav2_params ? 1u : 0u));
   w.key("plugin_type");
   w.str(value.plugin_type, where.key("plugin_type"));
   w.key("name");
@@ -148,6 +152,10 @@ void write(Writer & w, const ConfigureRequest & value, const FieldPath & where)
   w.str(value.robot_base_frame, where.key("robot_base_frame"));
   w.key("costmap");
   write(w, value.costmap, where.key("costmap"));
+  if (value.nav2_params) {
+    w.key("nav2_params");
+    write_params(w, *value.nav2_params, where.key("nav2_params"));
+  }
 }
 
 void write(Writer & w, const ConfigureReply & value, const FieldPath & where)
@@ -216,9 +224,13 @@ void write(Writer & w, const SetParametersReply & value, const FieldPath & where
 
 void write(Writer & w, const SetPlanRequest & value, const FieldPath & where)
 {
-  w.map(1);
+  w.map(std::size_t{1} + (value.goal ? 1u : 0u));
   w.key("path");
   write(w, value.path, where.key("path"));
+  if (value.goal) {
+    w.key("goal");
+    write(w, *value.goal, where.key("goal"));
+  }
 }
 
 void write(Writer & w, const SetPlanReply &, const FieldPath &)
@@ -229,7 +241,8 @@ void write(Writer & w, const SetPlanReply &, const FieldPath &)
 void write(Writer & w, const ComputeVelocityCommandsRequest & value, const FieldPath & where)
 {
   w.map(std::size_t{2} + (value.goal_checker ? 1u : 0u) + (value.costmap ? 1u : 0u)
-      + (value.inputs ? 1u : 0u) + (value.debug_wanted ? 1u : 0u) + (value.carry ? 1u : 0u));
+      + (value.plan ? 1u : 0u) + (value.goal ? 1u : 0u) + (value.inputs ? 1u : 0u)
+      + (value.debug_wanted ? 1u : 0u) + (value.carry ? 1u : 0u));
   w.key("pose");
   write(w, value.pose, where.key("pose"));
   w.key("velocity");
@@ -241,6 +254,14 @@ void write(Writer & w, const ComputeVelocityCommandsRequest & value, const Field
   if (value.costmap) {
     w.key("costmap");
     write(w, *value.costmap, where.key("costmap"));
+  }
+  if (value.plan) {
+    w.key("plan");
+    write(w, *value.plan, where.key("plan"));
+  }
+  if (value.goal) {
+    w.key("goal");
+    write(w, *value.goal, where.key("goal"));
   }
   if (value.inputs) {
     w.key("inputs");
@@ -309,7 +330,7 @@ void write(Writer & w, const ResetReply &, const FieldPath &)
 
 void write(Writer & w, const CreatePlanRequest & value, const FieldPath & where)
 {
-  w.map(std::size_t{2} + (value.costmap ? 1u : 0u));
+  w.map(std::size_t{2} + (value.costmap ? 1u : 0u) + (value.viapoints ? 1u : 0u));
   w.key("start");
   write(w, value.start, where.key("start"));
   w.key("goal");
@@ -317,6 +338,10 @@ void write(Writer & w, const CreatePlanRequest & value, const FieldPath & where)
   if (value.costmap) {
     w.key("costmap");
     write(w, *value.costmap, where.key("costmap"));
+  }
+  if (value.viapoints) {
+    w.key("viapoints");
+    write(w, *value.viapoints, where.key("viapoints"));
   }
 }
 
@@ -365,13 +390,17 @@ void write(Writer & w, const SmoothReply & value, const FieldPath & where)
 
 void write(Writer & w, const IsGoalReachedRequest & value, const FieldPath & where)
 {
-  w.map(std::size_t{3} + (value.carry ? 1u : 0u));
+  w.map(std::size_t{3} + (value.xy_only ? 1u : 0u) + (value.carry ? 1u : 0u));
   w.key("pose");
   w.floats(value.pose);
   w.key("goal");
   w.floats(value.goal);
   w.key("velocity");
   w.floats(value.velocity);
+  if (value.xy_only) {
+    w.key("xy_only");
+    w.boolean(*value.xy_only);
+  }
   if (value.carry) {
     w.key("carry");
     write(w, *value.carry, where.key("carry"));
@@ -396,13 +425,17 @@ void write(Writer & w, const GetTolerancesRequest &, const FieldPath &)
 
 void write(Writer & w, const GetTolerancesReply & value, const FieldPath &)
 {
-  w.map(3);
+  w.map(std::size_t{3} + (value.path_length_tolerance ? 1u : 0u));
   w.key("available");
   w.boolean(value.available);
   w.key("pose_tolerance");
   w.floats(value.pose_tolerance);
   w.key("velocity_tolerance");
   w.floats(value.velocity_tolerance);
+  if (value.path_length_tolerance) {
+    w.key("path_length_tolerance");
+    w.f64(*value.path_length_tolerance);
+  }
 }
 
 void write(Writer & w, const CheckRequest & value, const FieldPath & where)
@@ -648,6 +681,7 @@ GoalChecker read_goal_checker(const Object & object, const FieldPath & where)
   out.yaw_goal_tolerance = m.required("yaw_goal_tolerance", read_f64);
   out.trans_stopped_velocity = m.required("trans_stopped_velocity", read_f64);
   out.rot_stopped_velocity = m.required("rot_stopped_velocity", read_f64);
+  out.path_length_tolerance = m.optional("path_length_tolerance", read_f64);
   return out;
 }
 
@@ -703,6 +737,7 @@ ConfigureRequest read_configure_request(const Object & object, const FieldPath &
   out.global_frame = m.required("global_frame", read_str);
   out.robot_base_frame = m.required("robot_base_frame", read_str);
   out.costmap = m.required("costmap", read_costmap);
+  out.nav2_params = m.optional("nav2_params", read_params);
   return out;
 }
 
@@ -774,6 +809,7 @@ SetPlanRequest read_set_plan_request(const Object & object, const FieldPath & wh
   const MapReader m(object, where);
   SetPlanRequest out;
   out.path = m.required("path", read_path);
+  out.goal = m.optional("goal", read_pose_stamped);
   return out;
 }
 
@@ -792,6 +828,8 @@ ComputeVelocityCommandsRequest read_compute_velocity_commands_request(
   out.velocity = m.required("velocity", read_f64_array<6>);
   out.goal_checker = m.optional("goal_checker", read_goal_checker);
   out.costmap = m.optional("costmap", read_costmap);
+  out.plan = m.optional("plan", read_path);
+  out.goal = m.optional("goal", read_pose_stamped);
   out.inputs = m.optional("inputs", read_array<read_input>);
   out.debug_wanted = m.optional("debug_wanted", read_array<read_str>);
   out.carry = m.optional("carry", read_array<read_carried_call>);
@@ -857,6 +895,7 @@ CreatePlanRequest read_create_plan_request(const Object & object, const FieldPat
   out.start = m.required("start", read_pose_stamped);
   out.goal = m.required("goal", read_pose_stamped);
   out.costmap = m.optional("costmap", read_costmap);
+  out.viapoints = m.optional("viapoints", read_path);
   return out;
 }
 
@@ -910,6 +949,7 @@ IsGoalReachedRequest read_is_goal_reached_request(const Object & object, const F
   out.pose = m.required("pose", read_f64_array<7>);
   out.goal = m.required("goal", read_f64_array<7>);
   out.velocity = m.required("velocity", read_f64_array<6>);
+  out.xy_only = m.optional("xy_only", read_bool);
   out.carry = m.optional("carry", read_array<read_carried_call>);
   return out;
 }
@@ -936,6 +976,7 @@ GetTolerancesReply read_get_tolerances_reply(const Object & object, const FieldP
   out.available = m.required("available", read_bool);
   out.pose_tolerance = m.required("pose_tolerance", read_f64_array<7>);
   out.velocity_tolerance = m.required("velocity_tolerance", read_f64_array<6>);
+  out.path_length_tolerance = m.optional("path_length_tolerance", read_f64);
   return out;
 }
 
@@ -1261,7 +1302,7 @@ std::size_t payload_size(const SetParametersReply &) {return 0;}
 
 std::size_t payload_size(const SetPlanRequest & value)
 {
-  return payload_size(value.path);
+  return payload_size(value.path) + (value.goal ? payload_size((*value.goal)) : 0);
 }
 
 std::size_t payload_size(const SetPlanReply &) {return 0;}
@@ -1270,6 +1311,8 @@ std::size_t payload_size(const ComputeVelocityCommandsRequest & value)
 {
   return payload_size(value.pose) + (value.goal_checker ? payload_size((*value.goal_checker)) : 0)
            + (value.costmap ? payload_size((*value.costmap)) : 0)
+           + (value.plan ? payload_size((*value.plan)) : 0)
+           + (value.goal ? payload_size((*value.goal)) : 0)
            + (value.inputs ? payload_size((*value.inputs)) : 0)
            + (value.debug_wanted ? payload_size((*value.debug_wanted)) : 0)
            + (value.carry ? payload_size((*value.carry)) : 0);
@@ -1296,7 +1339,8 @@ std::size_t payload_size(const ResetReply &) {return 0;}
 std::size_t payload_size(const CreatePlanRequest & value)
 {
   return payload_size(value.start) + payload_size(value.goal)
-           + (value.costmap ? payload_size((*value.costmap)) : 0);
+           + (value.costmap ? payload_size((*value.costmap)) : 0)
+           + (value.viapoints ? payload_size((*value.viapoints)) : 0);
 }
 
 std::size_t payload_size(const CreatePlanReply & value)

@@ -23,7 +23,7 @@ namespace
 namespace proto = protocol;
 const char * const kKey = "nav2_pyif/test_robot/FollowPath";
 const std::array<double, 6> kVelocity{0.3, 0.0, 0.0, 0.0, 0.0, 0.1};
-const proto::GoalChecker kTolerances{0.25, 0.3, 0.05, 0.1};
+const proto::GoalChecker kTolerances{0.25, 0.3, 0.05, 0.1, std::nullopt};
 
 class CarriedTest : public ::testing::Test
 {

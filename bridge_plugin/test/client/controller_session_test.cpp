@@ -89,7 +89,7 @@ TEST_F(ControllerSessionTest, FullSession)
   EXPECT_NE(s.params().find("label"), nullptr);  // declared parameters join the session's
   s.activate();
   s.set_plan(straight_path(40, 3.0, 0.0));
-  const auto cmd = compute(proto::GoalChecker{0.25, 0.3, 0.05, 0.1});
+  const auto cmd = compute(proto::GoalChecker{0.25, 0.3, 0.05, 0.1, std::nullopt});
   EXPECT_EQ(cmd.frame_id, "base_link");
   EXPECT_EQ(cmd.twist, (std::array<double, 6>{40.0, 2.0, -1.0, 1.0, 1.0, 1.0}));
 
@@ -181,6 +181,55 @@ TEST_F(ControllerSessionTest, CostmapIsDeliveredOnlyByAnOkReply)
   EXPECT_EQ(s.delivered_costmap(), 2u);
   compute();
   EXPECT_FALSE(host.last_had_costmap());
+}
+
+// Lyrical: controller_server hands the controller the plan it transformed, every cycle. The
+// request carries the plan and the global goal only when they changed (their stamps aside),
+// and a restarted host gets both again with set_plan.
+TEST_F(ControllerSessionTest, FollowCarriesThePlanAndGoalOnlyWhenTheyChange)
+{
+  auto & s = make();
+  s.configure();
+  s.activate();
+  const auto body_of = [&](std::size_t i) {
+      return std::get<proto::ComputeVelocityCommandsRequest>(host.received.at(i).request.body);
+    };
+  proto::Path plan = straight_path(12, 2.0, 0.0);
+  proto::PoseStamped goal = pose_at(2.0, 0.0);
+  s.follow(plan, goal);
+  // the goal check cannot carry a command: Nav2 transforms the cycle's plan after it
+  EXPECT_FALSE(s.prepare_command(pose_at(1.0, 1.0), {}, std::nullopt).has_value());
+  EXPECT_EQ(compute().twist[0], 12.0);  // the host's set_plan saw the carried plan
+  const std::size_t first = host.received.size() - 1;
+  ASSERT_TRUE(body_of(first).plan.has_value());
+  EXPECT_EQ(body_of(first).plan->pose_count(), 12u);
+  ASSERT_TRUE(body_of(first).goal.has_value());
+  EXPECT_EQ(body_of(first).goal->pose, goal.pose);
+
+  plan.stamp_ns += 50'000'000;  // the next cycle: stamped anew, the same poses
+  goal.stamp_ns += 50'000'000;
+  s.follow(plan, goal);
+  compute();
+  EXPECT_FALSE(body_of(host.received.size() - 1).plan.has_value());
+  EXPECT_FALSE(body_of(host.received.size() - 1).goal.has_value());
+
+  proto::Path pruned = straight_path(9, 2.0, 0.0);  // the robot moved on: pruned
+  s.follow(pruned, goal);
+  EXPECT_EQ(compute().twist[0], 9.0);
+  ASSERT_TRUE(body_of(host.received.size() - 1).plan.has_value());
+  EXPECT_FALSE(body_of(host.received.size() - 1).goal.has_value());  // the goal did not move
+
+  host.restart();
+  const std::size_t sent = host.received.size();
+  s.follow(pruned, goal);
+  EXPECT_EQ(compute().twist[0], 9.0);  // restored with set_plan
+  EXPECT_EQ(
+    host.ops_since(sent), (std::vector<std::string>{"compute_velocity_commands", "configure",
+      "activate", "set_plan", "compute_velocity_commands"}));
+  const auto & restored = std::get<proto::SetPlanRequest>(host.received.at(sent + 3).request.body);
+  EXPECT_EQ(restored.path.pose_count(), 9u);
+  ASSERT_TRUE(restored.goal.has_value());
+  EXPECT_EQ(restored.goal->pose, goal.pose);
 }
 
 TEST_F(ControllerSessionTest, HostRestartMidSessionRestoresThePlan)

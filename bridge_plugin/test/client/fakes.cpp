@@ -401,6 +401,9 @@ proto::Reply FakeHost::handle(
         if (body.costmap) {
           s.costmap_version = body.costmap->version;
         }
+        if (body.plan) {  // Lyrical's transformed plan: the host's set_plan, first
+          s.plan_size = static_cast<double>(body.plan->pose_count());
+        }
         const auto * gain = s.params.find("gain");
         proto::TwistStamped cmd;
         cmd.frame_id = "base_link";

@@ -37,14 +37,28 @@ def find(relative: str) -> Path | None:
     return None
 
 
+def nav2_controller_version() -> tuple[int, int, int]:
+    """nav2_controller's version in this environment, from its package.xml."""
+    xml = find("share/nav2_controller/package.xml")
+    found = re.search(r"<version>(\d+)\.(\d+)\.(\d+)</version>", xml.read_text()) if xml else None
+    assert found, "no nav2_controller version in this environment"
+    major, minor, patch = map(int, found.groups())
+    return major, minor, patch
+
+
+def costmap_wait_bounded() -> bool:
+    """Whether controller_server gives up on a costmap that is not current after its
+    `costmap_update_timeout` (Jazzy and later: FollowPath aborts with ControllerTimedOut), or
+    waits for it without end (Humble: the goal stays active, the robot held, until the costmap
+    is current again or the goal is cancelled)."""
+    return nav2_controller_version()[:2] >= (1, 3)
+
+
 def goal_check_first() -> bool:
     """Whether this Nav2's controller_server checks the goal first in its control cycle
     (Jazzy from 1.3.13, Kilted, Lyrical) or last (Humble, Jazzy 1.3.8 to 1.3.12), read from
     nav2_controller's package.xml (PROTOCOL.md section 15)."""
-    xml = find("share/nav2_controller/package.xml")
-    found = re.search(r"<version>(\d+)\.(\d+)\.(\d+)</version>", xml.read_text()) if xml else None
-    assert found, "no nav2_controller version in this environment"
-    version = tuple(map(int, found.groups()))
+    version = nav2_controller_version()
     return version >= (1, 3, 13) if version[:2] == (1, 3) else version[:2] > (1, 3)
 
 
@@ -191,7 +205,7 @@ class Processes:
             self.kill(name, signal.SIGINT)
 
 
-SUCCEEDED, ABORTED = 4, 6  # action_msgs/GoalStatus
+SUCCEEDED, CANCELED, ABORTED = 4, 5, 6  # action_msgs/GoalStatus
 
 
 def error_code(result: Any) -> int | None:

@@ -66,7 +66,7 @@ TEST(EncodeFromScratch, ComputeVelocityCommandsRequest)
   ComputeVelocityCommandsRequest body;
   body.pose = pose("odom", 1.0, 2.0, 0.24740395925452294, 0.9689124217106447);
   body.velocity = {0.3, 0.0, 0.0, 0.0, 0.0, 0.1};
-  body.goal_checker = GoalChecker{0.25, 0.25, 0.25, 0.25};
+  body.goal_checker = GoalChecker{0.25, 0.25, 0.25, 0.25, std::nullopt};
   EXPECT_EQ(encode_request(request(body, 1234)),
     read_vector_bytes("compute_velocity_commands_request"));
 
@@ -216,7 +216,7 @@ TEST(Canonical, StrAndBinHeadersBySize)
 
   const auto poses_header = [](std::size_t poses) {
       const Path path{"map", 0, std::vector<double>(poses * kPoseRowSize, 1.0)};
-      const Bytes all = encode_request(request(SetPlanRequest{path}, 1));
+      const Bytes all = encode_request(request(SetPlanRequest{path, std::nullopt}, 1));
       const std::size_t header = poses * 56 < 256 ? 2 : poses * 56 < 65536 ? 3 : 5;
       const auto end = all.end() - static_cast<std::ptrdiff_t>(poses * 56);
       return Bytes(end - static_cast<std::ptrdiff_t>(header), end);
@@ -231,7 +231,7 @@ TEST(Canonical, StrAndBinHeadersBySize)
 TEST(Canonical, PackedPosesAreLittleEndianRows)
 {
   const Path path{"map", 0, {1.0, 2.0, 3.0, 0.0, 0.0, 0.0, 1.0}};
-  const Bytes all = encode_request(request(SetPlanRequest{path}, 1));
+  const Bytes all = encode_request(request(SetPlanRequest{path, std::nullopt}, 1));
   const Bytes x(all.end() - 56, all.end() - 48);
   EXPECT_EQ(x, (Bytes{0, 0, 0, 0, 0, 0, 0xf0, 0x3f}));  // 1.0, little-endian
   const Request back = decode_request(all);
@@ -252,7 +252,9 @@ std::string encode_outcome(const Request & r)
 
 TEST(EncodeErrors, PackedArraysMustHoldWholeRows)
 {
-  EXPECT_EQ(encode_outcome(request(SetPlanRequest{Path{"map", 0, std::vector<double>(8)}}, 1)),
+  EXPECT_EQ(
+    encode_outcome(
+      request(SetPlanRequest{Path{"map", 0, std::vector<double>(8)}, std::nullopt}, 1)),
     "set_plan request body.path.poses: 8 values is not a whole number of rows of 7");
 
   ConfigureRequest configure;

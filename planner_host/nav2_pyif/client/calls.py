@@ -13,6 +13,7 @@ class CallRecord:
     request_bytes: int
     ok: bool
     costmap_sent: bool = False
+    plugin: str = ""  # which plugin made it (the runner: its role, e.g. "planner")
 
     @property
     def transport_ns(self) -> int:

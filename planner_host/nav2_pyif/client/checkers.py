@@ -30,6 +30,17 @@ class GoalCheckerClient(PluginClient):
         reached: bool = self._call(Op.IS_GOAL_REACHED, body)["reached"]
         return reached
 
+    def is_goal_xy_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+        """Lyrical's isGoalXYReached: is_goal_reached with xy_only."""
+        body = {
+            "pose": pose7(pose),
+            "goal": pose7(goal),
+            "velocity": twist_to_list(velocity),
+            "xy_only": True,
+        }
+        reached: bool = self._call(Op.IS_GOAL_REACHED, body)["reached"]
+        return reached
+
     def get_tolerances(self) -> GoalChecker | None:
         return tolerances_from_wire(self._call(Op.GET_TOLERANCES, {}))
 
@@ -66,4 +77,4 @@ def tolerances_from_wire(body: dict[str, Any]) -> GoalChecker | None:
         return None
     pose, velocity = body["pose_tolerance"], body["velocity_tolerance"]
     yaw = 2.0 * math.atan2(pose[5], pose[6])
-    return GoalChecker(pose[0], yaw, velocity[0], velocity[5])
+    return GoalChecker(pose[0], yaw, velocity[0], velocity[5], body.get("path_length_tolerance"))

@@ -26,6 +26,10 @@ class ControllerClient(PluginClient):
         # The plan's set_plan failed on the host (not on its planner): sent before the next
         # cycle, or with the state a re-established session gets.
         self._plan_owed = False
+        # Lyrical (follow): the global goal, and which of plan and goal the host lacks
+        self._goal: dict[str, Any] | None = None
+        self._unsent: set[str] = set()
+        self._follows = False  # follow() called: no command is prepared for another query
         self._speed_limit: tuple[float, bool] | None = None
         #: the debug outputs the last cycle returned, name -> rclpy message
         self.debug: dict[str, Any] = {}
@@ -53,10 +57,36 @@ class ControllerClient(PluginClient):
             return exc
         return None
 
+    def follow(self, path: Plan | Any, goal: Any) -> None:
+        """Lyrical: the plan controller_server transformed for this cycle and its global goal
+        (PoseStamped), both in the costmap's global frame. Sends nothing: the next cycle
+        carries each when it changed since the host got it (stamps aside), as the C++ plugin's
+        ControllerSession::follow; a re-established session gets both with set_plan."""
+        self._follows = True
+        wire = (path if isinstance(path, Plan) else Plan.from_msg(path)).to_wire()
+        goal_wire = pose_to_wire(goal)
+        old_plan, old_goal = self._plan, self._goal
+        if old_plan is None or (old_plan["frame_id"], old_plan["poses"]) != (
+            wire["frame_id"],
+            wire["poses"],
+        ):
+            self._plan = wire
+            self._unsent.add("plan")
+        if old_goal is None or (old_goal["frame_id"], old_goal["pose"]) != (
+            goal_wire["frame_id"],
+            goal_wire["pose"],
+        ):
+            self._goal = goal_wire
+            self._unsent.add("goal")
+
     def _send_plan(self, *, allow_resync: bool = True) -> None:
         assert self._plan is not None
-        self._call(Op.SET_PLAN, {"path": self._plan}, allow_resync=allow_resync)
+        body = {"path": self._plan}
+        if self._goal is not None:
+            body["goal"] = self._goal
+        self._call(Op.SET_PLAN, body, allow_resync=allow_resync)
         self._plan_owed = False
+        self._unsent.clear()
 
     def compute_velocity_commands(
         self,
@@ -78,7 +108,14 @@ class ControllerClient(PluginClient):
         """The compute_velocity_commands call with ``body``; its reply body."""
         if self._plan_owed:
             self._send_plan()  # a host failure here fails this cycle, as the cycle's own would
-        return self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+        carried = self._unsent.copy()
+        if "plan" in carried:
+            body = dict(body, plan=self._plan)
+        if "goal" in carried:
+            body = dict(body, goal=self._goal)
+        reply = self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+        self._unsent -= carried
+        return reply
 
     @staticmethod
     def compute_body(
@@ -122,13 +159,17 @@ class ControllerClient(PluginClient):
 
     def cleanup(self) -> None:
         self._plan, self._speed_limit, self._plan_owed = None, None, False
+        self._goal, self._unsent, self._follows = None, set(), False
         super().cleanup()
 
     def _prepare(
         self, op: Op, body: dict[str, Any], *, with_costmap: bool = False
     ) -> Carried | None:
-        # A command prepared while the plan is owed would run on the host's old plan.
-        return None if self._plan_owed else super()._prepare(op, body, with_costmap=with_costmap)
+        # A command prepared while the plan is owed, or before Nav2 transformed the cycle's
+        # plan (Lyrical: after the goal check), would run on the host's old plan.
+        if self._plan_owed or self._follows:
+            return None
+        return super()._prepare(op, body, with_costmap=with_costmap)
 
     def _take(
         self,
@@ -139,7 +180,7 @@ class ControllerClient(PluginClient):
         with_costmap: bool = False,
     ) -> dict[str, Any] | None:
         # A plan that became owed (set_plan sent nothing: no host) is news to the host too.
-        if self._plan_owed:
+        if self._plan_owed or self._unsent:
             return None
         return super()._take(carried, reply_bytes, body, with_costmap=with_costmap)
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import zenoh
@@ -26,11 +26,20 @@ class GlobalPlannerClient(PluginClient):
         super().__init__(*args, **kwargs)
 
     def create_plan(
-        self, start: Any, goal: Any, cancel_checker: Callable[[], bool] | None = None
+        self,
+        start: Any,
+        goal: Any,
+        cancel_checker: Callable[[], bool] | None = None,
+        viapoints: Sequence[Any] = (),
     ) -> Plan:
         """PoseStamped start, goal -> Plan. While waiting, polls ``cancel_checker`` (as Nav2's
-        planner_server passes one) and forwards a cancellation to the host once."""
-        body = {"start": pose_to_wire(start), "goal": pose_to_wire(goal)}
+        planner_server passes one) and forwards a cancellation to the host once.
+        ``viapoints``: PoseStamped poses to pass through (Lyrical), in the start's frame."""
+        body: dict[str, Any] = {"start": pose_to_wire(start), "goal": pose_to_wire(goal)}
+        if viapoints:
+            frame = body["start"]["frame_id"]
+            rows = [pose_to_wire(p)["pose"] for p in viapoints]
+            body["viapoints"] = Plan(rows, frame, body["goal"]["stamp_ns"]).to_wire()
         wait = None
         if cancel_checker is not None:
 

@@ -95,12 +95,15 @@ class PluginClient:
         robot_base_frame: str = "base_link",
         timeouts: Timeouts | None = None,
         record_calls: bool = False,
+        nav2_params: dict[str, ParamValue] | None = None,
     ) -> None:
         self.session = session
         self.keys = KeySpace(key_prefix)
         self.name = name
         self.node = node
         self.params: dict[str, ParamValue] = dict(params or {})
+        # configure's nav2_params (controller_frequency, ...); the costmap's inflation joins
+        self.nav2_params: dict[str, ParamValue] = dict(nav2_params or {})
         self.global_frame = global_frame or costmap.frame_id
         self.robot_base_frame = robot_base_frame
         self.timeouts = timeouts or Timeouts()
@@ -180,7 +183,7 @@ class PluginClient:
         """Re-send what the planner was told since configure (plan, speed limit)."""
 
     def _configure_body(self) -> Body:
-        return {
+        body: Body = {
             "plugin_type": self.plugin_type.value,
             "name": self.name,
             "node": self.node,
@@ -189,6 +192,13 @@ class PluginClient:
             "robot_base_frame": self.robot_base_frame,
             "costmap": self.costmap.to_wire(),
         }
+        nav2 = dict(self.nav2_params)
+        if self.costmap.inflation is not None:  # as the C++ plugin reads the inflation layer
+            nav2.setdefault("inflation_radius", self.costmap.inflation.inflation_radius)
+            nav2.setdefault("cost_scaling_factor", self.costmap.inflation.cost_scaling_factor)
+        if nav2:
+            body["nav2_params"] = nav2
+        return body
 
     def _timeout(self, op: Op) -> float:
         timeout: float = getattr(self.timeouts, _TIMEOUT_FIELD[op])

@@ -8,6 +8,8 @@ import math
 import sys
 from pathlib import Path
 
+import numpy as np
+
 from nav2_pyif.common.host_process import HostExited
 from nav2_pyif.common.option_types import (
     endpoint,
@@ -18,6 +20,7 @@ from nav2_pyif.common.option_types import (
     positive_float,
     positive_int,
 )
+from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.runner.aliases import ALIASES
 from nav2_pyif.runner.laser import LaserSpec
@@ -46,19 +49,71 @@ def _reference_planners() -> str:
 EPILOG = f"""\
 planners (--controller, --planner) and Nav2's other plugins (--smoother,
 --goal-checker, --progress-checker, --layer): a reference one by name, or your
-own as package.module:ClassName. The reference ones:
+own as package.module:ClassName, package.module:function (that function as the
+role's main one: compute_velocity_commands for --controller, create_plan for
+--planner, ...) or package.module (its functions named after the roles: the
+function-delegate style). The reference ones:
 {_reference_planners()}
 
 examples:
   nav2-pyif sim                                     # office map, pure_pursuit + astar
   nav2-pyif sim --map cluttered --controller mppi
   nav2-pyif sim --map my_map.yaml --start 1 1 0 --goal 8 4 1.57 --controller my.mod:Ctl
+  nav2-pyif sim --controller my_functions            # compute_velocity_commands(costmap, ...)
+  nav2-pyif sim --controller my.mod:steer --planner my.mod:plan --plans 20
   nav2-pyif sim --connect tcp/127.0.0.1:7447        # use a planner host already running
   nav2-pyif sim --controller my.mod:ScanCtl --scan  # a simulated LaserScan as input 'scan'
   nav2-pyif sim --smoother simple_smoother --goal-checker stopped_goal_checker \\
       --progress-checker simple_progress_checker --layer keepout \\
       --layer-param "polygons=[[[4.5, 2.5], [5.5, 2.5], [5.5, 3.5], [4.5, 3.5]]]"
 """
+
+
+def simulator_facts() -> str:
+    """What the simulated Nav2 does that a planner must know, from the runner's own
+    defaults (SimConfig), for --help and the docs."""
+    d = SimConfig(map=Path("."))
+    xs, ys = zip(*d.footprint, strict=True)
+    robot = Costmap(
+        np.zeros((1, 1), np.uint8),
+        1.0,
+        footprint=d.footprint,
+        inflation=Inflation(d.inflation_radius, d.cost_scaling_factor),
+    )
+    g, size = d.goal_checker, f"{d.local_costmap_size:g} m"
+    lines = [
+        "what the simulated Nav2 does (by Nav2's parameter names):",
+        f"  robot: differential drive, footprint {max(xs) - min(xs):g} m x "
+        f"{max(ys) - min(ys):g} m (inscribed radius {robot.inscribed_radius:g} m,",
+        f"    circumscribed {robot.circumscribed_radius:.3f} m)",
+        "  global costmap (the planner's): the whole map, static + inflation layers",
+        f"    (inflation_radius {d.inflation_radius:g} m, cost_scaling_factor "
+        f"{d.cost_scaling_factor:g}: Costmap.inflation); a cell",
+        f"    costing less than circumscribed_cost() = {robot.circumscribed_cost()} cannot "
+        "touch the robot at any heading",
+        f"  controller's costmap: a {size} x {size} rolling window about the robot, updated "
+        f"at {d.local_costmap_rate:g} Hz",
+        "  control: --rate Hz; the controller's control_period is 1 / --rate (Nav2's",
+        "    controller_frequency); each cycle waits --call-timeout for the reply; failing",
+        f"    cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end the run "
+        "(failure_tolerance)",
+        f"  goal check (SimpleGoalChecker): within {g.xy_goal_tolerance:g} m of the goal AND "
+        f"{g.yaw_goal_tolerance:g} rad of its heading:",
+        "    a position-only controller must turn on the spot at the end (or use",
+        "    --goal-checker); controllers get these tolerances as goal_checker",
+    ]
+    return "\n".join(lines) + "\n"
+
+
+class _HelpFormatter(argparse.RawDescriptionHelpFormatter, argparse.ArgumentDefaultsHelpFormatter):
+    """The epilog as written, and every option's default (but flags', and None: an option
+    whose help says what happens without it)."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        if action.default in (None, False, [], argparse.SUPPRESS) or "%(default)" in text:
+            return text
+        return text + " (default: %(default)s)"
 
 
 #: The runner's flags for Nav2's other plugins (extras.KEYS' roles), what each does.
@@ -79,8 +134,8 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         description="Plan with a global planner and drive a simulated differential-drive "
         "robot with a controller, both served by a planner host over Zenoh "
         "(the path Nav2 uses). Writes a PNG and a JSON record.",
-        epilog=EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=EPILOG + "\n" + simulator_facts(),
+        formatter_class=_HelpFormatter,
     )
     p.add_argument(
         "--map",
@@ -89,10 +144,11 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     )
     p.add_argument(
         "--controller",
-        help=f"default: {DEFAULTS['controller']}; with --connect, what the host serves",
+        help=f"{DEFAULTS['controller']} when not given; with --connect, what the host serves",
     )
     p.add_argument(
-        "--planner", help=f"default: {DEFAULTS['planner']}; with --connect, what the host serves"
+        "--planner",
+        help=f"{DEFAULTS['planner']} when not given; with --connect, what the host serves",
     )
     p.add_argument(
         "--start",
@@ -109,14 +165,17 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         help="goal pose [m, m, rad] (default: the map's task)",
     )
     p.add_argument(
-        "--rate", type=positive_float, default=20.0, help="control rate [Hz], > 0 (default 20)"
+        "--rate",
+        type=positive_float,
+        default=20.0,
+        help="control rate [Hz] (controller_frequency), > 0",
     )
     p.add_argument(
         "--timeout",
         type=positive_float,
         default=180.0,
         metavar="SECONDS",
-        help="simulated seconds before the run ends NOT REACHED, > 0 (default 180)",
+        help="simulated seconds before the run ends NOT REACHED, > 0",
     )
     p.add_argument("--realtime", action="store_true", help="pace to wall-clock time")
     p.add_argument(
@@ -124,7 +183,7 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         type=positive_float,
         default=0.25,
         metavar="SECONDS",
-        help="seconds to wait for each control cycle's reply, > 0 (default 0.25)",
+        help="seconds to wait for each control cycle's reply (the plugin's timeout), > 0",
     )
     p.add_argument(
         "--param",
@@ -156,14 +215,23 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         default=3,
         metavar="N",
         help="with --recovery: how many recoveries the run may make before the controller's "
-        "failure ends it (default 3)",
+        "failure ends it",
+    )
+    p.add_argument(
+        "--plans",
+        type=positive_int,
+        default=1,
+        metavar="N",
+        help="call create_plan N times from the start to the goal before driving, each timed "
+        "(the latency table's create_plan row: median and p99 of N; failures in a row of "
+        "their own), with a progress bar; the first plan is driven",
     )
     p.add_argument(
         "--smoother-max-time",
         type=positive_float,
         default=1.0,
         metavar="SECONDS",
-        help="the smoother's time budget (smoother_server's max_smoothing_duration; default 1)",
+        help="the smoother's time budget (smoother_server's max_smoothing_duration)",
     )
     p.add_argument(
         "--path",
@@ -186,13 +254,13 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "--controller-key",
         default=CONTROLLER_KEY,
         metavar="PREFIX",
-        help=f"with --connect: the controller's key (default {CONTROLLER_KEY})",
+        help="with --connect: the controller's key",
     )
     p.add_argument(
         "--planner-key",
         default=PLANNER_KEY,
         metavar="PREFIX",
-        help=f"with --connect: the global planner's key (default {PLANNER_KEY})",
+        help="with --connect: the global planner's key",
     )
     p.add_argument(
         "--wait",
@@ -200,7 +268,7 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         default=10.0,
         metavar="SECONDS",
         help="with --connect: how long to wait for a router at ENDPOINT, then for a host on "
-        "each key (default 10)",
+        "each key",
     )
     p.add_argument(
         "--scan",
@@ -209,30 +277,32 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "'scan' (a sensor_msgs/LaserScan, as the plugin's inputs parameter ships a topic)",
     )
     p.add_argument(
-        "--scan-beams", type=positive_int, default=360, help="beams over a full turn, >= 1 (360)"
+        "--scan-beams", type=positive_int, default=360, help="beams over a full turn, >= 1"
     )
     p.add_argument(
         "--scan-range",
         type=number(float, above=LaserSpec.range_min),
         default=8.0,
-        help=f"range_max [m], > range_min {LaserSpec.range_min:g} (8)",
+        help=f"range_max [m], > range_min {LaserSpec.range_min:g}",
     )
     p.add_argument(
-        "--scan-noise", type=non_negative_float, default=0.01, help="noise std dev [m], >= 0 (0.01)"
+        "--scan-noise", type=non_negative_float, default=0.01, help="noise std dev [m], >= 0"
     )
-    p.add_argument(
-        "--scan-rate", type=positive_float, default=20.0, help="scans per second, > 0 (20)"
-    )
+    p.add_argument("--scan-rate", type=positive_float, default=20.0, help="scans per second, > 0")
     p.add_argument(
         "--debug-every",
         type=non_negative_float,
         default=0.5,
         metavar="SECONDS",
         help="ask for the controller's debug outputs (and draw them) every SECONDS of "
-        "simulated time; 0: never (default 0.5)",
+        "simulated time; 0: never",
     )
     p.add_argument("--out", type=Path, default=Path("out"), help="output directory")
-    p.add_argument("--name", help="file name stem (default: MAP_CONTROLLER)")
+    p.add_argument(
+        "--name",
+        help="file name stem; without it MAP_CONTROLLER, then the planner when not astar "
+        "and each other plugin (runs with different planners do not overwrite each other)",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run_command)
 
@@ -302,6 +372,7 @@ def run_command(args: argparse.Namespace) -> int:
             plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
             smoother_max_time=args.smoother_max_time,
             max_recoveries=args.max_recoveries,
+            plans=args.plans,
             sensing=sensing_config(args),
         )
         result = run_sim(config)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import numpy.typing as npt
 
-from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.runner.mapfile import OCCUPIED, UNKNOWN, OccupancyMap
 
 
@@ -95,7 +95,9 @@ def inflation_layer(
     unknown = master.data == Costmap.NO_INFORMATION
     merged = np.where(unknown & (costs == 0), master.data, np.maximum(costs, master.data))
     merged[unknown & (costs > 0)] = costs[unknown & (costs > 0)]
-    return master.with_costs(merged.astype(np.uint8))
+    inflated = master.with_costs(merged.astype(np.uint8))
+    inflated.inflation = Inflation(inflation_radius, cost_scaling_factor)  # what Nav2's says
+    return inflated
 
 
 def window(costmap: Costmap, x: float, y: float, size_m: float, version: int) -> Costmap:
@@ -118,4 +120,5 @@ def window(costmap: Costmap, x: float, y: float, size_m: float, version: int) ->
         footprint=costmap.footprint,
         robot_radius=costmap.robot_radius,
         version=version,
+        inflation=costmap.inflation,
     )

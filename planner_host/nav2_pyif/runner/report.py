@@ -9,27 +9,32 @@ from typing import Any
 
 import numpy as np
 
+from nav2_pyif.client.calls import CallRecord
+from nav2_pyif.geometry import path_length
 from nav2_pyif.runner.robot import CLEARANCE_REACH
 from nav2_pyif.runner.run import CONTROLLER_FAILED, SimResult
 
+#: Ops every plugin makes: their rows are per plugin ("configure (planner)").
+SHARED_OPS = frozenset({"configure", "activate", "deactivate", "cleanup", "set_parameters"})
+
+
+def _label(r: CallRecord) -> str:
+    """The latency table's row of a call: its op, per plugin for the ops every plugin makes,
+    apart when it carried the costmap or failed."""
+    label = f"{r.op} ({r.plugin})" if r.op in SHARED_OPS and r.plugin else r.op
+    if r.costmap_sent and r.op == "compute_velocity_commands":
+        label += " +costmap"
+    return label if r.ok else f"{label} FAILED"
+
 
 def latency_rows(result: SimResult) -> list[dict[str, Any]]:
-    """Per op: calls, round trip / host compute / transport (= round trip - compute), in µs."""
+    """Per row (``_label``): calls, round trip / host compute / transport (= round trip -
+    compute), in µs; failed calls (an error reply, or none in time) have rows of their own."""
     rows = []
-    groups = dict.fromkeys(
-        (r.op, r.costmap_sent and r.op == "compute_velocity_commands") for r in result.records
-    )
-    for op, with_costmap in groups:
-        records = [
-            r
-            for r in result.records
-            if r.op == op
-            and r.ok
-            and (r.costmap_sent and op == "compute_velocity_commands") == with_costmap
-        ]
-        if not records:
-            continue
-        label = f"{op} +costmap" if with_costmap else op
+    groups: dict[str, list[CallRecord]] = {}
+    for r in result.records:
+        groups.setdefault(_label(r), []).append(r)
+    for label, records in groups.items():
         total = np.array([r.total_ns for r in records]) / 1000.0
         compute = np.array([r.compute_ns for r in records]) / 1000.0
         transport = np.array([r.transport_ns for r in records]) / 1000.0
@@ -69,6 +74,8 @@ def summary(result: SimResult) -> dict[str, Any]:
         "cycles": result.cycles,
         "control_rate_hz": c.rate,
         "plan_length_m": round(result.path_length, 3),
+        "plans": c.plans,
+        "failed_plans": result.failed_plans,
         "driven_distance_m": round(result.driven_distance, 3),
         # None: no step driven, nothing measured (JSON has no infinity)
         "min_clearance_m": (
@@ -79,7 +86,7 @@ def summary(result: SimResult) -> dict[str, Any]:
         "plugins": {role: result.name_of(role) for role in c.plugins},
         "carried_calls": list(result.carried),
         "layer_cells": int(result.layer.cells.sum()) if result.layer is not None else 0,
-        "raw_plan_length_m": round(_length(result.raw_plan), 3),
+        "raw_plan_length_m": round(path_length(result.raw_plan), 3),
         "scans": result.scans,
         "debug_outputs": _debug_counts(result),
         "recoveries": [
@@ -111,13 +118,6 @@ def _sensing_line(result: SimResult, s: dict[str, Any]) -> list[str]:
         kept = ", ".join(f"{name} x{n}" for name, n in s["debug_outputs"].items())
         lines.append(f"  debug outputs drawn: {kept}")
     return lines
-
-
-def _length(plan: Any) -> float:
-    if plan is None or len(plan) < 2:
-        return 0.0
-    d = np.diff(plan[:, :2], axis=0)
-    return float(np.hypot(d[:, 0], d[:, 1]).sum())
 
 
 def _plugins_line(s: dict[str, Any]) -> list[str]:
@@ -173,6 +173,17 @@ def _recoveries_line(result: SimResult, s: dict[str, Any]) -> list[str]:
     return [f"  recoveries by {result.name_of('recovery')}: {len(s['recoveries'])} ({runs})"]
 
 
+def _plans_line(s: dict[str, Any]) -> list[str]:
+    """With --plans N: how many create_plan calls were timed (rows create_plan and, for
+    those that raised, create_plan FAILED)."""
+    if s["plans"] <= 1:
+        return []
+    return [
+        f"  create_plan timed {s['plans']} times ({s['failed_plans']} failed); the first "
+        "plan was driven"
+    ]
+
+
 def format_report(result: SimResult) -> str:
     s = summary(result)
     # The planner's own traceback first (the error that ended the run), then what happened.
@@ -189,15 +200,19 @@ def format_report(result: SimResult) -> str:
         *_plugins_line(s),
         *_sensing_line(result, s),
         *_recoveries_line(result, s),
+        *_plans_line(s),
         "",
-        "latency per call (µs)                  calls   round trip         host compute       "
-        "transport",
-        "                                                median     p99     median     p99     "
-        "median     p99",
     ]
-    for r in latency_rows(result):
+    rows = latency_rows(result)
+    width = max([36, *(len(r["op"]) + 1 for r in rows)])
+    lines += [
+        f"{'latency per call (µs)':<{width + 3}}calls   round trip         host compute       "
+        "transport",
+        f"{'':<{width + 12}}median     p99     median     p99     median     p99",
+    ]
+    for r in rows:
         lines.append(
-            f"  {r['op']:<36}{r['calls']:>6} {r['round_trip_median_us']:>8.0f} "
+            f"  {r['op']:<{width}}{r['calls']:>6} {r['round_trip_median_us']:>8.0f} "
             f"{r['round_trip_p99_us']:>7.0f}   {r['compute_median_us']:>8.0f} "
             f"{r['compute_p99_us']:>7.0f}   {r['transport_median_us']:>8.0f} "
             f"{r['transport_p99_us']:>7.0f}"

@@ -5,11 +5,12 @@ reference client: the very protocol and path the Nav2 plugins use."""
 from __future__ import annotations
 
 import contextlib
+import importlib.machinery
 import logging
 import math
 import sys
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -32,6 +33,7 @@ from nav2_pyif.common.signals import Interrupted
 from nav2_pyif.common.zenoh_config import ZenohOptions, connect_to
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.geometry import path_length
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import ALIASES
@@ -103,6 +105,7 @@ class SimConfig:
     plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
     smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
     max_recoveries: int = 3  # with a recovery behaviour: how many the run may make
+    plans: int = 1  # create_plan calls before driving, each timed (the first plan is driven)
     # the simulated laser fed to the controller as input "scan", and the debug outputs kept
     sensing: SensingConfig = field(default_factory=SensingConfig)
 
@@ -141,17 +144,15 @@ class SimResult:
     debug: list[DebugLines] = field(default_factory=list)  # the controller's, every few cycles
     scans: int = 0  # simulated scans sent to the controller
     recoveries: list[Recovery] = field(default_factory=list)  # the recovery behaviour's runs
+    failed_plans: int = 0  # create_plan calls that raised (of config.plans)
 
     @property
     def path_length(self) -> float:
-        d = np.diff(self.plan[:, :2], axis=0)
-        return float(np.hypot(d[:, 0], d[:, 1]).sum()) if len(d) else 0.0
+        return path_length(self.plan)
 
     @property
     def driven_distance(self) -> float:
-        t = np.array([p[1:3] for p in self.trajectory]) if self.trajectory else np.zeros((0, 2))
-        d = np.diff(t, axis=0)
-        return float(np.hypot(d[:, 0], d[:, 1]).sum()) if len(d) else 0.0
+        return path_length([p[1:3] for p in self.trajectory])
 
     @property
     def cycles(self) -> int:
@@ -188,18 +189,46 @@ def short_name(spec: str) -> str:
     return next((alias for alias, t in ALIASES.items() if t == target), target)
 
 
-def planner_entry(key: str, spec: str) -> dict[str, Any]:
-    """A host config entry for a planner name: a reference alias, ``module:Class``, or the
-    APF module (function-delegate style)."""
+#: The main role (the function-delegate style's) of each role the runner serves.
+MAIN_ROLE = {
+    "controller": "compute_velocity_commands",
+    "planner": "create_plan",
+    "smoother": "smooth",
+    "goal_checker": "is_goal_reached",
+    "progress_checker": "check",
+    "layer": "update_costs",
+}
+
+
+def planner_entry(
+    key: str, spec: str, role: str = "controller", search: list[str] | None = None
+) -> dict[str, Any]:
+    """A host config entry for what serves ``role`` ("controller", "planner", ...): a
+    reference alias, ``module:Class``, ``module:function`` (that function as the role's main
+    one, the module's others by name) or a module of functions named after the roles (the
+    function-delegate style). The host imports it: this process only checks that a module
+    named without ``:`` is found on ``search`` (default: sys.path), so a misspelt name is
+    refused here with the names the runner knows."""
     resolved = ALIASES.get(spec, spec)
-    if spec in ALIASES and ":" not in resolved:  # a reference module of functions (the APF)
-        return {"key": key, "module": resolved}
-    if ":" not in resolved:
+    top = resolved.partition(":")[0].split(".")[0]
+    module_found = ":" in resolved or (
+        top.isidentifier()
+        and importlib.machinery.PathFinder.find_spec(top, [*(search or []), *sys.path]) is not None
+    )
+    if not module_found or resolved.startswith(":") or resolved.endswith(":"):
         raise SimError(
-            f"unknown planner {spec!r}: give one of {', '.join(ALIASES)} "
-            "or package.module:ClassName"
+            f"unknown planner {spec!r}: give one of {', '.join(ALIASES)}, "
+            "package.module:ClassName, package.module:function, or a module of functions "
+            "named after the roles (found in the current directory or with --path)"
         )
-    return {"key": key, "planner": resolved}
+    entry: dict[str, Any] = {"key": key}
+    if ":" in resolved:
+        entry["planner"] = resolved
+    else:
+        entry["module"] = resolved
+    if role in MAIN_ROLE:
+        entry["kind"] = MAIN_ROLE[role]
+    return entry
 
 
 def import_path(config: SimConfig) -> list[str]:
@@ -253,8 +282,9 @@ def prepare(config: SimConfig) -> SimResult:
 
 def inflated(config: SimConfig, master: Costmap) -> Costmap:
     """The master grid after Nav2's inflation layer, for the run's robot."""
-    inscribed = float(np.min(np.abs(np.array(config.footprint)).max(axis=0)))  # half its width
-    return inflation_layer(master, inscribed, config.inflation_radius, config.cost_scaling_factor)
+    return inflation_layer(
+        master, master.inscribed_radius, config.inflation_radius, config.cost_scaling_factor
+    )
 
 
 def run_sim(config: SimConfig) -> SimResult:
@@ -262,10 +292,12 @@ def run_sim(config: SimConfig) -> SimResult:
     terminating signal (``nav2_pyif.common.signals``) stops the run: the host is stopped and
     RunInterrupted carries the result so far."""
     result = prepare(config)
+    # where the host will look: --path, the current directory (its own sys.path[0]), ours
+    search = [str(Path(d).resolve()) for d in config.path] + [str(Path.cwd())]
     entries = [
-        planner_entry(config.controller_key, config.spec("controller")),
-        planner_entry(config.planner_key, config.spec("planner")),
-        *(planner_entry(KEYS[role], spec) for role, spec in config.plugins.items()),
+        planner_entry(config.controller_key, config.spec("controller"), "controller", search),
+        planner_entry(config.planner_key, config.spec("planner"), "planner", search),
+        *(planner_entry(KEYS[role], spec, role, search) for role, spec in config.plugins.items()),
     ]
     started = time.perf_counter()
     try:
@@ -301,7 +333,7 @@ def run_sim(config: SimConfig) -> SimResult:
 def _drive(
     config: SimConfig, result: SimResult, session: zenoh.Session, host: PlannerHostProcess | None
 ) -> None:
-    start, goal, costmap = result.start, result.goal, result.global_costmap
+    start, costmap = result.start, result.global_costmap
     timeouts = Timeouts(call=config.call_timeout, lifecycle=10.0, configure=60.0, plan=60.0)
     planner = GlobalPlannerClient(
         session,
@@ -319,6 +351,7 @@ def _drive(
         timeouts=timeouts,
         params=config.controller_params,
         record_calls=True,
+        nav2_params={"controller_frequency": config.rate},  # the control period's source
     )
     extras_started = extra_clients(session, config.plugins, config.plugin_params, costmap, timeouts)
     try:
@@ -340,12 +373,15 @@ def _drive(
             except _Ended:
                 return
             finally:
-                result.records = [r for client in roles.values() for r in client.records or []]
+                result.records = _records(roles)
             _note_served(
                 config, result, {"planner": planner.served, "controller": controller.served}
             )
             try:
-                plan = planner.create_plan(pose_msg(*start), pose_msg(*goal))
+                try:
+                    plan = _create_plans(config, result, planner)
+                finally:
+                    result.records = _records(roles)
                 result.plan = plan.xy_yaw.copy()
                 if extras.smoother is not None:
                     result.raw_plan = result.plan
@@ -373,7 +409,7 @@ def _drive(
                 _control_loop(config, result, calls, local_version)
             finally:
                 result.carried = calls.carried
-                result.records = [r for client in roles.values() for r in client.records or []]
+                result.records = _records(roles)
             sim_times = [row[0] for row in result.trajectory]
             result.swaps = swaps_during(session, roles, driving_since, result.clock, sim_times)
             for role, client in reversed(roles.items()):
@@ -391,6 +427,36 @@ def _drive(
     finally:
         planner.close()
         controller.close()
+
+
+def _records(roles: dict[str, PluginClient]) -> list[CallRecord]:
+    """Every client's calls, each tagged with its role (the latency table's rows per plugin)."""
+    return [replace(r, plugin=role) for role, c in roles.items() for r in c.records or []]
+
+
+def _create_plans(config: SimConfig, result: SimResult, planner: GlobalPlannerClient) -> Any:
+    """``config.plans`` create_plan calls from the start to the goal, each timed in the
+    latency table (failed ones in a row of their own): the first plan that came back, else
+    the last call's error."""
+    bar = _progress_bar(config.progress, config.plans, "plans") if config.plans > 1 else _NoBar()
+    first, error = None, None
+    try:
+        for _ in range(config.plans):
+            try:
+                plan = planner.create_plan(pose_msg(*result.start), pose_msg(*result.goal))
+                first = plan if first is None else first
+            except Nav2Error as exc:
+                result.failed_plans += 1
+                error = exc
+            bar.update(1)
+    finally:
+        bar.close()
+    if first is None:
+        assert error is not None
+        raise error
+    if config.plans > 1:
+        log.info("%d plans timed (%d failed)", config.plans, result.failed_plans)
+    return first
 
 
 def _keep_host_log(result: SimResult, host: PlannerHostProcess, follower: HostLogFollower) -> None:
@@ -524,16 +590,18 @@ class _NoBar:
         pass
 
 
-def _progress_bar(config: SimConfig) -> Any:
+def _progress_bar(show: bool, total: float, unit: str = "sim s") -> Any:
     """tqdm's bar on stderr when progress is shown, else one that does nothing: tqdm belongs
     to the runner extra (runner/needs.py), so nav2_pyif.testing and the host run without it."""
-    if not config.progress:
+    if not show:
         return _NoBar()
     from tqdm import tqdm
 
+    if unit != "sim s":
+        return tqdm(total=total, unit=unit, desc=f"timing {unit}")
     return tqdm(
-        total=round(config.timeout, 1),
-        unit="sim s",
+        total=round(total, 1),
+        unit=unit,
         bar_format="{l_bar}{bar}| {n:.1f}/{total:.0f} sim s [{elapsed}] {postfix}",
     )
 
@@ -551,7 +619,7 @@ def _control_loop(
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
     failure_traceback = ""  # the latest planner traceback since the controller began failing
-    bar = _progress_bar(config)
+    bar = _progress_bar(config.progress, config.timeout)
     wall_start = time.perf_counter()
     cycle = 0
     try:

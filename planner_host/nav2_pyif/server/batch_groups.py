@@ -75,13 +75,13 @@ def start_all(
     alone: list[int] = []
     for i, spec in enumerate(specs):
         if spec.batch or args.batch:
-            what = (spec.planner, spec.module, tuple(sorted(spec.delegates.items())))
+            what = (spec.planner, spec.module, tuple(sorted(spec.delegates.items())), spec.kind)
             groups.setdefault(what, []).append(i)
         else:
             alone.append(i)
     heads = [
         PlannerSpec(group_key(specs[m[0]]), specs[m[0]].planner, specs[m[0]].module,
-                    dict(specs[m[0]].delegates), batch=True)
+                    dict(specs[m[0]].delegates), specs[m[0]].kind, batch=True)
         for m in groups.values()
     ]  # fmt: skip
     services: list[PlannerService | None] = [None] * len(specs)

@@ -27,7 +27,7 @@ from nav2_pyif.common.zenoh_config import (
     options_from_args,
 )
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.roles import check_roles, parse_delegates
+from nav2_pyif.roles import KIND_ROLES, check_roles, parse_delegates
 from nav2_pyif.ros_types import check_serialization_rmw
 from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_arguments, start_all
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
@@ -50,12 +50,17 @@ examples:
   # ... or functions named after the roles (compute_velocity_commands, set_plan, ...)
   planner-host --key nav2_pyif/robot1/FollowPath --module my_pkg.apf
 
+  # ... or one named after its main role, the others beside it by name
+  planner-host --key nav2_pyif/robot1/FollowPath \\
+      --planner my_pkg.apf:compute_velocity_commands
+
   # several planners on one host, no Zenoh router: plugins connect to this host
   planner-host --listen tcp/127.0.0.1:7447 \\
       --serve nav2_pyif/robot1/FollowPath=my_pkg.ctrl:MyController \\
       --serve nav2_pyif/robot1/GridBased=my_pkg.astar:AStar
 
   # from a YAML file: planners: [{key: K, planner: M:C}, {key: K, module: M, delegates: {..}}]
+  # ({key: K, planner: M:function, kind: compute_velocity_commands}: a function as that role)
   planner-host --config planners.yaml
 
   # one worker for a fleet's controllers, their control cycles batched (window 5 ms)
@@ -92,7 +97,8 @@ def build_parser() -> argparse.ArgumentParser:
     what.add_argument(
         "--planner",
         metavar="MODULE:CLASS",
-        help=f"a {PLUGIN_BASES_TEXT} subclass, e.g. my_pkg.ctrl:MyController",
+        help=f"a {PLUGIN_BASES_TEXT} subclass, e.g. my_pkg.ctrl:MyController; or "
+        "MODULE:FUNCTION named after its main role (e.g. my_pkg.apf:compute_velocity_commands)",
     )
     what.add_argument(
         "--module", metavar="MODULE", help="module of plain functions (the plugin's python_module)"
@@ -248,8 +254,13 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
                 f"{path}: planners[{i}].delegates must map roles to functions, e.g. "
                 "{compute_velocity_commands: compute}"
             )
+        kind = entry.get("kind")
         try:
             check_roles(delegates)
+            if kind is not None and kind not in KIND_ROLES:
+                raise PlannerLoadError(
+                    f"kind {kind!r} is not a main role; main roles: {', '.join(KIND_ROLES)}"
+                )
         except PlannerLoadError as exc:
             raise PlannerLoadError(f"{path}: planners[{i}]: {exc}") from None
         specs.append(
@@ -258,6 +269,7 @@ def specs_from_yaml(path: Path) -> list[PlannerSpec]:
                 entry.get("planner"),
                 entry.get("module"),
                 {str(k): str(v) for k, v in delegates.items()},
+                kind,
                 batch=entry.get("batch") is True,
             )
         )

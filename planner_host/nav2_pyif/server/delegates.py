@@ -7,6 +7,10 @@ Without ``--delegate``, the module's functions named after the roles are bound (
 defining ``compute_velocity_commands`` and ``set_plan`` needs no map). Each role left without a
 function is logged as a warning saying what Nav2's call then does.
 
+``module:function`` (``nav2-pyif sim --controller my_pkg.ctl:steer``) binds ``function`` to
+the main role of the plugin kind it is served as, and the module's other functions named after
+that kind's roles.
+
 Signatures (a function that reads the costmap gets it as its first argument):
     compute_velocity_commands(costmap: Costmap, pose: PoseStamped, twist: Twist) -> TwistStamped
     set_plan(plan: Plan)                      # reads like nav_msgs/Path
@@ -20,10 +24,17 @@ Signatures (a function that reads the costmap gets it as its first argument):
     update_bounds(robot_x, robot_y, robot_yaw, bounds) -> bounds; match_size(size_x, size_y,
     resolution, origin_x, origin_y)
     configure(params: Parameters); activate(); deactivate(); cleanup(); reset(); cancel() -> bool
+
+Keyword arguments a function gets when its signature names them (or takes ``**kwargs``):
+    compute_velocity_commands: goal_checker (GoalChecker: the goal's tolerances, or None),
+        plan (the latest Plan, or None: no set_plan function needed), control_period
+        ([s] the controller server's period, 1 / controller_frequency, or None)
+    create_plan: cancel_checker (a callable returning True once Nav2 cancels)
 """
 
 from __future__ import annotations
 
+import inspect
 import logging
 from collections.abc import Callable, Mapping
 from typing import Any, TypeVar
@@ -43,9 +54,9 @@ from nav2_pyif.smoother import Smoother
 
 #: What Nav2's call does when a role has no function (logged as a warning at load).
 WITHOUT_DELEGATE = {
-    "set_plan": "Nav2's global plan is kept in the controller's self.plan, but no function of "
-    "yours receives it: compute_velocity_commands(costmap, pose, twist) has no plan to follow "
-    "(delegate set_plan=FUNCTION(plan) and keep it, as nav2_pyif_planners.apf does)",
+    "set_plan": "Nav2's global plan reaches your functions only as compute_velocity_commands' "
+    "plan= keyword argument (or delegate set_plan=FUNCTION(plan) and keep it, as "
+    "nav2_pyif_planners.apf does)",
     "set_speed_limit": "Nav2's speed limits (speed filter zones) never reach your functions",
     "cancel": "a cancel is answered at once as done",
     "reset": "Nav2's reset between goals does nothing",
@@ -65,26 +76,72 @@ P = TypeVar("P", bound=PlannerPlugin)
 
 
 def delegate_class(
-    module_name: str, delegates: Mapping[str, str], *, reload: bool = False, quiet: bool = False
+    module_name: str,
+    delegates: Mapping[str, str],
+    *,
+    kind: str | None = None,
+    reload: bool = False,
+    quiet: bool = False,
 ) -> type[PlannerPlugin]:
-    """Build a plugin class (a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin or
-    ProgressCheckerPlugin) whose methods call the module's functions:
-    those ``delegates`` maps roles to, or (no map) those named after the roles. Logs a
-    warning for each role left without a function, unless ``quiet`` (a worker restart)."""
+    """Build a plugin class (a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin,
+    ProgressCheckerPlugin or CostmapLayer) whose methods call the module's functions:
+    those ``delegates`` maps roles to, or (no map) those named after the roles. ``kind``: the
+    main role it is served as (``compute_velocity_commands`` for a controller, ...), when the
+    caller knows it: the module must be of that kind. Logs, at INFO, what it bound and each
+    role left to its default, unless ``quiet`` (a worker restart)."""
     check_roles(delegates)
+    if kind is not None and kind not in KIND_ROLES:
+        raise PlannerLoadError(f"{kind!r} is not a main role; main roles: {', '.join(KIND_ROLES)}")
     module = import_module(module_name, reload=reload)
     if not delegates:
-        delegates = {r: r for r in sorted(ALL_ROLES) if callable(getattr(module, r, None))}
+        named = KIND_ROLES[kind] | LIFECYCLE_ROLES if kind else ALL_ROLES
+        delegates = {r: r for r in sorted(named) if callable(getattr(module, r, None))}
         if not set(KIND_ROLES) & set(delegates):
             raise PlannerLoadError(
-                f"module {module_name!r} defines none of compute_velocity_commands (a "
-                "controller), create_plan (a global planner), smooth (a smoother), "
-                "is_goal_reached (a goal checker), check (a progress checker) or update_costs "
-                "(a costmap layer); name your functions after the roles or map them with "
-                "--delegate ROLE=FUNCTION"
+                f"module {module_name!r} defines "
+                + (
+                    f"no function {kind}"
+                    if kind
+                    else "none of compute_velocity_commands (a controller), create_plan (a "
+                    "global planner), smooth (a smoother), is_goal_reached (a goal checker), "
+                    "check (a progress checker) or update_costs (a costmap layer)"
+                )
+                + "; name your functions after the roles, map them with --delegate "
+                "ROLE=FUNCTION, or name the main one as module:function"
             )
         if not quiet:
             log.info("%s: functions bound by name: %s", module_name, ", ".join(delegates))
+    return _bind(module_name, module, dict(delegates), kind, quiet)
+
+
+def function_class(
+    module_name: str, function: str, kind: str | None, *, reload: bool = False, quiet: bool = False
+) -> type[PlannerPlugin]:
+    """``module:function``: ``function`` as the main role ``kind`` (by default the role it is
+    named after), the module's other functions named after that kind's roles beside it."""
+    kind = kind or (function if function in KIND_ROLES else None)
+    if kind is None:
+        raise PlannerLoadError(
+            f"{module_name}:{function} is a function, but which role it plays is not known: "
+            f"serve it as a controller or a planner (nav2-pyif sim --controller / --planner), "
+            f"or with planner-host --module {module_name} --delegate ROLE={function} (main "
+            f"roles: {', '.join(KIND_ROLES)})"
+        )
+    module = import_module(module_name, reload=reload)
+    roles = (KIND_ROLES[kind] - {kind}) | LIFECYCLE_ROLES
+    delegates = {r: r for r in sorted(roles) if callable(getattr(module, r, None))}
+    delegates[kind] = function
+    if not quiet:
+        others = ", ".join(sorted(set(delegates) - {kind}))
+        log.info(
+            "%s: %s bound to %s%s", module_name, function, kind, others and f"; by name: {others}"
+        )
+    return _bind(module_name, module, delegates, kind, quiet)
+
+
+def _bind(
+    module_name: str, module: Any, delegates: dict[str, str], kind: str | None, quiet: bool
+) -> type[PlannerPlugin]:
     kinds = sorted(set(KIND_ROLES) & set(delegates))
     if len(kinds) != 1:
         raise PlannerLoadError(
@@ -92,6 +149,11 @@ def delegate_class(
             "create_plan (a global planner), smooth (a smoother), is_goal_reached (a goal "
             "checker), check (a progress checker) or update_costs (a costmap layer); got "
             f"{', '.join(kinds) or 'none'}"
+        )
+    if kind is not None and kinds[0] != kind:
+        raise PlannerLoadError(
+            f"module {module_name!r} has {kinds[0]}, not {kind}: it is served where a plugin "
+            f"with {kind} is wanted"
         )
     kind = kinds[0]
     funcs: dict[str, Callable[..., Any]] = {}
@@ -103,17 +165,25 @@ def delegate_class(
             )
         funcs[role] = func
     roles = (KIND_ROLES[kind] - {kind}) | LIFECYCLE_ROLES
-    # Nav2's checkers are only initialized (= configure): no warning for the other three.
-    lifecycle = (
-        {"configure"} if kind in ("is_goal_reached", "check", "update_costs") else LIFECYCLE_ROLES
-    )
-    for role in [] if quiet else sorted((roles & (lifecycle | KIND_ROLES[kind])) - set(funcs)):
-        log.warning("%s: %s has no delegate: %s", module_name, role, WITHOUT_DELEGATE[role])
     stray = sorted(set(funcs) - roles - {kind})
     if stray:
         raise PlannerLoadError(
             f"delegates {', '.join(stray)} are not roles of a plugin whose main role is "
             f"{kind}; its roles: {', '.join(sorted(roles | {kind}))}"
+        )
+    # Nav2's checkers and layers are only initialized (= configure): no word on the other three.
+    lifecycle = (
+        {"configure"} if kind in ("is_goal_reached", "check", "update_costs") else LIFECYCLE_ROLES
+    )
+    unbound = sorted((roles & (lifecycle | KIND_ROLES[kind])) - set(funcs))
+    if kind == "compute_velocity_commands" and "plan" in _keywords(funcs[kind], {"plan"}):
+        unbound = [r for r in unbound if r != "set_plan"]  # it gets the plan as plan=
+    if unbound and not quiet:
+        # INFO, not WARNING: leaving a role to Nav2's default is the style's point
+        log.info(
+            "%s: roles left to their default: %s",
+            module_name,
+            "; ".join(f"{role} has no delegate: {WITHOUT_DELEGATE[role]}" for role in unbound),
         )
     build = {
         "compute_velocity_commands": _controller_class,
@@ -124,6 +194,22 @@ def delegate_class(
         "update_costs": _layer_class,
     }[kind]
     return build(module_name, funcs)
+
+
+def _keywords(func: Callable[..., Any], offered: set[str]) -> set[str]:
+    """Which of the ``offered`` keyword arguments ``func`` takes (all with ``**kwargs``)."""
+    try:
+        parameters = inspect.signature(func).parameters.values()
+    except (TypeError, ValueError):  # a builtin or C function without a signature
+        return set()
+    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in parameters):
+        return set(offered)
+    return {
+        p.name
+        for p in parameters
+        if p.name in offered
+        and p.kind in (inspect.Parameter.KEYWORD_ONLY, inspect.Parameter.POSITIONAL_OR_KEYWORD)
+    }
 
 
 class _DelegateLifecycle(PlannerPlugin):
@@ -159,6 +245,9 @@ def _named(cls: type[P], module_name: str) -> type[P]:
 
 
 def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[Controller]:
+    compute = funcs["compute_velocity_commands"]
+    keywords = _keywords(compute, {"goal_checker", "plan", "control_period"})
+
     class DelegateController(_DelegateLifecycle, Controller):
         _funcs = funcs
 
@@ -170,7 +259,13 @@ def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) ->
         def compute_velocity_commands(
             self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
         ) -> Any:
-            return funcs["compute_velocity_commands"](self.costmap, pose, velocity)
+            offered = {
+                "goal_checker": goal_checker,
+                "plan": self.plan,
+                "control_period": self.control_period,
+            }
+            extra = {name: offered[name] for name in keywords}
+            return compute(self.costmap, pose, velocity, **extra)
 
         def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:
             super().set_speed_limit(speed_limit, percentage)
@@ -184,11 +279,16 @@ def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) ->
 
 
 def _planner_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> type[GlobalPlanner]:
+    create = funcs["create_plan"]
+    wants_cancel = "cancel_checker" in _keywords(create, {"cancel_checker"})
+
     class DelegatePlanner(_DelegateLifecycle, GlobalPlanner):
         _funcs = funcs
 
         def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
-            return funcs["create_plan"](self.costmap, start, goal)
+            if wants_cancel:
+                return create(self.costmap, start, goal, cancel_checker=cancel_checker)
+            return create(self.costmap, start, goal)
 
     return _named(DelegatePlanner, module_name)
 

@@ -35,6 +35,10 @@ STATE_OPS = frozenset(
 )
 
 
+# Lyrical's cycle may carry the plan and the goal controller_server transformed (a Path or a
+# PoseStamped: a 3-field map after the key), which a new worker must get with set_plan.
+_FOLLOWED = (b"\xa4plan\x83", b"\xa4goal\x83")
+
 # Names, for the per-call check: Op(name) costs an enum lookup by value on every call.
 _STATE_OP_NAMES = frozenset(op.value for op in STATE_OPS)
 _OP_NAMES = frozenset(op.value for op in Op)
@@ -72,6 +76,17 @@ class SessionRecord:
 Snapshot = dict[str, tuple[int, list[tuple[str, bytes]]]]
 
 
+def _followed(plan: dict[str, Any] | None, cycle: dict[str, Any]) -> dict[str, Any] | None:
+    """The set_plan body that gives a new worker what a Lyrical cycle carried: its plan, and
+    its goal or else the goal the plan had."""
+    goal = cycle.get("goal", (plan or {}).get("goal"))
+    if "plan" in cycle:
+        plan = {"path": cycle["plan"]}
+    elif plan is None:
+        return None  # a goal without a plan: nothing to hand a new worker yet
+    return dict(plan, goal=goal) if goal is not None else plan
+
+
 def _encoded(record: SessionRecord) -> list[tuple[str, bytes]]:
     return [(q.op.value, encode_request(q)) for q in record.replay()]
 
@@ -83,8 +98,12 @@ class Journal:
 
     @staticmethod
     def worth_recording(key_op: str, payload: bytes) -> bool:
-        """Cheap pre-check (no decoding) for the hot path: state ops, or a costmap update."""
-        return key_op in _STATE_OP_NAMES or (key_op in _OP_NAMES and b"costmap" in payload)
+        """Cheap pre-check (no decoding) for the hot path: state ops, or a costmap update, or a
+        cycle's new plan or goal."""
+        return key_op in _STATE_OP_NAMES or (
+            key_op in _OP_NAMES
+            and (b"costmap" in payload or any(key in payload for key in _FOLLOWED))
+        )
 
     def note(self, key_op: str, payload: bytes, reply: bytes) -> None:
         """Record a request the planner accepted (its reply was ok), leaving out parameter
@@ -120,6 +139,8 @@ class Journal:
             record.params.update((k, v) for k, v in body["params"].items() if k not in rejected)
         elif op is Op.SET_PLAN:
             record.plan = body
+        elif op is Op.COMPUTE_VELOCITY_COMMANDS:
+            record.plan = _followed(record.plan, body)
         elif op is Op.SET_SPEED_LIMIT:
             record.speed_limit = body
         elif op is Op.ON_RUN:

@@ -65,14 +65,25 @@ PLUGIN_BASES = (
 PLUGIN_BASES_TEXT = f"{', '.join(PLUGIN_BASES[:-1])} or {PLUGIN_BASES[-1]}"
 
 
-def load_class(spec: str, *, reload: bool = False) -> type[PlannerPlugin]:
+def load_class(
+    spec: str, *, kind: str | None = None, reload: bool = False, quiet: bool = False
+) -> type[PlannerPlugin]:
     """``pkg.module:Class`` -> the class, checked to be a nav2_pyif plugin (a subclass of
-    one of PLUGIN_BASES)."""
+    one of PLUGIN_BASES). ``pkg.module:function`` -> a function-delegate plugin with that
+    function as the main role ``kind`` (default: the role it is named after)."""
     module_name, sep, class_name = spec.partition(":")
     if not sep or not module_name or not class_name:
-        raise PlannerLoadError(f"planner {spec!r} is not of the form 'package.module:ClassName'")
+        raise PlannerLoadError(
+            f"planner {spec!r} is not of the form 'package.module:ClassName' (or "
+            "'package.module:function')"
+        )
     module = import_module(module_name, reload=reload)
     cls = getattr(module, class_name, None)
+    if inspect.isfunction(cls):
+        from nav2_pyif.server.delegates import function_class  # it imports this module
+
+        # the module was just (re)imported: bind its functions without importing it again
+        return function_class(module_name, class_name, kind, quiet=quiet)
     if cls is None:
         found = sorted(
             n

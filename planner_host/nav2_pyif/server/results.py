@@ -124,11 +124,19 @@ def tolerances_to_wire(tolerances: Any) -> dict[str, Any]:
     values = [xy, yaw, trans, rot]
     if not all(math.isfinite(v) for v in values):
         raise ControllerException(f"get_tolerances returned non-finite values: {values}")
-    return {
+    body: dict[str, Any] = {
         "available": True,
         "pose_tolerance": [xy, xy, 0.0, 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)],
         "velocity_tolerance": [trans, trans, 0.0, 0.0, 0.0, rot],
     }
+    if tolerances.path_length_tolerance is not None:  # Lyrical's getTolerances' third value
+        path_length = float(tolerances.path_length_tolerance)
+        if not math.isfinite(path_length):
+            raise ControllerException(
+                f"get_tolerances returned a non-finite path_length_tolerance: {path_length}"
+            )
+        body["path_length_tolerance"] = path_length
+    return body
 
 
 def checked_bounds(result: Any) -> tuple[float, float, float, float]:

@@ -31,7 +31,7 @@ from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType
 
 from nav2_pyif.behavior import Behavior, Command, Status
 from nav2_pyif.controller import Controller
-from nav2_pyif.costmap import Costmap
+from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.costmap_layer import CostmapLayer, LayerWindow
 from nav2_pyif.debug import check_declared
 from nav2_pyif.exceptions import (
@@ -48,6 +48,7 @@ from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
 from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.server.followed_plan import follow_plan
 from nav2_pyif.server.results import (
     checked_bool,
     checked_bounds,
@@ -218,7 +219,9 @@ class PlannerRuntime:
                 f"{self.host_id}; re-send configure",
             )
         if "costmap" in request.body:
-            session.context.costmap = Costmap.from_wire(request.body["costmap"])
+            session.context.costmap = Costmap.from_wire(
+                request.body["costmap"], session.context.inflation
+            )
         return session
 
     def open_cycle(self, payload: bytes) -> tuple[Request, Session, tuple[Any, ...]] | bytes:
@@ -358,14 +361,16 @@ class PlannerRuntime:
         if previous is not None:
             self._safe_cleanup(previous)
         planner = self.planner_class()
+        nav2_params = body.get("nav2_params") or {}
         context = PluginContext(
             name=body["name"],
             node_name=body["node"],
             global_frame=body["global_frame"],
             robot_base_frame=body["robot_base_frame"],
-            costmap=Costmap.from_wire(body["costmap"]),
+            costmap=Costmap.from_wire(body["costmap"], Inflation.from_params(nav2_params)),
             params=Parameters(body["params"]),
             logger=logging.getLogger(f"nav2_pyif.planner.{body['name']}"),
+            nav2_params=nav2_params,
         )
         planner._attach(context)
         if isinstance(planner, Controller) and planner.debug_outputs:
@@ -423,10 +428,7 @@ class PlannerRuntime:
         return {"rejected": rejected}
 
     def _set_plan(self, session: Session, request: Request) -> Body:
-        plan = Plan.from_wire(request.body["path"])
-        if not np.isfinite(plan.array).all():
-            raise InvalidPath("the plan sent to set_plan has non-finite values")
-        session.planner.set_plan(plan)  # type: ignore[attr-defined]
+        follow_plan(session.planner, request.body["path"], request.body.get("goal"))
         return {}
 
     def _compute_velocity_commands(self, session: Session, request: Request) -> Body:
@@ -438,6 +440,10 @@ class PlannerRuntime:
         """(pose, velocity, goal checker) of a cycle; the session's inputs and debug wishes
         taken from the request first."""
         body, context = request.body, session.context
+        if "plan" in body:  # Lyrical: the plan Nav2 transformed, when it changed
+            follow_plan(session.planner, body["plan"], body.get("goal"), in_cycle=True)
+        elif "goal" in body:
+            session.planner.global_goal = pose_from_wire(body["goal"])  # type: ignore[attr-defined]
         checker = body.get("goal_checker")
         context.inputs.update(body.get("inputs", []))
         context.debug.begin(body.get("debug_wanted", ()))
@@ -481,6 +487,8 @@ class PlannerRuntime:
         assert isinstance(planner, GlobalPlanner)
         start = pose_from_wire(request.body["start"])
         goal = pose_from_wire(request.body["goal"])
+        viapoints = request.body.get("viapoints")
+        planner.viapoints = Plan.from_wire(viapoints).poses if viapoints else ()
         session.cancel_requested.clear()
         session.running_seq = request.seq
         try:
@@ -507,7 +515,9 @@ class PlannerRuntime:
         checker = session.planner
         assert isinstance(checker, GoalCheckerPlugin)
         body, frame = request.body, session.context.global_frame
-        reached = checker.is_goal_reached(
+        # Lyrical's isGoalXYReached travels as is_goal_reached with xy_only
+        check = checker.is_goal_xy_reached if body.get("xy_only") else checker.is_goal_reached
+        reached = check(
             pose_from_wire({"frame_id": frame, "stamp_ns": 0, "pose": body["pose"]}).pose,
             pose_from_wire({"frame_id": frame, "stamp_ns": 0, "pose": body["goal"]}).pose,
             twist_from_list(body["velocity"]),

@@ -57,6 +57,11 @@ public:
     Carried carried, const std::optional<protocol::Bytes> & reply,
     const std::array<double, 7> & pose, const std::array<double, 7> & goal,
     const std::array<double, 6> & velocity);
+  // Lyrical's isGoalXYReached: the position only (never carried: Nav2's own controllers call
+  // it, not controller_server's cycle).
+  bool is_goal_xy_reached(
+    const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+    const std::array<double, 6> & velocity);
   protocol::GetTolerancesReply get_tolerances();
   void reset();
 };

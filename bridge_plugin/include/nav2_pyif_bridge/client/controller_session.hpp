@@ -17,11 +17,19 @@
 namespace nav2_pyif_bridge::client
 {
 
+// What a cycle's request carries of the session's state, acknowledged by its ok reply.
+struct Attached
+{
+  std::vector<std::pair<std::string, std::uint64_t>> inputs;  // name, generation
+  bool plan{false};  // the plan follow() remembered (Lyrical)
+  bool goal{false};  // and its global goal
+};
+
 // A control cycle's command request prepared for another plugin's query to carry.
 struct PreparedCommand
 {
   Carried carried;
-  std::vector<std::pair<std::string, std::uint64_t>> inputs;  // attached: name, generation
+  Attached attached;
 };
 
 // The command and the encoded replies of the calls its query carried (those that ran).
@@ -43,6 +51,14 @@ public:
   // here would end FollowPath at once, where a failing cycle gets the controller server's
   // failure_tolerance. The planner's own errors (InvalidPath, ...) throw.
   std::optional<CallError> set_plan(const protocol::Path & path);
+  // Lyrical: the plan controller_server transformed and pruned for this cycle, and its global
+  // goal, both in the costmap's global frame. Remembered as set_plan's plan is (a
+  // re-established session gets both with set_plan), and carried by the next cycle's request
+  // only when they changed since the host last got them (their stamps aside, which move every
+  // cycle). Sends nothing itself. From then on no command is prepared for another call's query
+  // to carry: Nav2 transforms the cycle's plan after the goal check, so a command prepared
+  // there would run on the last cycle's plan (and the planner would compute twice).
+  void follow(const protocol::Path & plan, const protocol::PoseStamped & goal);
   // The latest message of an input topic (from a subscription's thread): sent with the next
   // control cycle, once; every input again after the host lost the session.
   void set_input(protocol::Input input);
@@ -93,18 +109,21 @@ private:
   // The request body of a cycle (inputs not yet acknowledged attached, with their generations).
   protocol::ComputeVelocityCommandsRequest command_body(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
-    const std::optional<protocol::GoalChecker> & goal_checker,
-    std::vector<std::pair<std::string, std::uint64_t>> & attached);
-  // The reply's command, checked; the inputs acknowledged, the debug outputs kept.
+    const std::optional<protocol::GoalChecker> & goal_checker, Attached & attached);
+  // The reply's command, checked; what was attached acknowledged, the debug outputs kept.
   protocol::TwistStamped command_of(
-    protocol::ComputeVelocityCommandsReply reply,
-    const std::vector<std::pair<std::string, std::uint64_t>> & attached);
+    protocol::ComputeVelocityCommandsReply reply, const Attached & attached);
 
   // Sends plan_; it is no longer owed once the host has it.
   void send_plan(const CallOptions & options);
 
   std::optional<protocol::Path> plan_;
   bool plan_owed_{false};  // set_plan failed on the host: sent before the next cycle
+  // Lyrical (follow): the global goal, and what of plan_ and goal_ the host has not had yet.
+  std::optional<protocol::PoseStamped> goal_;
+  bool plan_unsent_{false};
+  bool goal_unsent_{false};
+  bool follows_cycle_plan_{false};
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
   // The latest message of each input; `sent` is the generation the host acknowledged.

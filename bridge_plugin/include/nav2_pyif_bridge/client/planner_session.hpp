@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
@@ -21,6 +22,10 @@ public:
   protocol::Path create_plan(
     const protocol::PoseStamped & start, const protocol::PoseStamped & goal,
     const std::function<bool()> & cancel_checker = {});
+  // The same through `viapoints` (Lyrical; same frame), none when std::nullopt or empty.
+  protocol::Path create_plan(
+    const protocol::PoseStamped & start, const protocol::PoseStamped & goal,
+    const std::optional<protocol::Path> & viapoints, const std::function<bool()> & cancel_checker);
 
   // cancel_plan requests sent so far.
   std::uint64_t cancels_sent() const;

@@ -72,6 +72,7 @@ struct SessionConfig
   std::string name;              // plugin name in Nav2, e.g. FollowPath
   std::string node;              // the Nav2 server node, e.g. controller_server
   protocol::Params params;       // forwarded in configure (prefix stripped)
+  protocol::Params nav2_params;  // configure's nav2_params (controller_frequency, inflation)
   std::string global_frame;      // the costmap's global frame
   std::string robot_base_frame{"base_link"};
   Timeouts timeouts;

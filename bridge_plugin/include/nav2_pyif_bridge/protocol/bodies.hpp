@@ -39,6 +39,10 @@ struct ConfigureRequest
   // the costmap at configure time (0 x 0 when the plugin has none: a progress checker, a smoother
   // before its costmap subscription delivered one)
   Costmap costmap;
+  // optional: Nav2's parameters outside the plugin's namespace that a planner may need, by their
+  // Nav2 names: controller_frequency [Hz] (controller_server's), inflation_radius [m] and
+  // cost_scaling_factor [1/m] (the costmap's inflation layer); absent when none is known
+  std::optional<Params> nav2_params;
 };
 
 struct ConfigureReply
@@ -86,8 +90,10 @@ struct SetParametersReply
 // --- set_plan ------------------------------------------------------------------------------------
 struct SetPlanRequest
 {
-  // the global plan, in the costmap's global frame
+  // the plan to follow, in the costmap's global frame (section 14)
   Path path;
+  // optional: the global goal, same frame: Nav2's (Lyrical); absent: the plan's last pose
+  std::optional<PoseStamped> goal;
 };
 
 struct SetPlanReply {};
@@ -103,6 +109,12 @@ struct ComputeVelocityCommandsRequest
   std::optional<GoalChecker> goal_checker;
   // optional: present only when changed since last sent
   std::optional<Costmap> costmap;
+  // optional: the plan Nav2 transformed for this cycle, costmap's global frame (Lyrical); present
+  // only when it changed since the host last got it
+  std::optional<Path> plan;
+  // optional: the global goal, same frame (Lyrical); present only when it changed since the host
+  // last got it
+  std::optional<PoseStamped> goal;
   // optional: input messages received since the last call (the latest of each); absent when none
   std::optional<std::vector<Input>> inputs;
   // optional: names of the debug outputs someone subscribes to; absent when none
@@ -155,6 +167,8 @@ struct CreatePlanRequest
   PoseStamped goal;
   // optional: present only when changed since last sent
   std::optional<Costmap> costmap;
+  // optional: poses to pass through, in order, same frame (Lyrical); absent when none
+  std::optional<Path> viapoints;
 };
 
 struct CreatePlanReply
@@ -204,6 +218,8 @@ struct IsGoalReachedRequest
   std::array<double, 7> goal{};
   // current velocity in the robot base frame
   std::array<double, 6> velocity{};
+  // optional: true: isGoalXYReached, the position only (Lyrical); absent: isGoalReached
+  std::optional<bool> xy_only;
   // optional: calls to run after this one, in order, as far as Nav2 would go; absent when none
   std::optional<std::vector<CarriedCall>> carry;
 };
@@ -227,6 +243,8 @@ struct GetTolerancesReply
   std::array<double, 7> pose_tolerance{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
   // vx, vy, vz [m/s], wx, wy, wz [rad/s]
   std::array<double, 6> velocity_tolerance{};
+  // optional: [m] (Lyrical's getTolerances); absent when the checker has none
+  std::optional<double> path_length_tolerance;
 };
 
 // --- check ---------------------------------------------------------------------------------------

@@ -59,6 +59,7 @@ void for_each_field(const GoalChecker & value, Visit && visit)
   visit("yaw_goal_tolerance", value.yaw_goal_tolerance);
   visit("trans_stopped_velocity", value.trans_stopped_velocity);
   visit("rot_stopped_velocity", value.rot_stopped_velocity);
+  visit("path_length_tolerance", value.path_length_tolerance);
 }
 
 template<class Visit>
@@ -104,6 +105,7 @@ void for_each_field(const ConfigureRequest & value, Visit && visit)
   visit("global_frame", value.global_frame);
   visit("robot_base_frame", value.robot_base_frame);
   visit("costmap", value.costmap);
+  visit("nav2_params", value.nav2_params);
 }
 
 template<class Visit>
@@ -149,6 +151,7 @@ template<class Visit>
 void for_each_field(const SetPlanRequest & value, Visit && visit)
 {
   visit("path", value.path);
+  visit("goal", value.goal);
 }
 
 template<class Visit>
@@ -161,6 +164,8 @@ void for_each_field(const ComputeVelocityCommandsRequest & value, Visit && visit
   visit("velocity", value.velocity);
   visit("goal_checker", value.goal_checker);
   visit("costmap", value.costmap);
+  visit("plan", value.plan);
+  visit("goal", value.goal);
   visit("inputs", value.inputs);
   visit("debug_wanted", value.debug_wanted);
   visit("carry", value.carry);
@@ -205,6 +210,7 @@ void for_each_field(const CreatePlanRequest & value, Visit && visit)
   visit("start", value.start);
   visit("goal", value.goal);
   visit("costmap", value.costmap);
+  visit("viapoints", value.viapoints);
 }
 
 template<class Visit>
@@ -246,6 +252,7 @@ void for_each_field(const IsGoalReachedRequest & value, Visit && visit)
   visit("pose", value.pose);
   visit("goal", value.goal);
   visit("velocity", value.velocity);
+  visit("xy_only", value.xy_only);
   visit("carry", value.carry);
 }
 
@@ -265,6 +272,7 @@ void for_each_field(const GetTolerancesReply & value, Visit && visit)
   visit("available", value.available);
   visit("pose_tolerance", value.pose_tolerance);
   visit("velocity_tolerance", value.velocity_tolerance);
+  visit("path_length_tolerance", value.path_length_tolerance);
 }
 
 template<class Visit>

@@ -94,6 +94,9 @@ struct GoalChecker
   double trans_stopped_velocity{0.0};
   // [rad/s]
   double rot_stopped_velocity{0.0};
+  // optional: [m] the remaining plan length within which the goal may count as reached (Lyrical's
+  // getTolerances); absent when the checker has none, or before Lyrical
+  std::optional<double> path_length_tolerance;
 };
 
 // The error of a failed reply (PROTOCOL.md section 7).
