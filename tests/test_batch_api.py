@@ -15,6 +15,8 @@ from nav2_pyif.batch import as_twist_stamped, bucket, buckets, can_batch, items,
 from tests.conftest import make_costmap
 from tests.test_planners import attach
 
+pytestmark = pytest.mark.unit
+
 
 class Rows(Controller):
     """vx = pose x, vy = 0, wz = index in the batch."""
