@@ -92,12 +92,31 @@ def package_xmls(root: Path = ROOT) -> list[Path]:
 
 
 def package_keys(xml: Path) -> dict[str, list[str]]:
-    """The dependency keys of one package.xml: key -> the tags that name it."""
+    """The dependency keys of one package.xml: key -> the tags that name it, each followed by
+    ` if <condition>` where the element has a REP 149 condition."""
     keys: dict[str, list[str]] = {}
     for element in ET.parse(xml).getroot():
         if element.tag in DEPENDENCY_TAGS and element.text:
-            keys.setdefault(element.text.strip(), []).append(element.tag)
+            condition = element.get("condition")
+            tag = f"{element.tag} if {condition}" if condition else element.tag
+            keys.setdefault(element.text.strip(), []).append(tag)
     return keys
+
+
+def applies(where: str, distribution: str) -> bool:
+    """Whether a key named at ``where`` ("path: tag" or "path: tag if <condition>") is a
+    dependency on ``distribution``. Conditions are REP 149's, limited to what our package.xml
+    files use: `$ROS_DISTRO == name` and `!=`, joined by `and`."""
+    if " if " not in where:
+        return True
+    condition = where.split(" if ", 1)[1]
+    for clause in condition.split(" and "):
+        found = re.fullmatch(r"\s*\$ROS_DISTRO\s*(==|!=)\s*(\w+)\s*", clause)
+        if not found:
+            raise ValueError(f"a condition this check cannot read: {condition!r} ({where})")
+        if (found.group(2) == distribution) != (found.group(1) == "=="):
+            return False
+    return True
 
 
 def all_keys(root: Path = ROOT) -> dict[str, list[str]]:
