@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import contextlib
 import importlib.machinery
+import importlib.util
 import logging
 import math
 import sys
@@ -213,7 +214,11 @@ def planner_entry(
     top = resolved.partition(":")[0].split(".")[0]
     module_found = ":" in resolved or (
         top.isidentifier()
-        and importlib.machinery.PathFinder.find_spec(top, [*(search or []), *sys.path]) is not None
+        and (
+            importlib.machinery.PathFinder.find_spec(top, [*(search or []), *sys.path]) is not None
+            # an editable install is found by its own meta-path finder, not on sys.path
+            or importlib.util.find_spec(top) is not None
+        )
     )
     if not module_found or resolved.startswith(":") or resolved.endswith(":"):
         raise SimError(
