@@ -215,8 +215,8 @@ def planner_entry(
     module_found = ":" in resolved or (
         top.isidentifier()
         and (
-            importlib.machinery.PathFinder.find_spec(top, [*(search or []), *sys.path]) is not None
-            # an editable install is found by its own meta-path finder, not on sys.path
+            importlib.machinery.PathFinder.find_spec(top, search or []) is not None
+            # sys.path and the meta-path finders (an editable install has its own)
             or importlib.util.find_spec(top) is not None
         )
     )
