@@ -1,0 +1,12 @@
+"""Nav2's MPPI controller (nav2_mppi_controller, Jazzy) in JAX, as ``Nav2MPPI``: the same
+critics, parameters (Nav2's names and defaults), motion models, acceleration limits,
+Savitzky-Golay smoothing and warm start, one jit-compiled step per cycle. See docs/mppi.md.
+
+Files, one job each: params.py (Nav2's parameter table), models.py (motion models), costs.py
+(costmap look-ups), critics.py, smoothing.py, optimizer.py (the compiled step), path.py (the
+plan's pruning), controller.py (the Nav2 controller). Needs JAX (nav2-pyif[jax])."""
+
+from nav2_pyif_planners.mppi_nav2.controller import Nav2MPPI
+from nav2_pyif_planners.mppi_nav2.params import flatten
+
+__all__ = ["Nav2MPPI", "flatten"]

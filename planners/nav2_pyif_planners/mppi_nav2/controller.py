@@ -1,0 +1,213 @@
+"""The controller: Nav2 MPPI's MPPIController (controller.cpp) over the JAX optimizer. It
+forwards, as Nav2's does: parameters (params.py), the plan (path.py), the optimization
+(optimizer.py); here only the cycle's inputs, the costmap's upload and Nav2's fallback."""
+
+from __future__ import annotations
+
+import time
+from typing import Any, ClassVar
+
+import jax
+import jax.numpy as jnp
+import numpy as np
+from geometry_msgs.msg import TwistStamped
+from nav2_pyif import Controller, GoalChecker, InvalidController, NoValidControl, Plan
+from nav2_pyif.geometry import pose_xy_yaw
+
+from nav2_pyif_planners.mppi_nav2.costs import Grid
+from nav2_pyif_planners.mppi_nav2.optimizer import Inputs, Outputs, step
+from nav2_pyif_planners.mppi_nav2.params import Settings, read_settings
+from nav2_pyif_planners.mppi_nav2.path import PathHandler, padded
+
+
+class Nav2MPPI(Controller):
+    """Nav2's MPPI controller (nav2_mppi_controller, Jazzy) in JAX: its critics, parameters
+    (by Nav2's names and defaults: a Nav2 ``FollowPath`` MPPI block works as the plugin's
+    parameters), motion models, acceleration limits, Savitzky-Golay smoothing and warm start.
+
+    Parameters of its own, beside Nav2's: ``noise_sets`` (noise bank size, see
+    optimizer.py), ``seed``, ``path_points`` (the pruned plan's fixed length in the step),
+    ``track_unknown_space`` (the local costmap's: Nav2 reads it from the costmap). Debug
+    output: ``local_plan`` (the optimal trajectory)."""
+
+    debug_outputs: ClassVar[dict[str, str]] = {"local_plan": "nav_msgs/msg/Path"}
+
+    def configure(self) -> None:
+        p = self.params
+        frequency = self._context.nav2_params.get("controller_frequency")
+        try:
+            self.settings = read_settings(
+                p, float(frequency) if isinstance(frequency, int | float) else None, self.logger
+            )
+        except ValueError as exc:
+            raise InvalidController(str(exc)) from exc
+        s = self.settings
+        search = p.declare(
+            "max_robot_pose_search_dist",
+            0.5 * max(self.costmap.size_x, self.costmap.size_y) * self.costmap.resolution,
+            "[m] along the plan to look for the robot's closest pose",
+        )
+        self.path = PathHandler(p.declare("prune_distance", 1.5, "[m] plan ahead kept"), search)
+        self.regenerate_noises = p.declare("regenerate_noises", False, "new noise every cycle")
+        self.retry_attempt_limit = p.declare("retry_attempt_limit", 1, "resets before failing")
+        sets = p.declare("noise_sets", 8, "noise sets drawn at configure (regenerate_noises)")
+        self.rng = np.random.default_rng(p.declare("seed", 0, "noise seed"))
+        sigma = np.array([s.vx_std, s.vy_std if s.holonomic else 0.0, s.wz_std], np.float32)
+        draw = self.rng.standard_normal((max(sets, 1), 3, s.batch_size, s.time_steps), np.float32)
+        self.bank = jnp.asarray(draw * sigma[None, :, None, None])
+        self._check_footprint()
+        self._grid: Grid | None = None
+        self._grid_version: int | None = None
+        self.last_compute_s = 0.0
+        self.reset()
+        self._compile()
+        self.logger.info(
+            "Nav2 MPPI in JAX on %s: %d x %d, %s, critics %s", jax.devices()[0],
+            s.batch_size, s.time_steps, s.motion_model,
+            ", ".join(c.name for c in s.critics if c.enabled),
+        )  # fmt: skip
+
+    def on_parameters_changed(self, changed: dict[str, Any]) -> None:
+        self.configure()  # Nav2 resets the optimizer on a parameter change, too
+
+    def _check_footprint(self) -> None:
+        """Nav2's critics' checks of consider_footprint against the costmap's robot shape."""
+        round_robot = len(self.costmap.footprint) < 3
+        for critic in self.settings.critics:
+            if not critic.enabled or critic.name not in ("CostCritic", "ObstaclesCritic"):
+                continue
+            if round_robot == critic["consider_footprint"]:
+                self.logger.warning(
+                    "Inconsistent configuration in collision checking. Please verify the "
+                    "robot's shape settings in both the costmap and the %s.", critic.name,
+                )  # fmt: skip
+                if round_robot:
+                    raise InvalidController(
+                        "Considering footprint in collision checking but no robot footprint "
+                        "provided in the costmap."
+                    )
+
+    def _upload_costmap(self) -> Grid:
+        """The costmap on the device, once per costmap version."""
+        costmap = self.costmap
+        if self._grid is not None and self._grid_version == costmap.version:
+            return self._grid
+        inflation = costmap.inflation
+        possible, radius, scale = -1.0, 0.0, 0.0
+        if inflation is not None:
+            radius, scale = inflation.inflation_radius, inflation.cost_scaling_factor
+            possible = (
+                0.0 if radius < costmap.circumscribed_radius else costmap.circumscribed_cost()
+            )
+        self._grid = Grid(
+            data=jnp.asarray(costmap.data),
+            meta=jnp.asarray([costmap.origin_x, costmap.origin_y, costmap.resolution], jnp.float32),
+            outline=jnp.asarray(costmap.footprint_outline(costmap.resolution), jnp.float32),
+            robot=jnp.asarray([possible, costmap.inscribed_radius, radius, scale], jnp.float32),
+        )
+        self._grid_version = costmap.version
+        return self._grid
+
+    def _compile(self) -> None:
+        """Compile the step now (configure may take seconds; a cycle may not)."""
+        s = self.settings
+        straight = np.column_stack([np.linspace(0, 1, 5), np.zeros(5), np.zeros(5)])
+        path, count = padded(straight, s.path_points)
+        inputs = self._inputs(np.zeros(3), np.zeros(3), straight[-1], path, count, None)
+        jax.block_until_ready(self._run(inputs))
+        self.reset()
+
+    def reset(self) -> None:
+        """Nav2's Optimizer::reset: the warm start and the smoothing's history forgotten."""
+        s = self.settings
+        self.sequence = jnp.zeros((3, s.time_steps), jnp.float32)
+        self.history = jnp.zeros((4, 3), jnp.float32)
+
+    def set_plan(self, plan: Plan) -> None:
+        super().set_plan(plan)
+        self.path.set_plan(plan.xy_yaw)
+
+    def _limits(self) -> np.ndarray:
+        """(vx_max, vx_min, vy_max, wz_max) after Nav2's speed limit (all scaled alike)."""
+        s = self.settings
+        ratio = 1.0
+        if self.speed_limit is not None:
+            value, percentage = self.speed_limit
+            ratio = value / 100.0 if percentage else value / s.vx_max
+        return np.array([s.vx_max, s.vx_min, s.vy_max, s.wz_max], np.float32) * ratio
+
+    def _inputs(
+        self,
+        pose: np.ndarray,
+        speed: np.ndarray,
+        goal: np.ndarray,
+        path: np.ndarray,
+        count: int,
+        goal_checker: GoalChecker | None,
+    ) -> Inputs:
+        return Inputs(
+            pose=np.asarray(pose, np.float32),
+            speed=np.asarray(speed, np.float32),
+            goal=np.asarray(goal, np.float32),
+            limits=self._limits(),
+            goal_tolerance=np.float32(goal_checker.xy_goal_tolerance if goal_checker else -1.0),
+            path=path,
+            count=np.int32(count),
+        )
+
+    def _run(self, inputs: Inputs) -> Outputs:
+        s: Settings = self.settings
+        if self.regenerate_noises:
+            pick = np.array(
+                [self.rng.integers(self.bank.shape[0]), self.rng.integers(s.batch_size)], np.int32
+            )
+        else:
+            pick = np.zeros(2, np.int32)
+        out: Outputs = step(
+            self.sequence, self.history, self.bank, pick, inputs, self._upload_costmap(), s
+        )
+        return out
+
+    def compute_velocity_commands(
+        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    ) -> Any:
+        started = time.perf_counter()
+        if self.plan is None:
+            raise NoValidControl("no plan to follow")
+        x, y, yaw = pose_xy_yaw(pose)
+        pruned = self.path.transform(x, y, self.costmap)
+        path, count = padded(pruned, self.settings.path_points)
+        speed = np.array([velocity.linear.x, velocity.linear.y, velocity.angular.z])
+        inputs = self._inputs(
+            np.array([x, y, yaw]), speed, self.plan.xy_yaw[-1], path, count, goal_checker
+        )
+        failures = 0
+        while True:  # Nav2's evalControl: reset and retry while every rollout collides
+            out = self._run(inputs)
+            command, fail = np.asarray(out.command, np.float64), bool(out.fail)
+            if not fail:
+                break
+            self.reset()
+            failures += 1
+            if failures > self.retry_attempt_limit:
+                raise NoValidControl("Optimizer fail to compute path")
+        self.sequence, self.history = out.sequence, out.history
+        if not np.isfinite(command).all():
+            raise NoValidControl("MPPI produced a non-finite command")
+        if self.debug_wanted("local_plan"):
+            self._publish_local_plan(np.array([x, y, yaw]), np.asarray(out.optimal))
+        cmd = TwistStamped(header=pose.header)
+        cmd.header.frame_id = self.robot_base_frame
+        cmd.twist.linear.x, cmd.twist.linear.y, cmd.twist.angular.z = (float(v) for v in command)
+        self.last_compute_s = time.perf_counter() - started
+        return cmd
+
+    def _publish_local_plan(self, state: np.ndarray, optimal: np.ndarray) -> None:
+        """The optimal sequence (3, T) rolled out from ``state`` as (T, 3) x, y, yaw."""
+        dt = self.settings.model_dt
+        yaw = state[2] + np.cumsum(optimal[2] * dt)
+        before = np.concatenate([[state[2]], yaw[:-1]])
+        dx = optimal[0] * np.cos(before) - optimal[1] * np.sin(before)
+        dy = optimal[0] * np.sin(before) + optimal[1] * np.cos(before)
+        x, y = state[0] + np.cumsum(dx * dt), state[1] + np.cumsum(dy * dt)
+        self.publish_debug("local_plan", np.column_stack([x, y, yaw]))

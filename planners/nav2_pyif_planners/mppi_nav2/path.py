@@ -1,0 +1,59 @@
+"""Nav2 MPPI's path handler (path_handler.cpp, Jazzy) in NumPy, run on the host before the
+compiled step: drop the plan behind the robot's closest pose (searched within
+max_robot_pose_search_dist of the plan's start), keep what follows up to prune_distance of
+integrated length and inside the costmap, and pad it to the step's fixed number of points."""
+
+from __future__ import annotations
+
+import numpy as np
+from nav2_pyif import Costmap, InvalidPath
+
+
+def first_after(xy: np.ndarray, distance: float) -> int:
+    """Index of the first point whose integrated distance from ``xy[0]`` exceeds
+    ``distance`` (Nav2's first_after_integrated_distance); len(xy) when none does."""
+    if len(xy) < 2:
+        return len(xy)
+    along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))])
+    return int(np.searchsorted(along, distance, side="right"))
+
+
+class PathHandler:
+    """The part of the global plan still ahead, pruned each cycle as Nav2 does."""
+
+    def __init__(self, prune_distance: float, search_distance: float) -> None:
+        self.prune_distance = prune_distance
+        self.search_distance = search_distance
+        self.remaining = np.zeros((0, 3))
+
+    def set_plan(self, xy_yaw: np.ndarray) -> None:
+        self.remaining = np.asarray(xy_yaw, np.float64)
+
+    def transform(self, x: float, y: float, costmap: Costmap) -> np.ndarray:
+        """(M, 3) the plan from the pose closest to (x, y) on, pruned; the plan behind that
+        pose is dropped for good. Raises InvalidPath when nothing is left."""
+        plan = self.remaining
+        if len(plan) == 0:
+            raise InvalidPath("Received plan with zero length")
+        bound = max(first_after(plan[:, :2], self.search_distance), 1)
+        closest = int(np.argmin(np.hypot(plan[:bound, 0] - x, plan[:bound, 1] - y)))
+        ahead = plan[closest:]
+        ahead = ahead[: first_after(ahead[:, :2], self.prune_distance)]
+        _, inside = costmap.world_to_map_array(ahead[:, :2])
+        if not inside.all():
+            ahead = ahead[: int(np.argmin(inside))]  # up to the first point off the costmap
+        self.remaining = plan[closest:]
+        if len(ahead) == 0:
+            raise InvalidPath("Resulting plan has 0 poses in it.")
+        return ahead
+
+
+def padded(path: np.ndarray, points: int) -> tuple[np.ndarray, int]:
+    """(points, 3) float32: ``path`` then its last pose repeated, and its real length; a
+    longer path is subsampled evenly, its ends kept (the step's shape is fixed)."""
+    if len(path) > points:
+        path = path[np.linspace(0, len(path) - 1, points).round().astype(int)]
+    out = np.empty((points, 3), np.float32)
+    out[: len(path)] = path
+    out[len(path) :] = path[-1]
+    return out, len(path)
