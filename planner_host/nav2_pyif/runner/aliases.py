@@ -6,6 +6,7 @@ ALIASES = {
     "pure_pursuit": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
     "mppi": "nav2_pyif_planners.mppi:MPPI",
     "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
+    "mppi_nav2": "nav2_pyif_planners.mppi_nav2:Nav2MPPI",  # Nav2 MPPI (Jazzy) in JAX
     "learned": "nav2_pyif_planners.learned.controller:LearnedController",  # needs --scan
     "apf": "nav2_pyif_planners.apf",  # function-delegate style: its functions are the roles
     # Nav2's other plugins (--smoother, --goal-checker, --progress-checker, --layer, --recovery)
