@@ -76,13 +76,13 @@ MOTION_MODELS = ("DiffDrive", "Omni", "Ackermann")
 
 #: Nav2 keys read but not honoured: name -> (default, what this controller does instead).
 UNHONOURED: dict[str, tuple[Any, str]] = {
-    "visualize": (False, "use the debug outputs trajectories and local_plan instead"),
+    "visualize": (False, "subscribe to the debug output local_plan instead"),
     "transform_tolerance": (0.1, "poses and the plan arrive in the costmap's frame"),
     "enforce_path_inversion": (False, "the plan is followed to its end, cusps included"),
     "inversion_xy_tolerance": (0.2, "enforce_path_inversion is not supported"),
     "inversion_yaw_tolerance": (0.4, "enforce_path_inversion is not supported"),
-    "TrajectoryVisualizer.trajectory_step": (5, "the trajectories debug output draws 40"),
-    "TrajectoryVisualizer.time_step": (3, "the trajectories debug output draws every step"),
+    "TrajectoryVisualizer.trajectory_step": (5, "no candidate trajectories are drawn"),
+    "TrajectoryVisualizer.time_step": (3, "local_plan has every step"),
 }
 
 
