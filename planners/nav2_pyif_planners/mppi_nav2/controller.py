@@ -4,6 +4,8 @@ forwards, as Nav2's does: parameters (params.py), the plan (path.py), the optimi
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import time
 from typing import Any, ClassVar
 
@@ -47,7 +49,12 @@ class Nav2MPPI(Controller):
             0.5 * max(self.costmap.size_x, self.costmap.size_y) * self.costmap.resolution,
             "[m] along the plan to look for the robot's closest pose",
         )
-        self.path = PathHandler(p.declare("prune_distance", 1.5, "[m] plan ahead kept"), search)
+        prune = p.declare("prune_distance", 1.5, "[m] plan ahead kept")
+        self.path = PathHandler(prune, search)
+        if s.path_points <= 0:  # room for a plan 1.5x as dense as the costmap, in 8s
+            points = math.ceil(1.5 * prune / self.costmap.resolution / 8) * 8
+            self.settings = s = dataclasses.replace(s, path_points=max(points, 16))
+        self._subsampled = False
         self.regenerate_noises = p.declare("regenerate_noises", False, "new noise every cycle")
         self.retry_attempt_limit = p.declare("retry_attempt_limit", 1, "resets before failing")
         sets = p.declare("noise_sets", 8, "noise sets drawn at configure (regenerate_noises)")
@@ -177,6 +184,13 @@ class Nav2MPPI(Controller):
             raise NoValidControl("no plan to follow")
         x, y, yaw = pose_xy_yaw(pose)
         pruned = self.path.transform(x, y, self.costmap)
+        if len(pruned) > self.settings.path_points and not self._subsampled:
+            self._subsampled = True
+            self.logger.warning(
+                "the pruned plan has %d poses, more than path_points (%d): subsampled (plan "
+                "offsets then count fewer, larger steps; raise path_points)",
+                len(pruned), self.settings.path_points,
+            )  # fmt: skip
         path, count = padded(pruned, self.settings.path_points)
         speed = np.array([velocity.linear.x, velocity.linear.y, velocity.angular.z])
         inputs = self._inputs(

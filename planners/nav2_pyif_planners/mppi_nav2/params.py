@@ -188,7 +188,9 @@ def read_settings(
             False,
             "the local costmap's track_unknown_space: unknown cells are free, not collisions",
         ),
-        "path_points": p.declare("path_points", 128, "pruned plan points the step compares with"),
+        "path_points": p.declare(
+            "path_points", 0, "pruned plan points the step holds (0: from prune_distance)"
+        ),
     }
     for name in ("ax_min", "ay_min"):
         if values[name] > 0.0:
