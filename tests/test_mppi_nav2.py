@@ -23,6 +23,7 @@ jax = pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif[jax])")
 jnp = jax.numpy
 
 from nav2_pyif_planners.mppi_nav2 import (  # noqa: E402
+    NAV2_JAZZY_FILE,
     Nav2MPPI,
     critics,
     flatten,
@@ -34,75 +35,8 @@ from nav2_pyif_planners.mppi_nav2.smoothing import COEFFICIENTS, smooth  # noqa:
 
 RECTANGLE = [[0.2, 0.15], [0.2, -0.15], [-0.2, -0.15], [-0.2, 0.15]]
 
-# Nav2 Jazzy's nav2_bringup params/nav2_params.yaml, controller_server's FollowPath block
-# (its values; the commented-out TwirlingCritic left out)
-NAV2_JAZZY_FOLLOW_PATH = """
-plugin: "nav2_mppi_controller::MPPIController"
-time_steps: 56
-model_dt: 0.05
-batch_size: 2000
-ax_max: 3.0
-ax_min: -3.0
-ay_max: 3.0
-ay_min: -3.0
-az_max: 3.5
-vx_std: 0.2
-vy_std: 0.2
-wz_std: 0.4
-vx_max: 0.5
-vx_min: -0.35
-vy_max: 0.5
-wz_max: 1.9
-iteration_count: 1
-prune_distance: 1.7
-transform_tolerance: 0.1
-temperature: 0.3
-gamma: 0.015
-motion_model: "DiffDrive"
-visualize: true
-regenerate_noises: true
-TrajectoryVisualizer:
-  trajectory_step: 5
-  time_step: 3
-AckermannConstraints:
-  min_turning_r: 0.2
-critics: ["ConstraintCritic", "CostCritic", "GoalCritic", "GoalAngleCritic",
-          "PathAlignCritic", "PathFollowCritic", "PathAngleCritic", "PreferForwardCritic"]
-ConstraintCritic: {enabled: true, cost_power: 1, cost_weight: 4.0}
-GoalCritic: {enabled: true, cost_power: 1, cost_weight: 5.0, threshold_to_consider: 1.4}
-GoalAngleCritic: {enabled: true, cost_power: 1, cost_weight: 3.0, threshold_to_consider: 0.5}
-PreferForwardCritic: {enabled: true, cost_power: 1, cost_weight: 5.0, threshold_to_consider: 0.5}
-CostCritic:
-  enabled: true
-  cost_power: 1
-  cost_weight: 3.81
-  near_collision_cost: 253
-  critical_cost: 300.0
-  consider_footprint: false
-  collision_cost: 1000000.0
-  near_goal_distance: 1.0
-  trajectory_point_step: 2
-PathAlignCritic:
-  enabled: true
-  cost_power: 1
-  cost_weight: 14.0
-  max_path_occupancy_ratio: 0.05
-  trajectory_point_step: 4
-  threshold_to_consider: 0.5
-  offset_from_furthest: 20
-  use_path_orientations: false
-PathFollowCritic:
-  {enabled: true, cost_power: 1, cost_weight: 5.0, offset_from_furthest: 5,
-   threshold_to_consider: 1.4}
-PathAngleCritic:
-  enabled: true
-  cost_power: 1
-  cost_weight: 2.0
-  offset_from_furthest: 4
-  threshold_to_consider: 0.5
-  max_angle_to_furthest: 1.0
-  mode: 0
-"""
+# Nav2 Jazzy's nav2_bringup FollowPath MPPI block (the package's nav2_jazzy.yaml)
+NAV2_JAZZY_FOLLOW_PATH = NAV2_JAZZY_FILE.read_text()
 
 LOG = logging.getLogger("test")
 

@@ -7,12 +7,9 @@ from __future__ import annotations
 from importlib.util import find_spec
 
 import pytest
-import yaml
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.report import format_report, summary
 from nav2_pyif.testing import assert_reaches_goal, drive
-
-from tests.test_mppi_nav2 import NAV2_JAZZY_FOLLOW_PATH
 
 pytestmark = [
     pytest.mark.integration,
@@ -23,10 +20,9 @@ pytestmark = [
 @pytest.mark.timeout(300)
 @pytest.mark.parametrize("map_name", BUNDLED)
 def test_nav2_mppi_block_drives_to_the_goal(map_name: str) -> None:
-    from nav2_pyif_planners.mppi_nav2 import flatten
+    from nav2_pyif_planners.mppi_nav2 import nav2_jazzy_params
 
-    params = flatten(yaml.safe_load(NAV2_JAZZY_FOLLOW_PATH))
-    result = drive("mppi_nav2", map=map_name, controller_params=params)
+    result = drive("mppi_nav2", map=map_name, controller_params=nav2_jazzy_params())
     print(format_report(result))  # the run's figures, shown with -s or on failure
     assert_reaches_goal(result, min_clearance=0.05, max_time=120.0)
     s = summary(result)

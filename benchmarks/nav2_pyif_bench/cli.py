@@ -2,7 +2,7 @@
 
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
-nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers' rate through a host
+nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers through a host, both maps
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
@@ -62,12 +62,23 @@ def build_parser() -> argparse.ArgumentParser:
         default=[1000, 2000],
         help="rollouts per cycle to measure, each >= 1 (default 1000 2000)",
     )
-    mppi.add_argument("--map", default="office", help="bundled map to drive (default office)")
+    mppi.add_argument(
+        "--map",
+        nargs="+",
+        default=["office", "cluttered"],
+        help="bundled maps to drive (default office cluttered)",
+    )
+    mppi.add_argument(
+        "--time-steps",
+        type=positive_int,
+        default=mppi_bench.TIME_STEPS,
+        help=f"steps of 0.05 s per rollout, every controller (default {mppi_bench.TIME_STEPS})",
+    )
     mppi.add_argument(
         "--controllers",
         nargs="+",
         default=mppi_bench.default_controllers(),
-        help="default: mppi, and mppi_jax when JAX is installed",
+        help="default: mppi, and mppi_jax and mppi_nav2 (Nav2's MPPI in JAX) when JAX is installed",
     )
     fleet = sub.add_parser("fleet", help="N robots at 20 Hz on one planner host")
     fleet.add_argument(

@@ -7,6 +7,6 @@ Files, one job each: params.py (Nav2's parameter table), models.py (motion model
 plan's pruning), controller.py (the Nav2 controller). Needs JAX (nav2-pyif[jax])."""
 
 from nav2_pyif_planners.mppi_nav2.controller import Nav2MPPI
-from nav2_pyif_planners.mppi_nav2.params import flatten
+from nav2_pyif_planners.mppi_nav2.params import NAV2_JAZZY_FILE, flatten, nav2_jazzy_params
 
-__all__ = ["Nav2MPPI", "flatten"]
+__all__ = ["NAV2_JAZZY_FILE", "Nav2MPPI", "flatten", "nav2_jazzy_params"]

@@ -14,9 +14,14 @@ from __future__ import annotations
 import logging
 from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
+import yaml
 from nav2_pyif import Parameters
+
+#: Nav2 Jazzy's nav2_bringup FollowPath MPPI block, as a YAML file
+NAV2_JAZZY_FILE = Path(__file__).with_name("nav2_jazzy.yaml")
 
 #: Nav2's critic plugins this controller scores, in its names, with each critic's own
 #: parameters and defaults (the critics' initialize() in nav2_mppi_controller/src/critics).
@@ -152,6 +157,12 @@ def flatten(block: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
         else:
             out[name] = value
     return out
+
+
+def nav2_jazzy_params(**overrides: Any) -> dict[str, Any]:
+    """Nav2 Jazzy's nav2_bringup FollowPath MPPI block as parameters, ``overrides`` applied
+    (e.g. ``batch_size=1000``)."""
+    return {**flatten(yaml.safe_load(NAV2_JAZZY_FILE.read_text())), **overrides}
 
 
 def read_settings(
