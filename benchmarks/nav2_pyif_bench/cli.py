@@ -3,6 +3,7 @@
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers through a host, both maps
+nav2-pyif-bench mppi-profile [--rollouts N ...]  where Nav2MPPI's compiled step spends its time
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
@@ -33,6 +34,7 @@ from nav2_pyif_bench import (
     inputs_bench,
     layer_bench,
     mppi_bench,
+    mppi_profile,
     obstacles_bench,
     protocol_bench,
     reliability_bench,
@@ -79,6 +81,17 @@ def build_parser() -> argparse.ArgumentParser:
         nargs="+",
         default=mppi_bench.default_controllers(),
         help="default: mppi, and mppi_jax and mppi_nav2 (Nav2's MPPI in JAX) when JAX is installed",
+    )
+    profile = sub.add_parser("mppi-profile", help="the parts of Nav2MPPI's compiled step")
+    profile.add_argument(
+        "--rollouts",
+        type=positive_int,
+        nargs="+",
+        default=[1000, 2000],
+        help="batch sizes to profile (default 1000 2000)",
+    )
+    profile.add_argument(
+        "--repeat", type=positive_int, default=200, help="timed runs per part (default 200)"
     )
     fleet = sub.add_parser("fleet", help="N robots at 20 Hz on one planner host")
     fleet.add_argument(
@@ -235,6 +248,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "mppi":
         results = mppi_bench.run(args)
         text = mppi_bench.report(results)
+    elif args.bench == "mppi-profile":
+        results = mppi_profile.run(args)
+        text = mppi_profile.report(results)
     elif args.bench == "hops":
         results = hop_bench.run(hop_bench.apply_quick(args))
         text = hop_bench.report(results)
