@@ -117,8 +117,9 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
     for critic in (*s.critics, *extra):
         label = critic.name + (" (consider_footprint)" if critic in extra[2:] else "")
         parts[label] = _timed(lambda d, c=critic: CRITICS[c.name](d, c, s), data, repeat=repeat)
+    on_device = Inputs(*(jnp.asarray(a) for a in x))
     parts["one iteration (all but smoothing)"] = _timed(
-        lambda u, n: _iterate(u, n, x, grid, valid, s)[0], u, noise, repeat=repeat
+        lambda u, n: _iterate(u, n, on_device, grid, valid, s)[0], u, noise, repeat=repeat
     )
     lowered = jax.jit(lambda *a: step(*a, grid, s)).lower(sequence, history, bank, pick, x)
     cost = lowered.compile().cost_analysis()

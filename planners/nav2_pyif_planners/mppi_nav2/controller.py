@@ -59,9 +59,11 @@ class Nav2MPPI(Controller):
         self.retry_attempt_limit = p.declare("retry_attempt_limit", 1, "resets before failing")
         sets = p.declare("noise_sets", 8, "noise sets drawn at configure (regenerate_noises)")
         self.rng = np.random.default_rng(p.declare("seed", 0, "noise seed"))
-        sigma = np.array([s.vx_std, s.vy_std if s.holonomic else 0.0, s.wz_std], np.float32)
-        draw = self.rng.standard_normal((max(sets, 1), 3, s.batch_size, s.time_steps), np.float32)
-        self.bank = jnp.asarray(draw * sigma[None, :, None, None])
+        # vx, (vy: only for Omni, the others have no lateral noise,) wz
+        sigma = np.array([s.vx_std, s.vy_std, s.wz_std] if s.holonomic else [s.vx_std, s.wz_std])
+        shape = (max(sets, 1), len(sigma), s.batch_size, s.time_steps)
+        draw = self.rng.standard_normal(shape, np.float32)
+        self.bank = jnp.asarray(draw * sigma[None, :, None, None].astype(np.float32))
         self._check_footprint()
         self._grid: Grid | None = None
         self._grid_version: int | None = None

@@ -12,7 +12,6 @@ import math
 from collections.abc import Callable
 from typing import Any, NamedTuple
 
-import jax
 import jax.numpy as jnp
 
 from nav2_pyif_planners.mppi_nav2.costs import (
@@ -53,9 +52,10 @@ class CriticData(NamedTuple):
 
 
 def normalize(angle: Any) -> Any:
-    """Nav2's normalize_angles: into [-pi, pi) by fmod (the sign of the dividend)."""
-    theta = jnp.fmod(angle + PI, 2.0 * PI)
-    return jnp.where(theta < 0.0, theta + PI, theta - PI)
+    """Nav2's normalize_angles: into [-pi, pi) (Nav2's fmod form gives pi rather than -pi
+    for some odd multiples of pi; the cost is the same). floor, not fmod: half the time on a
+    CPU."""
+    return angle - 2.0 * PI * jnp.floor((angle + PI) * (0.5 / PI))
 
 
 def within(data: CriticData, threshold: Any) -> Any:
@@ -257,7 +257,7 @@ def path_align(data: CriticData, c: Critic, s: Settings) -> Any:
     upper = along[jnp.minimum(above, along.shape[0] - 1)]
     nearest = jnp.where(travelled - lower < upper - travelled, above - 1, above)
     nearest = jnp.where(above >= segments, last, nearest)
-    nearest = jax.lax.cummax(nearest, axis=1)
+    nearest = _running_max(nearest)
     p = data.path[nearest]
     dx, dy = p[..., 0] - tx[:, 1:], p[..., 1] - ty[:, 1:]
     d2 = dx * dx + dy * dy
@@ -271,6 +271,15 @@ def path_align(data: CriticData, c: Critic, s: Settings) -> Any:
         within(data, c["threshold_to_consider"]) | (segments < c["offset_from_furthest"]) | occupied
     )
     return jnp.where(skip, 0.0, weighted(mean, c))
+
+
+def _running_max(values: Any) -> Any:
+    """The running max along axis 1, a dozen steps unrolled: lax.cummax's reduce-window is
+    slower on a CPU for so few."""
+    out = [values[:, 0]]
+    for k in range(1, values.shape[1]):
+        out.append(jnp.maximum(out[-1], values[:, k]))
+    return jnp.stack(out, axis=1)
 
 
 #: critic name -> scoring function; those returning a pair also say "all rollouts collide"

@@ -62,18 +62,26 @@ def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts
             dx, dy = dx - vy * sn, dy + vy * c
         x, y, yaw = x + dx * dt, y + dy * dt, yaw + wz * dt
         nvx = clamp_step(u[0], vx, *lim_x)
-        nvy = clamp_step(u[1], vy, *lim_y) if s.holonomic else u[1]
+        nvy = clamp_step(u[1], vy, *lim_y) if s.holonomic else vy
         nwz = jnp.clip(u[2], wz - dwz, wz + dwz)
         return (nvx, nvy, nwz, x, y, yaw), (vx, vy, wz, x, y, yaw, nvx, nvy, nwz)
 
     batch = controls.vx.shape[0]
     full = [jnp.full((batch,), v, jnp.float32) for v in (*speed, *pose)]
+    if not s.holonomic:
+        # no lateral velocity: a scalar zero, carried and returned as such (DiffDrive and
+        # Ackermann move no (batch, T) vy array through memory)
+        full[1] = jnp.zeros((), jnp.float32)
+        controls = controls._replace(vy=jnp.zeros((1, controls.vx.shape[1]), jnp.float32))
     _, out = jax.lax.scan(step, tuple(full), tuple(c.T for c in controls))
-    velocities = Controls(out[0].T, out[1].T, out[2].T)
+    zeros = jnp.zeros_like(controls.vx)
+    vy, nvy = (out[1].T, out[7]) if s.holonomic else (zeros, None)
+    velocities = Controls(out[0].T, vy, out[2].T)
+    pairs = [(out[6], controls.vx), (nvy, controls.vy), (out[8], controls.wz)]
     clamped = Controls(
         *(
-            jnp.concatenate([n[:-1].T, u[:, -1:]], axis=1)
-            for n, u in zip(out[6:], controls, strict=True)
+            jnp.concatenate([n[:-1].T, u[:, -1:]], axis=1) if n is not None else zeros
+            for n, u in pairs
         )
     )
     return Rollouts(clamped, velocities, out[3].T, out[4].T, out[5].T)

@@ -114,9 +114,8 @@ def _iterate(
     for mean, c, std in axes:
         costs = costs + s.gamma / std**2 * ((c - mean[None, :]) @ mean)
     weights = jax.nn.softmax(-(costs - costs.min()) / s.temperature)
-    new = Controls(*(weights @ c for c in clamped))
-    if not s.holonomic:
-        new = new._replace(vy=jnp.zeros_like(new.vx))
+    lateral = weights @ clamped.vy if s.holonomic else jnp.zeros_like(u.vx)
+    new = Controls(weights @ clamped.vx, lateral, weights @ clamped.wz)
     return constrain_sequence(new, s, x.limits), fail
 
 
@@ -133,7 +132,8 @@ def step(
     """One control cycle. ``sequence`` (3, T) vx, vy, wz; ``history`` (4, 3); ``bank``
     (N, 3, batch, T) standard noise already scaled by the sigmas; ``pick`` int32 (set, roll)."""
     drawn = jnp.roll(bank[pick[0]], pick[1], axis=1)
-    noise = Controls(drawn[0], drawn[1], drawn[2])
+    lateral = drawn[1] if s.holonomic else jnp.zeros((), jnp.float32)
+    noise = Controls(drawn[0], lateral, drawn[-1])
     valid = path_valid(grid, x.path, x.count, s)
     u = Controls(sequence[0], sequence[1], sequence[2])
     fail = jnp.asarray(False)
