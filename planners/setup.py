@@ -13,7 +13,8 @@ setup(
     name=NAME,
     version=PACKAGE.findtext("version"),
     packages=find_packages(include=["nav2_pyif_planners", "nav2_pyif_planners.*"]),
-    package_data={"": ["py.typed"]},
+    # Nav2 Jazzy's FollowPath MPPI block, which Nav2MPPI's nav2_jazzy_params() reads
+    package_data={"": ["py.typed"], "nav2_pyif_planners.mppi_nav2": ["*.yaml"]},
     data_files=[
         ("share/ament_index/resource_index/packages", [f"resource/{NAME}"]),
         (f"share/{NAME}", ["package.xml"]),
