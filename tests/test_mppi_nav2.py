@@ -407,3 +407,18 @@ def test_refuses_what_nav2_refuses() -> None:
             Costmap(FREE, 0.05, robot_radius=0.2),
             **{"CostCritic.consider_footprint": True},
         )
+
+
+def test_ackermann_turns_no_tighter_than_min_turning_r() -> None:
+    s = settings(motion_model="Ackermann", **{"AckermannConstraints.min_turning_r": 0.4})
+    limits = jnp.asarray([0.5, -0.35, 0.5, 1.9], jnp.float32)
+    zeros = jnp.zeros(56, jnp.float32)
+    for turn, kept in ((1.0, 0.5), (0.3, 0.3)):  # 0.2 m/s at 1 rad/s: a 0.2 m radius
+        u = Controls(jnp.full(56, 0.2, jnp.float32), zeros, jnp.full(56, turn, jnp.float32))
+        wz = np.asarray(constrain_sequence(u, s, limits).wz)
+        np.testing.assert_allclose(wz, kept, atol=1e-6)
+    c = critic("ConstraintCritic")
+    x, y = straight(0.2)
+    tight = data([x, x], [y, y], vx=np.array([[0.2], [0.2]]), wz=np.array([[1.0], [0.3]]))
+    cost = np.asarray(critics.constraint(tight, c, s))
+    assert cost[0] == pytest.approx(4.0 * 0.2 * 0.05 * 56, rel=1e-4) and cost[1] == 0.0
