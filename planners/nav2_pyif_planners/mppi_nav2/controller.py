@@ -201,7 +201,8 @@ class Nav2MPPI(Controller):
         failures = 0
         while True:  # Nav2's evalControl: reset and retry while every rollout collides
             out = self._run(inputs)
-            command, fail = np.asarray(out.command, np.float64), bool(out.fail)
+            reply = np.asarray(out.reply, np.float64)
+            command, fail = reply[:3], reply[3] != 0.0
             if not fail:
                 break
             self.reset()

@@ -48,15 +48,14 @@ class Inputs(NamedTuple):
 
 class Outputs(NamedTuple):
     """``sequence`` (3, T) the next cycle's warm start (shifted when Nav2 would),
-    ``history`` (4, 3) the last four commands, ``command`` (vx, vy, wz), ``optimal`` (3, T)
-    the smoothed sequence before the shift (the local_plan debug output), ``fail``: every
-    rollout collided."""
+    ``history`` (4, 3) the last four commands, ``reply`` (vx, vy, wz, fail): the command and
+    1.0 when every rollout collided (Nav2's fail_flag), ``optimal`` (3, T) the smoothed
+    sequence before the shift (the local_plan debug output)."""
 
     sequence: Any
     history: Any
-    command: Any
+    reply: Any
     optimal: Any
-    fail: Any
 
 
 def path_valid(grid: Grid, path: Any, count: Any, s: Settings) -> Any:
@@ -148,4 +147,6 @@ def step(
         sequence = jnp.concatenate([optimal[:, 1:], optimal[:, -1:]], axis=1)
     else:
         sequence = optimal
-    return Outputs(sequence, history, command, optimal, fail)
+    # the command and the flag in one array: one transfer to the host per cycle, not two
+    reply = jnp.concatenate([command, fail.astype(jnp.float32)[None]])
+    return Outputs(sequence, history, reply, optimal)
