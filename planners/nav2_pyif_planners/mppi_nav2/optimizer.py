@@ -81,6 +81,10 @@ def furthest_reached(x_end: Any, y_end: Any, path: Any, count: Any) -> Any:
     return nearest.max()
 
 
+#: float32 products at full precision: GPUs would otherwise use TF32 (10-bit mantissa)
+dot = partial(jnp.matmul, precision=jax.lax.Precision.HIGHEST)
+
+
 def _score(data: CriticData, s: Settings) -> tuple[Any, Any]:
     costs = jnp.zeros(data.x.shape[0], jnp.float32)
     fail = jnp.asarray(False)
@@ -111,10 +115,10 @@ def _iterate(
     if s.holonomic:
         axes.append((u.vy, clamped.vy, s.vy_std))
     for mean, c, std in axes:
-        costs = costs + s.gamma / std**2 * ((c - mean[None, :]) @ mean)
+        costs = costs + s.gamma / std**2 * dot(c - mean[None, :], mean)
     weights = jax.nn.softmax(-(costs - costs.min()) / s.temperature)
-    lateral = weights @ clamped.vy if s.holonomic else jnp.zeros_like(u.vx)
-    new = Controls(weights @ clamped.vx, lateral, weights @ clamped.wz)
+    lateral = dot(weights, clamped.vy) if s.holonomic else jnp.zeros_like(u.vx)
+    new = Controls(dot(weights, clamped.vx), lateral, dot(weights, clamped.wz))
     return constrain_sequence(new, s, x.limits), fail
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+import jax
 import jax.numpy as jnp
 import numpy as np
 
@@ -23,5 +24,6 @@ def smooth(sequence: Any, history: Any) -> Any:
     padded = jnp.concatenate([history, sequence, jnp.repeat(sequence[-1:], 4)])
     # window i covers padded[i : i + 9]: the control i and four either side
     windows = jnp.stack([padded[k : k + steps - 1] for k in range(9)])
-    smoothed = jnp.tensordot(jnp.asarray(COEFFICIENTS, jnp.float32), windows, axes=1)
+    weights = jnp.asarray(COEFFICIENTS, jnp.float32)
+    smoothed = jnp.tensordot(weights, windows, axes=1, precision=jax.lax.Precision.HIGHEST)
     return jnp.concatenate([smoothed, sequence[-1:]])
