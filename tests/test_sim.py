@@ -143,10 +143,11 @@ def test_missing_jax_names_a_command_that_installs_it(tmp_path: Path) -> None:
     (tmp_path / "jax").mkdir()  # a jax that fails to import, as a missing one does
     (tmp_path / "jax/__init__.py").write_text("raise ImportError(\"No module named 'jax'\")\n")
     path = os.pathsep.join([str(tmp_path), os.environ.get("PYTHONPATH", "")])
-    result = run_cli("--controller", "mppi_jax", env={"PYTHONPATH": path})
-    assert result.returncode == 2  # the host could not load the planner: a usage error
-    assert f"{sys.executable} -m pip install 'jax>=0.4.30'" in result.stderr
-    assert "NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh" in result.stderr
+    for alias in ("mppi_jax", "mppi_nav2"):
+        result = run_cli("--controller", alias, env={"PYTHONPATH": path})
+        assert result.returncode == 2  # the host could not load the planner: a usage error
+        assert f"{sys.executable} -m pip install 'jax>=0.4.30'" in result.stderr
+        assert "NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh" in result.stderr
 
 
 def test_the_picture_has_a_cost_scale_a_heading_legend_and_wrapped_titles() -> None:

@@ -6,6 +6,17 @@ Files, one job each: params.py (Nav2's parameter table), models.py (motion model
 (costmap look-ups), critics.py, smoothing.py, optimizer.py (the compiled step), path.py (the
 plan's pruning), controller.py (the Nav2 controller). Needs JAX (nav2-pyif[jax])."""
 
+try:
+    import jax  # noqa: F401
+except ImportError as exc:  # a clear reason at load time, as mppi_jax gives
+    import sys
+
+    raise ImportError(
+        f"nav2_pyif_planners.mppi_nav2 needs JAX, which {sys.executable} lacks: "
+        f"{sys.executable} -m pip install 'jax>=0.4.30' (CPU; 'jax[cuda12]' for NVIDIA GPUs); "
+        "in a checkout, NAV2_PYIF_EXTRAS=dev,jax ./scripts/bootstrap.sh"
+    ) from exc
+
 from nav2_pyif_planners.mppi_nav2.controller import Nav2MPPI
 from nav2_pyif_planners.mppi_nav2.params import NAV2_JAZZY_FILE, flatten, nav2_jazzy_params
 
