@@ -33,7 +33,7 @@ class Problem:
         self.obstacles = opti.parameter(2, OBSTACLES)
         X, U = self.states, self.controls  # noqa: N806 (the usual names)
         opti.subject_to(X[:, 0] == self.pose)
-        cost = 0
+        cost = ca.MX(0)
         for k in range(steps):  # explicit Euler: dt is the control period, a short step
             v, w, yaw = U[0, k], U[1, k], X[2, k]
             opti.subject_to(
@@ -51,7 +51,12 @@ class Problem:
         opti.subject_to(opti.bounded(0, U[0, :], limits.max_speed))
         opti.subject_to(opti.bounded(-limits.max_turn, U[1, :], limits.max_turn))
         # IPOPT stops within two control periods; solve_limited then takes its best iterate
-        budget = {"print_level": 0, "sb": "yes", "max_iter": 60, "max_wall_time": 2 * dt}
+        budget: dict[str, Any] = {
+            "print_level": 0,
+            "sb": "yes",
+            "max_iter": 60,
+            "max_wall_time": 2 * dt,
+        }
         opti.solver("ipopt", {"print_time": False}, budget)
         self.guess = (np.zeros((3, steps + 1)), np.zeros((2, steps)))
 
@@ -65,7 +70,8 @@ class Problem:
         opti.set_initial(self.states, self.guess[0])
         opti.set_initial(self.controls, self.guess[1])
         solution = opti.solve_limited()  # the best iterate when IPOPT stops early
-        states, controls = solution.value(self.states), solution.value(self.controls)
+        states = np.asarray(solution.value(self.states), dtype=np.float64)  # (3, N+1)
+        controls = np.asarray(solution.value(self.controls), dtype=np.float64)  # (2, N)
         self.guess = (
             np.column_stack([states[:, 1:], states[:, -1:]]),
             np.column_stack([controls[:, 1:], controls[:, -1:]]),

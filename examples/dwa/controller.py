@@ -53,7 +53,8 @@ class DWA(Controller):
         (cx, cy), self.progress = carrot(self.plan.xy_yaw, x, y, self.lookahead, self.progress)
         v, w = self.window(velocity.linear.x, velocity.angular.z)
         poses = arcs(x, y, yaw, v, w, self.horizon)  # (K, T, 3)
-        cost = self.cost(poses, v, cx, cy) + self.inadmissible(poses, v)
+        ahead = self.plan.xy[self.progress : self.progress + 80]  # (P, 2) the plan ahead
+        cost = self.cost(poses, v, (cx, cy), ahead) + self.inadmissible(poses, v)
         if not np.isfinite(cost).any():
             raise NoValidControl("every trajectory of the dynamic window collides")
         k = int(np.argmin(cost))
@@ -71,10 +72,11 @@ class DWA(Controller):
         vv, ww = np.meshgrid(v, w)
         return vv.ravel(), ww.ravel()
 
-    def cost(self, poses: Any, v: Any, cx: float, cy: float) -> Any:
-        """(K,) the cost of each of the (K, T, 3) trajectories, heading for (cx, cy) [m]."""
+    def cost(self, poses: Any, v: Any, target: tuple[float, float], ahead: Any) -> Any:
+        """(K,) the cost of each of the (K, T, 3) trajectories at (K,) speeds v [m/s], heading
+        for ``target`` (x, y) [m] along ``ahead``, (P, 2) points of the plan."""
+        cx, cy = target
         end, sampled = poses[:, -1], poses[:, 3::4, :2]  # every 0.2 s for the distances
-        ahead = self.plan.xy[self.progress : self.progress + 80]  # the plan ahead, (P, 2)
         obstacles = self.costmap.obstacle_points()  # (M, 2): the lethal cells' edges
         facing = wrap(np.arctan2(cy - end[:, 1], cx - end[:, 0]) - end[:, 2])
         return (
