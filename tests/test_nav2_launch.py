@@ -6,7 +6,8 @@ whose machine vanishes is noticed within a lease and comes back by itself, with 
 figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans cross whole;
 map -> odom moving while driving; the secure fleet of DEPLOYMENT.md section 6 (TLS, client
 certificates, access control) carries robot1's goal; and the function-delegate YAML starts its
-own hosts.
+own hosts. Apart, the examples/ gallery: the OMPL example plans and the DWA example drives to
+the goal (bridge_plugin/test/nav2/test_gallery.py).
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per distribution (humble, jazzy, lyrical) and zenoh-cpp backend:
@@ -24,6 +25,7 @@ distribution and backend is skipped, saying what is missing, where its environme
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import shlex
 import subprocess
@@ -95,14 +97,30 @@ def _tail(result: subprocess.CompletedProcess[str], lines: int = 80) -> str:
 # The full-stack fault suite: 20 NavigateToPose runs per fault (about an hour per backend),
 # run when NAV2_PYIF_FULL_STACK_RUNS says how many.
 FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
+# The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
+# needs the gallery's extras in the project's environment.
+GALLERY = "test_gallery.py"
 
 
 @pytest.mark.timeout(1800)
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in FULL_STACK)
+    apart = [*FULL_STACK, GALLERY]
+    ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
     _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
+
+
+@pytest.mark.timeout(1800)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_gallery_ompl_planner_and_dwa_controller_in_a_real_nav2(distro: str, backend: str) -> None:
+    if importlib.util.find_spec("ompl") is None:
+        pytest.skip(
+            "the gallery's Nav2 launch test needs OMPL in the planner host's environment: "
+            "pip install 'nav2-pyif[ompl]' (scripts/bootstrap.sh installs it)"
+        )
+    _launch_tests(distro, backend, f"bridge_plugin/test/nav2/{GALLERY}", timeout=900)
 
 
 @pytest.mark.timeout(4 * 3600)
