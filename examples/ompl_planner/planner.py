@@ -16,6 +16,7 @@ ends is OMPL's own, in C++.
 from __future__ import annotations
 
 import itertools
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -41,7 +42,8 @@ class OMPLPlanner(GlobalPlanner):
 
     def configure(self) -> None:
         self.algorithm = self.params.declare("algorithm", "rrtstar", "rrtstar or prmstar")
-        self.max_time = self.params.declare("max_time", 0.5, "[s] OMPL's budget for one plan")
+        self.max_time = self.params.declare("max_time", 0.5, "[s] OMPL's search for one plan")
+        self.timeout = self.params.declare("timeout", 5.0, "[s] the search goes on for a path")
         if self.algorithm not in ALGORITHMS:
             raise ValueError(
                 f"algorithm must be one of {sorted(ALGORITHMS)}, not {self.algorithm!r}"
@@ -60,11 +62,12 @@ class OMPLPlanner(GlobalPlanner):
             raise StartOccupied(f"start ({sx:.2f}, {sy:.2f}) is too close to an obstacle")
         if not is_free(gx, gy):
             raise GoalOccupied(f"goal ({gx:.2f}, {gy:.2f}) is too close to an obstacle")
+        checks, cancelled = itertools.count(), [False]
         stop = ob.timedPlannerTerminationCondition(self.max_time)
-        checks = itertools.count()
 
         def valid(state: Any) -> bool:
             if next(checks) % CANCEL_EVERY == 0 and cancel_checker():
+                cancelled[0] = True
                 stop.terminate()  # Nav2 cancelled: OMPL's solve returns
             return is_free(state[0], state[1])
 
@@ -76,11 +79,17 @@ class OMPLPlanner(GlobalPlanner):
         )
         setup.setPlanner(ALGORITHMS[self.algorithm](info))
         setup.setStartAndGoalStates(state(setup, sx, sy), state(setup, gx, gy))
-        setup.solve(stop)
+        give_up = time.monotonic() + self.timeout
+        # rounds of max_time until a path is found: the planner keeps its tree or roadmap
+        while not cancelled[0] and time.monotonic() < give_up:
+            setup.solve(stop)
+            if setup.haveExactSolutionPath():
+                break
+            stop = ob.timedPlannerTerminationCondition(self.max_time)
         if cancel_checker():
             raise PlannerCancelled("cancelled while OMPL searched")
         if not setup.haveExactSolutionPath():
-            raise NoValidPathCouldBeFound(f"OMPL {self.algorithm} found none in {self.max_time} s")
+            raise NoValidPathCouldBeFound(f"OMPL {self.algorithm} found none in {self.timeout} s")
         setup.simplifySolution(0.05)
         path = setup.getSolutionPath()
         path.interpolate(int(path.length() / costmap.resolution) + 2)  # a pose per cell
