@@ -1,11 +1,12 @@
-"""Count each example's adapter lines, with the authors' helpers and without them (issue 23).
+"""Count each example's adapter lines, with the authors' helpers for adapters and without them.
 
 A line is a non-blank line of code: not a comment, not a docstring. "With": the example's
 adapter files as they are (the code between the library and nav2_pyif's API, imports
-included). "Without": the same plus, for each helper added to the authors' API by issue 23 that
-the adapter uses, the lines of that helper's implementation in nav2_pyif (and of the helpers it
-calls), each counted once: what the adapter had to carry before. A hand copy could be a little
-shorter; the API's has the edge cases.
+included). "Without": the same plus, for each helper the authors' API gained for adapters (the
+geometry, obstacle points, the footprint's costs, the control period) that the adapter uses,
+the lines of that helper's implementation in nav2_pyif (and of the helpers it calls), each
+counted once: what the adapter had to carry before. A hand copy could be a little shorter; the
+API's has the edge cases.
 
     python examples/adapter_size.py     # prints the table README.md shows
 """
@@ -26,7 +27,7 @@ ADAPTERS = {
     "onnx_policy": ["controller.py"],  # features.py and make_model.py make the model
     "dwa": ["controller.py", "rollout.py"],  # no library: the algorithm is the adapter
 }
-#: a helper of issue 23 as an adapter names it -> its implementation: (file, qualified name)
+#: a helper for adapters as an adapter names it -> its implementation: (file, qualified name)
 HELPERS = {
     "pose_xy_yaw": [("geometry.py", "pose_xy_yaw"), ("geometry.py", "yaw_of")],
     "wrap": [("geometry.py", "wrap")],
