@@ -1,12 +1,14 @@
 """The examples/ gallery, driven offline as README's "Bring your own planner" serves a user's
 own module (``nav2-pyif sim --path examples ...``): each example through a real planner host
-on both bundled maps, to the goal without a collision. Each needs its extra (``pip install
-nav2-pyif[ompl]``, ``[casadi]``, ``[onnx]``), which scripts/bootstrap.sh installs; without it
-its tests are skipped, saying which extra to install."""
+on both bundled maps, to the goal without a collision; OMPL's search ended by a cancel; the
+MPC stepping by the controller server's period. Each needs its extra (``python -m pip install
+'.[ompl]'`` in the clone, ``[casadi]``, ``[onnx]``), which scripts/bootstrap.sh installs;
+without it its tests are skipped, saying which extra to install."""
 
 from __future__ import annotations
 
 import importlib.util
+import logging
 import subprocess
 import sys
 import time
@@ -14,12 +16,15 @@ from pathlib import Path
 from typing import Any
 
 import nav2_pyif as api
+import numpy as np
 import pytest
-from geometry_msgs.msg import PoseStamped
+from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif.client import GlobalPlannerClient, Timeouts
+from nav2_pyif.plugin import PluginContext
 from nav2_pyif.runner.inflation import inflate
 from nav2_pyif.runner.mapfile import load_map
 from nav2_pyif.runner.maps import map_path
+from nav2_pyif.runner.run import pose_msg
 from nav2_pyif.testing import assert_reaches_goal, drive
 
 from tests.conftest import ROOT
@@ -42,8 +47,8 @@ def needs(example: str) -> None:
     module, extra = NEEDS[example]
     if importlib.util.find_spec(module) is None:
         pytest.skip(
-            f"examples/{example} needs {module}: pip install 'nav2-pyif[{extra}]' "
-            "(scripts/bootstrap.sh installs it)"
+            f"examples/{example} needs {module}: python -m pip install '.[{extra}]' in the "
+            "clone (scripts/bootstrap.sh installs it)"
         )
 
 
@@ -97,6 +102,32 @@ def test_example_controller_reaches_the_goal(
         controller = "onnx_policy.controller:OnnxPolicy"
         params["model"] = str(request.getfixturevalue("onnx_model"))
     assert_reaches_goal(run(map_name, controller=controller, controller_params=params))
+
+
+@pytest.mark.parametrize("hz", [20.0, 10.0])
+def test_the_mpc_steps_by_the_controller_servers_period(hz: float) -> None:
+    """The MPC's model advances by controller_frequency's period per step: its first predicted
+    pose is the first command applied for exactly one period."""
+    needs("casadi_mpc")
+    sys.path.insert(0, str(EXAMPLES))
+    from casadi_mpc.controller import MPC
+
+    costmap = inflate(load_map(map_path("office")), inscribed_radius=0.15, footprint=FOOTPRINT)
+    mpc = MPC()
+    mpc._attach(
+        PluginContext(
+            *("FollowPath", "controller_server", "map", "base_link", costmap),
+            api.Parameters({}),
+            logging.getLogger("test"),
+            {"controller_frequency": hz},
+        )
+    )
+    mpc.configure()
+    mpc.set_plan(api.Plan(np.column_stack([np.linspace(2, 6, 81), np.full(81, 2.5)]), "map"))
+    cmd = mpc.compute_velocity_commands(pose_msg(2.0, 2.5, 0.0), Twist(), None)
+    first = mpc.problem.guess[0][:, 0]  # the predicted pose one step on
+    assert cmd.twist.linear.x > 0.1
+    assert first[0] - 2.0 == pytest.approx(cmd.twist.linear.x / hz, rel=1e-3)
 
 
 def test_a_cancel_stops_ompl_mid_search(start_host: Any, zsession_factory: Any) -> None:

@@ -118,7 +118,7 @@ def test_gallery_ompl_planner_and_dwa_controller_in_a_real_nav2(distro: str, bac
     if importlib.util.find_spec("ompl") is None:
         pytest.skip(
             "the gallery's Nav2 launch test needs OMPL in the planner host's environment: "
-            "pip install 'nav2-pyif[ompl]' (scripts/bootstrap.sh installs it)"
+            "python -m pip install '.[ompl]' in the clone (scripts/bootstrap.sh installs it)"
         )
     selection = f"bridge_plugin/test/nav2/{GALLERY}"
     _launch_tests(distro, backend, selection, timeout=900, recovery_figures=False)

@@ -1,4 +1,4 @@
-"""A model predictive controller solved by CasADi/IPOPT (``pip install nav2-pyif[casadi]``).
+"""A model predictive controller solved by CasADi/IPOPT (the extra ``casadi``).
 
 Its time step is the controller server's period (``self.control_period``): the first control
 of each solution is the one applied for exactly that long. The reference is the plan from the

@@ -1,4 +1,4 @@
-"""OMPL's RRT* or PRM* (``pip install nav2-pyif[ompl]``) as a Nav2 global planner.
+"""OMPL's RRT* or PRM* (the extra ``ompl``) as a Nav2 global planner.
 
 OMPL searches the plane (x, y) over the whole costmap. A state is valid where its cell costs
 less than ``costmap.circumscribed_cost()``: there the robot touches nothing at any heading, so

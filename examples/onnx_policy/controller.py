@@ -1,4 +1,4 @@
-"""A policy network run by onnxruntime (``pip install nav2-pyif[onnx]``) as a Nav2 controller.
+"""A policy network run by onnxruntime (the extra ``onnx``) as a Nav2 controller.
 
 The model file (parameter ``model``) maps features.py's (N, 3) inputs to (N, 2) commands;
 make_model.py writes one. The controller picks the target (the carrot on the plan, or the

@@ -6,7 +6,7 @@ host with ``--path examples`` as a user serves their own modules: the robot reac
 behind the wall.
 
 Needs what test_nav2_pyif.py needs, and OMPL in the planner host's environment
-(``pip install nav2-pyif[ompl]``; tests/test_nav2_launch.py checks it).
+(``python -m pip install '.[ompl]'`` in the clone; tests/test_nav2_launch.py checks it).
 """
 
 from __future__ import annotations
