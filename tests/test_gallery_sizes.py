@@ -28,7 +28,11 @@ def test_readme_shows_the_sizes_counted_today(capsys: pytest.CaptureFixture[str]
     assert counter().main() == 0
     table = capsys.readouterr().out
     assert table.count("\n") == 6  # the header, its rule, four examples
-    assert table in (ROOT / "README.md").read_text()
+    readme = (ROOT / "README.md").read_text()
+    assert table in readme
+    for row in table.splitlines()[2:]:  # and the sentence that quotes them
+        now, before = (cell.strip() for cell in row.split("|")[3:5])
+        assert f" {now} ({before}" in readme, row
 
 
 def test_only_code_lines_count(tmp_path: Path) -> None:

@@ -24,6 +24,7 @@ import numpy as np
 from nav2_pyif import (
     GlobalPlanner,
     GoalOccupied,
+    InvalidPlanner,
     NoValidPathCouldBeFound,
     PlannerCancelled,
     StartOccupied,
@@ -45,9 +46,7 @@ class OMPLPlanner(GlobalPlanner):
         self.max_time = self.params.declare("max_time", 0.5, "[s] OMPL's search for one plan")
         self.timeout = self.params.declare("timeout", 5.0, "[s] the search goes on for a path")
         if self.algorithm not in ALGORITHMS:
-            raise ValueError(
-                f"algorithm must be one of {sorted(ALGORITHMS)}, not {self.algorithm!r}"
-            )
+            raise InvalidPlanner(f"algorithm: one of {sorted(ALGORITHMS)}, not {self.algorithm!r}")
         ou.setLogLevel(ou.LogLevel.LOG_WARN)  # OMPL's INFO lines would fill the host's log
 
     def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
@@ -86,7 +85,7 @@ class OMPLPlanner(GlobalPlanner):
             if setup.haveExactSolutionPath():
                 break
             stop = ob.timedPlannerTerminationCondition(self.max_time)
-        if cancel_checker():
+        if cancelled[0] or cancel_checker():
             raise PlannerCancelled("cancelled while OMPL searched")
         if not setup.haveExactSolutionPath():
             raise NoValidPathCouldBeFound(f"OMPL {self.algorithm} found none in {self.timeout} s")
