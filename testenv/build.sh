@@ -376,7 +376,7 @@ step_ros() {
   if [ "$PYPI_BASE" = 1 ]; then
     while read -r pkg; do
       [ -f "$VENV/share/$pkg/package.xml" ] && ignore+=("$pkg")
-    done < <(colcon list --base-paths "$SOURCES" --names-only 2>/dev/null)
+    done < <(colcon --log-base "$PREFIX/log" list --base-paths "$SOURCES" --names-only 2>/dev/null)
   fi
   local selection=(--packages-up-to "${ROS_PACKAGES[@]}")
   [ "$SELECT_ONLY" = 1 ] && selection=(--packages-select "${ROS_PACKAGES[@]}")
