@@ -97,6 +97,8 @@ def _tail(result: subprocess.CompletedProcess[str], lines: int = 80) -> str:
 # The full-stack fault suite: 20 NavigateToPose runs per fault (about an hour per backend),
 # run when NAV2_PYIF_FULL_STACK_RUNS says how many.
 FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
+# Nav2's MPPI beside the project's (a benchmark, BENCHMARKS.md), run when asked for.
+SIDE_BY_SIDE = "test_mppi_side_by_side.py"
 # The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
 # needs the gallery's extras in the project's environment.
 GALLERY = "test_gallery.py"
@@ -106,7 +108,7 @@ GALLERY = "test_gallery.py"
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    apart = [*FULL_STACK, GALLERY]
+    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY]
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
     _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
 
@@ -141,6 +143,20 @@ def test_full_stack_navigations_survive_every_fault(distro: str, backend: str) -
     chosen = f"-k {shlex.quote(select)} " if select else ""
     # -x: a failed navigation leaves the robot where the next test does not expect it
     _launch_tests(distro, backend, f"-s -x {chosen}{files}", timeout=4 * 3600 - 600)
+
+
+@pytest.mark.timeout(3 * 3600)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_mppi_side_by_side_with_nav2s_own(distro: str, backend: str) -> None:
+    if os.environ.get("NAV2_PYIF_MPPI_SIDE_BY_SIDE") != "1":
+        pytest.skip(
+            "the MPPI side-by-side benchmark (bridge_plugin/test/nav2/test_mppi_side_by_side.py,"
+            " Nav2's nav2_mppi_controller beside the project's JAX MPPI, about 20 min) runs "
+            "only when NAV2_PYIF_MPPI_SIDE_BY_SIDE=1"
+        )
+    selection = f"-s bridge_plugin/test/nav2/{SIDE_BY_SIDE}"
+    _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
 
 
 def _launch_tests(
