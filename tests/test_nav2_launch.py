@@ -165,7 +165,8 @@ def _launch_tests(
     """Build nav2_pyif_bridge for ``distro`` and ``backend`` with colcon and run the launch
     tests ``selection`` names (pytest arguments) in that environment; skips, saying what is
     missing, where it is absent. ``recovery_figures``: the selection holds
-    test_host_recovery.py, which must have written its figures."""
+    test_host_recovery.py, which must have written its figures (others print theirs when
+    they wrote some)."""
     setup = _setup_script(distro, backend)
     variable = _own_variable(distro, backend)
     if setup is None:
@@ -240,8 +241,10 @@ def _launch_tests(
     )
     assert run.returncode == 0, f"Nav2 launch tests failed (logs in {logs}):\n" + _tail(run, 120)
     assert " passed" in run.stdout and "skipped" not in run.stdout, _tail(run)
-    if recovery_figures:  # RELIABILITY.md's (bridge_plugin/test/nav2/test_host_recovery.py)
-        print(f"{backend} recovery figures: {figures.read_text()}")
+    # RELIABILITY.md's recovery figures (test_host_recovery.py), the full stack's, the MPPI
+    # side-by-side's: whatever the selection recorded
+    if recovery_figures or figures.exists():
+        print(f"{backend} figures: {figures.read_text()}")
 
 
 def _rmw_zenoh_router(source: str, workspace: Path) -> str:
