@@ -7,7 +7,9 @@
 # the ROS wheels' start-up re-exec never runs (it surprises process supervisors).
 #
 # Environment: NAV2_PYIF_VENV (default: <repo>/.venv), PYTHON (interpreter to use),
-# NAV2_PYIF_EXTRAS (default: dev; "ros" is added without a system ROS 2), NAV2_PYIF_EDITABLE
+# NAV2_PYIF_EXTRAS (default: dev, the test tools with the examples/ gallery's extras ompl,
+# casadi and onnx, so that tests/test_examples.py runs them; "ros" is added without a system
+# ROS 2), NAV2_PYIF_EDITABLE
 # (default 1; 0 installs a copy, as the container image does).
 set -euo pipefail
 # Ctrl-C ends the bootstrap with 130 (SIGTERM 143), whatever the interrupted step returned: a

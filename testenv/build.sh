@@ -5,6 +5,8 @@ set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 ALL_STEPS=(sources system base zenoh-pico ros zenoh-c setup)
+# Named only when wanted: Nav2's C++ MPPI, for nav2-pyif-bench's side-by-side comparison.
+EXTRA_STEPS=(mppi)
 
 usage() {
   cat <<EOF
@@ -31,6 +33,8 @@ STEPS (default: all, in this order; name some to run only those):
               into PREFIX/ros (the ROS core too where there is no PyPI base)
   zenoh-c     zenoh-c (cargo, crates.io) and zenoh-cpp over it, into PREFIX/zenoh-c
   setup       write PREFIX/setup-zenoh-{pico,c}.bash (also done after each step above)
+  mppi        only when named: nav2_mppi_controller (jazzy; without xsimd, see
+              patches/jazzy), for the benchmark that drives Nav2's MPPI beside the JAX one
 
 OPTIONS:
   --prefix DIR    where the environment goes (default /opt/nav2_pyif_testenv/DISTRO)
@@ -55,7 +59,7 @@ die() { log "error: $*"; exit 1; }
 usage_error() { log "$*"; echo "Run testenv/build.sh --help for usage." >&2; exit 2; }
 
 # --- arguments -----------------------------------------------------------------------------
-PREFIX="" SOURCES="" MIRRORS="" REPOS="" JOBS=2 ROOTFS="" APT=1 DISTRO="" STEPS=()
+SELECT_ONLY=0 PREFIX="" SOURCES="" MIRRORS="" REPOS="" JOBS=2 ROOTFS="" APT=1 DISTRO="" STEPS=()
 while [ $# -gt 0 ]; do
   case "$1" in
     -h | --help) usage; exit 0 ;;
@@ -80,7 +84,8 @@ esac
 [[ "$JOBS" =~ ^[1-9][0-9]*$ ]] || usage_error "--jobs needs a positive number, not '$JOBS'"
 [ ${#STEPS[@]} -gt 0 ] || STEPS=("${ALL_STEPS[@]}")
 for step in "${STEPS[@]}"; do
-  [[ " ${ALL_STEPS[*]} " == *" $step "* ]] || usage_error "unknown step '$step' (${ALL_STEPS[*]})"
+  [[ " ${ALL_STEPS[*]} ${EXTRA_STEPS[*]} " == *" $step "* ]] \
+    || usage_error "unknown step '$step' (${ALL_STEPS[*]} ${EXTRA_STEPS[*]})"
 done
 PREFIX="${PREFIX:-/opt/nav2_pyif_testenv/$DISTRO}"
 SOURCES="${SOURCES:-$PREFIX/src}"
@@ -371,21 +376,38 @@ step_ros() {
   if [ "$PYPI_BASE" = 1 ]; then
     while read -r pkg; do
       [ -f "$VENV/share/$pkg/package.xml" ] && ignore+=("$pkg")
-    done < <(colcon list --base-paths "$SOURCES" --names-only 2>/dev/null)
+    done < <(colcon --log-base "$PREFIX/log" list --base-paths "$SOURCES" --names-only 2>/dev/null)
   fi
-  log "ros: colcon build --packages-up-to ${ROS_PACKAGES[*]} (ignored: ${ignore[*]})"
+  local selection=(--packages-up-to "${ROS_PACKAGES[@]}")
+  [ "$SELECT_ONLY" = 1 ] && selection=(--packages-select "${ROS_PACKAGES[@]}")
+  log "ros: colcon build ${selection[*]} (ignored: ${ignore[*]})"
   mkdir -p "$PREFIX/build/ros" "$PREFIX/log"
   (
     cd "$PREFIX"
     colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \
       --build-base "$PREFIX/build/ros" --install-base "$PREFIX/ros" --merge-install \
-      --packages-up-to "${ROS_PACKAGES[@]}" --packages-ignore "${ignore[@]}" \
+      "${selection[@]}" --packages-ignore "${ignore[@]}" \
       --parallel-workers "$JOBS" --event-handlers console_cohesion- console_start_end+ \
       console_stderr+ status- summary+ \
       --cmake-args "${CMAKE_ARGS[@]}" -DPython3_EXECUTABLE="$VENV/bin/python" \
       -DPYTHON_EXECUTABLE="$VENV/bin/python"
   ) || die "ros: colcon build failed (logs: $PREFIX/log/latest_build); run again to resume"
   log "ros: installed into $PREFIX/ros"
+}
+
+# Nav2's C++ MPPI (only when named): its system libraries, then colcon as in step_ros.
+step_mppi() {
+  [ "$DISTRO" = jazzy ] || die "mppi: only for jazzy (the comparison's C++ build is Jazzy's)"
+  APT_PACKAGES=(libxtensor-dev libxsimd-dev libomp-dev)
+  step_system
+  ROS_PACKAGES=(nav2_mppi_controller)
+  # Only it, on the environment the ros step built: colcon's --packages-up-to would visit
+  # every dependency again, and a dependency that looks changed rebuilds half of ROS.
+  SELECT_ONLY=1
+  # nav2_package() builds with -Werror, and GCC 12 finds a null dereference deep in Debian's
+  # xtensor 0.24 (xreducer.hpp) that Ubuntu's compiler does not report.
+  CMAKE_ARGS+=(-DCMAKE_CXX_FLAGS=-Wno-error=null-dereference)
+  step_ros
 }
 
 # --- setup scripts ---------------------------------------------------------------------------------

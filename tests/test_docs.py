@@ -1,7 +1,7 @@
-"""Every shell and Python block of README.md, docs/DEPLOYMENT.md, docs/mppi.md and
-bridge_plugin/README.md, extracted from the Markdown and run as a user would
-(tests/docs_blocks.py says how a block is marked). Blocks that need Docker, Nav2 or a GPU are
-marked and skipped, saying so.
+"""Every shell and Python block of README.md, docs/DEPLOYMENT.md, docs/mppi.md,
+bridge_plugin/README.md, protocol/PROTOCOL.md and each examples/*/README.md, extracted from the
+Markdown and run as a user would (tests/docs_blocks.py says how a block is marked). Blocks that
+need Docker, Nav2 or a GPU are marked and skipped, saying so.
 
 Each document runs in a network of its own (tests/private_network.py): its commands use
 Zenoh's default port 7447 as written, beside a Zenoh router that may already listen on 7447
@@ -34,6 +34,7 @@ DOCS = [
     ROOT / "docs" / "mppi.md",
     ROOT / "bridge_plugin" / "README.md",
     ROOT / "protocol" / "PROTOCOL.md",
+    *sorted(ROOT.glob("examples/*/README.md")),  # the gallery's (tests/test_examples.py too)
 ]
 ALL_BLOCKS = [block for doc in DOCS for block in blocks(doc, ROOT)]
 

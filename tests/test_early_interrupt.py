@@ -24,9 +24,17 @@ SIGINT_EXIT = 128 + signal.SIGINT
 ENDED_BY_SIGINT = (SIGINT_EXIT, -signal.SIGINT)
 
 
+def _as_from_a_terminal() -> None:
+    """In the child before exec: SIGINT's default action, as a terminal's shell starts a
+    command with. A suite started in the background by a shell without job control inherits
+    SIGINT ignored, and an ignored SIGINT would never reach the command."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def interrupted(argv: list[str], delay: float, cwd: Path, **popen: object) -> tuple[int, str]:
     """Start ``argv`` in its own process group, SIGINT the group after ``delay`` seconds;
     (exit code, output)."""
+    popen.setdefault("preexec_fn", _as_from_a_terminal)
     proc = subprocess.Popen(
         argv,
         cwd=cwd,
@@ -62,6 +70,7 @@ def test_ctrl_c_in_the_first_second_of_sim_sh_exits_130_without_a_traceback(
 def _held_back() -> None:
     """In the child before exec: SIGINT blocked, so it is pending when the command starts,
     whatever the machine's speed (the case of a Ctrl-C during the interpreter's start)."""
+    _as_from_a_terminal()
     signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
 
 

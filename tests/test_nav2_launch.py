@@ -6,7 +6,8 @@ whose machine vanishes is noticed within a lease and comes back by itself, with 
 figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans cross whole;
 map -> odom moving while driving; the secure fleet of DEPLOYMENT.md section 6 (TLS, client
 certificates, access control) carries robot1's goal; and the function-delegate YAML starts its
-own hosts.
+own hosts. Apart, the examples/ gallery: the OMPL example plans and the DWA example drives to
+the goal (bridge_plugin/test/nav2/test_gallery.py).
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per distribution (humble, jazzy, lyrical) and zenoh-cpp backend:
@@ -24,6 +25,7 @@ distribution and backend is skipped, saying what is missing, where its environme
 
 from __future__ import annotations
 
+import importlib.util
 import os
 import shlex
 import subprocess
@@ -95,14 +97,33 @@ def _tail(result: subprocess.CompletedProcess[str], lines: int = 80) -> str:
 # The full-stack fault suite: 20 NavigateToPose runs per fault (about an hour per backend),
 # run when NAV2_PYIF_FULL_STACK_RUNS says how many.
 FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
+# Nav2's MPPI beside the project's (a benchmark, BENCHMARKS.md), run when asked for.
+SIDE_BY_SIDE = "test_mppi_side_by_side.py"
+# The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
+# needs the gallery's extras in the project's environment.
+GALLERY = "test_gallery.py"
 
 
 @pytest.mark.timeout(1800)
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in FULL_STACK)
+    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY]
+    ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
     _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
+
+
+@pytest.mark.timeout(1800)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_gallery_ompl_planner_and_dwa_controller_in_a_real_nav2(distro: str, backend: str) -> None:
+    if importlib.util.find_spec("ompl") is None:
+        pytest.skip(
+            "the gallery's Nav2 launch test needs OMPL in the planner host's environment: "
+            "python -m pip install '.[ompl]' in the clone (scripts/bootstrap.sh installs it)"
+        )
+    selection = f"bridge_plugin/test/nav2/{GALLERY}"
+    _launch_tests(distro, backend, selection, timeout=900, recovery_figures=False)
 
 
 @pytest.mark.timeout(4 * 3600)
@@ -124,10 +145,28 @@ def test_full_stack_navigations_survive_every_fault(distro: str, backend: str) -
     _launch_tests(distro, backend, f"-s -x {chosen}{files}", timeout=4 * 3600 - 600)
 
 
-def _launch_tests(distro: str, backend: str, selection: str, timeout: float) -> None:
+@pytest.mark.timeout(3 * 3600)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_mppi_side_by_side_with_nav2s_own(distro: str, backend: str) -> None:
+    if os.environ.get("NAV2_PYIF_MPPI_SIDE_BY_SIDE") != "1":
+        pytest.skip(
+            "the MPPI side-by-side benchmark (bridge_plugin/test/nav2/test_mppi_side_by_side.py,"
+            " Nav2's nav2_mppi_controller beside the project's JAX MPPI, about 20 min) runs "
+            "only when NAV2_PYIF_MPPI_SIDE_BY_SIDE=1"
+        )
+    selection = f"-s bridge_plugin/test/nav2/{SIDE_BY_SIDE}"
+    _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
+
+
+def _launch_tests(
+    distro: str, backend: str, selection: str, timeout: float, recovery_figures: bool = True
+) -> None:
     """Build nav2_pyif_bridge for ``distro`` and ``backend`` with colcon and run the launch
     tests ``selection`` names (pytest arguments) in that environment; skips, saying what is
-    missing, where it is absent."""
+    missing, where it is absent. ``recovery_figures``: the selection holds
+    test_host_recovery.py, which must have written its figures (others print theirs when
+    they wrote some)."""
     setup = _setup_script(distro, backend)
     variable = _own_variable(distro, backend)
     if setup is None:
@@ -202,8 +241,10 @@ def _launch_tests(distro: str, backend: str, selection: str, timeout: float) -> 
     )
     assert run.returncode == 0, f"Nav2 launch tests failed (logs in {logs}):\n" + _tail(run, 120)
     assert " passed" in run.stdout and "skipped" not in run.stdout, _tail(run)
-    # The recovery figures of RELIABILITY.md (bridge_plugin/test/nav2/test_host_recovery.py)
-    print(f"{backend} recovery figures: {figures.read_text()}")
+    # RELIABILITY.md's recovery figures (test_host_recovery.py), the full stack's, the MPPI
+    # side-by-side's: whatever the selection recorded
+    if recovery_figures or figures.exists():
+        print(f"{backend} figures: {figures.read_text()}")
 
 
 def _rmw_zenoh_router(source: str, workspace: Path) -> str:

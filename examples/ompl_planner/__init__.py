@@ -1,0 +1,1 @@
+"""An OMPL RRT* / PRM* global planner served by nav2_pyif (README.md beside this file)."""
