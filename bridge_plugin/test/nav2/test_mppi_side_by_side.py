@@ -11,7 +11,8 @@ processes doing the work per cycle (controller_server; or the planner host and i
 the gaps between cmd_vel messages, FollowPath's time to the goal and the path driven.
 $NAV2_PYIF_MPPI_RUNS round trips each (default 3); $NAV2_PYIF_MPPI_ROLLOUTS the rollout counts
 (default "1000 2000"); $NAV2_PYIF_MPPI_OURS the served classes (module:Class, default the
-timed JAX MPPI). Figures go to $NAV2_PYIF_FIGURES (JSON), printed by tests/test_nav2_launch.py.
+timed Nav2MPPI; timed_mppi:TimedMPPIJax is the older JAX MPPI). Figures go to
+$NAV2_PYIF_FIGURES (JSON), printed by tests/test_nav2_launch.py.
 """
 
 from __future__ import annotations
@@ -32,77 +33,14 @@ from test_host_recovery import record
 
 RUNS = int(os.environ.get("NAV2_PYIF_MPPI_RUNS", "3"))
 ROLLOUTS = [int(n) for n in os.environ.get("NAV2_PYIF_MPPI_ROLLOUTS", "1000 2000").split()]
-OURS = os.environ.get("NAV2_PYIF_MPPI_OURS", "timed_mppi:TimedMPPIJax").split()
+OURS = os.environ.get("NAV2_PYIF_MPPI_OURS", "timed_mppi:TimedNav2MPPI").split()
 GOALS = ((2.0, 0.5), (0.0, 0.0))
 pytestmark = pytest.mark.timeout(300 + 120 * RUNS)
 NATIVE = "nav2_mppi_controller::MPPIController"
 
-# nav2_bringup's Jazzy FollowPath block (nav2_params.yaml), visualize off: what a Nav2 user's
-# YAML holds. @PLUGIN@ is the controller; the rest is the same for both.
-MPPI_BLOCK = """    FollowPath:
-@PLUGIN@
-      time_steps: 56
-      model_dt: 0.05
-      batch_size: @ROLLOUTS@
-      ax_max: 3.0
-      ax_min: -3.0
-      ay_max: 3.0
-      ay_min: -3.0
-      az_max: 3.5
-      vx_std: 0.2
-      vy_std: 0.2
-      wz_std: 0.4
-      vx_max: 0.5
-      vx_min: -0.35
-      vy_max: 0.5
-      wz_max: 1.9
-      iteration_count: 1
-      prune_distance: 1.7
-      transform_tolerance: 0.1
-      temperature: 0.3
-      gamma: 0.015
-      motion_model: "DiffDrive"
-      visualize: false
-      regenerate_noises: true
-      critics: ["ConstraintCritic", "CostCritic", "GoalCritic", "GoalAngleCritic",
-                "PathAlignCritic", "PathFollowCritic", "PathAngleCritic", "PreferForwardCritic"]
-      ConstraintCritic: {enabled: true, cost_power: 1, cost_weight: 4.0}
-      GoalCritic: {enabled: true, cost_power: 1, cost_weight: 5.0, threshold_to_consider: 1.4}
-      GoalAngleCritic:
-        {enabled: true, cost_power: 1, cost_weight: 3.0, threshold_to_consider: 0.5}
-      PreferForwardCritic:
-        {enabled: true, cost_power: 1, cost_weight: 5.0, threshold_to_consider: 0.5}
-      CostCritic:
-        enabled: true
-        cost_power: 1
-        cost_weight: 3.81
-        near_collision_cost: 253
-        critical_cost: 300.0
-        consider_footprint: false
-        collision_cost: 1000000.0
-        near_goal_distance: 1.0
-        trajectory_point_step: 2
-      PathAlignCritic:
-        enabled: true
-        cost_power: 1
-        cost_weight: 14.0
-        max_path_occupancy_ratio: 0.05
-        trajectory_point_step: 4
-        threshold_to_consider: 0.5
-        offset_from_furthest: 20
-        use_path_orientations: false
-      PathFollowCritic:
-        {enabled: true, cost_power: 1, cost_weight: 5.0, offset_from_furthest: 5,
-         threshold_to_consider: 1.4}
-      PathAngleCritic:
-        enabled: true
-        cost_power: 1
-        cost_weight: 2.0
-        offset_from_furthest: 4
-        threshold_to_consider: 0.5
-        max_angle_to_furthest: 1.0
-        mode: 0
-"""
+# nav2_bringup's Jazzy FollowPath block, as the planners package ships it (what a Nav2 user's
+# YAML holds), visualisation off: the same for both but for the plugin line.
+NAV2_BLOCK = nav2_testing.HERE.parents[2] / "planners/nav2_pyif_planners/mppi_nav2/nav2_jazzy.yaml"
 FOLLOW_PATH = re.compile(r"    FollowPath:\n(?:      .*\n)+")
 NATIVE_TIME = re.compile(r"Control loop execution time: (\d+) \[ms\]")
 OUR_TIME = re.compile(r"compute: (\d+\.\d+) ms")
@@ -122,8 +60,17 @@ def _params(text: str, rollouts: int, native: bool) -> str:
             for line in block.group(0).splitlines()[1:]
             if line.split(":")[0].strip() in ("plugin", "key", "zenoh_connect", "zenoh_config")
         ]
-        plugin = "\n".join([*kept, "      timeout: 0.5", "      wait_for_host: 60.0"])
-    mppi = MPPI_BLOCK.replace("@PLUGIN@", plugin).replace("@ROLLOUTS@", str(rollouts))
+        # configure compiles the step (seconds here: docs/mppi.md)
+        settings = ("timeout: 0.5", "wait_for_host: 60.0", "configure_timeout: 30.0")
+        plugin = "\n".join([*kept, *(f"      {line}" for line in settings)])
+    lines = [
+        line
+        for line in NAV2_BLOCK.read_text().splitlines()
+        if line.strip() and not line.startswith(("#", "plugin:"))
+    ]
+    mppi = "\n".join(["    FollowPath:", plugin, *(f"      {line}" for line in lines)]) + "\n"
+    mppi = re.sub(r"\n      batch_size: \d+\n", f"\n      batch_size: {rollouts}\n", mppi)
+    mppi = mppi.replace("visualize: true", "visualize: false")
     return text.replace(block.group(0), mppi)
 
 

@@ -11,6 +11,7 @@ from typing import Any
 
 from nav2_pyif_planners.mppi import MPPI
 from nav2_pyif_planners.mppi_jax import MPPIJax
+from nav2_pyif_planners.mppi_nav2 import Nav2MPPI
 
 LOG = logging.getLogger("timed_mppi")
 
@@ -24,6 +25,10 @@ class _Timed:
             return super().compute_velocity_commands(*args, **kwargs)  # type: ignore[misc]
         finally:
             LOG.info("compute: %.3f ms", (time.perf_counter() - started) * 1e3)
+
+
+class TimedNav2MPPI(_Timed, Nav2MPPI):
+    pass
 
 
 class TimedMPPIJax(_Timed, MPPIJax):
