@@ -27,6 +27,6 @@ def test_nav2_mppi_block_drives_to_the_goal(map_name: str) -> None:
     assert_reaches_goal(result, min_clearance=0.05, max_time=120.0)
     s = summary(result)
     assert 0.9 * s["plan_length_m"] < s["driven_distance_m"] < 1.2 * s["plan_length_m"]
-    # Nav2's MPPI drives these at 0.34-0.46 m/s of its 0.5 (issue 28); the 4-term MPPIJax
-    # at 0.26-0.28
+    # Nav2's MPPI drives these at 0.34-0.46 m/s of its 0.5 (measured in the real Nav2); the
+    # 4-term MPPIJax at 0.26-0.28
     assert s["driven_distance_m"] / s["sim_time_s"] > 0.35
