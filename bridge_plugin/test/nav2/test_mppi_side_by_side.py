@@ -1,6 +1,6 @@
 """Nav2's own MPPI and the project's, side by side in the real controller_server: the same
 Nav2 MPPI parameter block (nav2_bringup's Jazzy FollowPath, visualisation off), the same
-simulated robot, plans and goals (around the wall and back), one stack per controller and
+simulated robot, NavFn's plans and goals (around the wall and back), one stack per controller and
 rollout count, in one session. A benchmark, not a test of the project's behaviour: it runs
 only when tests/test_nav2_launch.py is asked for it (NAV2_PYIF_MPPI_SIDE_BY_SIDE=1), and
 skips, naming it, where nav2_mppi_controller is not built (testenv/build.sh jazzy mppi).
@@ -71,6 +71,12 @@ def _params(text: str, rollouts: int, native: bool) -> str:
     mppi = "\n".join(["    FollowPath:", plugin, *(f"      {line}" for line in lines)]) + "\n"
     mppi = re.sub(r"\n      batch_size: \d+\n", f"\n      batch_size: {rollouts}\n", mppi)
     mppi = mppi.replace("visualize: true", "visualize: false")
+    # The plans: Nav2's NavFn for both, as Nav2's own MPPI set-up pairs them (with the
+    # reference A*'s plans, served beside and now unused, both MPPIs stalled at the first
+    # goal in the first run: BENCHMARKS.md).
+    planner = 'plugin: "nav2_pyif_bridge::PyGlobalPlanner"'
+    assert planner in text, "nav2_params.yaml's GridBased is no longer PyGlobalPlanner"
+    text = text.replace(planner, 'plugin: "nav2_navfn_planner::NavfnPlanner"')
     return text.replace(block.group(0), mppi)
 
 
@@ -99,7 +105,7 @@ def _cpu_seconds(pids: list[int]) -> float:
 
 
 def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
-    """Plan to ``goal`` (the A* host), then FollowPath to it, recording what was driven."""
+    """Plan to ``goal`` (NavFn), then FollowPath to it, recording what was driven."""
     from geometry_msgs.msg import Twist
 
     planned = client.plan(*goal)
