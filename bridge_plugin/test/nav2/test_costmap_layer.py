@@ -27,7 +27,7 @@ PLANNERS = (
     *nav2_testing.REFERENCE_PLANNERS,
     *("--serve", f"{PREFIX}/keepout=nav2_pyif_planners.keepout_layer:KeepOutLayer"),
 )
-SUCCEEDED, CANCELED, ABORTED = nav2_testing.SUCCEEDED, nav2_testing.CANCELED, nav2_testing.ABORTED
+SUCCEEDED, ABORTED = nav2_testing.SUCCEEDED, nav2_testing.ABORTED
 
 
 def with_keepout_layers(text: str) -> str:
@@ -146,11 +146,13 @@ def test_python_keepout_layer_in_nav2s_costmaps(nav2: dict[str, Any]) -> None:
     procs.kill("planner_host", signal.SIGKILL)
     client.spin_until(lambda: False, 2.0)
     handle = client.follow(path)
+    restarted = False
     if nav2_testing.costmap_wait_bounded():  # Jazzy on: aborted at costmap_update_timeout
         result = client.wait(handle.get_result_async(), 30.0)
         logs = procs.log("controller_server")
         assert result is not None and result.status == ABORTED, f"FollowPath: {result}\n{logs}"
-    else:  # Humble waits for a current costmap without end: the robot is held, then cancelled
+    else:  # Humble waits for a current costmap without end: the robot is held until then
+        restarted = True  # below: the goal can only end once a new host makes it current
         held_at = client.pose
         result_future = handle.get_result_async()
         client.spin_until(result_future.done, 5.0)
@@ -159,13 +161,17 @@ def test_python_keepout_layer_in_nav2s_costmaps(nav2: dict[str, Any]) -> None:
         assert held_at is not None and client.pose is not None
         moved = math.hypot(client.pose[0] - held_at[0], client.pose[1] - held_at[1])
         assert moved < 0.02, f"the robot drove {moved:.2f} m on a costmap that is not current"
-        client.wait(handle.cancel_goal_async(), 10.0)
-        result = client.wait(result_future, 10.0)
-        assert result is not None and result.status == CANCELED, f"FollowPath: {result}\n{logs}"
+        # Humble's wait loop does not look at a cancel either (one sent here was not
+        # honoured): the goal, where the robot already is, ends once the costmap is current
+        nav2["start_host"]()
+        result = client.wait(result_future, 60.0)
+        logs = procs.log("controller_server")
+        assert result is not None and result.status == SUCCEEDED, f"FollowPath: {result}\n{logs}"
     assert procs.logged_at("controller_server", "the costmap is not current", killed), logs
     assert client.wait_active(servers, 10.0) == dict.fromkeys(servers, "active")
-    # a new host: the layer answers again and the next goal succeeds
-    nav2["start_host"]()
+    # a new host (Humble's is started above): the layer answers again, the next goal succeeds
+    if not restarted:
+        nav2["start_host"]()
     deadline = time.monotonic() + 60.0
     result = None
     while time.monotonic() < deadline:
