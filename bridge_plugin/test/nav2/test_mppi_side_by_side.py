@@ -134,6 +134,13 @@ def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
     return Drive(seconds, metres, gaps, _cpu_seconds(workers) - cpu)
 
 
+def _per_goal(values: list[float]) -> str:
+    """The median of each goal's values (drives alternate between GOALS), "a / b"."""
+    return " / ".join(
+        f"{statistics.median(values[i :: len(GOALS)]):.2f}" for i in range(len(GOALS))
+    )
+
+
 def _percentile(values: list[float], q: float) -> float:
     ordered = sorted(values)
     return ordered[min(len(ordered) - 1, round(q * (len(ordered) - 1)))]
@@ -161,12 +168,12 @@ def stack(
 def test_mppi_side_by_side(stack: dict[str, Any]) -> None:
     client, procs = stack["client"], stack["procs"]
     worker = "controller_server" if stack["native"] else "planner_host"
-    pids = [procs.procs[worker].pid]
-    log = worker
-    drives = [_drive(client, goal, pids) for _ in range(RUNS) for goal in GOALS]
+    drives = [
+        _drive(client, goal, [procs.procs[worker].pid]) for _ in range(RUNS) for goal in GOALS
+    ]
     pattern = NATIVE_TIME if stack["native"] else OUR_TIME
-    computes = [float(ms) for ms in pattern.findall(procs.log(log, 1_000_000))]
-    assert computes, f"no compute times in {log}'s log:\n{procs.log(log, 40)}"
+    computes = [float(ms) for ms in pattern.findall(procs.log(worker, 1_000_000))]
+    assert computes, f"no compute times in {worker}'s log:\n{procs.log(worker, 40)}"
     cycles = sum(len(d.gaps) + 1 for d in drives)
     gaps = [g for d in drives for g in d.gaps]
     name = f"mppi_{'native' if stack['native'] else stack['controller'].split(':')[-1]}"
@@ -178,14 +185,8 @@ def test_mppi_side_by_side(stack: dict[str, Any]) -> None:
         f"{name}_gap_median_ms": 1e3 * statistics.median(gaps),
         f"{name}_gap_p99_ms": 1e3 * _percentile(gaps, 0.99),
         f"{name}_gap_max_ms": 1e3 * max(gaps),
-        f"{name}_time_to_goal_s": " / ".join(
-            f"{statistics.median(d.seconds for d in drives[i :: len(GOALS)]):.2f}"
-            for i in range(len(GOALS))
-        ),
-        f"{name}_path_m": " / ".join(
-            f"{statistics.median(d.metres for d in drives[i :: len(GOALS)]):.2f}"
-            for i in range(len(GOALS))
-        ),
+        f"{name}_time_to_goal_s": _per_goal([d.seconds for d in drives]),
+        f"{name}_path_m": _per_goal([d.metres for d in drives]),
         f"{name}_drives": len(drives),
     }
     record(**figures)
