@@ -12,9 +12,6 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from nav2_pyif.client.hosts import ask_info
-
-from tests.conftest import open_client_session
 
 pytestmark = [
     pytest.mark.integration,
@@ -55,13 +52,18 @@ def drive_robots(host: Any, names: list[str], out: Path, *extra: str) -> list[di
 
 
 def batch_info(host: Any, name: str) -> dict[str, Any]:
-    """What the host says of the batch group serving ``name``'s key (nav2-pyif hosts)."""
-    session = open_client_session(host.endpoint)
-    try:
-        (info,) = ask_info(session, {robot_key(name)}, timeout=5.0).values()
-    finally:
-        session.close()
-    batch: dict[str, Any] = info["batch"]
+    """What `nav2-pyif hosts --json` says of the batch group serving ``name``'s key."""
+    hosts = ["hosts", "--json", "--connect", host.endpoint]
+    listed = subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.tools.main", *hosts],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert listed.returncode == 0, listed.stderr
+    keys = [k for h in json.loads(listed.stdout)["hosts"] for k in h["keys"]]
+    (key,) = [k for k in keys if k["key"] == robot_key(name)]
+    batch: dict[str, Any] = key["batch"]
     return batch
 
 

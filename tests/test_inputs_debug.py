@@ -5,6 +5,8 @@ persist between calls; debug outputs come back only when wanted, as real message
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 from typing import Any
 
 import numpy as np
@@ -174,3 +176,17 @@ def test_a_host_beside_a_nav2_on_another_rmw_still_reads_its_inputs(
     assert client.debug["lookahead_point"].point.x == 2.0
     assert "RMW_IMPLEMENTATION=rmw_not_installed_here_cpp cannot be loaded" in host.log()
     assert "exited with code 102" not in host.log()
+
+
+def test_warming_the_serialization_loads_it_before_any_input() -> None:
+    """What a controller's configure does (nav2_pyif.ros_types.warm_serialization), in a
+    fresh interpreter: rclpy's serialization is loaded after it, and was not before."""
+    script = (
+        "import sys\n"
+        "from nav2_pyif.ros_types import warm_serialization\n"
+        "assert 'rclpy.serialization' not in sys.modules\n"
+        "warm_serialization()\n"
+        "assert 'rclpy.serialization' in sys.modules\n"
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr

@@ -235,3 +235,17 @@ def test_delegates_build_a_controller() -> None:
         delegate_class("tests.fixtures.seed_delegates", {"set_plan": "on_plan"})
     with pytest.raises(PlannerLoadError, match="unknown delegate role"):
         delegate_class("tests.fixtures.seed_delegates", {"fly": "on_plan"})
+
+
+def test_a_controllers_configure_warms_the_message_serialization(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """Its first cycle with an input must not load rclpy's serialization (tests/
+    test_inputs_debug.py checks what the warm-up loads); other plugin types need none."""
+    warmed: list[bool] = []
+    monkeypatch.setattr("nav2_pyif.server.runtime.warm_serialization", lambda: warmed.append(True))
+    assert Driver(PlannerRuntime(FaultyController, "test-host")).configure().ok
+    assert warmed == [True]
+    planner = Driver(PlannerRuntime(LinePlanner, "test-host"), plugin_type="global_planner")
+    assert planner.configure().ok
+    assert warmed == [True]

@@ -72,8 +72,8 @@ def project_command(name: str) -> list[str] | None:
     return [found] if found else None
 
 
-def host_queries(endpoint: str) -> dict[str, int]:
-    """Per served key, the queries the planner host has answered (`nav2-pyif hosts`)."""
+def host_keys(endpoint: str) -> dict[str, dict[str, Any]]:
+    """Per served key, what `nav2-pyif hosts --json` says of it (queries, batch, ...)."""
     command = project_command("nav2-pyif")
     assert command is not None, "nav2-pyif is not on PATH (or $NAV2_PYIF_RUN)"
     done = subprocess.run(
@@ -83,12 +83,12 @@ def host_queries(endpoint: str) -> dict[str, int]:
         timeout=60,
     )
     assert done.returncode == 0, done.stderr
-    return {
-        k["key"]: k["queries"]
-        for host in json.loads(done.stdout)["hosts"]
-        for k in host["keys"]
-        if k["queries"] is not None
-    }
+    return {k["key"]: k for host in json.loads(done.stdout)["hosts"] for k in host["keys"]}
+
+
+def host_queries(endpoint: str) -> dict[str, int]:
+    """Per served key, the queries the planner host has answered (`nav2-pyif hosts`)."""
+    return {key: k["queries"] for key, k in host_keys(endpoint).items() if k["queries"] is not None}
 
 
 def host_command() -> list[str] | None:
@@ -351,18 +351,23 @@ def bring_up(
         procs.stop_all()
 
 
-def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when present)
+def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:  # noqa: N802
+    """The test's rclpy node ``name``, in ``context`` (another ROS domain: a second robot's
+    Nav2) or rclpy's default one. (A factory: rclpy is imported only when present.)"""
     import rclpy
     from geometry_msgs.msg import PoseStamped
     from lifecycle_msgs.srv import GetState
     from nav2_msgs.action import ComputePathToPose, FollowPath, NavigateToPose, SmoothPath
     from nav_msgs.msg import Odometry
     from rclpy.action import ActionClient
+    from rclpy.executors import SingleThreadedExecutor
     from rclpy.node import Node
 
     class Client(Node):
         def __init__(self) -> None:
-            super().__init__("nav2_pyif_launch_test")
+            super().__init__(name, context=context)
+            # rclpy's global executor serves the default context only
+            self.own_executor = None if context is None else SingleThreadedExecutor(context=context)
             self.plan_client = ActionClient(self, ComputePathToPose, "compute_path_to_pose")
             self.follow_client = ActionClient(self, FollowPath, "follow_path")
             self.smooth_client = ActionClient(self, SmoothPath, "smooth_path")
@@ -387,7 +392,7 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
                 if done():
                     return True
                 try:
-                    rclpy.spin_once(self, timeout_sec=0.05)
+                    rclpy.spin_once(self, executor=self.own_executor, timeout_sec=0.05)
                 except RuntimeError as exc:
                     # rclpy's take of one incoming message (odometry, action feedback) fails
                     # now and then over a long run ("Unable to convert call argument '0' to
@@ -496,13 +501,22 @@ def Nav2Client() -> Any:  # noqa: N802  (a factory: rclpy is imported only when 
             assert handle is not None and handle.accepted, "NavigateToPose not accepted"
             return handle
 
-        def follow(self, path: Any, goal_checker: str = "general_goal_checker") -> Any:
+        def send_follow(
+            self,
+            path: Any,
+            goal_checker: str = "general_goal_checker",
+            controller: str = "FollowPath",
+        ) -> Any:
+            """FollowPath sent: the future of its goal handle."""
             assert self.follow_client.wait_for_server(timeout_sec=10.0)
             goal = FollowPath.Goal()
             goal.path = path
-            goal.controller_id = "FollowPath"
+            goal.controller_id = controller
             goal.goal_checker_id = goal_checker
-            handle = self.wait(self.follow_client.send_goal_async(goal), 10.0)
+            return self.follow_client.send_goal_async(goal)
+
+        def follow(self, path: Any, goal_checker: str = "general_goal_checker") -> Any:
+            handle = self.wait(self.send_follow(path, goal_checker), 10.0)
             assert handle is not None and handle.accepted, "FollowPath not accepted"
             return handle
 

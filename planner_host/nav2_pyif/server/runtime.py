@@ -48,6 +48,7 @@ from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
 from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.ros_types import warm_serialization
 from nav2_pyif.server.followed_plan import follow_plan
 from nav2_pyif.server.results import (
     checked_bool,
@@ -376,6 +377,8 @@ class PlannerRuntime:
         if isinstance(planner, Controller) and planner.debug_outputs:
             check_declared(planner.debug_outputs)  # context.debug: set by _attach
         planner.configure()
+        if isinstance(planner, Controller):
+            warm_serialization()  # in configure, not in its first cycle with an input
         context.params.on_change(planner.on_parameters_changed)
         self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)
         self.log.info(

@@ -48,6 +48,8 @@ class HostView:
                     "sessions": self.info.get(prefix, {}).get("sessions"),
                     "queries": self.info.get(prefix, {}).get("queries"),
                     "answered": prefix in self.info,
+                    # a batched controller's group: its keys, window, batches and cycles
+                    "batch": self.info.get(prefix, {}).get("batch"),
                 }
                 for prefix in sorted(self.prefixes)
             ],
@@ -119,6 +121,12 @@ def render(found: Survey) -> str:
         lines += [
             "  " + "  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip()
             for r in rows
+        ]
+        groups = {tuple(k["batch"]["keys"]): k["batch"] for k in item["keys"] if k["batch"]}
+        lines += [
+            f"  batched: {', '.join(keys)}: {group['cycles']} cycles in {group['batches']} "
+            f"calls, window {group['window_s'] * 1e3:g} ms"
+            for keys, group in groups.items()
         ]
     return "\n".join(lines)
 
