@@ -88,3 +88,41 @@ def test_a_fresh_workspace_builds_tests_and_launches_from_its_install_space(dist
         900,
     )
     assert " passed" in launched and "skipped" not in launched, launched
+
+
+@pytest.mark.timeout(1800)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_the_host_alone_installs_with_pip_into_a_venv_beside_ros(
+    distro: str, tmp_path: Path
+) -> None:
+    """README's other way (Install, "Only the host, with pip"): beside a sourced ROS 2, a venv
+    made with --system-site-packages, `pip install` of a clone; its planner-host runs from
+    the venv and sees ROS 2's own message packages (rclpy's, not wheels)."""
+    setup = _setup_script(distro, BACKEND)
+    if not setup:
+        pytest.skip(
+            f"the {distro} pip-beside-ROS trial needs a ROS 2 {distro}: set "
+            f"{_own_variable(distro, BACKEND)} (testenv/build.sh {distro} writes one)"
+        )
+    source = f"set -e; source {shlex.quote(setup)} >/dev/null"
+    probe = _bash(f'{source}; echo "distro: $ROS_DISTRO"', timeout=60)
+    if probe.returncode != 0 or f"distro: {distro}" not in probe.stdout:
+        pytest.skip(f"the pip-beside-ROS trial: {setup} does not source ROS 2 {distro}")
+    clone, venv = tmp_path / "nav2_pyif", tmp_path / "venv"
+    subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+    _step(tmp_path, "venv", source, f"python3 -m venv --system-site-packages {venv}", 120)
+    active = f"{source}; source {venv}/bin/activate"
+    _step(tmp_path, "pip install", active, f"python -m pip install -q {clone}", 1200)
+    usage = _step(tmp_path, "planner-host --help", active, "planner-host --help", 120)
+    assert "usage: planner-host" in usage, usage
+    where = _step(
+        tmp_path,
+        "imports",
+        active,
+        "command -v planner-host; python -c 'import nav2_pyif, geometry_msgs; "
+        "print(nav2_pyif.__file__); print(geometry_msgs.__file__)'",
+        120,
+    ).split()
+    assert where[0] == f"{venv}/bin/planner-host", where
+    assert where[1].startswith(f"{venv}/"), where  # the pip install, not the clone or a workspace
+    assert not where[2].startswith(f"{venv}/"), where  # ROS 2's own messages, through the venv
