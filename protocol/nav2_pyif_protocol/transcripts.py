@@ -1,7 +1,7 @@
 """Session transcripts: the plugin rules as sequences of Nav2 calls, the exact requests each
 makes a client send (with the timeout it waits) and the fake host's replies. Both clients
 replay them (tests/test_transcripts.py, bridge_plugin/test/client/transcripts_test.cpp), as
-every rmw passes rmw_implementation's one conformance suite. Format: PROTOCOL.md section 16.
+every rmw passes rmw_implementation's one conformance suite. Format: PROTOCOL.md section 18.
 
 Written here by hand, step by step: a transcript is the rule, not a recording of a client.
 The one thing taken from elsewhere is each op's timeout class (schema.OP_TIMEOUT), so a
