@@ -16,7 +16,10 @@ from tests.test_cpp_codec import _run, _tail, build_dir  # noqa: F401  (the shar
 
 pytestmark = pytest.mark.cpp
 
-# Each C++ twin of a tests/test_host_e2e.py scenario must have run.
+# Each C++ twin of a tests/test_host_e2e.py scenario must have run, and the replay of each
+# shared session transcript (protocol/vectors/transcripts; tests/test_transcripts.py replays
+# them in Python): fail-over to a replica is one of those, its hand-written twin gone.
+TRANSCRIPTS = Path(__file__).resolve().parents[1] / "protocol" / "vectors" / "transcripts"
 MIRRORED = [
     "ControllerSessionTest.FullSession",
     "ControllerSessionTest.CostmapTravelsOnlyWhenChanged",
@@ -26,7 +29,9 @@ MIRRORED = [
     "ControllerSessionTest.AReplyOfAnotherSeqIsAnError",
     "ControllerSessionTest.ErrorsCrossTheWireTyped",
     "PlannerSessionTest.CancellationIsForwardedOnceAndThePlannerAnswers",
-    "ControllerSessionTest.FailoverToAReplicaLosesNoCall",  # tests/test_replicas.py
+]
+MIRRORED += [
+    f"Transcripts/TranscriptTest.ReplaysByteForByte/{p.stem}" for p in TRANSCRIPTS.glob("*.json")
 ]
 
 

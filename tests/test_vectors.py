@@ -25,7 +25,7 @@ INDEX = json.loads((VECTORS / "index.json").read_text())["vectors"]
 
 def test_vector_files_are_what_the_code_generates() -> None:
     files = rendered_files(build_vectors())
-    on_disk = {p.name for p in VECTORS.iterdir()}
+    on_disk = {str(p.relative_to(VECTORS)) for p in VECTORS.rglob("*") if p.is_file()}
     assert on_disk == set(files), "run: nav2-pyif-vectors --write protocol/vectors"
     for name, content in files.items():
         assert (VECTORS / name).read_bytes() == content, name

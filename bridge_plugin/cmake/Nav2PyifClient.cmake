@@ -33,7 +33,7 @@ set_target_properties(nav2_pyif_client PROPERTIES POSITION_INDEPENDENT_CODE ON)
 set(_nav2_pyif_client_test_dir ${CMAKE_CURRENT_LIST_DIR}/../test/client)
 
 function(nav2_pyif_client_test_sources out_var)
-  set(${out_var}
+  set(sources
     ${_nav2_pyif_client_test_dir}/behavior_session_test.cpp
     ${_nav2_pyif_client_test_dir}/carried_test.cpp
     ${_nav2_pyif_client_test_dir}/controller_session_test.cpp
@@ -41,11 +41,20 @@ function(nav2_pyif_client_test_sources out_var)
     ${_nav2_pyif_client_test_dir}/local_host_test.cpp
     ${_nav2_pyif_client_test_dir}/planner_session_test.cpp
     ${_nav2_pyif_client_test_dir}/settings_test.cpp
-    ${_nav2_pyif_client_test_dir}/units_test.cpp
-    PARENT_SCOPE)
+    ${_nav2_pyif_client_test_dir}/units_test.cpp)
+  # The shared session transcripts (PROTOCOL.md section 18), where the vectors are.
+  if(EXISTS "${NAV2_PYIF_VECTORS_DIR}/transcripts")
+    list(APPEND sources ${_nav2_pyif_client_test_dir}/transcripts_test.cpp)
+  endif()
+  set(${out_var} ${sources} PARENT_SCOPE)
 endfunction()
 
 function(nav2_pyif_client_test_setup target)
   target_include_directories(${target} PRIVATE ${_nav2_pyif_client_test_dir})
   target_link_libraries(${target} nav2_pyif_client)
+  if(EXISTS "${NAV2_PYIF_VECTORS_DIR}/transcripts")
+    target_compile_definitions(${target} PRIVATE
+      NAV2_PYIF_TRANSCRIPTS_DIR="${NAV2_PYIF_VECTORS_DIR}/transcripts")
+    target_link_libraries(${target} nlohmann_json::nlohmann_json)
+  endif()
 endfunction()

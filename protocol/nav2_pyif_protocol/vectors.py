@@ -28,6 +28,7 @@ import numpy as np
 from nav2_pyif_protocol.arrays import pack_poses, pack_xy
 from nav2_pyif_protocol.codec import ErrorInfo, Reply, Request, encode_reply, encode_request
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
+from nav2_pyif_protocol.transcripts import rendered_transcripts
 
 INLINE_BIN_LIMIT = 4096
 SID = "3f2a9c7e5b1d4e8f9a0b1c2d3e4f5a6b"
@@ -628,11 +629,17 @@ def index_json(vectors: list[Vector]) -> str:
 
 
 def rendered_files(vectors: list[Vector]) -> dict[str, bytes]:
+    """Relative path -> content: the vectors, and the session transcripts in transcripts/."""
     files: dict[str, bytes] = {"index.json": index_json(vectors).encode()}
     for v in vectors:
         files[f"{v.name}.msgpack"] = v.data
         files[f"{v.name}.json"] = expected_json(v.data).encode()
+    files.update(rendered_transcripts())
     return files
+
+
+def _on_disk(directory: Path) -> list[str]:
+    return sorted(str(p.relative_to(directory)) for p in directory.rglob("*") if p.is_file())
 
 
 def _check(directory: Path, files: dict[str, bytes], report: Callable[[str], None]) -> int:
@@ -643,7 +650,7 @@ def _check(directory: Path, files: dict[str, bytes], report: Callable[[str], Non
             report(f"differs: {on_disk}")
             problems += 1
     known = set(files)
-    for stray in sorted(p.name for p in directory.iterdir() if p.name not in known):
+    for stray in (name for name in _on_disk(directory) if name not in known):
         report(f"not produced by the code: {directory / stray}")
         problems += 1
     return problems
@@ -659,11 +666,11 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     files = rendered_files(build_vectors())
     if args.write:
-        args.write.mkdir(parents=True, exist_ok=True)
-        for stale in args.write.glob("*"):
-            if stale.name not in files:
-                stale.unlink()
+        for stale in _on_disk(args.write) if args.write.exists() else []:
+            if stale not in files:
+                (args.write / stale).unlink()
         for name, content in files.items():
+            (args.write / name).parent.mkdir(parents=True, exist_ok=True)
             (args.write / name).write_bytes(content)
         print(f"wrote {len(files)} files to {args.write}")
         return 0

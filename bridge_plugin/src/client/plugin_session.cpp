@@ -97,7 +97,8 @@ PluginSession::PluginSession(
   PluginKind kind, SessionConfig config, Transport & transport, CostmapSource & costmap,
   Logger logger)
 : config_(std::move(config)), keys_(config_.key_prefix), transport_(transport),
-  costmap_(costmap), logger_(std::move(logger)), sid_(new_session_id())
+  costmap_(costmap), logger_(std::move(logger)),
+  sid_(config_.session_id.empty() ? new_session_id() : config_.session_id)
 {
   config_.kind = kind;
 }

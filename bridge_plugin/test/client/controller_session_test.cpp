@@ -636,37 +636,6 @@ TEST_F(ControllerSessionTest, QueriesGoToThePinnedReplica)
   EXPECT_EQ(Target({"k/rpc/activate", ""}).parameters(), "");
 }
 
-TEST_F(ControllerSessionTest, FailoverToAReplicaLosesNoCall)
-{
-  host.add_replica("a-replica");
-  Timeouts t = generous();
-  t.call = 300ms;
-  auto & s = make({}, t);
-  s.configure();
-  s.activate();
-  s.set_plan(straight_path(31, 1, 0));
-  EXPECT_EQ(compute().twist[0], 31.0);
-
-  // The pinned replica dies; its token is still there: the call gets no reply in time.
-  host.freeze_replica("a-replica");
-  const std::size_t sent = host.received.size();
-  EXPECT_EQ(compute().twist[0], 31.0);  // the plan was re-sent to the new replica
-  EXPECT_EQ(s.pinned_host(), host.host_id());
-  EXPECT_EQ(s.failovers(), 1u);
-  EXPECT_EQ(s.resyncs(), 1u);
-  EXPECT_EQ(
-    host.ops_since(sent), (std::vector<std::string>{"compute_velocity_commands",
-      "compute_velocity_commands", "configure", "activate", "set_plan",
-      "compute_velocity_commands"}));
-  EXPECT_FALSE(host.received[sent].answered);
-  EXPECT_EQ(host.received[sent + 1].host, host.host_id());
-
-  // Its token goes later: nothing changes any more.
-  host.kill_replica("a-replica");
-  EXPECT_EQ(compute().twist[0], 31.0);
-  EXPECT_EQ(s.failovers(), 1u);
-}
-
 TEST_F(ControllerSessionTest, AGoneTokenMovesThePinBeforeTheCall)
 {
   host.add_replica("a-replica");

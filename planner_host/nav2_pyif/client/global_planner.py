@@ -2,19 +2,15 @@
 
 from __future__ import annotations
 
-import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-import zenoh
-from nav2_pyif_protocol.codec import Request, encode_request
+from nav2_pyif_protocol.codec import encode_request
 from nav2_pyif_protocol.constants import Op, PluginType
 
 from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.messages import pose_to_wire
 from nav2_pyif.plan import Plan
-
-CANCEL_POLL_S = 0.005
 
 
 class GlobalPlannerClient(PluginClient):
@@ -40,41 +36,22 @@ class GlobalPlannerClient(PluginClient):
             frame = body["start"]["frame_id"]
             rows = [pose_to_wire(p)["pose"] for p in viapoints]
             body["viapoints"] = Plan(rows, frame, body["goal"]["stamp_ns"]).to_wire()
-        wait = None
+        while_waiting = None
         if cancel_checker is not None:
+            cancel_sent = False
 
-            def wait(replies: Any, request: Request, timeout: float) -> Any:
-                return self._wait_cancellable(replies, request, timeout, cancel_checker)
+            def while_waiting(seq: int) -> None:
+                nonlocal cancel_sent
+                if not cancel_sent and cancel_checker():
+                    self._send_cancel(seq)
+                    cancel_sent = True
 
-        reply = self._call(Op.CREATE_PLAN, body, with_costmap=True, wait=wait)
+        reply = self._call(Op.CREATE_PLAN, body, with_costmap=True, while_waiting=while_waiting)
         return Plan.from_wire(reply["path"])
-
-    def _wait_cancellable(
-        self, replies: Any, request: Request, timeout: float, cancel_checker: Callable[[], bool]
-    ) -> Any:
-        deadline = time.monotonic() + timeout
-        cancel_sent = False
-        while time.monotonic() < deadline:
-            try:
-                reply = replies.try_recv()
-            except Exception:  # the query ended (its own timeout) without a reply
-                return None
-            if reply is not None:
-                if reply.ok is not None:
-                    return reply.ok
-                continue  # an error (e.g. a timeout marker): keep waiting for the deadline
-            if not cancel_sent and cancel_checker():
-                self._send_cancel(request.seq)
-                cancel_sent = True
-            time.sleep(CANCEL_POLL_S)
-        return None
 
     def _send_cancel(self, target_seq: int) -> None:
         cancel = self._next_request(Op.CANCEL_PLAN, {"target_seq": target_seq})
         # Fire and forget: the planner's own reply (PlannerCancelled) is what counts.
-        self.session.get(
-            self.selector(self.keys.cancel),
-            payload=encode_request(cancel),
-            timeout=self.timeouts.lifecycle,
-            target=zenoh.QueryTarget.ALL,
+        self.transport.send(
+            self.keys.cancel, self.host, encode_request(cancel), self._timeout(Op.CANCEL_PLAN)
         )

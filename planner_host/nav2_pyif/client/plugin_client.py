@@ -9,6 +9,11 @@ Rules (PROTOCOL.md, "Client behaviour"):
    limit), then retry the call once.
 4. The costmap travels only when its version differs from what this session last delivered.
 5. Other error replies raise the nav2_core-named exception they name.
+
+Nav2 may configure a plugin before any host runs: ``defer_configure`` marks the session
+configured without one, and the first call that needs the host establishes it as rule 3 does.
+The shared session transcripts (protocol/vectors/transcripts) hold these rules: this client and
+the C++ plugin's replay them byte for byte (tests/test_transcripts.py).
 """
 
 from __future__ import annotations
@@ -34,7 +39,7 @@ from nav2_pyif_protocol.keys import KeySpace
 from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT, Timeout
 
 from nav2_pyif.client.calls import CallRecord
-from nav2_pyif.client.hosts import HostWatcher
+from nav2_pyif.client.transport import Transport, ZenohTransport, selector
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, host_failure_error
 from nav2_pyif.params import ParamValue
@@ -84,7 +89,7 @@ class PluginClient:
 
     def __init__(
         self,
-        session: zenoh.Session,
+        session: zenoh.Session | Transport,
         key_prefix: str,
         costmap: Costmap,
         *,
@@ -96,8 +101,11 @@ class PluginClient:
         timeouts: Timeouts | None = None,
         record_calls: bool = False,
         nav2_params: dict[str, ParamValue] | None = None,
+        sid: str | None = None,
     ) -> None:
-        self.session = session
+        """``session``: a Zenoh session, or any Transport (MockTransport in tests); ``sid``:
+        the session id (a random UUID4 by default; transcripts fix it)."""
+        self.transport = session if isinstance(session, Transport) else ZenohTransport(session)
         self.keys = KeySpace(key_prefix)
         self.name = name
         self.node = node
@@ -107,12 +115,13 @@ class PluginClient:
         self.global_frame = global_frame or costmap.frame_id
         self.robot_base_frame = robot_base_frame
         self.timeouts = timeouts or Timeouts()
-        self.sid = uuid.uuid4().hex
+        self.sid = sid or uuid.uuid4().hex
         self.epoch = 0
         self._seq = 0
         self.costmap = costmap
         self._delivered_costmap: int | None = None
         self.configured = False
+        self.established = False  # configured on a host (not only deferred)
         self.active = False
         self.last_host: str | None = None
         self.served: str | None = None  # what the host serves, from its configure reply
@@ -122,7 +131,14 @@ class PluginClient:
         self.debug_outputs: dict[str, str] = {}  # debug outputs the planner declares: name -> type
         self.failovers = 0
         self.records: list[CallRecord] | None = [] if record_calls else None
-        self.hosts = HostWatcher(session, self.keys)
+        self.hosts = self.transport.hosts(self.keys)
+
+    @property
+    def session(self) -> zenoh.Session:
+        """The Zenoh session this client queries through (a ZenohTransport's)."""
+        if not isinstance(self.transport, ZenohTransport):
+            raise TypeError(f"{self.keys.prefix}: this client's transport is not Zenoh")
+        return self.transport.session
 
     # --- public lifecycle ---------------------------------------------------------------
     def wait_for_host(self, timeout: float = 5.0) -> bool:
@@ -133,8 +149,9 @@ class PluginClient:
         """Start a session; returns the parameters the planner declared (with values)."""
         self.epoch += 1
         self._delivered_costmap = None
+        self.established = False
         body = self._call(Op.CONFIGURE, self._configure_body(), allow_resync=False)
-        self.configured = True
+        self.configured = self.established = True
         self.served = body.get("planner")
         self.undeclared = body.get("undeclared") or {}
         self.debug_outputs = body.get("debug_outputs") or {}
@@ -150,23 +167,49 @@ class PluginClient:
             self.params.setdefault(name, value)
         return declared
 
+    def defer_configure(self) -> None:
+        """Configured without a host yet (Nav2 configures its plugins at bring-up, maybe
+        before any host runs): the first call that needs the host establishes the session
+        (configure, activate if active, the state); lifecycle calls before only update the
+        local state."""
+        self.configured, self.established = True, False
+
     def activate(self) -> None:
+        if self.configured and not self.established:
+            self.active = True  # sent when the session is established
+            if self.hosts.alive:
+                try:
+                    self._establish()
+                except Nav2Error as exc:
+                    if not exc.host_failed:
+                        raise
+                    log.warning("%s: %s", self.keys.prefix, exc)
+            return
         self._call(Op.ACTIVATE, {})
         self.active = True
 
     def deactivate(self) -> None:
+        if self.configured and not self.established:
+            self.active = False
+            return
         self._call(Op.DEACTIVATE, {})
         self.active = False
 
     def cleanup(self) -> None:
+        send = not self.configured or self.established  # not configured: the call says so
         try:
-            self._call(Op.CLEANUP, {}, allow_resync=False)
+            if send:
+                self._call(Op.CLEANUP, {}, allow_resync=False)
         finally:
-            self.configured = False
+            self.configured = self.established = False
             self.active = False
 
     def set_parameters(self, changes: dict[str, ParamValue]) -> dict[str, str]:
-        """Send changed parameters; returns the rejected ones (name -> reason)."""
+        """Send changed parameters; returns the rejected ones (name -> reason). Before the
+        session is established they are only kept for configure."""
+        if self.configured and not self.established:
+            self.params.update(changes)
+            return {}
         rejected: dict[str, str] = self._call(Op.SET_PARAMETERS, {"params": changes})["rejected"]
         self.params.update({k: v for k, v in changes.items() if k not in rejected})
         return rejected
@@ -232,7 +275,7 @@ class PluginClient:
 
     def selector(self, key: str) -> str:
         """``key?host=<pinned id>``: replicas other than the pinned host drop the query."""
-        return f"{key}?host={self.host}" if self.host else key
+        return selector(key, self.host)
 
     def _next_request(self, op: Op, body: Body) -> Request:
         self._seq += 1
@@ -252,7 +295,7 @@ class PluginClient:
     def _prepare(self, op: Op, body: Body, *, with_costmap: bool = False) -> Carried | None:
         """An encoded request another plugin's query carries to this plugin's host; None
         when this plugin cannot send one now (not configured)."""
-        if not self.configured:
+        if not self.configured or not self.established:
             return None
         wire, send_costmap, version = self._with_costmap(op, body, with_costmap)
         request = self._next_request(op, wire)
@@ -312,8 +355,10 @@ class PluginClient:
         with_costmap: bool = False,
         allow_resync: bool = True,
         allow_failover: bool = True,
-        wait: Callable[[Any, Request, float], Any] | None = None,
+        while_waiting: Callable[[int], None] | None = None,
     ) -> Body:
+        """One call, following the rules above. ``while_waiting(seq)`` runs about every 5 ms
+        while the reply is awaited."""
         if op is not Op.CONFIGURE and not self.configured:
             raise generic_error(self.plugin_type)(
                 f"{op.value} before configure on {self.keys.prefix}"
@@ -332,17 +377,29 @@ class PluginClient:
                 host_failed=True,
             )
         self._pin_host(alive)
-        # in schema order, as the validation skipped for the control cycle would write it
-        body, send_costmap, version = self._with_costmap(op, body, with_costmap)
-        request = self._next_request(op, body)
-        retry = {"with_costmap": with_costmap, "allow_failover": False, "wait": wait}
+        if op is not Op.CONFIGURE and not self.established:
+            self._establish()  # deferred configure, or a re-establishment that failed before
+        # in schema order, as the validation skipped for the control cycle would write it;
+        # a retry starts again from Nav2's body (the costmap may have been delivered since)
+        wire, send_costmap, version = self._with_costmap(op, body, with_costmap)
+        request = self._next_request(op, wire)
+
+        def retry() -> Body:  # once, on the new replica, whose SessionUnknown re-sends state
+            return self._call(
+                op,
+                body,
+                with_costmap=with_costmap,
+                allow_failover=False,
+                while_waiting=while_waiting,
+            )
+
         try:
-            reply = self._exchange(request, wait)
+            reply = self._exchange(request, while_waiting)
         except Nav2Error:
-            # No reply in time: the pinned replica died (its token may not be gone yet) or
-            # hangs. Another alive replica gets the call instead.
+            # No reply in time (or a bad one): the pinned replica died (its token may not be
+            # gone yet) or hangs. Another alive replica gets the call instead.
             if allow_failover and self._fail_over(avoid=self.host):
-                return self._call(op, body, **retry)  # type: ignore[arg-type]
+                return retry()
             raise
         if (
             not reply.ok
@@ -351,7 +408,7 @@ class PluginClient:
             and reply.error.type == ErrorType.UNAVAILABLE.value
             and self._fail_over(avoid=reply.host)
         ):
-            return self._call(op, body, **retry)  # type: ignore[arg-type]
+            return retry()
         if reply.ok:
             if send_costmap or op is Op.CONFIGURE:
                 self._delivered_costmap = version
@@ -366,26 +423,19 @@ class PluginClient:
                 with_costmap=with_costmap,
                 allow_resync=False,
                 allow_failover=allow_failover,
-                wait=wait,
+                while_waiting=while_waiting,
             )
         raise error_from_reply(reply.error, self.plugin_type)
 
-    def _exchange(
-        self, request: Request, wait: Callable[[Any, Request, float], Any] | None
-    ) -> Reply:
+    def _exchange(self, request: Request, while_waiting: Callable[[int], None] | None) -> Reply:
         # The control cycle's body is built in schema order by this package: skip re-checking.
         payload = encode_request(request, validate=request.op is not Op.COMPUTE_VELOCITY_COMMANDS)
         timeout = self._timeout(request.op)
+        poll = None if while_waiting is None else (lambda: while_waiting(request.seq))
         start = time.perf_counter_ns()
-        replies = self.session.get(
-            self.selector(self.keys.call(request.op)),
-            payload=payload,
-            timeout=timeout,
-            target=zenoh.QueryTarget.ALL,
-        )
-        sample = wait(replies, request, timeout) if wait else _first_ok(replies)
+        answer = self.transport.query(self.keys.call(request.op), self.host, payload, timeout, poll)
         elapsed = time.perf_counter_ns() - start
-        if sample is None:
+        if answer is None:
             self._record(request, elapsed, 0, len(payload), False)
             raise host_failure_error(self.plugin_type)(
                 f"{request.op.value} got no reply from {self.keys.prefix} within "
@@ -393,7 +443,7 @@ class PluginClient:
                 host_failed=True,
             )
         try:
-            reply = decode_reply(sample.payload.to_bytes(), request.op)
+            reply = decode_reply(answer, request.op)
         except ProtocolError as exc:
             raise generic_error(self.plugin_type)(
                 f"bad reply to {request.op.value}: {exc}"
@@ -427,11 +477,15 @@ class PluginClient:
             self.sid[:8],
         )
         self.resyncs += 1
+        self._establish()
+
+    def _establish(self) -> None:
+        """Configure, activate if active, re-send the state. When it fails the session stays
+        configured and not established: the next call tries again, instead of refusing every
+        call as "before configure"."""
         try:
             self.configure()
         finally:
-            # even when re-establishing failed: the next call tries again (the host will
-            # answer SessionUnknown), instead of refusing every call as "before configure"
             self.configured = True
         if self.active:
             self._call(Op.ACTIVATE, {}, allow_resync=False)
@@ -446,11 +500,3 @@ class Carried:
     payload: bytes
     costmap_version: int
     sent_costmap: bool
-
-
-def _first_ok(replies: Any) -> Any:
-    """The first successful Zenoh reply, or None when the query ended without one."""
-    for reply in replies:
-        if reply.ok is not None:
-            return reply.ok
-    return None

@@ -76,6 +76,7 @@ struct SessionConfig
   std::string global_frame;      // the costmap's global frame
   std::string robot_base_frame{"base_link"};
   Timeouts timeouts;
+  std::string session_id;        // "": a new random one (the session transcripts fix it)
 };
 
 class CarriedCycle;
