@@ -7,8 +7,8 @@ figures of RELIABILITY.md printed; a 1000 x 1000 costmap and 10 000-pose plans c
 map -> odom moving while driving; the secure fleet of DEPLOYMENT.md section 6 (TLS, client
 certificates, access control) carries robot1's goal; the function-delegate YAML starts its
 own hosts; and two robots' Nav2 stacks, in two ROS domains, share one batched planner host
-(test_fleet_batched.py). Apart, the examples/ gallery: the OMPL example plans and the DWA example drives to
-the goal (bridge_plugin/test/nav2/test_gallery.py).
+(test_fleet_batched.py). Apart, the examples/ gallery: the OMPL example plans and the DWA
+example drives to the goal (bridge_plugin/test/nav2/test_gallery.py).
 
 Needs a ROS 2 with Nav2 (nav2_controller, nav2_planner, nav2_lifecycle_manager, nav2_msgs),
 colcon and zenoh-cpp, once per distribution (humble, jazzy, lyrical) and zenoh-cpp backend:
