@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Build nav2_pyif_cycle_bench (bridge_plugin/bench: the control-cycle benchmark with the C++
-# plugin's client code) into build/cpp_bench, against an installed ROS 2 with Nav2 and
+# plugin's client code) and nav2_pyif_fleet_client (the robots of `fleet --cpp-clients`) into
+# build/cpp_bench, against an installed ROS 2 with Nav2 and
 # zenoh-cpp: the setup script in $NAV2_PYIF_NAV2_SETUP, else /opt/ros/<distro>/setup.bash.
 # Builds only this repository's bridge_plugin sources, nothing fetched. Then:
 #   nav2-pyif-bench cpp-cycle      (finds build/cpp_bench/nav2_pyif_cycle_bench)
+#   nav2-pyif-bench fleet --cpp-clients   (finds build/cpp_bench/nav2_pyif_fleet_client)
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="$ROOT/build/cpp_bench"
@@ -31,5 +33,6 @@ cmake -S "$ROOT/bridge_plugin" -B "$BUILD" -DNAV2_PYIF_BUILD_BENCH=ON -DBUILD_TE
   -DCMAKE_BUILD_TYPE=Release \
   "-DCMAKE_EXE_LINKER_FLAGS=-Wl,--as-needed -Wl,--allow-shlib-undefined" \
   "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,--as-needed" >/dev/null
-cmake --build "$BUILD" --target nav2_pyif_cycle_bench -j2
+cmake --build "$BUILD" --target nav2_pyif_cycle_bench nav2_pyif_fleet_client -j2
 echo "$BUILD/nav2_pyif_cycle_bench"
+echo "$BUILD/nav2_pyif_fleet_client"

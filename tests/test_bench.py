@@ -107,6 +107,48 @@ def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
     )
 
 
+def test_fleet_with_cpp_clients_without_their_binary_says_how_to_build_it(
+    tmp_path: Path,
+) -> None:
+    result = bench(
+        *("fleet", "--cpp-clients", "--fleet-client", str(tmp_path / "absent")), timeout=60
+    )
+    assert result.returncode == 2
+    assert "no C++ fleet client" in result.stderr and "build_cpp_bench.sh" in result.stderr
+
+
+@pytest.mark.cpp
+@pytest.mark.nav2
+@pytest.mark.timeout(900)
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
+def test_fleet_benchmark_with_cpp_clients_compares_both_modes() -> None:
+    if not os.environ.get("NAV2_PYIF_NAV2_SETUP"):
+        pytest.skip(
+            "the fleet's C++ clients skipped: NAV2_PYIF_NAV2_SETUP is unset (the setup script "
+            "of a ROS 2 with Nav2 and zenoh-cpp, e.g. /opt/ros/jazzy/setup.bash)"
+        )
+    build = subprocess.run(
+        [str(ROOT / "scripts" / "build_cpp_bench.sh")], capture_output=True, text=True, timeout=600
+    )
+    assert build.returncode == 0, (build.stdout + build.stderr)[-3000:]
+    client = build.stdout.strip().splitlines()[-1]
+    result = bench(
+        *("fleet", "--cpp-clients", "--fleet-client", client, "--planner", "learned"),
+        *("--compare", "--robots", "3", "--seconds", "1"),
+        timeout=600,
+    )
+    assert_prints(
+        result,
+        "one worker each, C++ clients: most robots served with no missed period:",
+        "batched (5 ms window), C++ clients: most robots served with no missed period:",
+    )
+    rows = re.findall(r"^  (one worker each|batched .*?) +3 +(\d+) +[\d.]+ ms", result.stdout, re.M)
+    assert rows == [
+        ("one worker each, C++ clients", "60"),
+        ("batched (5 ms window), C++ clients", "60"),
+    ], result.stdout
+
+
 def test_fleet_benchmark_prints_its_table_and_draws_it(tmp_path: Path) -> None:
     png = tmp_path / "fleet.png"
     result = bench("fleet", "--robots", "1", "--seconds", "1", "--plot", str(png))

@@ -155,6 +155,23 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="a mode stops at the first fleet size that missed a period",
     )
+    fleet.add_argument(
+        "--cpp-clients",
+        action="store_true",
+        help="the robots as the plugin's C++ client code (nav2_pyif_fleet_client, built by "
+        "scripts/build_cpp_bench.sh), 2 processes, instead of Python clients in 4",
+    )
+    fleet.add_argument(
+        "--fleet-client",
+        metavar="BINARY",
+        help="with --cpp-clients: the client (default build/cpp_bench/nav2_pyif_fleet_client)",
+    )
+    fleet.add_argument(
+        "--setup",
+        metavar="SCRIPT",
+        help="with --cpp-clients: the ROS 2 setup script it was built against (default "
+        "$NAV2_PYIF_NAV2_SETUP)",
+    )
     fleet.add_argument("--plot", metavar="PNG", help="draw latency and misses against robots")
     reliability = sub.add_parser("reliability", help="hot swap gap, memory over a long run")
     reliability.add_argument(
@@ -255,7 +272,11 @@ def run(args: argparse.Namespace) -> int:
         results = hop_bench.run(hop_bench.apply_quick(args))
         text = hop_bench.report(results)
     elif args.bench == "fleet":
-        results = fleet_bench.run(args)
+        try:
+            results = fleet_bench.run(args)
+        except cpp_cycle_bench.BenchSetupError as exc:
+            print(f"nav2-pyif-bench fleet: {exc}", file=sys.stderr)
+            return 2
         text = fleet_bench.report(results)
         if args.plot:
             from nav2_pyif_bench.fleet_plot import plot_fleet

@@ -194,47 +194,92 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
     from nav2_pyif.common.host_process import PlannerHostProcess
 
     directory = workdir()
-    planner = fleet_planner(args.planner, robots, args.rollouts, directory)
-    entries = [{"key": key(i), "planner": planner.spec} for i in range(robots)]
-    host = PlannerHostProcess(entries, args=host_arguments(args, batched), env=host_env(args))
-    with host:
-        assert host.proc is not None
-        ctx = multiprocessing.get_context("spawn")
-        queue, ready, go = ctx.Queue(), ctx.Queue(), _Go(ctx)
-        processes = min(robots, 4)
-        groups = [list(range(robots))[g::processes] for g in range(processes)]
-        clients = [
-            ctx.Process(
-                target=_client_process,
-                args=(host.endpoint, g, planner, args.seconds, ready, go, queue),
-            )
-            for g in groups
-        ]
-        try:
-            for c in clients:
-                c.start()
-            for _ in range(robots):  # every robot configured, compiled and warm
-                ready.get(timeout=600)
-            go.start_at.value = time.monotonic() + 1.0
-            go.event.set()
-            time.sleep(max(0.0, go.start_at.value - time.monotonic()))
-            cpu_before, wall_before = _cpu_seconds(host.proc.pid), time.monotonic()
-            samples: list[tuple[float, bool]] = []
-            errors: list[str] = []
-            for _ in clients:
-                got, failed = queue.get(timeout=args.seconds + 300)
-                samples, errors = samples + got, errors + failed
-            cpu = _cpu_seconds(host.proc.pid) - cpu_before
-            wall = time.monotonic() - wall_before
+    try:
+        planner = fleet_planner(args.planner, robots, args.rollouts, directory)
+        entries = [{"key": key(i), "planner": planner.spec} for i in range(robots)]
+        host = PlannerHostProcess(entries, args=host_arguments(args, batched), env=host_env(args))
+        with host:
+            assert host.proc is not None
+            drive = _cpp_clients if args.cpp_clients else _python_clients
+            samples, errors, cores = drive(args, host, robots, planner)
             batching = _batching(host.endpoint) if batched else {}
-            for c in clients:
-                c.join(30)
-        finally:  # also on a signal or an error: no client process is left behind
-            for c in clients:
-                if c.pid is not None and c.is_alive():
-                    c.terminate()
-                    c.join(5)
-            shutil.rmtree(directory, ignore_errors=True)
+    finally:
+        shutil.rmtree(directory, ignore_errors=True)
+    return _summary(args, robots, batched, samples, errors, cores, batching)
+
+
+Driven = tuple[list[tuple[float, bool]], list[str], float]
+
+
+def _python_clients(
+    args: argparse.Namespace, host: Any, robots: int, planner: FleetPlanner
+) -> Driven:
+    """The robots as Python reference clients in up to 4 processes: samples, errors, and the
+    cores the host and its workers used meanwhile."""
+    ctx = multiprocessing.get_context("spawn")
+    queue, ready, go = ctx.Queue(), ctx.Queue(), _Go(ctx)
+    processes = min(robots, 4)
+    groups = [list(range(robots))[g::processes] for g in range(processes)]
+    clients = [
+        ctx.Process(
+            target=_client_process,
+            args=(host.endpoint, g, planner, args.seconds, ready, go, queue),
+        )
+        for g in groups
+    ]
+    try:
+        for c in clients:
+            c.start()
+        for _ in range(robots):  # every robot configured, compiled and warm
+            ready.get(timeout=600)
+        go.start_at.value = time.monotonic() + 1.0
+        go.event.set()
+        time.sleep(max(0.0, go.start_at.value - time.monotonic()))
+        cpu_before, wall_before = _cpu_seconds(host.proc.pid), time.monotonic()
+        samples: list[tuple[float, bool]] = []
+        errors: list[str] = []
+        for _ in clients:
+            got, failed = queue.get(timeout=args.seconds + 300)
+            samples, errors = samples + got, errors + failed
+        cores = (_cpu_seconds(host.proc.pid) - cpu_before) / (time.monotonic() - wall_before)
+        for c in clients:
+            c.join(30)
+    finally:  # also on a signal or an error: no client process is left behind
+        for c in clients:
+            if c.pid is not None and c.is_alive():
+                c.terminate()
+                c.join(5)
+    return samples, errors, cores
+
+
+def _cpp_clients(args: argparse.Namespace, host: Any, robots: int, planner: FleetPlanner) -> Driven:
+    """The robots as the plugin's C++ client code (fleet_cpp_clients), as _python_clients."""
+    from nav2_pyif_bench.fleet_cpp_clients import client_binary, run_cpp_clients
+
+    start: list[tuple[float, float]] = []
+
+    def on_go(at: float) -> None:
+        time.sleep(max(0.0, at - time.monotonic()))
+        start.append((_cpu_seconds(host.proc.pid), time.monotonic()))
+
+    binary = client_binary(args.fleet_client)
+    samples, errors = run_cpp_clients(
+        host.endpoint, robots, planner, args.seconds, PERIOD, binary, args.setup, on_go
+    )
+    cpu_before, wall_before = start[0]
+    cores = (_cpu_seconds(host.proc.pid) - cpu_before) / (time.monotonic() - wall_before)
+    return samples, errors, cores
+
+
+def _summary(
+    args: argparse.Namespace,
+    robots: int,
+    batched: bool,
+    samples: list[tuple[float, bool]],
+    errors: list[str],
+    host_cores: float,
+    batching: dict[str, Any],
+) -> dict[str, Any]:
     latency = np.array([s[0] for s in samples if s[1]]) * 1000
     missed = sum(1 for s in samples if not s[1] or s[0] > PERIOD)
     return {
@@ -245,10 +290,10 @@ def run_one(args: argparse.Namespace, robots: int, batched: bool) -> dict[str, A
         "p99_ms": float(np.percentile(latency, 99)) if len(latency) else float("nan"),
         "missed": missed,
         "missed_pct": 100.0 * missed / max(1, len(samples)),
-        "host_cpu_cores": cpu / wall,
+        "host_cpu_cores": host_cores,
         "isolation": args.isolation,
         "planner": args.planner,
-        "mode": _mode(args, batched),
+        "mode": _mode(args, batched) + (", C++ clients" if args.cpp_clients else ""),
         "errors": sorted(set(errors))[:5],  # what the failed calls said
         "xla_single_thread": bool(args.xla_single_thread),
         # the whole run's, set-up included: robots per batched call, cycles not computed
@@ -267,6 +312,11 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     """Each fleet size in each mode (per-robot workers, batched, or both with --compare);
     with --stop-at-miss, a mode stops at its first size that missed a period."""
     modes = [False, True] if args.compare else [args.batch]
+    if args.cpp_clients:  # before anything starts: say how to build it
+        from nav2_pyif_bench.cpp_cycle_bench import setup_script
+        from nav2_pyif_bench.fleet_cpp_clients import client_binary
+
+        client_binary(args.fleet_client), setup_script(args.setup)
     results: dict[str, Any] = {}
     for batched in modes:
         sizes = (args.batch_robots if batched and args.compare else None) or args.robots
@@ -284,12 +334,12 @@ def report(results: dict[str, Any]) -> str:
     first = next(iter(results.values()), {"planner": "trivial"})
     lines = [
         f"fleet: N controllers on one host ({first['planner']} planner), clients at 20 Hz",
-        f"  {'mode':<28} {'robots':>6} {'calls/s':>8} {'median':>9} {'p99':>9} "
+        f"  {'mode':<36} {'robots':>6} {'calls/s':>8} {'median':>9} {'p99':>9} "
         f"{'missed':>14} {'host CPU':>11}",
     ]
     for r in results.values():
         lines.append(
-            f"  {r['mode']:<28} {r['robots']:>6} {r['calls_per_s']:>8.0f} "
+            f"  {r['mode']:<36} {r['robots']:>6} {r['calls_per_s']:>8.0f} "
             f"{r['median_ms']:>6.2f} ms {r['p99_ms']:>6.2f} ms "
             f"{r['missed']:>7} ({r['missed_pct']:4.1f} %) "
             f"{r['host_cpu_cores']:>5.2f} cores"

@@ -1,9 +1,10 @@
 # nav2_pyif_cycle_bench (bench/): the control-cycle benchmark with the plugin's own client code
 # (ControllerSession over ZenohTransport) on the client side, beside a bare Zenoh get and an
-# rclcpp client of the rclpy-node workaround. Opt-in (NAV2_PYIF_BUILD_BENCH), in the ament
-# build only, after the plugin's dependencies and NAV2_PYIF_ZENOH_TARGET are found. Run it
-# through `nav2-pyif-bench cpp-cycle`, which starts the peers; scripts/build_cpp_bench.sh
-# builds it alone.
+# rclcpp client of the rclpy-node workaround; nav2_pyif_fleet_client: robots of `nav2-pyif-bench
+# fleet --cpp-clients`, on the same client code. Opt-in (NAV2_PYIF_BUILD_BENCH), in the ament
+# build only, after the plugin's dependencies and NAV2_PYIF_ZENOH_TARGET are found. Run them
+# through `nav2-pyif-bench cpp-cycle` and `fleet`, which start the peers;
+# scripts/build_cpp_bench.sh builds them alone.
 
 add_executable(nav2_pyif_cycle_bench
   ${CMAKE_CURRENT_LIST_DIR}/../bench/cycle_bench.cpp
@@ -21,3 +22,11 @@ target_link_libraries(nav2_pyif_cycle_bench
   geometry_msgs::geometry_msgs__rosidl_typesupport_cpp
   nav_msgs::nav_msgs__rosidl_typesupport_cpp)
 install(TARGETS nav2_pyif_cycle_bench RUNTIME DESTINATION lib/${PROJECT_NAME})
+
+add_executable(nav2_pyif_fleet_client
+  ${CMAKE_CURRENT_LIST_DIR}/../bench/fleet_client.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/nav2/zenoh_transport.cpp
+)
+target_include_directories(nav2_pyif_fleet_client PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../include)
+target_link_libraries(nav2_pyif_fleet_client nav2_pyif_client ${NAV2_PYIF_ZENOH_TARGET})
+install(TARGETS nav2_pyif_fleet_client RUNTIME DESTINATION lib/${PROJECT_NAME})
