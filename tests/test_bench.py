@@ -83,17 +83,24 @@ def test_cpp_cycle_without_its_binary_says_how_to_build_it(tmp_path: Path) -> No
 @pytest.mark.cpp
 @pytest.mark.nav2
 @pytest.mark.timeout(900)
-def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
+def built_cpp_bench(what: str) -> tuple[str, str]:
+    """scripts/build_cpp_bench.sh's two binaries (the cycle bench, the fleet client); skips,
+    naming ``what``, without a ROS 2 to build them against."""
     if not os.environ.get("NAV2_PYIF_NAV2_SETUP"):
         pytest.skip(
-            "C++-client cycle bench skipped: NAV2_PYIF_NAV2_SETUP is unset (the setup script "
-            "of a ROS 2 with Nav2 and zenoh-cpp, e.g. /opt/ros/jazzy/setup.bash)"
+            f"{what} skipped: NAV2_PYIF_NAV2_SETUP is unset (the setup script of a ROS 2 with "
+            "Nav2 and zenoh-cpp, e.g. /opt/ros/jazzy/setup.bash)"
         )
     build = subprocess.run(
         [str(ROOT / "scripts" / "build_cpp_bench.sh")], capture_output=True, text=True, timeout=600
     )
     assert build.returncode == 0, (build.stdout + build.stderr)[-3000:]
-    binary = build.stdout.strip().splitlines()[-1]
+    cycle_bench, fleet_client = build.stdout.strip().splitlines()[-2:]
+    return cycle_bench, fleet_client
+
+
+def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
+    binary, _ = built_cpp_bench("C++-client cycle bench")
     assert_prints(
         bench("cpp-cycle", "--quick", "--binary", binary),
         "bare Zenoh get -> empty reply",
@@ -122,16 +129,7 @@ def test_fleet_with_cpp_clients_without_their_binary_says_how_to_build_it(
 @pytest.mark.timeout(900)
 @pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
 def test_fleet_benchmark_with_cpp_clients_compares_both_modes() -> None:
-    if not os.environ.get("NAV2_PYIF_NAV2_SETUP"):
-        pytest.skip(
-            "the fleet's C++ clients skipped: NAV2_PYIF_NAV2_SETUP is unset (the setup script "
-            "of a ROS 2 with Nav2 and zenoh-cpp, e.g. /opt/ros/jazzy/setup.bash)"
-        )
-    build = subprocess.run(
-        [str(ROOT / "scripts" / "build_cpp_bench.sh")], capture_output=True, text=True, timeout=600
-    )
-    assert build.returncode == 0, (build.stdout + build.stderr)[-3000:]
-    client = build.stdout.strip().splitlines()[-1]
+    _, client = built_cpp_bench("the fleet's C++ clients")
     result = bench(
         *("fleet", "--cpp-clients", "--fleet-client", client, "--planner", "learned"),
         *("--compare", "--robots", "3", "--seconds", "1"),
@@ -142,7 +140,8 @@ def test_fleet_benchmark_with_cpp_clients_compares_both_modes() -> None:
         "one worker each, C++ clients: most robots served with no missed period:",
         "batched (5 ms window), C++ clients: most robots served with no missed period:",
     )
-    rows = re.findall(r"^  (one worker each|batched .*?) +3 +(\d+) +[\d.]+ ms", result.stdout, re.M)
+    row = r"^  (one worker each.*?|batched .*?) +3 +(\d+) +[\d.]+ ms"
+    rows = re.findall(row, result.stdout, re.M)
     assert rows == [
         ("one worker each, C++ clients", "60"),
         ("batched (5 ms window), C++ clients", "60"),
