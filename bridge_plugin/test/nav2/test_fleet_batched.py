@@ -236,10 +236,11 @@ def _drive_together(
 
 
 # Whether the two robots' cycles also share calls depends on their phases: controller_server
-# runs its loop at the phase its goal started with, and both goals are sent at once. Here, on
-# Jazzy they shared most calls; on Humble the two loops ran out of phase by more than the
-# window and few were shared. tests/test_batched.py asserts the gathering itself, with clients
-# in phase; this test asserts that every cycle of both robots went through the batch group.
+# runs its loop at the phase its goal started with, and both goals are sent at once. Mostly
+# they shared nearly every call (285 cycles in about 145 calls, 405 in about 210); in one run
+# of four on Humble the two loops ran out of phase by more than the window and few were
+# shared. tests/test_batched.py asserts the gathering itself, with clients in phase; this test
+# asserts that every cycle of both robots went through the batch group.
 
 
 def test_two_robots_reach_their_own_goals_with_one_batched_learned_controller(
