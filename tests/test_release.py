@@ -43,7 +43,7 @@ def _pyproject(field: str) -> str:
 
 def test_one_version_everywhere() -> None:
     version = _pyproject("version")
-    assert nav2_pyif.__version__ == version, "planner_host/nav2_pyif/__init__.py __version__"
+    assert nav2_pyif.__version__ == version, "python/nav2_pyif/__init__.py __version__"
     for xml in package_xmls():
         assert parse_package(str(xml)).version == version, (
             f"{xml.relative_to(ROOT)} says {parse_package(str(xml)).version}, "
