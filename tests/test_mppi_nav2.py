@@ -19,7 +19,7 @@ from tests.test_planners import attach
 
 pytestmark = pytest.mark.unit
 
-jax = pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif[jax])")
+jax = pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif-planners[jax])")
 jnp = jax.numpy
 
 from nav2_pyif_planners.mppi_nav2 import (  # noqa: E402

@@ -91,7 +91,7 @@ def straight_plan(length: float = 4.0) -> Plan:
 
 
 def mppi_jax() -> type:
-    pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif[jax])")
+    pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif-planners[jax])")
     from nav2_pyif_planners.mppi_jax import MPPIJax
 
     return MPPIJax

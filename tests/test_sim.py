@@ -38,7 +38,9 @@ from tests.test_host_e2e import controller
 
 pytestmark = pytest.mark.integration
 
-NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
+NO_JAX = pytest.mark.skipif(
+    find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])"
+)
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
 
 

@@ -44,10 +44,10 @@ INSTALL_HINTS = {
     "numpy": "pip install numpy, or apt install python3-numpy",
     "yaml": "pip install pyyaml, or apt install python3-yaml",
     **dict.fromkeys(("rclpy", "geometry_msgs", "nav_msgs", "std_msgs"), ROS_HINT),
-    # Not the core's: the runner's and the benchmarks' extras.
+    # Not the core's: the runner's extra, the benchmarks' own distribution's.
     "tqdm": "pip install 'nav2-pyif[runner]'",
-    "matplotlib": "pip install 'nav2-pyif[runner]' (nav2-pyif-bench: 'nav2-pyif[bench]')",
-    "cryptography": "pip install 'nav2-pyif[bench]'",
+    "matplotlib": "pip install 'nav2-pyif[runner]' (nav2-pyif-bench: pip install ./benchmarks)",
+    "cryptography": "pip install ./benchmarks in a clone (nav2-pyif-bench)",
 }
 
 

@@ -127,7 +127,11 @@ def run_by_path(args: argparse.Namespace) -> int:
     try:
         command = importlib.import_module(module)
     except ImportError as exc:
-        print(f"nav2-pyif {name}: needs the reference planners ({module}): {exc}", file=sys.stderr)
+        print(
+            f"nav2-pyif {name}: needs the reference planners ({module}: pip install ./planners "
+            f"in a clone, the distribution nav2-pyif-planners): {exc}",
+            file=sys.stderr,
+        )
         return 2
     code: int = command.main(args.rest, prog=f"nav2-pyif {name}")
     return code
