@@ -27,7 +27,7 @@ pytestmark = pytest.mark.integration
 def console_scripts() -> dict[str, str]:
     """name -> "module:function", from the [project.scripts] tables of the core's and the
     benchmarks' pyproject.toml."""
-    scripts = {}
+    scripts: dict[str, str] = {}
     for pyproject in (ROOT / "pyproject.toml", ROOT / "benchmarks" / "pyproject.toml"):
         table = pyproject.read_text().split("[project.scripts]", 1)[1].split("\n[", 1)[0]
         scripts.update(re.findall(r'^([\w-]+)\s*=\s*"([\w.:]+)"', table, re.MULTILINE))

@@ -1,42 +1,48 @@
-"""The goal checker's tolerances, as Nav2's GoalChecker::getTolerances reports them."""
+"""Base class of Python goal checkers: mirrors nav2_core::GoalChecker (controller_server).
+
+Named GoalCheckerPlugin because ``nav2_pyif.GoalChecker`` is the tolerances a controller
+receives (what getTolerances reports), which ``get_tolerances`` here returns.
+"""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import Any
+from abc import abstractmethod
+from typing import Any, ClassVar
+
+from nav2_pyif_protocol.constants import PluginType
+
+from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.plugin import PlannerPlugin
 
 
-@dataclass(frozen=True)
-class GoalChecker:
-    xy_goal_tolerance: float  # [m]
-    yaw_goal_tolerance: float  # [rad]
-    trans_stopped_velocity: float  # [m/s]
-    rot_stopped_velocity: float  # [rad/s]
-    #: [m] Nav2 Lyrical's path length tolerance (SimpleGoalChecker: the goal counts only once
-    #: the remaining plan is shorter); None where the checker has none, and before Lyrical.
-    path_length_tolerance: float | None = None
+class GoalCheckerPlugin(PlannerPlugin):
+    """Subclass and implement ``is_goal_reached``; ``configure`` is Nav2's ``initialize``
+    (goal checkers have no activate/deactivate in Nav2)."""
 
-    @classmethod
-    def from_wire(cls, wire: dict[str, Any]) -> GoalChecker:
-        return cls(**wire)
+    plugin_type: ClassVar[PluginType] = PluginType.GOAL_CHECKER
 
-    def to_wire(self) -> dict[str, float]:
-        wire = {
-            "xy_goal_tolerance": self.xy_goal_tolerance,
-            "yaw_goal_tolerance": self.yaw_goal_tolerance,
-            "trans_stopped_velocity": self.trans_stopped_velocity,
-            "rot_stopped_velocity": self.rot_stopped_velocity,
-        }
-        if self.path_length_tolerance is not None:
-            wire["path_length_tolerance"] = self.path_length_tolerance
-        return wire
+    @abstractmethod
+    def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+        """``pose``, ``goal``: geometry_msgs/Pose in the costmap's global frame;
+        ``velocity``: geometry_msgs/Twist in the robot base frame. True when reached."""
 
-    def is_goal_reached(
-        self, x: float, y: float, yaw: float, goal_x: float, goal_y: float, goal_yaw: float
-    ) -> bool:
-        """Nav2's SimpleGoalChecker rule: within xy and yaw tolerance of the goal."""
-        if math.hypot(goal_x - x, goal_y - y) > self.xy_goal_tolerance:
-            return False
-        dyaw = math.atan2(math.sin(goal_yaw - yaw), math.cos(goal_yaw - yaw))
-        return abs(dyaw) <= self.yaw_goal_tolerance
+    def is_goal_xy_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
+        """Nav2 Lyrical's isGoalXYReached (its controllers ask it to turn in place at the goal):
+        the position only, yaw ignored. The default: within ``get_tolerances()``'s xy
+        tolerance, as Nav2's SimpleGoalChecker; without tolerances, ``is_goal_reached``."""
+        tolerances = self.get_tolerances()
+        if tolerances is None:
+            return bool(self.is_goal_reached(pose, goal, velocity))
+        dx = goal.position.x - pose.position.x
+        dy = goal.position.y - pose.position.y
+        return math.hypot(dx, dy) <= tolerances.xy_goal_tolerance
+
+    def get_tolerances(self) -> GoalChecker | None:
+        """The tolerances a controller sees through getTolerances; None when this checker
+        has none (getTolerances returns false). ``path_length_tolerance`` reaches Nav2 on
+        Lyrical (its getTolerances' third value; None: Nav2's "not measured")."""
+        return None
+
+    def reset(self) -> None:
+        """Forget per-goal state (controller_server calls it for every new goal)."""
