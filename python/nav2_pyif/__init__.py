@@ -3,8 +3,8 @@ progress checkers, costmap layers and behaviours in Python; serve them over Zeno
 
 The planner API (what a planner imports)::
 
-    from nav2_pyif import Controller, GlobalPlanner, Costmap, Plan, GoalChecker
-    from nav2_pyif import Smoother, GoalCheckerPlugin, ProgressCheckerPlugin, CostmapLayer
+    from nav2_pyif import Controller, GlobalPlanner, Costmap, Plan, GoalTolerances
+    from nav2_pyif import Smoother, GoalChecker, ProgressChecker, CostmapLayer
     from nav2_pyif import Behavior, Status, Step, Failure  # behavior_server's plugins
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
     from nav2_pyif import carrot, pose_xy_yaw, wrap, ...  # geometry (nav2_pyif.geometry)
@@ -60,11 +60,11 @@ from nav2_pyif.geometry import (
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import Parameters, ParamValue
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
-from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.progress_checker import ProgressChecker
 from nav2_pyif.smoother import Smoother
 
 __version__ = "0.1.0"
@@ -85,9 +85,9 @@ __all__ = [
     "Failure",
     "GlobalPlanner",
     "GoalChecker",
-    "GoalCheckerPlugin",
     "GoalOccupied",
     "GoalOutsideMapBounds",
+    "GoalTolerances",
     "Inflation",
     "InvalidController",
     "InvalidPath",
@@ -108,7 +108,7 @@ __all__ = [
     "PlannerPlugin",
     "PlannerTFError",
     "PlannerTimedOut",
-    "ProgressCheckerPlugin",
+    "ProgressChecker",
     "SmoothedPathInCollision",
     "Smoother",
     "SmootherException",

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any, Union
 import numpy as np
 
 from nav2_pyif.geometry import pose_xy_yaw
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 
 if TYPE_CHECKING:
     from nav2_pyif.controller import Controller
@@ -55,7 +55,7 @@ class Batch:
     planners: list[Controller]  # each robot's own planner instance (its session's state)
     poses: np.ndarray  # (N, 3) float64: x, y [m], yaw [rad], in each robot's global frame
     velocities: np.ndarray  # (N, 3) float64: vx, vy [m/s], wz [rad/s], robot base frame
-    goal_checkers: list[GoalChecker | None]  # each robot's goal checker tolerances, or None
+    goal_checkers: list[GoalTolerances | None]  # each robot's goal checker tolerances, or None
     pose_messages: list[Any]  # geometry_msgs/PoseStamped per robot, as the single call gets
     velocity_messages: list[Any]  # geometry_msgs/Twist per robot
 
@@ -80,7 +80,7 @@ class Batch:
         planners: Sequence[Controller],
         poses: Sequence[Any],
         velocities: Sequence[Any],
-        goal_checkers: Sequence[GoalChecker | None],
+        goal_checkers: Sequence[GoalTolerances | None],
     ) -> Batch:
         """A batch from the messages of the single call (PoseStamped, Twist) per robot."""
         return cls(
@@ -100,7 +100,7 @@ class Batch:
         planner: Controller,
         pose: Any,
         velocity: Any,
-        goal_checker: GoalChecker | None = None,
+        goal_checker: GoalTolerances | None = None,
     ) -> Batch:
         """One robot's cycle as a batch of one: the single call written on the batched one."""
         return cls.of([planner], [pose], [velocity], [goal_checker])
@@ -169,7 +169,7 @@ def items(result: BatchResult, n: int) -> list[Any]:
 
 
 def one_cycle(
-    planner: Controller, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+    planner: Controller, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
 ) -> Any:
     """The single-robot ``compute_velocity_commands`` of a batching controller: its
     ``compute_velocity_commands_batch`` on a batch of one, the result as a TwistStamped."""

@@ -8,7 +8,7 @@ from typing import Any, ClassVar
 from nav2_pyif_protocol.constants import PluginType
 
 from nav2_pyif.debug import DebugOutputs
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.inputs import Inputs
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
@@ -89,7 +89,7 @@ class Controller(PlannerPlugin):
 
     @abstractmethod
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         """One control cycle.
 

@@ -1,8 +1,6 @@
 """Base class of Python goal checkers: mirrors nav2_core::GoalChecker (controller_server).
-
-Named GoalCheckerPlugin because ``nav2_pyif.GoalChecker`` is the tolerances a controller
-receives (what getTolerances reports), which ``get_tolerances`` here returns.
-"""
+What ``get_tolerances`` returns, the tolerances a controller receives (getTolerances), is
+``nav2_pyif.GoalTolerances``."""
 
 from __future__ import annotations
 
@@ -12,11 +10,11 @@ from typing import Any, ClassVar
 
 from nav2_pyif_protocol.constants import PluginType
 
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.plugin import PlannerPlugin
 
 
-class GoalCheckerPlugin(PlannerPlugin):
+class GoalChecker(PlannerPlugin):
     """Subclass and implement ``is_goal_reached``; ``configure`` is Nav2's ``initialize``
     (goal checkers have no activate/deactivate in Nav2)."""
 
@@ -38,7 +36,7 @@ class GoalCheckerPlugin(PlannerPlugin):
         dy = goal.position.y - pose.position.y
         return math.hypot(dx, dy) <= tolerances.xy_goal_tolerance
 
-    def get_tolerances(self) -> GoalChecker | None:
+    def get_tolerances(self) -> GoalTolerances | None:
         """The tolerances a controller sees through getTolerances; None when this checker
         has none (getTolerances returns false). ``path_length_tolerance`` reaches Nav2 on
         Lyrical (its getTolerances' third value; None: Nav2's "not measured")."""

@@ -1,4 +1,5 @@
-"""The goal checker's tolerances, as Nav2's GoalChecker::getTolerances reports them."""
+"""The goal checker's tolerances, as Nav2's GoalChecker::getTolerances reports them: what a
+controller receives with each control cycle's call."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ from typing import Any
 
 
 @dataclass(frozen=True)
-class GoalChecker:
+class GoalTolerances:
     xy_goal_tolerance: float  # [m]
     yaw_goal_tolerance: float  # [rad]
     trans_stopped_velocity: float  # [m/s]
@@ -18,7 +19,7 @@ class GoalChecker:
     path_length_tolerance: float | None = None
 
     @classmethod
-    def from_wire(cls, wire: dict[str, Any]) -> GoalChecker:
+    def from_wire(cls, wire: dict[str, Any]) -> GoalTolerances:
         return cls(**wire)
 
     def to_wire(self) -> dict[str, float]:

@@ -10,7 +10,7 @@ from nav2_pyif_protocol.constants import PluginType
 from nav2_pyif.plugin import PlannerPlugin
 
 
-class ProgressCheckerPlugin(PlannerPlugin):
+class ProgressChecker(PlannerPlugin):
     """Subclass and implement ``check``; ``configure`` is Nav2's ``initialize``. A progress
     checker has no costmap in Nav2: ``self.costmap`` is 0 x 0."""
 

@@ -8,7 +8,7 @@ from typing import Any
 from nav2_pyif_protocol.constants import Op, PluginType
 
 from nav2_pyif.client.plugin_client import PluginClient
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.messages import pose_to_wire, twist_to_list
 
 
@@ -41,7 +41,7 @@ class GoalCheckerClient(PluginClient):
         reached: bool = self._call(Op.IS_GOAL_REACHED, body)["reached"]
         return reached
 
-    def get_tolerances(self) -> GoalChecker | None:
+    def get_tolerances(self) -> GoalTolerances | None:
         return tolerances_from_wire(self._call(Op.GET_TOLERANCES, {}))
 
     def reset(self) -> None:
@@ -71,10 +71,10 @@ def pose7(pose: Any) -> list[float]:
     return [p.x, p.y, p.z, q.x, q.y, q.z, q.w]
 
 
-def tolerances_from_wire(body: dict[str, Any]) -> GoalChecker | None:
+def tolerances_from_wire(body: dict[str, Any]) -> GoalTolerances | None:
     """A get_tolerances reply's tolerances (the inverse of the host's tolerances_to_wire)."""
     if not body["available"]:
         return None
     pose, velocity = body["pose_tolerance"], body["velocity_tolerance"]
     yaw = 2.0 * math.atan2(pose[5], pose[6])
-    return GoalChecker(pose[0], yaw, velocity[0], velocity[5], body.get("path_length_tolerance"))
+    return GoalTolerances(pose[0], yaw, velocity[0], velocity[5], body.get("path_length_tolerance"))

@@ -9,7 +9,7 @@ from nav2_pyif_protocol.constants import Op, PluginType
 
 from nav2_pyif.client.plugin_client import Carried, PluginClient, log
 from nav2_pyif.exceptions import Nav2Error
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
 from nav2_pyif.plan import Plan
 from nav2_pyif.ros_types import deserialize, serialize, type_name_of
@@ -92,7 +92,7 @@ class ControllerClient(PluginClient):
         self,
         pose: Any,
         velocity: Any,
-        goal_checker: GoalChecker | None = None,
+        goal_checker: GoalTolerances | None = None,
         inputs: Mapping[str, tuple[Any, int]] | None = None,
         debug_wanted: Iterable[str] = (),
     ) -> Any:
@@ -121,7 +121,7 @@ class ControllerClient(PluginClient):
     def compute_body(
         pose: Any,
         velocity: Any,
-        goal_checker: GoalChecker | None = None,
+        goal_checker: GoalTolerances | None = None,
         inputs: Mapping[str, tuple[Any, int]] | None = None,
         debug_wanted: Iterable[str] = (),
     ) -> dict[str, Any]:

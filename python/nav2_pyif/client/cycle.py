@@ -29,7 +29,7 @@ from nav2_pyif_protocol.constants import Op
 from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient, pose7
 from nav2_pyif.client.controller import ControllerClient
 from nav2_pyif.client.plugin_client import Body, Carried, PluginClient
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.messages import pose_to_wire, twist_to_list
 
 #: A request prepared for a carrier's query, and the reply that query brought back for it.
@@ -65,7 +65,7 @@ class ControlCycle:
         pose: Any,
         goal: Any,
         velocity: Any,
-        tolerances: GoalChecker | None = None,
+        tolerances: GoalTolerances | None = None,
         inputs: Mapping[str, tuple[Any, int]] | None = None,
         debug_wanted: Iterable[str] = (),
     ) -> bool:
@@ -109,7 +109,7 @@ class ControlCycle:
         self,
         pose: Any,
         velocity: Any,
-        tolerances: GoalChecker | None = None,
+        tolerances: GoalTolerances | None = None,
         inputs: Mapping[str, tuple[Any, int]] | None = None,
         debug_wanted: Iterable[str] = (),
     ) -> Any:

@@ -28,7 +28,7 @@ from nav2_pyif.client import (
 from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.costmap_layer import LayerWindow
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import ParamValue
 
 #: The plugin roles the runner takes besides the controller and the planner, their keys.
@@ -161,7 +161,7 @@ class CycleCalls:
     with Python checkers through ControlCycle."""
 
     def __init__(
-        self, controller: ControllerClient, extras: Extras, tolerances: GoalChecker
+        self, controller: ControllerClient, extras: Extras, tolerances: GoalTolerances
     ) -> None:
         self.controller = controller
         self.extras = extras

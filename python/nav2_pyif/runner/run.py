@@ -35,7 +35,7 @@ from nav2_pyif.common.zenoh_config import ZenohOptions, connect_to
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.geometry import path_length
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import ALIASES
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
@@ -89,7 +89,9 @@ class SimConfig:
     cost_scaling_factor: float = 3.0
     local_costmap_size: float = 5.0  # [m] rolling window
     local_costmap_rate: float = 5.0  # [Hz], as Nav2's local costmap update_frequency
-    goal_checker: GoalChecker = field(default_factory=lambda: GoalChecker(0.25, 0.25, 0.25, 0.25))
+    goal_checker: GoalTolerances = field(
+        default_factory=lambda: GoalTolerances(0.25, 0.25, 0.25, 0.25)
+    )
     failure_tolerance: float = 0.3  # [s] of consecutive controller failures before aborting
     controller_params: dict[str, ParamValue] = field(default_factory=dict)
     planner_params: dict[str, ParamValue] = field(default_factory=dict)

@@ -18,7 +18,7 @@ Signatures (a function that reads the costmap gets it as its first argument):
     create_plan(costmap: Costmap, start: PoseStamped, goal: PoseStamped) -> Path | Plan | array
     smooth(costmap: Costmap, path: Plan, max_time: float) -> Path | Plan | array
     is_goal_reached(pose: Pose, goal: Pose, velocity: Twist) -> bool
-    get_tolerances() -> GoalChecker | None
+    get_tolerances() -> GoalTolerances | None
     check(pose: PoseStamped) -> bool            # a progress checker
     update_costs(window: LayerWindow) -> uint8 array | (array, Combine)   # a costmap layer
     update_bounds(robot_x, robot_y, robot_yaw, bounds) -> bounds; match_size(size_x, size_y,
@@ -26,7 +26,7 @@ Signatures (a function that reads the costmap gets it as its first argument):
     configure(params: Parameters); activate(); deactivate(); cleanup(); reset(); cancel() -> bool
 
 Keyword arguments a function gets when its signature names them (or takes ``**kwargs``):
-    compute_velocity_commands: goal_checker (GoalChecker: the goal's tolerances, or None),
+    compute_velocity_commands: goal_checker (GoalTolerances: the goal's tolerances, or None),
         plan (the latest Plan, or None: no set_plan function needed), control_period
         ([s] the controller server's period, 1 / controller_frequency, or None)
     create_plan: cancel_checker (a callable returning True once Nav2 cancels)
@@ -44,10 +44,10 @@ from nav2_pyif.costmap_layer import Bounds, CostmapLayer, LayerWindow
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
-from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.progress_checker import ProgressChecker
 from nav2_pyif.roles import ALL_ROLES, KIND_ROLES, LIFECYCLE_ROLES, check_roles
 from nav2_pyif.server.loader import import_module
 from nav2_pyif.smoother import Smoother
@@ -83,8 +83,8 @@ def delegate_class(
     reload: bool = False,
     quiet: bool = False,
 ) -> type[PlannerPlugin]:
-    """Build a plugin class (a Controller, GlobalPlanner, Smoother, GoalCheckerPlugin,
-    ProgressCheckerPlugin or CostmapLayer) whose methods call the module's functions:
+    """Build a plugin class (a Controller, GlobalPlanner, Smoother, GoalChecker,
+    ProgressChecker or CostmapLayer) whose methods call the module's functions:
     those ``delegates`` maps roles to, or (no map) those named after the roles. ``kind``: the
     main role it is served as (``compute_velocity_commands`` for a controller, ...), when the
     caller knows it: the module must be of that kind. Logs, at INFO, what it bound and each
@@ -257,7 +257,7 @@ def _controller_class(module_name: str, funcs: dict[str, Callable[..., Any]]) ->
                 funcs["set_plan"](plan)
 
         def compute_velocity_commands(
-            self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+            self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
         ) -> Any:
             offered = {
                 "goal_checker": goal_checker,
@@ -305,14 +305,14 @@ def _smoother_class(module_name: str, funcs: dict[str, Callable[..., Any]]) -> t
 
 def _goal_checker_class(
     module_name: str, funcs: dict[str, Callable[..., Any]]
-) -> type[GoalCheckerPlugin]:
-    class DelegateGoalChecker(_DelegateLifecycle, GoalCheckerPlugin):
+) -> type[GoalChecker]:
+    class DelegateGoalChecker(_DelegateLifecycle, GoalChecker):
         _funcs = funcs
 
         def is_goal_reached(self, pose: Any, goal: Any, velocity: Any) -> bool:
             return funcs["is_goal_reached"](pose, goal, velocity)  # type: ignore[no-any-return]
 
-        def get_tolerances(self) -> GoalChecker | None:
+        def get_tolerances(self) -> GoalTolerances | None:
             return funcs["get_tolerances"]() if "get_tolerances" in funcs else None
 
     return _named(DelegateGoalChecker, module_name)
@@ -320,8 +320,8 @@ def _goal_checker_class(
 
 def _progress_checker_class(
     module_name: str, funcs: dict[str, Callable[..., Any]]
-) -> type[ProgressCheckerPlugin]:
-    class DelegateProgressChecker(_DelegateLifecycle, ProgressCheckerPlugin):
+) -> type[ProgressChecker]:
+    class DelegateProgressChecker(_DelegateLifecycle, ProgressChecker):
         _funcs = funcs
 
         def check(self, pose: Any) -> bool:

@@ -57,8 +57,8 @@ PLUGIN_BASES = (
     "Controller",
     "GlobalPlanner",
     "Smoother",
-    "GoalCheckerPlugin",
-    "ProgressCheckerPlugin",
+    "GoalChecker",
+    "ProgressChecker",
     "CostmapLayer",
     "Behavior",
 )

@@ -19,7 +19,7 @@ from nav2_pyif.exceptions import (
     PlannerException,
     SmootherException,
 )
-from nav2_pyif.goal_checker import GoalChecker
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.messages import stamp_to_ns, twist_to_list
 from nav2_pyif.plan import Plan
 
@@ -104,7 +104,7 @@ def checked_smoothed(result: Any, frame_id: str, stamp_ns: int) -> tuple[Plan, b
 
 
 def tolerances_to_wire(tolerances: Any) -> dict[str, Any]:
-    """get_tolerances' GoalChecker (or None) -> the reply body, as Nav2's goal checkers fill
+    """get_tolerances' GoalTolerances (or None) -> the reply body, as Nav2's goal checkers fill
     getTolerances: position x, y = the xy tolerance, the yaw tolerance as a quaternion about
     z, linear x, y = the translational and angular z = the rotational stopped velocity."""
     if tolerances is None:
@@ -113,10 +113,10 @@ def tolerances_to_wire(tolerances: Any) -> dict[str, Any]:
             "pose_tolerance": [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0],
             "velocity_tolerance": [0.0] * 6,
         }
-    if not isinstance(tolerances, GoalChecker):
+    if not isinstance(tolerances, GoalTolerances):
         raise ControllerException(
             f"get_tolerances returned {type(tolerances).__name__}; expected "
-            "nav2_pyif.GoalChecker or None"
+            "nav2_pyif.GoalTolerances or None"
         )
     xy, yaw = float(tolerances.xy_goal_tolerance), float(tolerances.yaw_goal_tolerance)
     trans = float(tolerances.trans_stopped_velocity)

@@ -42,12 +42,12 @@ from nav2_pyif.exceptions import (
 )
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.goal_checker_plugin import GoalCheckerPlugin
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.messages import pose_from_wire, stamp_to_ns, twist_from_list
 from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin, PluginContext
-from nav2_pyif.progress_checker import ProgressCheckerPlugin
+from nav2_pyif.progress_checker import ProgressChecker
 from nav2_pyif.server.followed_plan import follow_plan
 from nav2_pyif.server.results import (
     checked_bool,
@@ -450,7 +450,7 @@ class PlannerRuntime:
         return (
             pose_from_wire(body["pose"]),
             twist_from_list(body["velocity"]),
-            GoalChecker.from_wire(checker) if checker is not None else None,
+            GoalTolerances.from_wire(checker) if checker is not None else None,
         )
 
     def _cycle_body(self, session: Session, pose: Any, result: Any) -> Body:
@@ -513,7 +513,7 @@ class PlannerRuntime:
 
     def _is_goal_reached(self, session: Session, request: Request) -> Body:
         checker = session.planner
-        assert isinstance(checker, GoalCheckerPlugin)
+        assert isinstance(checker, GoalChecker)
         body, frame = request.body, session.context.global_frame
         # Lyrical's isGoalXYReached travels as is_goal_reached with xy_only
         check = checker.is_goal_xy_reached if body.get("xy_only") else checker.is_goal_reached
@@ -528,12 +528,12 @@ class PlannerRuntime:
 
     def _get_tolerances(self, session: Session, request: Request) -> Body:
         checker = session.planner
-        assert isinstance(checker, GoalCheckerPlugin)
+        assert isinstance(checker, GoalChecker)
         return tolerances_to_wire(checker.get_tolerances())
 
     def _check(self, session: Session, request: Request) -> Body:
         checker = session.planner
-        assert isinstance(checker, ProgressCheckerPlugin)
+        assert isinstance(checker, ProgressChecker)
         progress = checker.check(pose_from_wire(request.body["pose"]))
         return {"making_progress": checked_bool(progress, "check", generic_error(self.plugin_type))}
 
