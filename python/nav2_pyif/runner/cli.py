@@ -22,7 +22,7 @@ from nav2_pyif.common.option_types import (
 )
 from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.exceptions import Nav2Error
-from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.laser import LaserSpec
 from nav2_pyif.runner.maps import BUNDLED
 from nav2_pyif.runner.run import (
@@ -39,10 +39,13 @@ from nav2_pyif.runner.sensing import SensingConfig
 
 
 def _reference_planners() -> str:
-    width = max(map(len, ALIASES)) + 2
+    aliases = planner_aliases()
+    if not aliases:
+        return f"  (none installed: {INSTALL_HINT})"
+    width = max(map(len, aliases)) + 2
     return "\n".join(
         f"  {name:<{width}}{target}{'' if ':' in target else ' (function delegates)'}"
-        for name, target in ALIASES.items()
+        for name, target in aliases.items()
     )
 
 

@@ -37,7 +37,7 @@ from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.geometry import path_length
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import ParamValue
-from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
 from nav2_pyif.runner.host_log import HostLogFollower
 from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
@@ -189,7 +189,7 @@ class SimResult:
 def short_name(spec: str) -> str:
     """A reference planner's alias for its spec or host label, else the spec itself."""
     target = spec.split(" ")[0]  # a host labels a delegates module "module (delegates)"
-    return next((alias for alias, t in ALIASES.items() if t == target), target)
+    return next((alias for alias, t in planner_aliases().items() if t == target), target)
 
 
 #: The main role (the function-delegate style's) of each role the runner serves.
@@ -212,7 +212,8 @@ def planner_entry(
     function-delegate style). The host imports it: this process only checks that a module
     named without ``:`` is found on ``search`` (default: sys.path), so a misspelt name is
     refused here with the names the runner knows."""
-    resolved = ALIASES.get(spec, spec)
+    aliases = planner_aliases()
+    resolved = aliases.get(spec, spec)
     top = resolved.partition(":")[0].split(".")[0]
     module_found = ":" in resolved or (
         top.isidentifier()
@@ -223,8 +224,9 @@ def planner_entry(
         )
     )
     if not module_found or resolved.startswith(":") or resolved.endswith(":"):
+        known = f"one of {', '.join(aliases)}" if aliases else f"a name of {INSTALL_HINT}"
         raise SimError(
-            f"unknown planner {spec!r}: give one of {', '.join(ALIASES)}, "
+            f"unknown planner {spec!r}: give {known}, "
             "package.module:ClassName, package.module:function, or a module of functions "
             "named after the roles (found in the current directory or with --path)"
         )
