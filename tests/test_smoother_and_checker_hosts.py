@@ -22,8 +22,8 @@ from nav2_pyif.client import (
     SmootherClient,
     Timeouts,
 )
-from nav2_pyif.client.admin import request_reload
 from nav2_pyif.messages import ns_to_stamp
+from nav2_pyif.tools.admin import request_reload
 
 from tests.conftest import make_costmap, wait_until, worker_pid_in
 

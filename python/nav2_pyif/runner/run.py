@@ -28,8 +28,8 @@ from nav2_pyif.client import (
 )
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.hosts import visible_hosts
-from nav2_pyif.client.reach import open_tool_session
 from nav2_pyif.common.host_process import PlannerHostProcess, wait_alive
+from nav2_pyif.common.reach import open_tool_session
 from nav2_pyif.common.signals import Interrupted
 from nav2_pyif.common.zenoh_config import ZenohOptions, connect_to
 from nav2_pyif.costmap import Costmap

@@ -1,1 +1,2 @@
-"""The `nav2-pyif` command: `router`, `hosts`, `reload`, and `sim` (the runner's command line)."""
+"""The `nav2-pyif` command: `router`, `hosts`, `reload` (admin: the hot swap request a host
+answers), and `sim` (the runner's command line)."""

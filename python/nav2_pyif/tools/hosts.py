@@ -17,8 +17,8 @@ from typing import Any
 import zenoh
 
 from nav2_pyif.client.hosts import ALL_HOSTS, ask_info, collect_tokens
-from nav2_pyif.client.reach import open_tool_session, unreachable
 from nav2_pyif.common.option_types import positive_float
+from nav2_pyif.common.reach import open_tool_session, unreachable
 from nav2_pyif.common.zenoh_config import ZenohOptions, add_zenoh_arguments, options_from_args
 
 

@@ -60,12 +60,12 @@ def add_reload_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
 
 
 def run_reload(args: argparse.Namespace) -> int:
-    from nav2_pyif.client.admin import NoPlannerHost, request_reload
     from nav2_pyif.client.hosts import reached
-    from nav2_pyif.client.reach import open_tool_session, unreachable
+    from nav2_pyif.common.reach import open_tool_session, unreachable
     from nav2_pyif.common.zenoh_config import options_from_args
     from nav2_pyif.exceptions import PlannerLoadError
     from nav2_pyif.roles import parse_delegates
+    from nav2_pyif.tools.admin import NoPlannerHost, request_reload
 
     def say(message: str) -> None:
         print(f"nav2-pyif reload: {message}", file=sys.stderr, flush=True)
