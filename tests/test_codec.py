@@ -185,8 +185,8 @@ def test_prefixes_that_could_meet_rmw_zenoh_keys_are_refused_saying_why() -> Non
 
 def test_the_hot_path_fast_encoding_gives_the_canonical_bytes() -> None:
     from geometry_msgs.msg import PoseStamped, Twist
+    from nav2_pyif._messages import pose_to_wire, twist_to_list
     from nav2_pyif.goal_tolerances import GoalTolerances
-    from nav2_pyif.messages import pose_to_wire, twist_to_list
 
     from tests.conftest import make_costmap
 

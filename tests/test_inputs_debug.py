@@ -10,9 +10,9 @@ from typing import Any
 import numpy as np
 import pytest
 from geometry_msgs.msg import Twist
+from nav2_pyif._ros_types import MessageTypeError, message_class, serialize
 from nav2_pyif.exceptions import ControllerException
 from nav2_pyif.inputs import from_cdr
-from nav2_pyif.ros_types import MessageTypeError, message_class, serialize
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Image, LaserScan, PointCloud2, PointField
 

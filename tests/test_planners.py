@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif import Costmap, Parameters, Plan
-from nav2_pyif.plugin import PlannerPlugin, PluginContext
+from nav2_pyif._context import PluginContext
+from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.runner.inflation import inflate
 from nav2_pyif.runner.mapfile import load_map
 from nav2_pyif.runner.maps import map_path

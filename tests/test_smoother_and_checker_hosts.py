@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 from nav2_pyif import Costmap, GoalTolerances, Plan
+from nav2_pyif._messages import ns_to_stamp
 from nav2_pyif.client import (
     GoalCheckerClient,
     PluginClient,
@@ -22,7 +23,6 @@ from nav2_pyif.client import (
     SmootherClient,
     Timeouts,
 )
-from nav2_pyif.messages import ns_to_stamp
 from nav2_pyif.tools.admin import request_reload
 
 from tests.conftest import make_costmap, wait_until, worker_pid_in

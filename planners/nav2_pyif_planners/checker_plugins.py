@@ -14,7 +14,6 @@ import time
 from typing import Any
 
 from nav2_pyif import GoalChecker, GoalTolerances, ProgressChecker, pose_xy_yaw
-from nav2_pyif.messages import stamp_to_ns
 from nav2_pyif.params import ParamValue
 
 from nav2_pyif_planners.checkers import ProgressCheck, StoppedGoalCheck
@@ -73,8 +72,8 @@ class SimpleProgressChecker(ProgressChecker):
         self.rule.movement_time_allowance = float(self.params["movement_time_allowance"])
 
     def check(self, pose: Any) -> bool:
-        stamp = stamp_to_ns(pose.header.stamp)
-        self._now = stamp * 1e-9 if stamp else time.monotonic()
+        stamp = pose.header.stamp.sec + pose.header.stamp.nanosec * 1e-9  # [s]
+        self._now = stamp if stamp else time.monotonic()
         return self.rule.check(pose.pose.position.x, pose.pose.position.y)
 
     def reset(self) -> None:

@@ -7,11 +7,12 @@ from typing import Any, ClassVar
 
 from nav2_pyif_protocol.constants import PluginType
 
+from nav2_pyif._context import PluginContext
 from nav2_pyif.debug import DebugOutputs
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.inputs import Inputs
 from nav2_pyif.plan import Plan
-from nav2_pyif.plugin import PlannerPlugin, PluginContext
+from nav2_pyif.plugin import PlannerPlugin
 
 
 class Controller(PlannerPlugin):

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from nav2_pyif.ros_types import message_class, serialize, type_name_of
+from nav2_pyif._ros_types import message_class, serialize, type_name_of
 
 
 class DebugOutputError(ValueError):

@@ -24,8 +24,8 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from nav2_pyif.messages import stamp_to_ns
-from nav2_pyif.ros_types import deserialize
+from nav2_pyif._messages import stamp_to_ns
+from nav2_pyif._ros_types import deserialize
 
 F32 = npt.NDArray[np.float32]
 F64 = npt.NDArray[np.float64]

@@ -20,8 +20,8 @@ from nav2_pyif_protocol.arrays import (
     unpack_poses,
 )
 
+from nav2_pyif._messages import ns_to_stamp, stamp_to_ns
 from nav2_pyif.geometry import path_length
-from nav2_pyif.messages import ns_to_stamp, stamp_to_ns
 
 
 class Plan:

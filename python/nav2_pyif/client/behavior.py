@@ -7,9 +7,9 @@ from typing import Any
 
 from nav2_pyif_protocol.constants import Op, PluginType
 
+from nav2_pyif._messages import pose_to_wire, twist_stamped_from_wire
 from nav2_pyif.behavior import Failure, Status, Step
 from nav2_pyif.client.plugin_client import PluginClient
-from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire
 from nav2_pyif.params import ParamValue
 
 

@@ -7,9 +7,9 @@ from typing import Any
 
 from nav2_pyif_protocol.constants import Op, PluginType
 
+from nav2_pyif._messages import pose_to_wire, twist_to_list
 from nav2_pyif.client.plugin_client import PluginClient
 from nav2_pyif.goal_tolerances import GoalTolerances
-from nav2_pyif.messages import pose_to_wire, twist_to_list
 
 
 class GoalCheckerClient(PluginClient):

@@ -7,12 +7,12 @@ from typing import Any
 
 from nav2_pyif_protocol.constants import Op, PluginType
 
+from nav2_pyif._messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
+from nav2_pyif._ros_types import deserialize, serialize, type_name_of
 from nav2_pyif.client.plugin_client import Carried, PluginClient, log
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_tolerances import GoalTolerances
-from nav2_pyif.messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
 from nav2_pyif.plan import Plan
-from nav2_pyif.ros_types import deserialize, serialize, type_name_of
 
 
 class ControllerClient(PluginClient):

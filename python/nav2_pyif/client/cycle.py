@@ -26,11 +26,11 @@ from typing import Any
 
 from nav2_pyif_protocol.constants import Op
 
+from nav2_pyif._messages import pose_to_wire, twist_to_list
 from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient, pose7
 from nav2_pyif.client.controller import ControllerClient
 from nav2_pyif.client.plugin_client import Body, Carried, PluginClient
 from nav2_pyif.goal_tolerances import GoalTolerances
-from nav2_pyif.messages import pose_to_wire, twist_to_list
 
 #: A request prepared for a carrier's query, and the reply that query brought back for it.
 _Pending = tuple[Carried, bytes | None]

@@ -10,8 +10,8 @@ import zenoh
 from nav2_pyif_protocol.codec import Request, encode_request
 from nav2_pyif_protocol.constants import Op, PluginType
 
+from nav2_pyif._messages import pose_to_wire
 from nav2_pyif.client.plugin_client import PluginClient
-from nav2_pyif.messages import pose_to_wire
 from nav2_pyif.plan import Plan
 
 CANCEL_POLL_S = 0.005

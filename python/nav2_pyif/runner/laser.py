@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from nav2_pyif.messages import ns_to_stamp
+from nav2_pyif._messages import ns_to_stamp
 from nav2_pyif.runner.mapfile import OCCUPIED, OccupancyMap
 
 FloatArray = npt.NDArray[np.float32]

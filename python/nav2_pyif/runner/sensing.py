@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from nav2_pyif.ros_types import type_name_of
+from nav2_pyif._ros_types import type_name_of
 from nav2_pyif.runner.laser import Laser, LaserSpec
 from nav2_pyif.runner.mapfile import OccupancyMap
 

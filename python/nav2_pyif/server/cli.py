@@ -17,6 +17,7 @@ import yaml
 import zenoh
 from nav2_pyif_protocol.keys import validate_prefix
 
+from nav2_pyif._ros_types import check_serialization_rmw
 from nav2_pyif.common.env_defaults import apply_environment, document_environment
 from nav2_pyif.common.option_types import non_negative_float, non_negative_int, positive_float
 from nav2_pyif.common.signals import TERMINATING, exit_code
@@ -28,7 +29,6 @@ from nav2_pyif.common.zenoh_config import (
 )
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import KIND_ROLES, check_roles, parse_delegates
-from nav2_pyif.ros_types import check_serialization_rmw
 from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_arguments, start_all
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT

@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from nav2_pyif._messages import pose_from_wire
 from nav2_pyif.exceptions import InvalidPath
-from nav2_pyif.messages import pose_from_wire
 from nav2_pyif.plan import Plan
 
 

@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import Twist, TwistStamped
 
+from nav2_pyif._messages import stamp_to_ns, twist_to_list
 from nav2_pyif.behavior import Failure, Status, Step
 from nav2_pyif.costmap_layer import Combine
 from nav2_pyif.exceptions import (
@@ -20,7 +21,6 @@ from nav2_pyif.exceptions import (
     SmootherException,
 )
 from nav2_pyif.goal_tolerances import GoalTolerances
-from nav2_pyif.messages import stamp_to_ns, twist_to_list
 from nav2_pyif.plan import Plan
 
 TWIST_FIELDS = ("linear.x", "linear.y", "linear.z", "angular.x", "angular.y", "angular.z")

@@ -29,6 +29,8 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import INVALID_ERROR, OPS_BY_PLUGIN, ErrorType, Op, PluginType
 
+from nav2_pyif._context import PluginContext
+from nav2_pyif._messages import pose_from_wire, stamp_to_ns, twist_from_list
 from nav2_pyif.behavior import Behavior, Command, Status
 from nav2_pyif.controller import Controller
 from nav2_pyif.costmap import Costmap, Inflation
@@ -43,10 +45,9 @@ from nav2_pyif.exceptions import (
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.goal_tolerances import GoalTolerances
-from nav2_pyif.messages import pose_from_wire, stamp_to_ns, twist_from_list
 from nav2_pyif.params import Parameters
 from nav2_pyif.plan import Plan
-from nav2_pyif.plugin import PlannerPlugin, PluginContext
+from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.progress_checker import ProgressChecker
 from nav2_pyif.server.followed_plan import follow_plan
 from nav2_pyif.server.results import (

@@ -13,7 +13,7 @@ import sys
 from functools import cache
 from typing import Any
 
-log = logging.getLogger("nav2_pyif.ros_types")
+log = logging.getLogger("nav2_pyif._ros_types")
 
 
 class MessageTypeError(ValueError):
