@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Make (or refresh) the project's virtualenv: the ROS 2 Jazzy base from PyPI (or the system
 # ROS 2 when one is sourced or installed under /opt/ros), eclipse-zenoh, msgpack, NumPy and
-# nav2_pyif itself in editable mode, with the reference planners and the benchmarks (their own
-# distributions, planners/ and benchmarks/). Idempotent: does nothing when already up to date.
+# nav2_pyif itself in editable mode, with the reference planners, the benchmarks and the
+# protocol's code generators (distributions of their own: planners/, benchmarks/ and
+# protocol/codegen/). Idempotent: does nothing when already up to date.
 #
 # Writes <venv>/nav2_pyif_env.sh, which sets LD_LIBRARY_PATH and AMENT_PREFIX_PATH itself so
 # the ROS wheels' start-up re-exec never runs (it surprises process supervisors).
@@ -10,8 +11,9 @@
 # Environment: NAV2_PYIF_VENV (default: <repo>/.venv), PYTHON (interpreter to use),
 # NAV2_PYIF_EXTRAS (default: dev, the test tools with the examples/ gallery's extras ompl,
 # casadi and onnx, so that tests/test_examples.py runs them; "ros" is added without a system
-# ROS 2), NAV2_PYIF_WITH (default "planners benchmarks": the distributions installed beside
-# the core, by folder; the container image takes only planners), NAV2_PYIF_EDITABLE
+# ROS 2), NAV2_PYIF_WITH (default "planners benchmarks protocol/codegen": the distributions
+# installed beside the core, by folder; the container image takes only planners),
+# NAV2_PYIF_EDITABLE
 # (default 1; 0 installs a copy, as the container image does).
 set -euo pipefail
 # Ctrl-C ends the bootstrap with 130 (SIGTERM 143), whatever the interrupted step returned: a
@@ -73,12 +75,13 @@ EXTRAS="${NAV2_PYIF_EXTRAS-dev}"
 # What pip installs (the core with its extras, then each sibling's folder) and the files that
 # say what they need.
 TARGETS=("$ROOT${EXTRAS:+[$EXTRAS]}") METADATA=("$ROOT/pyproject.toml")
-WITH="${NAV2_PYIF_WITH-planners benchmarks}"
+WITH="${NAV2_PYIF_WITH-planners benchmarks protocol/codegen}"
 for folder in $WITH; do
   case "$folder" in
     planners) METADATA+=("$ROOT/planners/setup.py") ;;
-    benchmarks) METADATA+=("$ROOT/benchmarks/pyproject.toml") ;;
-    *) log "NAV2_PYIF_WITH names planners and benchmarks, not '$folder'"; exit 2 ;;
+    benchmarks | protocol/codegen) METADATA+=("$ROOT/$folder/pyproject.toml") ;;
+    *) log "NAV2_PYIF_WITH names planners, benchmarks and protocol/codegen, not '$folder'"
+      exit 2 ;;
   esac
   TARGETS+=("$ROOT/$folder")
 done

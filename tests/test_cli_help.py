@@ -25,10 +25,11 @@ pytestmark = pytest.mark.integration
 
 
 def console_scripts() -> dict[str, str]:
-    """name -> "module:function", from the [project.scripts] tables of the core's and the
-    benchmarks' pyproject.toml."""
+    """name -> "module:function", from the [project.scripts] tables of the pyproject.toml of
+    the core, the benchmarks and the code generators."""
     scripts: dict[str, str] = {}
-    for pyproject in (ROOT / "pyproject.toml", ROOT / "benchmarks" / "pyproject.toml"):
+    for folder in (ROOT, ROOT / "benchmarks", ROOT / "protocol" / "codegen"):
+        pyproject = folder / "pyproject.toml"
         table = pyproject.read_text().split("[project.scripts]", 1)[1].split("\n[", 1)[0]
         scripts.update(re.findall(r'^([\w-]+)\s*=\s*"([\w.:]+)"', table, re.MULTILINE))
     return scripts

@@ -1,7 +1,8 @@
 """What pip installs, from the wheels pip builds: the core (`pip install .`) holds the planner
 host, the authors' API and the protocol and requires eclipse-zenoh, msgpack, NumPy and PyYAML
-only; the reference planners (`./planners`) and the benchmarks (`./benchmarks`) are
-distributions of their own, each requiring the core of the same release.
+only; the reference planners (`./planners`), the benchmarks (`./benchmarks`) and the
+protocol's code generators (`./protocol/codegen`) are distributions of their own, each
+requiring the core of the same release.
 
 Each is built from a copy of the files it is built from (the container image copies the same
 ones), so the checkout gets no build folders."""
@@ -32,6 +33,7 @@ DISTRIBUTIONS = {
     ),
     "nav2_pyif_planners": (["planners"], {"nav2_pyif_planners"}),
     "nav2_pyif_bench": (["benchmarks"], {"nav2_pyif_bench"}),
+    "nav2_pyif_codegen": (["protocol/codegen"], {"nav2_pyif_codegen"}),
 }
 
 
@@ -88,6 +90,7 @@ def test_the_core_pulls_no_plotting_planners_or_benchmarks(tmp_path: Path) -> No
     assert _requires(wheel) == {"eclipse-zenoh", "msgpack", "numpy", "pyyaml"}
     scripts = _metadata(wheel, "entry_points.txt")
     assert "planner-host =" in scripts and "nav2-pyif-bench" not in scripts, scripts
+    assert "nav2-pyif-vectors" not in scripts, scripts  # the code generators' (development)
 
 
 def test_the_planners_require_the_core_of_their_release(tmp_path: Path) -> None:
@@ -108,3 +111,10 @@ def test_the_benchmarks_bring_their_command_and_what_it_plots_with(tmp_path: Pat
     assert "nav2-pyif-bench = nav2_pyif_entry:nav2_pyif_bench" in _metadata(
         wheel, "entry_points.txt"
     )
+
+
+def test_the_code_generators_bring_the_vectors_command(tmp_path: Path) -> None:
+    wheel = _wheel("nav2_pyif_codegen", tmp_path)
+    assert _requires(wheel) == {f"nav2-pyif=={VERSION}"}
+    scripts = _metadata(wheel, "entry_points.txt")
+    assert "nav2-pyif-vectors = nav2_pyif_codegen.vectors:main" in scripts, scripts

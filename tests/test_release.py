@@ -44,10 +44,10 @@ def _pyproject(field: str) -> str:
 def test_one_version_everywhere() -> None:
     version = _pyproject("version")
     assert nav2_pyif.__version__ == version, "python/nav2_pyif/__init__.py __version__"
-    bench = (ROOT / "benchmarks" / "pyproject.toml").read_text(encoding="utf-8")
-    assert f'version = "{version}"' in bench, "benchmarks/pyproject.toml's version"
-    for sibling in ("nav2-pyif", "nav2-pyif-planners"):  # the same release's
-        assert f'"{sibling}=={version}"' in bench, f"benchmarks/pyproject.toml's {sibling}"
+    for folder in ("benchmarks", "protocol/codegen"):  # distributions apart from the core
+        text = (ROOT / folder / "pyproject.toml").read_text(encoding="utf-8")
+        assert f'version = "{version}"' in text, f"{folder}/pyproject.toml's version"
+        assert f'"nav2-pyif=={version}"' in text, f"{folder}/pyproject.toml's nav2-pyif"
     for xml in package_xmls():
         assert parse_package(str(xml)).version == version, (
             f"{xml.relative_to(ROOT)} says {parse_package(str(xml)).version}, "

@@ -43,7 +43,7 @@ from nav2_pyif_protocol.schema import (
     Timeout,
 )
 
-COMMAND = "python -m nav2_pyif_protocol.generate"
+COMMAND = "python -m nav2_pyif_codegen.generate"
 WIDTH = 100
 INCLUDE = "nav2_pyif_bridge/protocol"
 NAMESPACE = "nav2_pyif_bridge::protocol"

@@ -2,9 +2,9 @@
 that repeat it: the C++ message structs and their codec, the plugin types and nav2_core error
 tables (bridge_plugin/), and PROTOCOL.md's field tables.
 
-    python -m nav2_pyif_protocol.generate            # rewrite them after editing schema.py
-    python -m nav2_pyif_protocol.generate --check    # exit 1, naming each file, if stale
-    python -m nav2_pyif_protocol.generate --out DIR  # write them below DIR instead
+    python -m nav2_pyif_codegen.generate            # rewrite them after editing schema.py
+    python -m nav2_pyif_codegen.generate --check    # exit 1, naming each file, if stale
+    python -m nav2_pyif_codegen.generate --out DIR  # write them below DIR instead
 
 The generated files are checked in (review them with the schema edit); a test regenerates
 them and fails on any difference. The Python codec needs no generated file: it compiles its
@@ -17,10 +17,10 @@ import argparse
 import sys
 from pathlib import Path
 
-from nav2_pyif_protocol import cpp_codec, cpp_errors, spec_tables
+from nav2_pyif_codegen import cpp_codec, cpp_errors, spec_tables
 
-#: The repository this package lives in (protocol/nav2_pyif_protocol/ -> the repository).
-REPOSITORY = Path(__file__).resolve().parents[2]
+#: The repository this package lives in (protocol/codegen/nav2_pyif_codegen/ -> the repository).
+REPOSITORY = Path(__file__).resolve().parents[3]
 PROTOCOL_MD = "protocol/PROTOCOL.md"
 COMMAND = cpp_codec.COMMAND
 
@@ -57,7 +57,7 @@ def write(target: Path, repository: Path = REPOSITORY) -> list[str]:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(
-        prog="python -m nav2_pyif_protocol.generate",
+        prog="python -m nav2_pyif_codegen.generate",
         description="Generate the C++ codec and PROTOCOL.md's field tables from schema.py.",
     )
     group = parser.add_mutually_exclusive_group()

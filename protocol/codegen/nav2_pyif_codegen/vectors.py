@@ -24,7 +24,6 @@ from typing import Any
 
 import msgpack
 import numpy as np
-
 from nav2_pyif_protocol.arrays import pack_poses, pack_xy
 from nav2_pyif_protocol.codec import ErrorInfo, Reply, Request, encode_reply, encode_request
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op

@@ -19,7 +19,8 @@ from nav2_pyif_protocol.constants import (
     ErrorType,
     PluginType,
 )
-from nav2_pyif_protocol.cpp_codec import INCLUDE, camel, comment, cpp_file
+
+from nav2_pyif_codegen.cpp_codec import INCLUDE, camel, comment, cpp_file
 
 PATH = f"bridge_plugin/include/{INCLUDE}/nav2_errors.hpp"
 #: The nav2_core exceptions, in ErrorType's order (the protocol errors left out).
