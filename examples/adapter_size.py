@@ -18,7 +18,7 @@ import sys
 from pathlib import Path
 
 EXAMPLES = Path(__file__).resolve().parent
-API = EXAMPLES.parent / "planner_host" / "nav2_pyif"
+API = EXAMPLES.parent / "python" / "nav2_pyif"
 
 #: example -> its adapter files (the rest of the example is the algorithm or the model)
 ADAPTERS = {

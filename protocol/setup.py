@@ -1,6 +1,7 @@
 """The ROS 2 package nav2_pyif_protocol (ament_python): what `colcon build` installs from this
 folder. Outside a colcon workspace, `pip install .` at the repository root installs the same
-code (pyproject.toml); the name and version are read from package.xml."""
+code (pyproject.toml); the name and version are read from package.xml. The code generators
+beside it (codegen/) are a development tool, installed by neither."""
 
 from xml.etree import ElementTree
 
@@ -21,5 +22,4 @@ setup(
     install_requires=["setuptools"],
     zip_safe=False,
     extras_require={"test": ["pytest"]},
-    entry_points={"console_scripts": ["nav2-pyif-vectors = nav2_pyif_protocol.vectors:main"]},
 )

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Make (or refresh) the project's virtualenv: the ROS 2 Jazzy base from PyPI (or the system
 # ROS 2 when one is sourced or installed under /opt/ros), eclipse-zenoh, msgpack, NumPy and
-# nav2_pyif itself in editable mode. Idempotent: does nothing when already up to date.
+# nav2_pyif itself in editable mode, with the reference planners, the benchmarks and the
+# protocol's code generators (distributions of their own: planners/, benchmarks/ and
+# protocol/codegen/). Idempotent: does nothing when already up to date.
 #
 # Writes <venv>/nav2_pyif_env.sh, which sets LD_LIBRARY_PATH and AMENT_PREFIX_PATH itself so
 # the ROS wheels' start-up re-exec never runs (it surprises process supervisors).
@@ -9,7 +11,9 @@
 # Environment: NAV2_PYIF_VENV (default: <repo>/.venv), PYTHON (interpreter to use),
 # NAV2_PYIF_EXTRAS (default: dev, the test tools with the examples/ gallery's extras ompl,
 # casadi and onnx, so that tests/test_examples.py runs them; "ros" is added without a system
-# ROS 2), NAV2_PYIF_EDITABLE
+# ROS 2), NAV2_PYIF_WITH (default "planners benchmarks protocol/codegen": the distributions
+# installed beside the core, by folder; the container image takes only planners),
+# NAV2_PYIF_EDITABLE
 # (default 1; 0 installs a copy, as the container image does).
 set -euo pipefail
 # Ctrl-C ends the bootstrap with 130 (SIGTERM 143), whatever the interrupted step returned: a
@@ -68,9 +72,22 @@ fi
 # --- venv, re-made only when the inputs changed --------------------------------------------
 EXTRAS="${NAV2_PYIF_EXTRAS-dev}"
 [ -z "$SYSTEM_ROS" ] && EXTRAS="${EXTRAS:+$EXTRAS,}ros"
+# What pip installs (the core with its extras, then each sibling's folder) and the files that
+# say what they need.
+TARGETS=("$ROOT${EXTRAS:+[$EXTRAS]}") METADATA=("$ROOT/pyproject.toml")
+WITH="${NAV2_PYIF_WITH-planners benchmarks protocol/codegen}"
+for folder in $WITH; do
+  case "$folder" in
+    planners) METADATA+=("$ROOT/planners/setup.py") ;;
+    benchmarks | protocol/codegen) METADATA+=("$ROOT/$folder/pyproject.toml") ;;
+    *) log "NAV2_PYIF_WITH names planners, benchmarks and protocol/codegen, not '$folder'"
+      exit 2 ;;
+  esac
+  TARGETS+=("$ROOT/$folder")
+done
 EDITABLE="${NAV2_PYIF_EDITABLE:-1}"
 case "$EDITABLE" in 0 | 1) ;; *) log "NAV2_PYIF_EDITABLE must be 0 or 1, not '$EDITABLE'"; exit 2 ;; esac
-STAMP_INPUT="$(cat "$ROOT/pyproject.toml" "$ROOT/scripts/bootstrap.sh"; echo "$PY $SYSTEM_ROS $EXTRAS $EDITABLE")"
+STAMP_INPUT="$(cat "${METADATA[@]}" "$ROOT/scripts/bootstrap.sh"; echo "$PY $SYSTEM_ROS $EXTRAS $WITH $EDITABLE")"
 STAMP="$(printf '%s' "$STAMP_INPUT" | sha256sum | cut -d' ' -f1)"
 if [ -f "$VENV/.nav2_pyif_stamp" ] && [ "$(cat "$VENV/.nav2_pyif_stamp")" = "$STAMP" ]; then
   exit 0
@@ -84,10 +101,13 @@ else
 fi
 PIP=("$VENV/bin/python" -m pip --disable-pip-version-check -q)
 "${PIP[@]}" install --upgrade pip >/dev/null
-TARGET="$ROOT${EXTRAS:+[$EXTRAS]}"
-INSTALL=("$TARGET") HOW="a copy"
-[ "$EDITABLE" = 1 ] && INSTALL=(-e "$TARGET") HOW="editable"
-log "installing nav2_pyif${EXTRAS:+[$EXTRAS]} ($HOW) and its dependencies"
+INSTALL=("${TARGETS[@]}") HOW="a copy"
+if [ "$EDITABLE" = 1 ]; then
+  INSTALL=() HOW="editable"
+  for target in "${TARGETS[@]}"; do INSTALL+=(-e "$target"); done
+fi
+# In one pip command, so that the siblings' requirement of the core is met by this checkout.
+log "installing nav2_pyif${EXTRAS:+[$EXTRAS]}${WITH:+ with $WITH} ($HOW) and its dependencies"
 _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "${PIP[@]}" install "${INSTALL[@]}" 2>&1 \
   | grep -v "^WARNING: Location" || true
 _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c 'import nav2_pyif, zenoh, msgpack' \

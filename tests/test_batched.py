@@ -19,8 +19,8 @@ import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, Timeouts
-from nav2_pyif.client.admin import request_reload
 from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.tools.admin import request_reload
 
 from tests.conftest import (
     free_port,

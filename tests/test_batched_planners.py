@@ -15,7 +15,9 @@ import pytest
 
 pytestmark = [
     pytest.mark.integration,
-    pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])"),
+    pytest.mark.skipif(
+        find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])"
+    ),
 ]
 
 PLANNER_KEY = "nav2_pyif/fleet/GridBased"

@@ -9,8 +9,8 @@ import math
 import numpy as np
 import pytest
 from nav2_pyif import Command, Costmap, arc
+from nav2_pyif._context import PluginContext
 from nav2_pyif.params import Parameters
-from nav2_pyif.plugin import PluginContext
 from nav2_pyif_planners.free_backup import FreestBackUp
 
 pytestmark = pytest.mark.unit

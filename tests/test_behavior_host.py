@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 from nav2_pyif import Costmap, Failure, Status, Step
 from nav2_pyif.client import BehaviorClient
-from nav2_pyif.client.admin import request_reload
 from nav2_pyif.runner.run import pose_msg
+from nav2_pyif.tools.admin import request_reload
 
 from tests.conftest import wait_until
 from tests.test_smoother_and_checker_hosts import GENEROUS, worker_pid

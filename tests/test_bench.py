@@ -155,7 +155,7 @@ def test_fleet_benchmark_prints_its_table_and_draws_it(tmp_path: Path) -> None:
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and png.stat().st_size > 10_000
 
 
-@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
 def test_fleet_benchmark_compares_per_robot_workers_with_one_batched_host(tmp_path: Path) -> None:
     png = tmp_path / "fleet.png"
     result = bench(

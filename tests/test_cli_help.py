@@ -1,4 +1,4 @@
-"""Every console command (pyproject.toml's [project.scripts]) explains each of its
+"""Every console command (the pyproject.toml files' [project.scripts]) explains each of its
 subcommands and options in --help, and checks its numbers."""
 
 from __future__ import annotations
@@ -25,10 +25,14 @@ pytestmark = pytest.mark.integration
 
 
 def console_scripts() -> dict[str, str]:
-    """name -> "module:function", from pyproject.toml's [project.scripts] table."""
-    text = (ROOT / "pyproject.toml").read_text()
-    table = text.split("[project.scripts]", 1)[1].split("\n[", 1)[0]
-    return dict(re.findall(r'^([\w-]+)\s*=\s*"([\w.:]+)"', table, re.MULTILINE))
+    """name -> "module:function", from the [project.scripts] tables of the pyproject.toml of
+    the core, the benchmarks and the code generators."""
+    scripts: dict[str, str] = {}
+    for folder in (ROOT, ROOT / "benchmarks", ROOT / "protocol" / "codegen"):
+        pyproject = folder / "pyproject.toml"
+        table = pyproject.read_text().split("[project.scripts]", 1)[1].split("\n[", 1)[0]
+        scripts.update(re.findall(r'^([\w-]+)\s*=\s*"([\w.:]+)"', table, re.MULTILINE))
+    return scripts
 
 
 Named = tuple[str, argparse.ArgumentParser]  # a command line and its parser

@@ -185,15 +185,15 @@ def test_prefixes_that_could_meet_rmw_zenoh_keys_are_refused_saying_why() -> Non
 
 def test_the_hot_path_fast_encoding_gives_the_canonical_bytes() -> None:
     from geometry_msgs.msg import PoseStamped, Twist
-    from nav2_pyif.goal_checker import GoalChecker
-    from nav2_pyif.messages import pose_to_wire, twist_to_list
+    from nav2_pyif._messages import pose_to_wire, twist_to_list
+    from nav2_pyif.goal_tolerances import GoalTolerances
 
     from tests.conftest import make_costmap
 
     body = {
         "pose": pose_to_wire(PoseStamped()),
         "velocity": twist_to_list(Twist()),
-        "goal_checker": GoalChecker(0.1, 0.2, 0.3, 0.4).to_wire(),
+        "goal_checker": GoalTolerances(0.1, 0.2, 0.3, 0.4).to_wire(),
         "costmap": make_costmap().to_wire(),
     }
     request = Request(Op.COMPUTE_VELOCITY_COMMANDS, "s", 1, 1, body)

@@ -9,13 +9,13 @@ from typing import Any
 import msgpack
 import pytest
 from geometry_msgs.msg import Twist
+from nav2_pyif._messages import pose_to_wire
 from nav2_pyif.client import (
     ControlCycle,
     ControllerClient,
     GoalCheckerClient,
     ProgressCheckerClient,
 )
-from nav2_pyif.messages import pose_to_wire
 from nav2_pyif_protocol.codec import decode_reply
 from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.keys import KeySpace

@@ -19,7 +19,7 @@ from typing import Any
 import numpy as np
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped, Twist
-from nav2_pyif import GoalChecker, Plan
+from nav2_pyif import GoalTolerances, Plan
 from nav2_pyif.client import (
     ControllerClient,
     GlobalPlannerClient,
@@ -78,7 +78,7 @@ def test_a_controller_follows_the_transformed_plan_sent_only_when_it_changed(
 ) -> None:
     host = start_host("--key", CONTROLLER, "--planner", "distro_api:PlanReport")
     client = connect(ControllerClient, zsession_factory, host, CONTROLLER, record_calls=True)
-    checker = GoalChecker(0.25, 0.25, 0.1, 0.1, path_length_tolerance=1.0)
+    checker = GoalTolerances(0.25, 0.25, 0.1, 0.1, path_length_tolerance=1.0)
 
     client.follow(straight(40), stamped(5.0, 0.0))
     assert report(client.compute_velocity_commands(stamped(0, 0), Twist(), checker)) == (
@@ -170,7 +170,7 @@ def test_goal_checkers_serve_is_goal_xy_reached_and_the_path_length_tolerance(
     assert not client.is_goal_reached(turned, goal, Twist())
     assert client.is_goal_xy_reached(turned, goal, Twist())  # the default: xy tolerance only
     assert not client.is_goal_xy_reached(pose(2.5, 1.0), goal, Twist())
-    assert client.get_tolerances() == GoalChecker(0.3, 0.1, 0.05, 0.05, 1.5)
+    assert client.get_tolerances() == GoalTolerances(0.3, 0.1, 0.05, 0.05, 1.5)
 
     bare = connect(GoalCheckerClient, zsession_factory, host, other)
     assert bare.get_tolerances() is None

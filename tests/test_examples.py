@@ -19,8 +19,8 @@ import nav2_pyif as api
 import numpy as np
 import pytest
 from geometry_msgs.msg import PoseStamped, Twist
+from nav2_pyif._context import PluginContext
 from nav2_pyif.client import GlobalPlannerClient, Timeouts
-from nav2_pyif.plugin import PluginContext
 from nav2_pyif.runner.inflation import inflate
 from nav2_pyif.runner.mapfile import load_map
 from nav2_pyif.runner.maps import map_path

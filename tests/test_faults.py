@@ -22,8 +22,8 @@ import zenoh
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
-from nav2_pyif.client.admin import NoPlannerHost, request_reload
 from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.tools.admin import NoPlannerHost, request_reload
 
 from tests.conftest import (
     CONTROLLER_ERRORS,

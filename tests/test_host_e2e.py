@@ -13,7 +13,7 @@ import nav2_pyif as api
 import numpy as np
 import pytest
 from geometry_msgs.msg import PoseStamped, Twist
-from nav2_pyif import GoalChecker, Plan
+from nav2_pyif import GoalTolerances, Plan
 from nav2_pyif.client import ControllerClient, GlobalPlannerClient, Timeouts
 
 from tests.conftest import make_costmap
@@ -48,7 +48,7 @@ def test_full_controller_session(start_host: Any, zsession_factory: Any) -> None
     assert client.configure() == {"gain": 2.0, "label": "echo"}
     client.activate()
     client.set_plan(Plan(np.column_stack([np.linspace(0, 3, 40), np.zeros(40)]), "odom"))
-    checker = GoalChecker(0.25, 0.3, 0.05, 0.1)
+    checker = GoalTolerances(0.25, 0.3, 0.05, 0.1)
     cmd = client.compute_velocity_commands(pose(), Twist(), checker)
     assert cmd.header.frame_id == "base_link"
     lin, ang = cmd.twist.linear, cmd.twist.angular

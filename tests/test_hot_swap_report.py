@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from nav2_pyif.client.admin import request_reload
+from nav2_pyif.tools.admin import request_reload
 from PIL import Image
 
 pytestmark = pytest.mark.integration

@@ -12,9 +12,9 @@ from typing import Any
 import numpy as np
 import pytest
 from geometry_msgs.msg import Twist
+from nav2_pyif._ros_types import MessageTypeError, message_class, serialize
 from nav2_pyif.exceptions import ControllerException
 from nav2_pyif.inputs import from_cdr
-from nav2_pyif.ros_types import MessageTypeError, message_class, serialize
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Image, LaserScan, PointCloud2, PointField
 
@@ -179,11 +179,11 @@ def test_a_host_beside_a_nav2_on_another_rmw_still_reads_its_inputs(
 
 
 def test_warming_the_serialization_loads_it_before_any_input() -> None:
-    """What a controller's configure does (nav2_pyif.ros_types.warm_serialization), in a
+    """What a controller's configure does (nav2_pyif._ros_types.warm_serialization), in a
     fresh interpreter: rclpy's serialization is loaded after it, and was not before."""
     script = (
         "import sys\n"
-        "from nav2_pyif.ros_types import warm_serialization\n"
+        "from nav2_pyif._ros_types import warm_serialization\n"
         "assert 'rclpy.serialization' not in sys.modules\n"
         "warm_serialization()\n"
         "assert 'rclpy.serialization' in sys.modules\n"

@@ -10,7 +10,7 @@ import pytest
 
 pytestmark = pytest.mark.unit
 
-PACKAGE = Path(__file__).resolve().parents[1] / "planner_host" / "nav2_pyif"
+PACKAGE = Path(__file__).resolve().parents[1] / "python" / "nav2_pyif"
 
 #: Which part of nav2_pyif each part may import (besides itself, the protocol and third parties).
 #: "api" is the top of nav2_pyif: what planner authors import.

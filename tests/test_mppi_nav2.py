@@ -12,14 +12,14 @@ import numpy as np
 import pytest
 import yaml
 from geometry_msgs.msg import Twist
-from nav2_pyif import Costmap, GoalChecker, Inflation, InvalidController, NoValidControl, Plan
+from nav2_pyif import Costmap, GoalTolerances, Inflation, InvalidController, NoValidControl, Plan
 from nav2_pyif.runner.run import pose_msg
 
 from tests.test_planners import attach
 
 pytestmark = pytest.mark.unit
 
-jax = pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif[jax])")
+jax = pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif-planners[jax])")
 jnp = jax.numpy
 
 from nav2_pyif_planners.mppi_nav2 import (  # noqa: E402
@@ -302,7 +302,10 @@ def controller(costmap: Costmap | None = None, **params: Any) -> Nav2MPPI:
 
 
 def drive(
-    c: Nav2MPPI, pose: tuple[float, float, float], cycles: int, checker: GoalChecker | None = None
+    c: Nav2MPPI,
+    pose: tuple[float, float, float],
+    cycles: int,
+    checker: GoalTolerances | None = None,
 ) -> list[tuple[float, ...]]:
     """Cycles of a perfect robot at 20 Hz -> (x, y, yaw, vx, wz, vy) after each."""
     x, y, yaw = pose

@@ -13,7 +13,9 @@ from nav2_pyif.testing import assert_reaches_goal, drive
 
 pytestmark = [
     pytest.mark.integration,
-    pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])"),
+    pytest.mark.skipif(
+        find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])"
+    ),
 ]
 
 

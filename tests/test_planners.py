@@ -5,7 +5,9 @@ from __future__ import annotations
 
 import logging
 import math
+import re
 from importlib.util import find_spec
+from pathlib import Path
 from typing import Any
 
 import nav2_pyif as api
@@ -13,7 +15,8 @@ import numpy as np
 import pytest
 from geometry_msgs.msg import Twist
 from nav2_pyif import Costmap, Parameters, Plan
-from nav2_pyif.plugin import PlannerPlugin, PluginContext
+from nav2_pyif._context import PluginContext
+from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.runner.inflation import inflate
 from nav2_pyif.runner.mapfile import load_map
 from nav2_pyif.runner.maps import map_path
@@ -91,7 +94,7 @@ def straight_plan(length: float = 4.0) -> Plan:
 
 
 def mppi_jax() -> type:
-    pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif[jax])")
+    pytest.importorskip("jax", reason="JAX is not installed (nav2-pyif-planners[jax])")
     from nav2_pyif_planners.mppi_jax import MPPIJax
 
     return MPPIJax
@@ -142,3 +145,27 @@ def test_controllers_turn_to_the_goal_heading_at_the_goal() -> None:
         controller.set_plan(plan)
         cmd = controller.compute_velocity_commands(pose_msg(0.95, 2.0, 0.0), Twist(), None)
         assert cmd.twist.linear.x == 0.0 and cmd.twist.angular.z > 0.5
+
+
+def test_the_short_names_the_runner_takes_are_the_reference_planners_entry_points() -> None:
+    """`nav2-pyif sim --controller mppi`: nav2-pyif-planners declares each name (group
+    nav2_pyif.planners), and each names a planner of its that is there."""
+    from importlib.metadata import distribution
+
+    from nav2_pyif.runner.aliases import GROUP, planner_aliases
+    from nav2_pyif.runner.run import DEFAULTS
+
+    declared = {
+        point.name: point.value
+        for point in distribution("nav2-pyif-planners").entry_points
+        if point.group == GROUP
+    }
+    assert set(DEFAULTS.values()) <= set(declared) <= set(planner_aliases())
+    for name, target in declared.items():
+        module, _, attribute = target.partition(":")
+        assert module.startswith("nav2_pyif_planners."), name
+        spec = find_spec(module)
+        assert spec is not None and spec.origin, f"{name}: no module {module}"
+        if attribute:  # defined or imported there; not imported here (JAX's need JAX)
+            source = Path(spec.origin).read_text(encoding="utf-8")
+            assert re.search(rf"\b{attribute}\b", source), f"{name}: no {attribute} in {module}"

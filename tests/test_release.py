@@ -43,7 +43,11 @@ def _pyproject(field: str) -> str:
 
 def test_one_version_everywhere() -> None:
     version = _pyproject("version")
-    assert nav2_pyif.__version__ == version, "planner_host/nav2_pyif/__init__.py __version__"
+    assert nav2_pyif.__version__ == version, "python/nav2_pyif/__init__.py __version__"
+    for folder in ("benchmarks", "protocol/codegen"):  # distributions apart from the core
+        text = (ROOT / folder / "pyproject.toml").read_text(encoding="utf-8")
+        assert f'version = "{version}"' in text, f"{folder}/pyproject.toml's version"
+        assert f'"nav2-pyif=={version}"' in text, f"{folder}/pyproject.toml's nav2-pyif"
     for xml in package_xmls():
         assert parse_package(str(xml)).version == version, (
             f"{xml.relative_to(ROOT)} says {parse_package(str(xml)).version}, "
@@ -110,11 +114,12 @@ def _ament_python_packages() -> list[Path]:
 
 
 def test_colcon_builds_what_pip_installs() -> None:
-    """Every folder pyproject.toml installs Python packages from is a ROS package colcon builds
-    (the benchmarks aside: a tool of this repository, not of a robot)."""
+    """Every folder pip installs Python packages from is a ROS package colcon builds: those of
+    the core (pyproject.toml) and the reference planners' own distribution (planners/setup.py,
+    the ROS package's); the benchmarks aside, a tool of this repository, not of a robot."""
     match = re.search(r"^where = \[(.*?)\]", PYPROJECT, re.M)
     assert match, "pyproject.toml has no [tool.setuptools.packages.find] where"
-    folders = set(re.findall(r'"([^"]+)"', match.group(1))) - {"benchmarks"}
+    folders = {*re.findall(r'"([^"]+)"', match.group(1)), "planners"}
     assert folders == {str(xml.parent.relative_to(ROOT)) for xml in _ament_python_packages()}
 
 

@@ -30,10 +30,10 @@ import zenoh
 from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient
-from nav2_pyif.client.admin import NoPlannerHost, request_reload
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.spec import PlannerSpec
+from nav2_pyif.tools.admin import NoPlannerHost, request_reload
 from nav2_pyif_bench.pki import CertificateAuthority
 
 from tests.conftest import free_port, make_costmap, wait_until

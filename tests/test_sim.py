@@ -16,7 +16,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
-from nav2_pyif.runner.aliases import ALIASES
+from nav2_pyif.runner.aliases import planner_aliases
 from nav2_pyif.runner.inflation import inflate, window
 from nav2_pyif.runner.mapfile import (
     FREE,
@@ -38,7 +38,9 @@ from tests.test_host_e2e import controller
 
 pytestmark = pytest.mark.integration
 
-NO_JAX = pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif[jax])")
+NO_JAX = pytest.mark.skipif(
+    find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])"
+)
 CONTROLLERS = ["pure_pursuit", "apf", "mppi", pytest.param("mppi_jax", marks=NO_JAX)]
 
 
@@ -127,7 +129,7 @@ def test_connect_names_the_run_after_what_the_host_serves(
 def test_help_lists_every_reference_planner_and_bundled_map() -> None:
     result = run_cli("--help")
     assert result.returncode == 0
-    for name, target in ALIASES.items():
+    for name, target in planner_aliases().items():
         assert re.search(rf"^  {name} +{re.escape(target)}", result.stdout, re.M), name
     for name in BUNDLED:
         assert name in result.stdout

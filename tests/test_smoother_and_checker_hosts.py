@@ -14,7 +14,8 @@ import nav2_pyif as api
 import numpy as np
 import pytest
 from geometry_msgs.msg import Pose, PoseStamped, Twist
-from nav2_pyif import Costmap, GoalChecker, Plan
+from nav2_pyif import Costmap, GoalTolerances, Plan
+from nav2_pyif._messages import ns_to_stamp
 from nav2_pyif.client import (
     GoalCheckerClient,
     PluginClient,
@@ -22,8 +23,7 @@ from nav2_pyif.client import (
     SmootherClient,
     Timeouts,
 )
-from nav2_pyif.client.admin import request_reload
-from nav2_pyif.messages import ns_to_stamp
+from nav2_pyif.tools.admin import request_reload
 
 from tests.conftest import make_costmap, wait_until, worker_pid_in
 
@@ -136,7 +136,7 @@ def test_stopped_goal_checker(start_host: Any, zsession_factory: Any) -> None:
     client = connect(GoalCheckerClient, zsession_factory, host, GOAL)
     declared = client.configure()
     assert declared["xy_goal_tolerance"] == 0.25 and declared["stateful"] is True
-    assert client.get_tolerances() == GoalChecker(0.25, 0.25, 0.25, 0.25)
+    assert client.get_tolerances() == GoalTolerances(0.25, 0.25, 0.25, 0.25)
     goal = pose(2.0, 1.0)
     assert not client.is_goal_reached(pose(1.0, 1.0), goal, twist())  # 1 m away
     assert not client.is_goal_reached(pose(2.0, 1.0, 1.0), goal, twist())  # heading off
@@ -146,7 +146,7 @@ def test_stopped_goal_checker(start_host: Any, zsession_factory: Any) -> None:
     assert not client.is_goal_reached(pose(2.4, 1.0), goal, twist())  # latch forgotten
     assert client.set_parameters({"xy_goal_tolerance": 0.5}) == {}
     assert client.is_goal_reached(pose(2.4, 1.0), goal, twist())
-    assert client.get_tolerances() == GoalChecker(0.5, 0.25, 0.25, 0.25)
+    assert client.get_tolerances() == GoalTolerances(0.5, 0.25, 0.25, 0.25)
 
 
 def test_simple_progress_checker_runs_on_the_poses_stamps(
@@ -173,7 +173,7 @@ def test_seed_style_functions_serve_a_goal_checker_and_a_smoother(
     assert checker.configure() == {"xy_goal_tolerance": 0.3}
     assert checker.is_goal_reached(pose(1.0, 1.0), pose(1.2, 1.0), twist())
     assert not checker.is_goal_reached(pose(1.0, 1.0), pose(1.4, 1.0), twist())
-    assert checker.get_tolerances() == GoalChecker(0.3, math.pi, 0.1, 0.1)
+    assert checker.get_tolerances() == GoalTolerances(0.3, math.pi, 0.1, 0.1)
     assert "reset has no delegate" in host.log()
     assert "activate has no delegate" not in host.log()  # Nav2's checkers have no activate
     host = start_host("--key", SMOOTHER, "--module", "seed_smoother")
@@ -216,7 +216,7 @@ def test_a_killed_worker_is_restarted_with_the_sessions_state(
     time.sleep(0.2)
     shifted = smoother.smooth(ZIGZAG, max_time=1.0)
     np.testing.assert_allclose(shifted.xy[:, 1] - ZIGZAG.xy[:, 1], 3.0)
-    assert checker.get_tolerances() == GoalChecker(0.75, 0.25, 0.25, 0.25)
+    assert checker.get_tolerances() == GoalTolerances(0.75, 0.25, 0.25, 0.25)
     assert smoother.resyncs == checker.resyncs == 0
     assert "restarted, 1 session(s) restored" in host.log()
 

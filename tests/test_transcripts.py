@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 import pytest
+from nav2_pyif._messages import pose_from_wire, twist_from_list, twist_to_list
 from nav2_pyif.client import (
     ControlCycle,
     ControllerClient,
@@ -25,8 +26,7 @@ from nav2_pyif.client import (
 )
 from nav2_pyif.client.transport import MockTransport, StaticHosts
 from nav2_pyif.costmap import Costmap
-from nav2_pyif.goal_checker import GoalChecker
-from nav2_pyif.messages import pose_from_wire, twist_from_list, twist_to_list
+from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.plan import Plan
 from nav2_pyif_protocol.codec import decode_request
 
@@ -139,7 +139,7 @@ class Replay:
             return client.set_speed_limit(args["speed_limit"], args["percentage"])
         if name == "compute_velocity_commands":
             pose, velocity = pose_from_wire(args["pose"]), twist_from_list(args["velocity"])
-            tolerances = GoalChecker.from_wire(args["goal_checker"])
+            tolerances = GoalTolerances.from_wire(args["goal_checker"])
             if self.cycle is not None:
                 cmd = self.cycle.compute_velocity_commands(pose, velocity, tolerances)
             else:
@@ -150,7 +150,7 @@ class Replay:
             pose, velocity = pose_from_wire(args["pose"]), twist_from_list(args["velocity"])
             goal = pose_from_wire(dict(args["pose"], pose=args["goal"])).pose
             if self.cycle is not None:
-                tolerances = GoalChecker.from_wire(args["tolerances"])
+                tolerances = GoalTolerances.from_wire(args["tolerances"])
                 return self.cycle.is_goal_reached(pose, goal, velocity, tolerances)
             assert isinstance(client, GoalCheckerClient)
             return client.is_goal_reached(pose.pose, goal, velocity)

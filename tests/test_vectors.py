@@ -1,11 +1,13 @@
-"""The shared vectors are the contract: the Python codec reproduces every one byte for byte."""
+"""The shared vectors are the contract: the Python codec reproduces every one byte for byte.
+(That the files are what the generator writes, their .json forms included, is
+tests/test_vectors_generated.py's: the generator is a development tool, and this module is
+also the protocol package's colcon test.)"""
 
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
-import msgpack
 import pytest
 from nav2_pyif_protocol.codec import (
     ProtocolError,
@@ -15,7 +17,6 @@ from nav2_pyif_protocol.codec import (
     encode_request,
 )
 from nav2_pyif_protocol.constants import ErrorType, Op
-from nav2_pyif_protocol.vectors import build_vectors, rendered_files, to_json_tree
 
 pytestmark = pytest.mark.unit
 
@@ -23,19 +24,9 @@ VECTORS = Path(__file__).resolve().parents[1] / "protocol" / "vectors"
 INDEX = json.loads((VECTORS / "index.json").read_text())["vectors"]
 
 
-def test_vector_files_are_what_the_code_generates() -> None:
-    files = rendered_files(build_vectors())
-    on_disk = {str(p.relative_to(VECTORS)) for p in VECTORS.rglob("*") if p.is_file()}
-    assert on_disk == set(files), "run: nav2-pyif-vectors --write protocol/vectors"
-    for name, content in files.items():
-        assert (VECTORS / name).read_bytes() == content, name
-
-
 @pytest.mark.parametrize("entry", INDEX, ids=[e["name"] for e in INDEX])
 def test_vector_decodes_and_reencodes_byte_for_byte(entry: dict[str, str]) -> None:
     data = (VECTORS / f"{entry['name']}.msgpack").read_bytes()
-    expected = json.loads((VECTORS / f"{entry['name']}.json").read_text())
-    assert to_json_tree(msgpack.unpackb(data, raw=False)) == expected
     op = Op(entry["op"])
     if entry["kind"] == "request":
         if entry["name"] == "activate_newer_version":

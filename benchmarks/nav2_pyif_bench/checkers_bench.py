@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import Pose, PoseStamped, Twist
 from nav2_pyif import Costmap, Plan
+from nav2_pyif._messages import ns_to_stamp
 from nav2_pyif.client import (
     ControlCycle,
     ControllerClient,
@@ -28,7 +29,6 @@ from nav2_pyif.client import (
 )
 from nav2_pyif.common.host_process import PlannerHostProcess
 from nav2_pyif.common.option_types import positive_int
-from nav2_pyif.messages import ns_to_stamp
 
 from nav2_pyif_bench.protocol_bench import costmap, open_session, progress
 from nav2_pyif_bench.stats import Summary, header_row

@@ -35,7 +35,7 @@ def client_binary(given: str | None) -> Path:
 
 def _scan_file(directory: Path) -> Path:
     """The benchmark's scan (fleet_planners.scan) as ROS serializes it: what the plugin sends."""
-    from nav2_pyif.ros_types import serialize
+    from nav2_pyif._ros_types import serialize
 
     path = directory / "scan.cdr"
     path.write_bytes(serialize(scan()))

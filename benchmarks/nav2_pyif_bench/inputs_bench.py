@@ -20,10 +20,10 @@ from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import PoseStamped, Twist
+from nav2_pyif._ros_types import serialize, type_name_of
 from nav2_pyif.client import ControllerClient
 from nav2_pyif.common.option_types import positive_int
 from nav2_pyif.common.zenoh_config import connect_to
-from nav2_pyif.ros_types import serialize, type_name_of
 from nav2_pyif_protocol.constants import Op
 from sensor_msgs.msg import Image, LaserScan, PointCloud2, PointField
 

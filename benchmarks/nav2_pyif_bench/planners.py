@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, GoalChecker, Plan
+from nav2_pyif import Controller, GoalTolerances, Plan
 
 
 class TrivialController(Controller):
@@ -16,7 +16,7 @@ class TrivialController(Controller):
         self.last_plan_length = plan.xy_yaw.shape[0]  # (N, 3) NumPy, computed here
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         cmd = TwistStamped(header=pose.header)
         cmd.twist.linear.x = 0.1
@@ -27,7 +27,7 @@ class TrivialControllerV2(TrivialController):
     """A 'new version' for hot-swap runs: reports 2.0 in angular.x."""
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         cmd = super().compute_velocity_commands(pose, velocity, goal_checker)
         cmd.twist.angular.x = 2.0
@@ -39,7 +39,7 @@ class InputReader(TrivialController):
     the conversion when the call arrives): what a learned controller pays, and no more."""
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         for name in self.inputs.updated:
             self.inputs[name]

@@ -14,9 +14,9 @@ import numpy as np
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif import Costmap, Plan
 from nav2_pyif.client import ControllerClient, Timeouts
-from nav2_pyif.client.admin import request_reload
 from nav2_pyif.common.host_process import PlannerHostProcess, wait_alive
 from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.tools.admin import request_reload
 
 from nav2_pyif_bench.protocol_bench import open_session
 

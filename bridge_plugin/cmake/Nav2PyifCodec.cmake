@@ -19,7 +19,7 @@ if(NOT MSGPACK_C_INCLUDE_DIR OR NOT MSGPACK_C_LIBRARY)
 endif()
 
 # body_codec.cpp (and the public headers ops, types, bodies, fields, constants) are generated
-# from protocol/nav2_pyif_protocol/schema.py: python -m nav2_pyif_protocol.generate
+# from protocol/nav2_pyif_protocol/schema.py: python -m nav2_pyif_codegen.generate
 add_library(nav2_pyif_protocol_codec STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/body_codec.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/decode.cpp

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, GoalChecker, NoValidControl
+from nav2_pyif import Controller, GoalTolerances, NoValidControl
 
 
 class GoTo(Controller):
@@ -18,7 +18,7 @@ class GoTo(Controller):
         self.lookahead = self.params.declare("lookahead", 0.4, "carrot distance [m]")
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         if self.plan is None or len(self.plan) == 0:
             raise NoValidControl("no plan yet")

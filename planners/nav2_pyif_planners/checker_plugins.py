@@ -13,14 +13,13 @@ from __future__ import annotations
 import time
 from typing import Any
 
-from nav2_pyif import GoalChecker, GoalCheckerPlugin, ProgressCheckerPlugin, pose_xy_yaw
-from nav2_pyif.messages import stamp_to_ns
+from nav2_pyif import GoalChecker, GoalTolerances, ProgressChecker, pose_xy_yaw
 from nav2_pyif.params import ParamValue
 
 from nav2_pyif_planners.checkers import ProgressCheck, StoppedGoalCheck
 
 
-class StoppedGoalChecker(GoalCheckerPlugin):
+class StoppedGoalChecker(GoalChecker):
     """Reached: within the xy and yaw tolerances (the position latched once reached while
     ``stateful``) and moving no faster than the stopped velocities."""
 
@@ -48,14 +47,14 @@ class StoppedGoalChecker(GoalCheckerPlugin):
         v = (velocity.linear.x, velocity.linear.y, velocity.angular.z)
         return self.rule.is_goal_reached(pose_xy_yaw(pose), pose_xy_yaw(goal), v)
 
-    def get_tolerances(self) -> GoalChecker:
+    def get_tolerances(self) -> GoalTolerances:
         return self.rule.tolerances()
 
     def reset(self) -> None:
         self.rule.reset()
 
 
-class SimpleProgressChecker(ProgressCheckerPlugin):
+class SimpleProgressChecker(ProgressChecker):
     """Progress: the robot moved more than ``required_movement_radius`` within
     ``movement_time_allowance`` seconds. Time is the pose's stamp (the ROS time of Nav2's
     pose lookup, so ``use_sim_time`` works), the host's monotonic clock when it is zero."""
@@ -73,8 +72,8 @@ class SimpleProgressChecker(ProgressCheckerPlugin):
         self.rule.movement_time_allowance = float(self.params["movement_time_allowance"])
 
     def check(self, pose: Any) -> bool:
-        stamp = stamp_to_ns(pose.header.stamp)
-        self._now = stamp * 1e-9 if stamp else time.monotonic()
+        stamp = pose.header.stamp.sec + pose.header.stamp.nanosec * 1e-9  # [s]
+        self._now = stamp if stamp else time.monotonic()
         return self.rule.check(pose.pose.position.x, pose.pose.position.y)
 
     def reset(self) -> None:

@@ -10,7 +10,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from nav2_pyif import GoalChecker
+from nav2_pyif import GoalTolerances
 
 
 def _angle_between(a: float, b: float) -> float:
@@ -54,9 +54,9 @@ class StoppedGoalCheck:
             math.hypot(vx, vy) <= self.trans_stopped_velocity
         )
 
-    def tolerances(self) -> GoalChecker:
+    def tolerances(self) -> GoalTolerances:
         """What getTolerances reports (the controller's view of this checker)."""
-        return GoalChecker(
+        return GoalTolerances(
             self.xy_goal_tolerance,
             self.yaw_goal_tolerance,
             self.trans_stopped_velocity,

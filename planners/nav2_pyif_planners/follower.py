@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, GoalChecker, NoValidControl, Plan
+from nav2_pyif import Controller, GoalTolerances, NoValidControl, Plan
 from nav2_pyif.geometry import closest_index, pose_xy_yaw, wrap
 
 
@@ -48,7 +48,7 @@ class PathFollower(Controller):
         y: float,
         yaw: float,
         path: np.ndarray,
-        goal_checker: GoalChecker | None,
+        goal_checker: GoalTolerances | None,
     ) -> bool:
         """Within the goal tolerance: fill ``cmd`` with a turn to the goal's heading."""
         tolerance = goal_checker.xy_goal_tolerance if goal_checker else self.xy_goal_tolerance

@@ -20,7 +20,7 @@ import time
 from typing import Any, ClassVar
 
 import numpy as np
-from nav2_pyif import Costmap, GoalChecker, NoValidControl
+from nav2_pyif import Costmap, GoalTolerances, NoValidControl
 from nav2_pyif.geometry import limit_speed
 
 from nav2_pyif_planners.follower import PathFollower
@@ -71,7 +71,7 @@ class MPPI(PathFollower):
         self.optimal[:] = 0.0
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         started = time.perf_counter()
         x, y, yaw, path = self.track(pose)

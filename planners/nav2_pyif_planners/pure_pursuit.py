@@ -14,7 +14,7 @@ import math
 from typing import Any, ClassVar
 
 import numpy as np
-from nav2_pyif import Costmap, GoalChecker, NoValidControl
+from nav2_pyif import Costmap, GoalTolerances, NoValidControl
 from nav2_pyif.geometry import (
     limit_speed,
     point_at_distance,
@@ -52,7 +52,7 @@ class RegulatedPurePursuit(PathFollower):
         self.index = 0
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         x, y, yaw, path = self.track(pose)
         cmd = self.command(pose)

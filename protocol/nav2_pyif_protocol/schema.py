@@ -5,7 +5,7 @@ decoders check types and required fields and ignore keys they do not know. The P
 compiles its validators from these tables when it is imported; ``generate`` renders them as
 the C++ message structs and their codec (bridge_plugin/) and as PROTOCOL.md's field tables:
 
-    python -m nav2_pyif_protocol.generate    # after any edit here
+    python -m nav2_pyif_codegen.generate    # after any edit here
 """
 
 from __future__ import annotations

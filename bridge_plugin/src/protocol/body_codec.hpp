@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // Encode and decode every structure and op body of the schema (the envelopes, encode.cpp and
 // decode.cpp, call these).

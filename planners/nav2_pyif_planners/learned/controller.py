@@ -17,7 +17,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from nav2_pyif import Batch, GoalChecker, NoValidControl, one_cycle
+from nav2_pyif import Batch, GoalTolerances, NoValidControl, one_cycle
 from nav2_pyif.batch import bucket, buckets, pad_rows
 from nav2_pyif.geometry import limit_speed
 
@@ -80,11 +80,11 @@ class LearnedController(PathFollower):
         return out
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         return one_cycle(self, pose, velocity, goal_checker)
 
-    def _features(self, pose: Any, velocity: Any, goal_checker: GoalChecker | None) -> Any:
+    def _features(self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None) -> Any:
         """This robot's features, or its command when it is at the goal (turning in place)."""
         x, y, yaw, path = self.track(pose)
         cmd = self.command(pose)

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from nav2_pyif import GoalChecker
+from nav2_pyif import GoalTolerances
 from nav2_pyif.geometry import pose_xy_yaw
 
 from nav2_pyif_planners.learned.features import features
@@ -28,7 +28,7 @@ class RecordingMPPI(MPPI):
         self.labels: list[tuple[float, float]] = []
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         cmd = super().compute_velocity_commands(pose, velocity, goal_checker)
         scan = self.inputs.get("scan")

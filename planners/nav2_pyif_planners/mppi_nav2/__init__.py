@@ -4,7 +4,7 @@ Savitzky-Golay smoothing and warm start, one jit-compiled step per cycle. See do
 
 Files, one job each: params.py (Nav2's parameter table), models.py (motion models), costs.py
 (costmap look-ups), critics.py, smoothing.py, optimizer.py (the compiled step), path.py (the
-plan's pruning), controller.py (the Nav2 controller). Needs JAX (nav2-pyif[jax])."""
+plan's pruning), controller.py (the Nav2 controller). Needs JAX (nav2-pyif-planners[jax])."""
 
 try:
     import jax  # noqa: F401

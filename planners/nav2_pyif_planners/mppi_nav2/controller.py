@@ -13,7 +13,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, GoalChecker, InvalidController, NoValidControl, Plan
+from nav2_pyif import Controller, GoalTolerances, InvalidController, NoValidControl, Plan
 from nav2_pyif.geometry import pose_xy_yaw
 
 from nav2_pyif_planners.mppi_nav2.costs import Grid
@@ -153,7 +153,7 @@ class Nav2MPPI(Controller):
         goal: np.ndarray,
         path: np.ndarray,
         count: int,
-        goal_checker: GoalChecker | None,
+        goal_checker: GoalTolerances | None,
     ) -> Inputs:
         return Inputs(
             pose=np.asarray(pose, np.float32),
@@ -179,7 +179,7 @@ class Nav2MPPI(Controller):
         return out
 
     def compute_velocity_commands(
-        self, pose: Any, velocity: Any, goal_checker: GoalChecker | None
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         started = time.perf_counter()
         if self.plan is None:

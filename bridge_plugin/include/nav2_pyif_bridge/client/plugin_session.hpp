@@ -1,6 +1,6 @@
 // One plugin instance's session with the planner host: sid, epoch and seq, and the call
 // procedure of PROTOCOL.md section 4 ("Plugin rules"), exactly as the reference client
-// (planner_host/nav2_pyif/client/plugin_client.py) does it:
+// (python/nav2_pyif/client/plugin_client.py) does it:
 //   1. no host alive under P/host/*: fail at once with the host-failure exception, send nothing;
 //   2. no reply within the op's timeout: the host-failure exception (NoValidControl, ...);
 //   3. SessionUnknown (the host restarted, or another replica answered): epoch + 1, configure

@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // The operation-specific bodies of requests and replies (PROTOCOL.md section 13, "Operations"). Ops
 // with an empty body still get their own (empty) type, so that a body's type alone says which op it

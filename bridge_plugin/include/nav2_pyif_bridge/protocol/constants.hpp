@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // Names every party of the protocol shares: the version and the error types (PROTOCOL.md sections 3
 // and 7).

@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // for_each_field(message, visit) calls visit(name, value) for each field of a structure or body, in
 // wire order (optional fields as std::optional, present or not): for code that treats every message

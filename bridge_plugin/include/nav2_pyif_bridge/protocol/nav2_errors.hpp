@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/constants.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // The plugin types and the nav2_core exceptions each throws (constants.py's ERRORS_BY_PLUGIN,
 // GENERIC_ERROR, HOST_FAILURE_ERROR and INVALID_ERROR), as tables the plugin's error mapping

@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // The operations of the protocol and their wire names (the request's `op`, also the last chunk of
 // the Zenoh key `P/rpc/<op>`).

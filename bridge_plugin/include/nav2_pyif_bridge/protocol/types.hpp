@@ -1,5 +1,5 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
-// `python -m nav2_pyif_protocol.generate`: do not edit.
+// `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // The structures shared by several messages (PROTOCOL.md section 13, "Structures"). Plain data: the
 // codec checks them when encoding. Units are SI; stamps are integer nanoseconds.
