@@ -1,9 +1,9 @@
 // The plugin's YAML parameters (everything under its namespace, e.g. FollowPath.*): the
-// bridge's own, whose names, types, defaults and docs are one table (bridge_parameters.hpp,
-// generated; the bridge README lists them), and the rest, forwarded to the planner in
-// configure. With python_module or python_planner the plugin starts and supervises its own
-// planner host (local_host.hpp) and connects to it directly; `key` is then optional. What the
-// local host is given (module, delegates, planner) it validates itself.
+// bridge's own, and the rest, forwarded to the planner in configure. With python_module or
+// python_planner the plugin starts and supervises its own planner host (local_host.hpp) and
+// connects to it directly; `key` is then optional. What the local host is given (module,
+// delegates, planner) it validates itself. The bridge's own parameters (their names, types,
+// defaults, docs) are one table: bridge_parameters.hpp, generated, and the bridge README's.
 #pragma once
 
 #include <optional>
