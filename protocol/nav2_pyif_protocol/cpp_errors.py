@@ -7,6 +7,8 @@ constants.py and a regeneration."""
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from nav2_pyif_protocol.constants import (
     CONTROLLER_ERRORS,
     ERRORS_BY_PLUGIN,
@@ -148,8 +150,8 @@ def _lookups() -> list[str]:
     """One constexpr function per table: what the plugin's error mapping calls."""
     out = [
         "",
-        "constexpr std::size_t row_of(PluginKind kind) noexcept {return static_cast<std::size_t>(kind);}",
-        "constexpr std::size_t row_of(ErrorKind kind) noexcept {return static_cast<std::size_t>(kind);}",
+        "template<class Kind>",
+        "constexpr std::size_t row_of(Kind kind) noexcept {return static_cast<std::size_t>(kind);}",
     ]
     for signature, doc, expression in (
         (
@@ -198,7 +200,8 @@ def _lookups() -> list[str]:
             f"  return {expression};",
             "}",
         ]
-    return out + [
+    return [
+        *out,
         "",
         "// std::nullopt for a name that is no nav2_core exception (protocol errors included).",
         "constexpr std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept",
@@ -213,10 +216,8 @@ def _lookups() -> list[str]:
     ]
 
 
-def _throws(errors: list[ErrorType]) -> list[str]:
-    return [
-        f"    case ErrorKind::{e.value}: throw nav2_core::{e.value}(message);" for e in errors
-    ]
+def _throws(errors: Sequence[ErrorType]) -> list[str]:
+    return [f"    case ErrorKind::{e.value}: throw nav2_core::{e.value}(message);" for e in errors]
 
 
 def nav2_exceptions_cpp() -> str:
@@ -299,7 +300,8 @@ def smoother_exceptions_cpp() -> str:
         "    default: throw nav2_core::SmootherException(message);",
         "  }",
         "#else",
-        "  (void)kind;  // Humble has no smoother exceptions: smoother_server catches PlannerException",
+        "  // Humble has no smoother exceptions: its smoother_server catches PlannerException",
+        "  (void)kind;",
         "  throw nav2_core::PlannerException(message);",
         "#endif",
         "}",

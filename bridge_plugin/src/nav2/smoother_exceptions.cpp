@@ -32,7 +32,8 @@ void throw_smoother_exception(client::ErrorKind kind, const std::string & messag
     default: throw nav2_core::SmootherException(message);
   }
 #else
-  (void)kind;  // Humble has no smoother exceptions: smoother_server catches PlannerException
+  // Humble has no smoother exceptions: its smoother_server catches PlannerException
+  (void)kind;
   throw nav2_core::PlannerException(message);
 #endif
 }

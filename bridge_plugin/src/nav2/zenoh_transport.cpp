@@ -99,6 +99,17 @@ std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options
   return session;
 }
 
+// Every query goes to all matching queryables (replicas drop what is not theirs: host=<id>).
+zenoh::Session::GetOptions get_options(const protocol::Bytes & payload, client::Duration timeout)
+{
+  zenoh::Session::GetOptions options;
+  options.target = Z_QUERY_TARGET_ALL;
+  options.payload = zenoh::Bytes(payload);
+  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
+  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
+  return options;
+}
+
 // A host appearing or going is worth a line in Nav2's log: it dates a crash, a lost link (its
 // token withdrawn one Zenoh lease after the last packet) and the moment service came back.
 client::HostWatcher::OnChange host_change_logger(client::Logger logger, std::string prefix)
@@ -242,11 +253,6 @@ std::optional<protocol::Bytes> ZenohTransport::query(
     bool done{false};
   };
   auto pending = std::make_shared<Pending>();
-  zenoh::Session::GetOptions options;
-  options.target = Z_QUERY_TARGET_ALL;  // replicas drop what is not theirs (host=<id>)
-  options.payload = zenoh::Bytes(payload);
-  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
-  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
   session->get(
     zenoh::KeyExpr(target.key), target.parameters(),
     [pending](zenoh::Reply & reply) {
@@ -264,7 +270,7 @@ std::optional<protocol::Bytes> ZenohTransport::query(
       pending->done = true;
       pending->cv.notify_all();
     },
-    std::move(options));
+    get_options(payload, timeout));
 
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::unique_lock<std::mutex> lock(pending->mutex);
@@ -293,14 +299,9 @@ void ZenohTransport::send(
   if (!session) {
     return;
   }
-  zenoh::Session::GetOptions options;
-  options.target = Z_QUERY_TARGET_ALL;
-  options.payload = zenoh::Bytes(payload);
-  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
-  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
   session->get(
     zenoh::KeyExpr(target.key), target.parameters(), [](zenoh::Reply &) {}, []() {},
-    std::move(options));
+    get_options(payload, timeout));
 }
 
 }  // namespace nav2_pyif_bridge

@@ -174,8 +174,8 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kInvalidError = {
   ErrorKind::ControllerException,
 };
 
-constexpr std::size_t row_of(PluginKind kind) noexcept {return static_cast<std::size_t>(kind);}
-constexpr std::size_t row_of(ErrorKind kind) noexcept {return static_cast<std::size_t>(kind);}
+template<class Kind>
+constexpr std::size_t row_of(Kind kind) noexcept {return static_cast<std::size_t>(kind);}
 
 // The wire's configure.plugin_type of a plugin type.
 constexpr std::string_view plugin_type_name(PluginKind kind) noexcept
