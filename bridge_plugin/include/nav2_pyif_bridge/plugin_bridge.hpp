@@ -48,9 +48,6 @@ public:
   PluginBridge(
     const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
     client::PluginKind kind, CostmapBinding costmap);
-  PluginBridge(
-    const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
-    client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros);
   ~PluginBridge();
   PluginBridge(const PluginBridge &) = delete;
   PluginBridge & operator=(const PluginBridge &) = delete;
@@ -96,7 +93,6 @@ public:
   const rclcpp::Logger & ros_logger() const noexcept {return logger_;}
   rclcpp::Clock::SharedPtr clock() const noexcept {return clock_;}
   const std::vector<client::InputSpec> & inputs() const noexcept {return inputs_;}
-  const std::string & key() const noexcept {return key_;}
   double transform_tolerance() const noexcept {return transform_tolerance_;}
 
 private:

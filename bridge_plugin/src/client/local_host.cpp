@@ -137,24 +137,18 @@ void ProcessSupervisor::start()
   }
   environment_.emplace_back("PYTHONUNBUFFERED=1");
 
-  std::unique_lock<std::mutex> lock(mutex_);
   if (thread_.joinable()) {
     throw std::logic_error("ProcessSupervisor::start called twice");
   }
   stopping_ = false;
-  first_spawned_ = false;
-  spawn_error_.clear();
-  thread_ = std::thread([this]() {supervise();});
-  changed_.wait(lock, [this]() {return first_spawned_;});
-  if (!spawn_error_.empty()) {
-    const std::string error = spawn_error_;
-    lock.unlock();
-    thread_.join();
+  const std::string error = spawn();
+  if (!error.empty()) {
     throw std::runtime_error(error);
   }
+  thread_ = std::thread([this]() {supervise();});
 }
 
-bool ProcessSupervisor::spawn()
+std::string ProcessSupervisor::spawn()
 {
   std::vector<char *> argv;
   for (auto & arg : options_.argv) {
@@ -169,9 +163,7 @@ bool ProcessSupervisor::spawn()
 
   int error_pipe[2];
   if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    spawn_error_ = "pipe: " + std::string(std::strerror(errno));
-    return false;
+    return "pipe: " + std::string(std::strerror(errno));
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
@@ -193,9 +185,7 @@ bool ProcessSupervisor::spawn()
   ::close(error_pipe[1]);
   if (pid < 0) {
     ::close(error_pipe[0]);
-    std::lock_guard<std::mutex> lock(mutex_);
-    spawn_error_ = "fork: " + std::string(std::strerror(errno));
-    return false;
+    return "fork: " + std::string(std::strerror(errno));
   }
   int exec_error = 0;
   ssize_t got = 0;
@@ -203,41 +193,33 @@ bool ProcessSupervisor::spawn()
     got = ::read(error_pipe[0], &exec_error, sizeof(exec_error));
   } while (got < 0 && errno == EINTR);
   ::close(error_pipe[0]);
-  std::lock_guard<std::mutex> lock(mutex_);
   if (got == static_cast<ssize_t>(sizeof(exec_error))) {
     int status = 0;
     ::waitpid(pid, &status, 0);
-    spawn_error_ = "cannot start '" + options_.argv.front() + "': " + std::strerror(exec_error);
-    return false;
+    return "cannot start '" + options_.argv.front() + "': " + std::strerror(exec_error);
   }
-  pid_ = pid;
-  ++starts_;
-  spawn_error_.clear();
-  return true;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pid_ = pid;
+    ++starts_;
+    if (stopping_) {
+      ::kill(pid, SIGKILL);  // stop() came while it started, and will not signal it
+    }
+  }
+  changed_.notify_all();
+  log(
+    logger_, LogLevel::Info,
+    "planner host started (pid " + std::to_string(pid) + "): " + command_line(options_.argv));
+  return {};
 }
 
 void ProcessSupervisor::supervise()
 {
   Duration delay = options_.restart_delay;
   std::unique_lock<std::mutex> lock(mutex_);
-  while (!stopping_) {
-    lock.unlock();
-    const bool started = spawn();
-    lock.lock();
-    const bool first = !first_spawned_;
-    first_spawned_ = true;
-    changed_.notify_all();
-    if (!started) {
-      if (first) {
-        return;  // start() reports spawn_error_
-      }
-      log(logger_, LogLevel::Error, "planner host: " + spawn_error_);
-    } else {
-      const pid_t pid = pid_;
+  for (;;) {
+    if (const pid_t pid = pid_; pid > 0) {  // the process started last: wait for its end
       const auto started_at = std::chrono::steady_clock::now();
-      log(
-        logger_, LogLevel::Info,
-        "planner host started (pid " + std::to_string(pid) + "): " + command_line(options_.argv));
       lock.unlock();
       int status = 0;
       pid_t waited = 0;
@@ -248,19 +230,25 @@ void ProcessSupervisor::supervise()
       pid_ = 0;
       last_exit_ = waited == pid ? describe_status(status) : "lost (waitpid failed)";
       changed_.notify_all();
-      if (stopping_) {
-        break;
-      }
       if (std::chrono::steady_clock::now() - started_at >= options_.stable_after) {
         delay = options_.restart_delay;
       }
-      log(
-        logger_, LogLevel::Error,
-        "planner host (pid " + std::to_string(pid) + ") " + last_exit_ + "; restarting in " +
-        seconds_text(delay));
+      if (!stopping_) {
+        log(
+          logger_, LogLevel::Error, "planner host (pid " + std::to_string(pid) + ") " +
+          last_exit_ + "; restarting in " + seconds_text(delay));
+      }
     }
-    changed_.wait_for(lock, delay, [this]() {return stopping_;});
+    if (changed_.wait_for(lock, delay, [this]() {return stopping_;})) {
+      return;
+    }
     delay = std::min(delay * 2, options_.max_restart_delay);
+    lock.unlock();
+    const std::string error = spawn();
+    lock.lock();
+    if (!error.empty()) {
+      log(logger_, LogLevel::Error, "planner host: " + error);
+    }
   }
 }
 

@@ -52,13 +52,6 @@ proto::Params read_parameters(rclcpp_lifecycle::LifecycleNode & node, const std:
 
 PluginBridge::PluginBridge(
   const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
-  client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
-: PluginBridge(node, name, kind, bind_costmap(std::move(costmap_ros)))
-{
-}
-
-PluginBridge::PluginBridge(
-  const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
   client::PluginKind kind, CostmapBinding costmap)
 : node_(node), name_(name), node_name_(node->get_name()), kind_(kind),
   logger_(node->get_logger().get_child(name)), clock_(node->get_clock()),

@@ -101,14 +101,16 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
             raise FileNotFoundError(f"Zenoh config file {path!r} does not exist")
         config: zenoh.Config = zenoh.Config.from_file(path)
     else:
-        config = zenoh.Config.from_file(
-            str(zenoh_defaults.path(options.mode or options.default_mode))
-        )
+        mode = options.mode or options.default_mode
+        config = zenoh.Config.from_file(str(zenoh_defaults.path(mode)))
         if options.multicast_scouting:
             config.insert_json5("scouting/multicast/enabled", "true")
-        if options.connect or options.listen:  # the flags replace both of the file's lists
+        if options.connect or options.listen:  # the flags replace both of the file's lists,
+            # but a peer given only --connect still listens on a free port of every interface
+            # (Zenoh's own default), so peers that learn it through a router can dial it
+            listen = options.listen or (["tcp/[::]:0"] if mode == "peer" else [])
             config.insert_json5("connect/endpoints", json.dumps(options.connect))
-            config.insert_json5("listen/endpoints", json.dumps(options.listen))
+            config.insert_json5("listen/endpoints", json.dumps(listen))
     if path and options.mode:
         config.insert_json5("mode", json.dumps(options.mode))
     if options.connect:

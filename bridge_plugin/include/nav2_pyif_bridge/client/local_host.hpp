@@ -70,7 +70,7 @@ public:
 
 private:
   void supervise();
-  bool spawn();  // mutex_ not held
+  std::string spawn();  // "" once the process runs, else why not; mutex_ not held
 
   Options options_;
   Logger logger_;
@@ -79,8 +79,6 @@ private:
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
   bool stopping_{false};
-  bool first_spawned_{false};
-  std::string spawn_error_;
   pid_t pid_{0};
   unsigned starts_{0};
   std::string last_exit_;
