@@ -14,7 +14,8 @@ setup(
     name=NAME,
     version=PACKAGE.findtext("version"),
     packages=find_packages(include=["nav2_pyif_protocol", "nav2_pyif_protocol.*"]),
-    package_data={"": ["py.typed"]},
+    # the default Zenoh session configs the host and tools load (zenoh_defaults)
+    package_data={"": ["py.typed"], "nav2_pyif_protocol": ["zenoh/*.json5"]},
     data_files=[
         ("share/ament_index/resource_index/packages", [f"resource/{NAME}"]),
         (f"share/{NAME}", ["package.xml"]),

@@ -11,8 +11,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from nav2_pyif_codegen import cpp_codec, cpp_errors, generate
-from nav2_pyif_protocol import schema
+from nav2_pyif_codegen import cpp_codec, cpp_errors, cpp_params, generate
+from nav2_pyif_protocol import bridge_params, schema
 from nav2_pyif_protocol.constants import (
     ERRORS_BY_PLUGIN,
     GENERIC_ERROR,
@@ -81,8 +81,9 @@ def test_one_schema_edit_reaches_the_cpp_structs_codec_and_tables(
     request, reply = schema.BODIES[Op.CANCEL]
     added = schema.Field("reason", schema.STR, required=False, doc="why it stopped")
     monkeypatch.setitem(schema.BODIES, Op.CANCEL, (request, (*reply, added)))
-    (tmp_path / "protocol").mkdir()
-    shutil.copy(ROOT / generate.PROTOCOL_MD, tmp_path / generate.PROTOCOL_MD)
+    for document in (generate.PROTOCOL_MD, cpp_params.README):
+        (tmp_path / document).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(ROOT / document, tmp_path / document)
     files = generate.render(tmp_path)
 
     bodies = files["bridge_plugin/include/nav2_pyif_bridge/protocol/bodies.hpp"]
@@ -101,6 +102,39 @@ def test_one_schema_edit_reaches_the_cpp_structs_codec_and_tables(
     fields = files["bridge_plugin/include/nav2_pyif_bridge/protocol/fields.hpp"]
     assert '  visit("reason", value.reason);' in fields
     assert "| 2 | `reason` | `str` | no | why it stopped |" in files[generate.PROTOCOL_MD]
+
+
+def test_one_parameter_row_reaches_the_cpp_settings_and_the_readme(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The plugin's own parameters are one table: a row added there is a C++ member with its
+    default, a name the setter reads (live or not) and a row of the bridge README."""
+    row = bridge_params.BridgeParam(
+        "host_group", bridge_params.Kind.STRING, "main", True, "which hosts to prefer"
+    )
+    monkeypatch.setattr(cpp_params, "BRIDGE_PARAMS", (*bridge_params.BRIDGE_PARAMS, row))
+    header = cpp_params.bridge_parameters_hpp()
+    assert '  // which hosts to prefer\n  std::string host_group{"main"};' in header
+    assert '  {"host_group", true},' in header
+    assert (
+        '  } else if (name == "host_group") {\n'
+        "    out.host_group = string_parameter(name, value);\n"
+    ) in header
+    readme = cpp_params.splice_readme((ROOT / cpp_params.README).read_text())
+    assert "| `host_group` | `main` | live | which hosts to prefer |" in readme
+
+
+def test_the_timeouts_have_one_default() -> None:
+    """The reference client's Timeouts default to the plugin's timeout parameters, which the
+    generated C++ Timeouts carry too."""
+    from nav2_pyif.client.plugin_client import Timeouts
+
+    header = (ROOT / cpp_params.PATH).read_text()
+    for timeout in schema.Timeout:
+        seconds = bridge_params.timeout_default(timeout)
+        assert getattr(Timeouts(), timeout.value) == seconds
+        assert f"  Duration {timeout.value}{{{cpp_params._duration(seconds)}}};" in header
+    assert Timeouts().call == 0.04
 
 
 def test_an_envelope_change_asks_for_the_hand_written_envelope(

@@ -123,6 +123,21 @@ def test_colcon_builds_what_pip_installs() -> None:
     assert folders == {str(xml.parent.relative_to(ROOT)) for xml in _ament_python_packages()}
 
 
+def test_colcon_installs_the_data_files_pip_does() -> None:
+    """Each package's data in pyproject.toml (the default Zenoh configs, the runner's maps) is
+    in the setup.py colcon builds that package from: without it a workspace's host has none."""
+    block = PYPROJECT.split("[tool.setuptools.package-data]", 1)[1].split("\n[", 1)[0]
+    rows = re.findall(r'^"([\w.]+)" = \[(.*)\]$', block, re.M)  # "*" (py.typed) aside
+    assert rows, block
+    for package, listed in rows:
+        patterns = re.findall(r'"([^"]+)"', listed)
+        top = package.split(".")[0]
+        (folder,) = [x.parent for x in _ament_python_packages() if (x.parent / top).is_dir()]
+        setup_py = (folder / "setup.py").read_text(encoding="utf-8")
+        for pattern in patterns:
+            assert pattern in setup_py, f"{folder.name}/setup.py lacks {package}'s {pattern}"
+
+
 @pytest.mark.parametrize("xml", _ament_python_packages(), ids=lambda p: p.parent.name)
 def test_ament_python_packages_install_where_ros_looks(xml: Path) -> None:
     """The ament index marker, and console scripts in lib/<package> (`ros2 run`) run by the

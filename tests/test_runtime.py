@@ -223,6 +223,19 @@ def test_loader_errors_are_clear() -> None:
     assert load_class("tests.fixtures.echo_planners:LinePlanner") is LinePlanner
 
 
+def test_delegate_items_as_the_nav2_plugin_passes_them() -> None:
+    """The plugin hands its python_delegates items to planner-host as they are: comma lists,
+    bare roles (the function of that name), the last of a role given twice."""
+    assert parse_delegates(["set_plan=a, reset = b", "compute_velocity_commands", "reset=c"]) == {
+        "set_plan": "a",
+        "reset": "c",
+        "compute_velocity_commands": "compute_velocity_commands",
+    }
+    assert parse_delegates(["", " , "]) == {}
+    with pytest.raises(PlannerLoadError, match="not of the form role=function"):
+        parse_delegates(["set_plan="])
+
+
 def test_delegates_build_a_controller() -> None:
     roles = parse_delegates(
         ["compute_velocity_commands=compute,set_plan=on_plan", "set_speed_limit=on_limit"]

@@ -1,10 +1,12 @@
-"""Every Zenoh config file the project ships carries the defaults the built-in config applies.
+"""Every Zenoh config file the project ships carries the settings of the default ones.
 
-A config file replaces the built-in configuration as a whole (nav2_pyif.common.zenoh_config:
-with --zenoh-config nothing built-in is added), so a file that leaves out the 1 s lease makes
-a host using it look alive for Zenoh's 10 s after its machine vanished. Each file is loaded
-through zenoh's own parser and its effective values (what zenoh fills in for what the file
-leaves out included) are compared with the built-in configuration of the same mode.
+The defaults are files too (nav2_pyif_protocol/zenoh/<mode>.json5, loaded by the planner host
+and the tools, and copied by `generate` into the Nav2 plugin's package). A config file named
+instead replaces the default as a whole (with --zenoh-config nothing of it is added), so a file
+that leaves out the 1 s lease makes a host using it look alive for Zenoh's 10 s after its
+machine vanished. Each file is loaded through zenoh's own parser and its effective values (what
+zenoh fills in for what the file leaves out included) are compared with the default of the same
+mode.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from pathlib import Path
 import pytest
 import zenoh
 from nav2_pyif.common.zenoh_config import ZenohOptions, build_config
+from nav2_pyif_protocol import zenoh_defaults
 
 from tests.conftest import ROOT
 
@@ -31,14 +34,14 @@ EVERYWHERE = [
 #: Only where the session connects somewhere: a router (or link) that comes back is
 #: re-joined within 0.5 s.
 WHEN_CONNECTING = ["connect/retry"]
-#: Only for the Python programs (planner-host, nav2-pyif router and tools): the C++ plugin's
-#: built-in config (bridge_plugin/src/nav2/zenoh_transport.cpp) leaves shared memory as
-#: zenoh-c has it.
+#: Not required of the guide's files for the Nav2 plugin (plugin-*.json5): a client sending
+#: small requests need not turn off what it never uses.
 PYTHON_ONLY = ["transport/shared_memory/enabled"]
 
 
 def shipped() -> list[Path]:
-    """Every JSON5 file under version control: docs/zenoh/*.json5 and any added elsewhere."""
+    """Every JSON5 file under version control: docs/zenoh/*.json5, the defaults, and any
+    added elsewhere."""
     listed = subprocess.run(
         ["git", "ls-files", "*.json5"], cwd=ROOT, capture_output=True, text=True, check=True
     ).stdout.split()
@@ -61,7 +64,19 @@ def expected_keys(config: zenoh.Config, path: Path) -> list[str]:
 def test_every_docs_zenoh_file_is_checked() -> None:
     checked = {path.name for path in shipped()}
     assert {path.name for path in (ROOT / "docs" / "zenoh").glob("*.json5")} <= checked
-    assert "host-listen.json5" in checked
+    assert {"host-listen.json5", "peer.json5", "client.json5", "default_session.json5"} <= checked
+
+
+def test_the_plugin_loads_the_client_default() -> None:
+    """The Nav2 plugin's installed default (zenoh-c) is the tools' client default, copied by
+    `generate` (its --check keeps them equal); it is installed with the package."""
+    plugin = ROOT / zenoh_defaults.BRIDGE_COPY
+    assert plugin.read_text().endswith(zenoh_defaults.path("client").read_text())
+    cmake = (ROOT / "bridge_plugin" / "CMakeLists.txt").read_text()
+    assert "install(DIRECTORY config " in cmake
+    assert "/share/${PROJECT_NAME}/config/default_session.json5" in cmake
+    source = (ROOT / "bridge_plugin" / "src" / "nav2" / "zenoh_transport.cpp").read_text()
+    assert "file.empty() ? NAV2_PYIF_DEFAULT_ZENOH_CONFIG : file" in source
 
 
 @pytest.mark.parametrize("path", shipped(), ids=lambda p: str(p.relative_to(ROOT)))
@@ -69,13 +84,13 @@ def test_shipped_config_carries_the_built_in_defaults(path: Path) -> None:
     config = zenoh.Config.from_file(str(path))
     mode = effective(config, "mode")
     assert mode in ("peer", "client", "router"), f"{path.name}: no mode"
-    built_in = build_config(ZenohOptions(mode=str(mode), use_environment=False))
+    default = build_config(ZenohOptions(mode=str(mode), use_environment=False))
     wrong = {
-        key: (effective(config, key), effective(built_in, key))
+        key: (effective(config, key), effective(default, key))
         for key in expected_keys(config, path)
-        if effective(config, key) != effective(built_in, key)
+        if effective(config, key) != effective(default, key)
     }
-    assert not wrong, f"{path.name}: key: (the file's effective value, built-in): {wrong}"
+    assert not wrong, f"{path.name}: key: (the file's effective value, the default's): {wrong}"
 
 
 def test_the_built_in_lease_is_the_documented_one() -> None:

@@ -1,4 +1,5 @@
-"""Names shared by every party of the protocol: version, operations, plugin and error types."""
+"""Names shared by every party of the protocol: version, operations, plugin and error types,
+a behaviour's status and failure names."""
 
 from __future__ import annotations
 
@@ -214,3 +215,24 @@ PROTOCOL_ERRORS = frozenset(
         ErrorType.UNAVAILABLE,
     }
 )
+
+
+class BehaviorStatus(str, Enum):
+    """TimedBehavior's Status (a behaviour's reply, PROTOCOL.md section 17)."""
+
+    SUCCEEDED = "succeeded"
+    FAILED = "failed"
+    RUNNING = "running"
+
+
+class BehaviorFailure(str, Enum):
+    """Why a behaviour failed: the plugin sets the action result's error code of that name
+    (BackUp's COLLISION_AHEAD, Spin's TIMEOUT, ...; UNKNOWN where the action has no such
+    code, and none on Humble, whose behaviour results have no error code)."""
+
+    NONE = ""
+    UNKNOWN = "unknown"
+    TIMEOUT = "timeout"
+    TF_ERROR = "tf_error"
+    INVALID_INPUT = "invalid_input"
+    COLLISION_AHEAD = "collision_ahead"

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import Final
 
-from nav2_pyif_protocol.constants import Op
+from nav2_pyif_protocol.constants import BehaviorFailure, BehaviorStatus, Op
 
 # Field kinds. A struct kind is the name of an entry of STRUCTS.
 INT: Final = "int"  # msgpack int, fits int64
@@ -236,12 +236,17 @@ _CARRIED = _f(
 
 # A behaviour's step (PROTOCOL.md section 17): TimedBehavior's ResultStatus, by name.
 _BEHAVIOR_STATUS = (
-    _f("status", STR, "'succeeded', 'failed' or 'running' (on_run: not 'running')"),
+    _f(
+        "status",
+        STR,
+        ", ".join(repr(s.value) for s in BehaviorStatus).replace(", 'running'", " or 'running'")
+        + " (on_run: not 'running')",
+    ),
     _f(
         "failure",
         STR,
-        "why it failed, mapped to the action's error code: '' (none), 'unknown', 'timeout', "
-        "'tf_error', 'invalid_input', 'collision_ahead'",
+        "why it failed, mapped to the action's error code: "
+        + ", ".join(f"{f.value!r}" + (" (none)" if not f.value else "") for f in BehaviorFailure),
     ),
 )
 

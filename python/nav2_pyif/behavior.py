@@ -12,12 +12,11 @@ import math
 from abc import abstractmethod
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from enum import Enum
 from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
-from nav2_pyif_protocol.constants import PluginType
+from nav2_pyif_protocol.constants import BehaviorFailure, BehaviorStatus, PluginType
 
 from nav2_pyif.params import ParamValue
 from nav2_pyif.plugin import PlannerPlugin
@@ -25,25 +24,9 @@ from nav2_pyif.plugin import PlannerPlugin
 FloatArray = npt.NDArray[np.float64]
 
 
-class Status(str, Enum):
-    """TimedBehavior's Status."""
-
-    SUCCEEDED = "succeeded"
-    FAILED = "failed"
-    RUNNING = "running"
-
-
-class Failure(str, Enum):
-    """Why a behaviour failed: the plugin sets the action result's error code of that name
-    (BackUp's COLLISION_AHEAD, Spin's TIMEOUT, ...; UNKNOWN where the action has no such
-    code, and none on Humble, whose behaviour results have no error code)."""
-
-    NONE = ""
-    UNKNOWN = "unknown"
-    TIMEOUT = "timeout"
-    TF_ERROR = "tf_error"
-    INVALID_INPUT = "invalid_input"
-    COLLISION_AHEAD = "collision_ahead"
+# TimedBehavior's Status and why a behaviour failed: the protocol's names (constants.py).
+Status = BehaviorStatus
+Failure = BehaviorFailure
 
 
 @dataclass

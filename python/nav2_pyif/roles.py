@@ -42,13 +42,15 @@ def check_roles(delegates: Mapping[str, str]) -> None:
 
 
 def parse_delegates(items: list[str]) -> dict[str, str]:
-    """["role=function", "role2=function2,role3=f3"] -> {role: function}, roles checked."""
+    """["role=function", "role2=function2,role3=f3", "role4"] -> {role: function}, roles
+    checked; a bare role is the function of its name, and a role given twice keeps the last."""
     out: dict[str, str] = {}
     for item in items:
         for pair in filter(None, (p.strip() for p in item.split(","))):
             role, sep, func = pair.partition("=")
-            if not sep or not role or not func:
+            role, func = role.strip(), func.strip() if sep else role.strip()
+            if not role or not func:
                 raise PlannerLoadError(f"delegate {pair!r} is not of the form role=function")
-            out[role.strip()] = func.strip()
+            out[role] = func
     check_roles(out)
     return out

@@ -1,6 +1,5 @@
-// A plugin's PluginBridge and session, started and stopped together: what PySmoother,
-// PyGoalChecker and PyProgressChecker hold (PyPlugin holds the same for the controller and
-// the global planner, whose configure signature it shares).
+// A plugin's PluginBridge and session, started and stopped together, with Nav2's lifecycle
+// forwarded: what every plugin class holds for its Nav2 lifetime.
 #pragma once
 
 #include <memory>
@@ -51,6 +50,11 @@ public:
     bridge_.reset();
   }
 
+  // activate / deactivate: logged, never thrown (PluginBridge::lifecycle).
+  void activate() {bridge_->lifecycle("activate", [this]() {session_->activate();});}
+  void deactivate() {bridge_->lifecycle("deactivate", [this]() {session_->deactivate();});}
+
+  bool started() const noexcept {return session_ != nullptr;}
   PluginBridge & bridge() {return *bridge_;}
   Session & session() {return *session_;}
 

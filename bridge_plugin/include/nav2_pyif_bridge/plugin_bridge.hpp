@@ -48,9 +48,6 @@ public:
   PluginBridge(
     const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
     client::PluginKind kind, CostmapBinding costmap);
-  PluginBridge(
-    const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
-    client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros);
   ~PluginBridge();
   PluginBridge(const PluginBridge &) = delete;
   PluginBridge & operator=(const PluginBridge &) = delete;
@@ -95,8 +92,7 @@ public:
 
   const rclcpp::Logger & ros_logger() const noexcept {return logger_;}
   rclcpp::Clock::SharedPtr clock() const noexcept {return clock_;}
-  const client::BridgeSettings & settings() const noexcept {return settings_;}
-  const std::string & key() const noexcept {return key_;}
+  const std::vector<client::InputSpec> & inputs() const noexcept {return inputs_;}
   double transform_tolerance() const noexcept {return transform_tolerance_;}
 
 private:
@@ -114,7 +110,8 @@ private:
   std::string robot_base_frame_;
   double transform_tolerance_{0.1};
 
-  client::BridgeSettings settings_;
+  client::BridgeParameters settings_;
+  std::vector<client::InputSpec> inputs_;
   protocol::Params forwarded_;
   protocol::Params nav2_params_;  // configure's nav2_params: Nav2's, outside our namespace
   std::string key_;

@@ -1,6 +1,6 @@
 // nav2_pyif_bridge::PyController: a nav2_core::Controller whose every call is answered by a
 // Python controller in a planner host, over Zenoh. Thin: frames and messages here, the
-// lifecycle in PyPlugin, the rest in client::ControllerSession and PluginBridge.
+// lifecycle in BridgedSession, the rest in client::ControllerSession and PluginBridge.
 #pragma once
 
 #include <map>
@@ -19,12 +19,12 @@
 
 #include "nav2_pyif_bridge/client/controller_session.hpp"
 #include "nav2_pyif_bridge/fresh_plan.hpp"
-#include "nav2_pyif_bridge/py_plugin.hpp"
+#include "nav2_pyif_bridge/bridged_session.hpp"
 
 namespace nav2_pyif_bridge
 {
 
-class PyController : public PyPlugin<nav2_core::Controller, client::ControllerSession>
+class PyController : public nav2_core::Controller
 {
 public:
   // Also subscribes to the `inputs` topics (their serialized messages go to the host as they
@@ -35,6 +35,8 @@ public:
     std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros) override;
   // Also forgets the plan, the subscriptions and the debug publishers.
   void cleanup() override;
+  void activate() override {plugin_.activate();}
+  void deactivate() override {plugin_.deactivate();}
 
 #if NAV2_PYIF_LYRICAL_API
   // A new global plan: the goal checks that follow prepare for it. Nothing is sent: the host
@@ -82,6 +84,13 @@ private:
   void sync_debug_publishers();
   void publish_debug();
 
+  client::ControllerSession & session() {return plugin_.session();}
+  PluginBridge & bridge() {return plugin_.bridge();}
+
+  std::string name_;
+  std::shared_ptr<TfBuffer> tf_;
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
+  BridgedSession<client::ControllerSession> plugin_;
   Nav2Node::WeakPtr node_;
   std::vector<rclcpp::GenericSubscription::SharedPtr> input_subscriptions_;
   struct DebugPublisher

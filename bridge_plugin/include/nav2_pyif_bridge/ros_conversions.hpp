@@ -27,6 +27,11 @@ namespace nav2_pyif_bridge::ros
 std::int64_t to_ns(const builtin_interfaces::msg::Time & stamp) noexcept;
 builtin_interfaces::msg::Time from_ns(std::int64_t ns) noexcept;
 
+// A pose as the protocol's row (x, y, z, qx, qy, qz, qw) and back; a twist from its row.
+std::array<double, 7> pose_row(const geometry_msgs::msg::Pose & pose) noexcept;
+geometry_msgs::msg::Pose pose_of(const double * row) noexcept;
+geometry_msgs::msg::Twist twist_of(const std::array<double, 6> & row) noexcept;
+
 protocol::PoseStamped to_wire(const geometry_msgs::msg::PoseStamped & pose);
 // The goal checker's tolerances, as the protocol carries them (std::nullopt without one).
 std::optional<protocol::GoalChecker> tolerances(nav2_core::GoalChecker * goal_checker);

@@ -6,8 +6,9 @@
 // Session configuration (as rmw_zenoh: a JSON5 file named by a parameter or an environment
 // variable, a router on tcp/localhost:7447 by default):
 //   - zenoh-c backend (ROS' zenoh_cpp_vendor): the file `zenoh_config`, else
-//     $NAV2_PYIF_ZENOH_CONFIG, else a client of tcp/localhost:7447 with multicast scouting
-//     off; `zenoh_connect` replaces the file's connect endpoints.
+//     $NAV2_PYIF_ZENOH_CONFIG, else the package's share/nav2_pyif_bridge/config/
+//     default_session.json5 (a client of tcp/localhost:7447); `zenoh_connect` replaces the
+//     file's connect endpoints.
 //   - zenoh-pico backend (ZENOHCXX_ZENOHPICO): client mode only, configured by integer keys;
 //     no JSON5 files (a `zenoh_config` is refused), one connect endpoint (the first).
 // A session that cannot be opened (no router or host listening yet) is retried every second
@@ -40,7 +41,7 @@ namespace nav2_pyif_bridge
 struct ZenohOptions
 {
   std::string config_file;           // JSON5 (zenoh-c only); empty: $NAV2_PYIF_ZENOH_CONFIG
-  std::vector<std::string> connect;  // empty: the file's, else tcp/localhost:7447
+  std::vector<std::string> connect;  // empty: the file's
 };
 
 // "zenoh-c" or "zenoh-pico": the backend this package was built with.

@@ -1,6 +1,5 @@
 #include "nav2_pyif_bridge/client/behavior_session.hpp"
 
-#include <array>
 #include <utility>
 
 #include "nav2_pyif_bridge/client/command_check.hpp"
@@ -12,32 +11,6 @@ namespace proto = protocol;
 namespace
 {
 
-constexpr std::array<std::pair<const char *, BehaviorStatus>, 3> kStatuses = {{
-  {"succeeded", BehaviorStatus::Succeeded},
-  {"failed", BehaviorStatus::Failed},
-  {"running", BehaviorStatus::Running},
-}};
-constexpr std::array<std::pair<const char *, BehaviorFailure>, 6> kFailures = {{
-  {"", BehaviorFailure::None},
-  {"unknown", BehaviorFailure::Unknown},
-  {"timeout", BehaviorFailure::Timeout},
-  {"tf_error", BehaviorFailure::TfError},
-  {"invalid_input", BehaviorFailure::InvalidInput},
-  {"collision_ahead", BehaviorFailure::CollisionAhead},
-}};
-
-template<class T, std::size_t N>
-std::optional<T> lookup(
-  const std::array<std::pair<const char *, T>, N> & table, const std::string & name) noexcept
-{
-  for (const auto & [spelling, value] : table) {
-    if (name == spelling) {
-      return value;
-    }
-  }
-  return std::nullopt;
-}
-
 BehaviorStep failed(const std::string & error)
 {
   BehaviorStep step;
@@ -46,16 +19,6 @@ BehaviorStep failed(const std::string & error)
 }
 
 }  // namespace
-
-std::optional<BehaviorStatus> behavior_status_from_name(const std::string & name) noexcept
-{
-  return lookup(kStatuses, name);
-}
-
-std::optional<BehaviorFailure> behavior_failure_from_name(const std::string & name) noexcept
-{
-  return lookup(kFailures, name);
-}
 
 BehaviorStep BehaviorSession::step_of(
   const std::string & status, const std::string & failure, const char * what) const

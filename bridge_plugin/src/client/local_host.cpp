@@ -6,7 +6,6 @@
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/socket.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -24,15 +23,6 @@ namespace nav2_pyif_bridge::client
 {
 namespace
 {
-
-bool is_executable_file(const std::string & path)
-{
-  struct stat info {};
-  // access(X_OK) alone is true for root whenever any execute bit is set; ask for one.
-  return ::stat(path.c_str(), &info) == 0 && S_ISREG(info.st_mode) &&
-         (info.st_mode & (S_IXUSR | S_IXGRP | S_IXOTH)) != 0 &&
-         ::access(path.c_str(), X_OK) == 0;
-}
 
 std::string describe_status(int status)
 {
@@ -86,27 +76,6 @@ std::uint16_t pick_free_tcp_port()
   return ntohs(address.sin_port);
 }
 
-std::string find_executable(const std::string & command, std::string_view search_path)
-{
-  if (command.empty()) {
-    return {};
-  }
-  if (command.find('/') != std::string::npos) {
-    return is_executable_file(command) ? command : std::string();
-  }
-  std::size_t start = 0;
-  while (start <= search_path.size()) {
-    const std::size_t end = std::min(search_path.find(':', start), search_path.size());
-    std::string dir(search_path.substr(start, end - start));
-    start = end + 1;
-    const std::string candidate = (dir.empty() ? std::string(".") : dir) + "/" + command;
-    if (is_executable_file(candidate)) {
-      return candidate;
-    }
-  }
-  return {};
-}
-
 std::string local_host_key(std::string_view node, std::string_view plugin)
 {
   auto chunk = [](std::string_view text) {
@@ -122,22 +91,24 @@ std::string local_host_key(std::string_view node, std::string_view plugin)
 }
 
 std::vector<std::string> local_host_arguments(
-  const LocalHostSpec & spec, const std::string & key, const std::string & listen_endpoint)
+  const BridgeParameters & spec, const std::string & key, const std::string & listen_endpoint)
 {
-  std::vector<std::string> argv{spec.command, "--key", key};
-  if (!spec.planner.empty()) {
-    argv.insert(argv.end(), {"--planner", spec.planner});
-  } else {
-    argv.insert(argv.end(), {"--module", spec.module});
-    for (const auto & [role, function] : spec.delegates) {
-      argv.insert(argv.end(), {"--delegate", role + "=" + function});
-    }
+  std::vector<std::string> argv{spec.planner_host_command, "--key", key};
+  auto add = [&argv](const char * flag, const std::string & value) {
+      if (!value.empty()) {
+        argv.insert(argv.end(), {flag, value});
+      }
+    };
+  add("--planner", spec.python_planner);
+  add("--module", spec.python_module);
+  for (const auto & item : spec.python_delegates) {
+    add("--delegate", item);
   }
-  for (const auto & path : spec.paths) {
-    argv.insert(argv.end(), {"--path", path});
+  for (const auto & path : spec.python_path) {
+    add("--path", path);
   }
-  argv.insert(argv.end(), {"--listen", listen_endpoint});
-  argv.insert(argv.end(), spec.extra_args.begin(), spec.extra_args.end());
+  add("--listen", listen_endpoint);
+  argv.insert(argv.end(), spec.planner_host_args.begin(), spec.planner_host_args.end());
   return argv;
 }
 
@@ -158,12 +129,6 @@ ProcessSupervisor::~ProcessSupervisor()
 
 void ProcessSupervisor::start()
 {
-  const char * path = std::getenv("PATH");
-  program_ = find_executable(options_.argv.front(), path ? path : "/usr/local/bin:/usr/bin:/bin");
-  if (program_.empty()) {
-    throw std::runtime_error(
-            "cannot start '" + options_.argv.front() + "': not found on PATH or not executable");
-  }
   environment_.clear();
   for (char ** entry = environ; entry && *entry; ++entry) {
     if (std::strncmp(*entry, "PYTHONUNBUFFERED=", 17) != 0) {
@@ -172,24 +137,18 @@ void ProcessSupervisor::start()
   }
   environment_.emplace_back("PYTHONUNBUFFERED=1");
 
-  std::unique_lock<std::mutex> lock(mutex_);
   if (thread_.joinable()) {
     throw std::logic_error("ProcessSupervisor::start called twice");
   }
   stopping_ = false;
-  first_spawned_ = false;
-  spawn_error_.clear();
-  thread_ = std::thread([this]() {supervise();});
-  changed_.wait(lock, [this]() {return first_spawned_;});
-  if (!spawn_error_.empty()) {
-    const std::string error = spawn_error_;
-    lock.unlock();
-    thread_.join();
+  const std::string error = spawn();
+  if (!error.empty()) {
     throw std::runtime_error(error);
   }
+  thread_ = std::thread([this]() {supervise();});
 }
 
-bool ProcessSupervisor::spawn()
+std::string ProcessSupervisor::spawn()
 {
   std::vector<char *> argv;
   for (auto & arg : options_.argv) {
@@ -204,9 +163,7 @@ bool ProcessSupervisor::spawn()
 
   int error_pipe[2];
   if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    spawn_error_ = "pipe: " + std::string(std::strerror(errno));
-    return false;
+    return "pipe: " + std::string(std::strerror(errno));
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
@@ -220,7 +177,7 @@ bool ProcessSupervisor::spawn()
     sigset_t none;
     ::sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    ::execve(program_.c_str(), argv.data(), envp.data());
+    ::execvpe(argv[0], argv.data(), envp.data());  // $PATH searched as a shell does
     const int error = errno;
     [[maybe_unused]] const auto written = ::write(error_pipe[1], &error, sizeof(error));
     ::_exit(127);
@@ -228,9 +185,7 @@ bool ProcessSupervisor::spawn()
   ::close(error_pipe[1]);
   if (pid < 0) {
     ::close(error_pipe[0]);
-    std::lock_guard<std::mutex> lock(mutex_);
-    spawn_error_ = "fork: " + std::string(std::strerror(errno));
-    return false;
+    return "fork: " + std::string(std::strerror(errno));
   }
   int exec_error = 0;
   ssize_t got = 0;
@@ -238,41 +193,33 @@ bool ProcessSupervisor::spawn()
     got = ::read(error_pipe[0], &exec_error, sizeof(exec_error));
   } while (got < 0 && errno == EINTR);
   ::close(error_pipe[0]);
-  std::lock_guard<std::mutex> lock(mutex_);
   if (got == static_cast<ssize_t>(sizeof(exec_error))) {
     int status = 0;
     ::waitpid(pid, &status, 0);
-    spawn_error_ = "cannot run " + program_ + ": " + std::strerror(exec_error);
-    return false;
+    return "cannot start '" + options_.argv.front() + "': " + std::strerror(exec_error);
   }
-  pid_ = pid;
-  ++starts_;
-  spawn_error_.clear();
-  return true;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    pid_ = pid;
+    ++starts_;
+    if (stopping_) {
+      ::kill(pid, SIGKILL);  // stop() came while it started, and will not signal it
+    }
+  }
+  changed_.notify_all();
+  log(
+    logger_, LogLevel::Info,
+    "planner host started (pid " + std::to_string(pid) + "): " + command_line(options_.argv));
+  return {};
 }
 
 void ProcessSupervisor::supervise()
 {
   Duration delay = options_.restart_delay;
   std::unique_lock<std::mutex> lock(mutex_);
-  while (!stopping_) {
-    lock.unlock();
-    const bool started = spawn();
-    lock.lock();
-    const bool first = !first_spawned_;
-    first_spawned_ = true;
-    changed_.notify_all();
-    if (!started) {
-      if (first) {
-        return;  // start() reports spawn_error_
-      }
-      log(logger_, LogLevel::Error, "planner host: " + spawn_error_);
-    } else {
-      const pid_t pid = pid_;
+  for (;;) {
+    if (const pid_t pid = pid_; pid > 0) {  // the process started last: wait for its end
       const auto started_at = std::chrono::steady_clock::now();
-      log(
-        logger_, LogLevel::Info,
-        "planner host started (pid " + std::to_string(pid) + "): " + command_line(options_.argv));
       lock.unlock();
       int status = 0;
       pid_t waited = 0;
@@ -283,19 +230,25 @@ void ProcessSupervisor::supervise()
       pid_ = 0;
       last_exit_ = waited == pid ? describe_status(status) : "lost (waitpid failed)";
       changed_.notify_all();
-      if (stopping_) {
-        break;
-      }
       if (std::chrono::steady_clock::now() - started_at >= options_.stable_after) {
         delay = options_.restart_delay;
       }
-      log(
-        logger_, LogLevel::Error,
-        "planner host (pid " + std::to_string(pid) + ") " + last_exit_ + "; restarting in " +
-        seconds_text(delay));
+      if (!stopping_) {
+        log(
+          logger_, LogLevel::Error, "planner host (pid " + std::to_string(pid) + ") " +
+          last_exit_ + "; restarting in " + seconds_text(delay));
+      }
     }
-    changed_.wait_for(lock, delay, [this]() {return stopping_;});
+    if (changed_.wait_for(lock, delay, [this]() {return stopping_;})) {
+      return;
+    }
     delay = std::min(delay * 2, options_.max_restart_delay);
+    lock.unlock();
+    const std::string error = spawn();
+    lock.lock();
+    if (!error.empty()) {
+      log(logger_, LogLevel::Error, "planner host: " + error);
+    }
   }
 }
 
@@ -355,11 +308,10 @@ bool ProcessSupervisor::wait_for_starts(unsigned n, Duration timeout) const
 // --- LocalHost ------------------------------------------------------------------------------
 
 LocalHost::LocalHost(
-  const LocalHostSpec & spec, std::string key, Logger logger,
+  const BridgeParameters & spec, std::string key, Logger logger,
   ProcessSupervisor::Options supervision)
 : key_(std::move(key))
 {
-  validate_prefix(key_);
   endpoint_ = "tcp/127.0.0.1:" + std::to_string(pick_free_tcp_port());
   supervision.argv = local_host_arguments(spec, key_, endpoint_);
   process_ = std::make_unique<ProcessSupervisor>(std::move(supervision), std::move(logger));

@@ -56,21 +56,6 @@ std::string milliseconds(Duration d)
 
 }  // namespace
 
-Duration Timeouts::for_op(proto::Op op) const noexcept
-{
-  switch (proto::timeout_class(op)) {  // schema.py OP_TIMEOUT, generated
-    case proto::TimeoutClass::Configure:
-      return configure;
-    case proto::TimeoutClass::Call:
-      return call;
-    case proto::TimeoutClass::Plan:
-      return plan;
-    case proto::TimeoutClass::Lifecycle:
-      break;
-  }
-  return lifecycle;
-}
-
 std::string new_session_id()
 {
   std::random_device device;

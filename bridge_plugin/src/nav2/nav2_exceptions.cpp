@@ -1,6 +1,13 @@
-#include <string>
+// Generated from protocol/nav2_pyif_protocol/constants.py by
+// `python -m nav2_pyif_codegen.generate`: do not edit.
+//
+// Throw the nav2_core exception class an ErrorKind names (constants.py's error names are
+// nav2_core's class names); the smoother's in smoother_exceptions.cpp.
 
 #include "nav2_pyif_bridge/nav2_api.hpp"
+
+#include <string>
+
 #include "nav2_pyif_bridge/smoother_exceptions.hpp"
 
 namespace nav2_pyif_bridge
@@ -34,14 +41,8 @@ void throw_nav2_exception(
     case ErrorKind::PlannerTFError: throw nav2_core::PlannerTFError(message);
     case ErrorKind::NoViapointsGiven: throw nav2_core::NoViapointsGiven(message);
     case ErrorKind::PlannerCancelled: throw nav2_core::PlannerCancelled(message);
-    case ErrorKind::SmootherException:
-    case ErrorKind::InvalidSmoother:
-    case ErrorKind::SmootherTimedOut:
-    case ErrorKind::SmoothedPathInCollision:
-    case ErrorKind::FailedToSmoothPath:
-      throw_smoother_exception(kind, message);
+    default: throw_smoother_exception(kind, message);
   }
-  throw nav2_core::PlannerException(message);
 #else
   (void)plugin;
   (void)kind;

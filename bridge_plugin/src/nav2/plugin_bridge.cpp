@@ -1,7 +1,6 @@
 #include "nav2_pyif_bridge/plugin_bridge.hpp"
 
 #include <chrono>
-#include <set>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -16,11 +15,6 @@ using client::LogLevel;
 
 namespace
 {
-
-// The bridge parameters a running plugin can take: the timeouts. The others are read at
-// configure only.
-const std::set<std::string> kLiveSettings = {
-  "timeout", "configure_timeout", "plan_timeout", "lifecycle_timeout", "wait_for_host"};
 
 rcl_interfaces::msg::ParameterDescriptor dynamically_typed()
 {
@@ -58,13 +52,6 @@ proto::Params read_parameters(rclcpp_lifecycle::LifecycleNode & node, const std:
 
 PluginBridge::PluginBridge(
   const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
-  client::PluginKind kind, std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
-: PluginBridge(node, name, kind, bind_costmap(std::move(costmap_ros)))
-{
-}
-
-PluginBridge::PluginBridge(
-  const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
   client::PluginKind kind, CostmapBinding costmap)
 : node_(node), name_(name), node_name_(node->get_name()), kind_(kind),
   logger_(node->get_logger().get_child(name)), clock_(node->get_clock()),
@@ -83,11 +70,12 @@ PluginBridge::PluginBridge(
   try {
     client::PluginParameters parameters = client::split_parameters(read_parameters(*node, name));
     settings_ = std::move(parameters.settings);
+    inputs_ = std::move(parameters.inputs);
     forwarded_ = std::move(parameters.forwarded);
     key_ = settings_.key.empty() ? client::local_host_key(node_name_, name_) : settings_.key;
     ZenohOptions zenoh{settings_.zenoh_config, settings_.zenoh_connect};
-    if (settings_.local_host.enabled()) {
-      local_host_ = std::make_unique<client::LocalHost>(settings_.local_host, key_, logger());
+    if (client::starts_local_host(settings_)) {
+      local_host_ = std::make_unique<client::LocalHost>(settings_, key_, logger());
       zenoh = ZenohOptions{"", {local_host_->endpoint()}};
     }
     transport_ = std::make_unique<ZenohTransport>(zenoh, client::KeySpace(key_), logger());
@@ -148,7 +136,7 @@ client::Logger PluginBridge::logger() const
 void PluginBridge::configure(client::PluginSession & session)
 {
   session_ = &session;
-  const auto wait = settings_.host_wait();
+  const auto wait = client::host_wait(settings_);
   if (!session.wait_for_host(wait)) {
     RCLCPP_WARN(
       logger_, "%s: no planner host on %s after %.1f s; configure deferred to the first call "
@@ -222,7 +210,8 @@ rcl_interfaces::msg::SetParametersResult PluginBridge::on_parameters(
     return result;
   }
   proto::Params changes;
-  client::Timeouts timeouts = session_->timeouts();
+  client::BridgeParameters settings = settings_;
+  settings.timeouts = session_->timeouts();
   std::string problems;
   auto problem = [&problems](const std::string & text) {
       problems += (problems.empty() ? "" : "; ") + text;
@@ -235,31 +224,16 @@ rcl_interfaces::msg::SetParametersResult PluginBridge::on_parameters(
     const auto value = ros::to_wire(parameter.get_parameter_value());
     if (!value) {
       problem(*name + ": cannot be unset");
-      continue;
-    }
-    if (!client::is_bridge_parameter(*name)) {
+    } else if (!client::is_bridge_parameter(*name)) {
       changes.set(*name, *value);
-      continue;
-    }
-    if (kLiveSettings.count(*name) == 0) {
+    } else if (!client::is_live_parameter(*name)) {
       problem(*name + " is read at configure: cleanup and configure the node to change it");
-      continue;
-    }
-    try {
-      const client::Duration seconds = client::seconds_parameter(*name, *value);
-      if (*name == "timeout") {
-        timeouts.call = seconds;
-      } else if (*name == "configure_timeout") {
-        timeouts.configure = seconds;
-      } else if (*name == "plan_timeout") {
-        timeouts.plan = seconds;
-      } else if (*name == "lifecycle_timeout") {
-        timeouts.lifecycle = seconds;
-      } else {
-        settings_.wait_for_host = seconds;
+    } else {
+      try {
+        client::set_bridge_parameter(settings, *name, *value);
+      } catch (const std::invalid_argument & error) {
+        problem(error.what());
       }
-    } catch (const std::invalid_argument & error) {
-      problem(error.what());
     }
   }
   if (!problems.empty()) {
@@ -282,7 +256,8 @@ rcl_interfaces::msg::SetParametersResult PluginBridge::on_parameters(
     result.reason = "the planner refused: " + problems;
     return result;
   }
-  session_->set_timeouts(timeouts);
+  settings_ = std::move(settings);
+  session_->set_timeouts(settings_.timeouts);
   return result;
 }
 

@@ -184,14 +184,14 @@ template<class ActionT>
 void PyBehavior<ActionT>::activate()
 {
   nav2_behaviors::TimedBehavior<ActionT>::activate();
-  plugin_.bridge().lifecycle("activate", [this]() {plugin_.session().activate();});
+  plugin_.activate();
 }
 
 template<class ActionT>
 void PyBehavior<ActionT>::deactivate()
 {
   nav2_behaviors::TimedBehavior<ActionT>::deactivate();
-  plugin_.bridge().lifecycle("deactivate", [this]() {plugin_.session().deactivate();});
+  plugin_.deactivate();
 }
 
 template<class ActionT>

@@ -1,6 +1,5 @@
 #include "nav2_pyif_bridge/py_checkers.hpp"
 
-#include <array>
 #include <limits>
 #include <utility>
 
@@ -13,31 +12,12 @@ namespace nav2_pyif_bridge
 namespace
 {
 
-std::array<double, 7> pose7(const geometry_msgs::msg::Pose & pose) noexcept
-{
-  return {pose.position.x, pose.position.y, pose.position.z, pose.orientation.x,
-    pose.orientation.y, pose.orientation.z, pose.orientation.w};
-}
-
 void fill_tolerances(
   const protocol::GetTolerancesReply & tolerances, geometry_msgs::msg::Pose & pose_tolerance,
   geometry_msgs::msg::Twist & vel_tolerance) noexcept
 {
-  const auto & p = tolerances.pose_tolerance;
-  const auto & v = tolerances.velocity_tolerance;
-  pose_tolerance.position.x = p[0];
-  pose_tolerance.position.y = p[1];
-  pose_tolerance.position.z = p[2];
-  pose_tolerance.orientation.x = p[3];
-  pose_tolerance.orientation.y = p[4];
-  pose_tolerance.orientation.z = p[5];
-  pose_tolerance.orientation.w = p[6];
-  vel_tolerance.linear.x = v[0];
-  vel_tolerance.linear.y = v[1];
-  vel_tolerance.linear.z = v[2];
-  vel_tolerance.angular.x = v[3];
-  vel_tolerance.angular.y = v[4];
-  vel_tolerance.angular.z = v[5];
+  pose_tolerance = ros::pose_of(tolerances.pose_tolerance.data());
+  vel_tolerance = ros::twist_of(tolerances.velocity_tolerance);
 }
 
 }  // namespace
@@ -81,7 +61,7 @@ bool PyGoalChecker::isGoalXYReached(
   return plugin_.bridge().forward(
     [&]() {
       return plugin_.session().is_goal_xy_reached(
-        pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity));
+        ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity));
     });
 }
 
@@ -135,10 +115,10 @@ bool PyGoalChecker::goal_reached(
         return cycle_->is_goal_reached(
           plugin_.session(),
           looked_up ? std::make_optional(ros::to_wire(robot)) : std::nullopt,
-          pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity), tolerances);
+          ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity), tolerances);
       }
       return plugin_.session().is_goal_reached(
-        pose7(query_pose), pose7(goal_pose), ros::to_wire(velocity));
+        ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity));
     });
 }
 

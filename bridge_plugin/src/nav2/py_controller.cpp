@@ -18,29 +18,32 @@ void PyController::configure(
   std::shared_ptr<TfBuffer> tf,
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
 {
-  PyPlugin::configure(parent, std::move(name), std::move(tf), std::move(costmap_ros));
+  name_ = std::move(name);
+  tf_ = std::move(tf);
+  costmap_ros_ = std::move(costmap_ros);
+  plugin_.start(parent, name_, bind_costmap(costmap_ros_));
   node_ = parent;
   auto node = parent.lock();
   // (through the node base interface: Humble's LifecycleNode has no get_fully_qualified_name)
-  session_->join(
+  session().join(
     client::CarriedCycle::of(node->get_node_base_interface()->get_fully_qualified_name()));
-  for (const client::InputSpec & spec : bridge_->settings().inputs) {
+  for (const client::InputSpec & spec : bridge().inputs()) {
     // Best effort with a short queue (SensorDataQoS) matches reliable publishers too; only
     // the latest message matters.
     input_subscriptions_.push_back(
       node->create_generic_subscription(
         spec.topic, spec.type, rclcpp::SensorDataQoS(),
-        [this, spec, clock = bridge_->clock()](std::shared_ptr<rclcpp::SerializedMessage> msg) {
+        [this, spec, clock = bridge().clock()](std::shared_ptr<rclcpp::SerializedMessage> msg) {
           const rcl_serialized_message_t & raw = msg->get_rcl_serialized_message();
           protocol::Input input;
           input.name = spec.name;
           input.type = spec.type;
           input.stamp_ns = clock->now().nanoseconds();
           input.cdr.assign(raw.buffer, raw.buffer + raw.buffer_length);
-          session_->set_input(std::move(input));
+          session().set_input(std::move(input));
         }));
     RCLCPP_INFO(
-      bridge_->ros_logger(), "%s: input '%s' from %s (%s)", name_.c_str(), spec.name.c_str(),
+      bridge().ros_logger(), "%s: input '%s' from %s (%s)", name_.c_str(), spec.name.c_str(),
       spec.topic.c_str(), spec.type.c_str());
   }
   sync_debug_publishers();
@@ -50,7 +53,7 @@ void PyController::cleanup()
 {
   input_subscriptions_.clear();  // before the session their callbacks feed goes
   debug_publishers_.clear();
-  PyPlugin::cleanup();
+  plugin_.stop();
 #if !NAV2_PYIF_LYRICAL_API
   plan_.clear();
 #endif
@@ -59,10 +62,10 @@ void PyController::cleanup()
 void PyController::sync_debug_publishers()
 {
   auto node = node_.lock();
-  if (!node || !session_) {
+  if (!node || !plugin_.started()) {
     return;
   }
-  const protocol::StringMap declared = session_->debug_outputs();
+  const protocol::StringMap declared = session().debug_outputs();
   std::vector<std::string> wanted;
   for (const auto & [output, type] : declared) {
     auto found = debug_publishers_.find(output);
@@ -70,23 +73,23 @@ void PyController::sync_debug_publishers()
       debug_publishers_[output] = DebugPublisher{
         type, node->create_generic_publisher(name_ + "/" + output, type, rclcpp::QoS(1))};
       RCLCPP_INFO(
-        bridge_->ros_logger(), "%s: debug output on %s/%s (%s)", name_.c_str(), name_.c_str(),
+        bridge().ros_logger(), "%s: debug output on %s/%s (%s)", name_.c_str(), name_.c_str(),
         output.c_str(), type.c_str());
     }
     if (debug_publishers_[output].publisher->get_subscription_count() > 0) {
       wanted.push_back(output);
     }
   }
-  session_->set_debug_wanted(std::move(wanted));
+  session().set_debug_wanted(std::move(wanted));
 }
 
 void PyController::publish_debug()
 {
-  for (const protocol::DebugOutput & output : session_->take_debug()) {
+  for (const protocol::DebugOutput & output : session().take_debug()) {
     const auto found = debug_publishers_.find(output.name);
     if (found == debug_publishers_.end() || found->second.type != output.type) {
       RCLCPP_WARN_ONCE(
-        bridge_->ros_logger(), "%s: the host returned debug output '%s' (%s), not declared at "
+        bridge().ros_logger(), "%s: the host returned debug output '%s' (%s), not declared at "
         "configure: dropped", name_.c_str(), output.name.c_str(), output.type.c_str());
       continue;
     }
@@ -104,8 +107,8 @@ void PyController::new_plan_begins()
     reset_owed_ = false;
     send_reset();
   }
-  if (client::CarriedCycle * cycle = session_->cycle()) {
-    cycle->use_controller(*session_);  // the next goal checks prepare for this plan
+  if (client::CarriedCycle * cycle = session().cycle()) {
+    cycle->use_controller(session());  // the next goal checks prepare for this plan
   }
 }
 
@@ -120,14 +123,14 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
   nav2_core::GoalChecker * goal_checker, const nav_msgs::msg::Path & transformed_global_plan,
   const geometry_msgs::msg::PoseStamped & global_goal)
 {
-  return bridge_->forward(
+  return bridge().forward(
     [&]() {
       // Already in the costmap's global frame (Nav2's path handler); the transform is a
       // no-op then, and keeps the protocol's one-frame rule should a handler differ.
       const std::string & frame = costmap_ros_->getGlobalFrameID();
       const auto tf_error = client::ErrorKind::ControllerTFError;
-      const double tolerance = bridge_->transform_tolerance();
-      session_->follow(
+      const double tolerance = bridge().transform_tolerance();
+      session().follow(
         ros::to_wire(transformed_global_plan),
         ros::to_wire(ros::in_frame(global_goal, frame, *tf_, tolerance, tf_error)));
       return command(pose, velocity, goal_checker);
@@ -136,14 +139,14 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
 #else
 void PyController::setPlan(const nav_msgs::msg::Path & path)
 {
-  bridge_->forward(
+  bridge().forward(
     [&]() {
       new_plan_begins();
-      const std::optional<client::CallError> deferred = session_->set_plan(ros::to_wire(plan_.set(
-        path, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance())));
+      const std::optional<client::CallError> deferred = session().set_plan(ros::to_wire(plan_.set(
+        path, costmap_ros_->getGlobalFrameID(), *tf_, bridge().transform_tolerance())));
       if (deferred) {
         RCLCPP_WARN(
-          bridge_->ros_logger(), "%s: plan kept, sent when the host answers: %s", name_.c_str(),
+          bridge().ros_logger(), "%s: plan kept, sent when the host answers: %s", name_.c_str(),
           deferred->log_text().c_str());
       }
     });
@@ -153,14 +156,14 @@ geometry_msgs::msg::TwistStamped PyController::computeVelocityCommands(
   const geometry_msgs::msg::PoseStamped & pose, const geometry_msgs::msg::Twist & velocity,
   nav2_core::GoalChecker * goal_checker)
 {
-  return bridge_->forward(
+  return bridge().forward(
     [&]() {
       if (auto fresh = plan_.refreshed(
-          costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance()))
+          costmap_ros_->getGlobalFrameID(), *tf_, bridge().transform_tolerance()))
       {
         // Localisation moved the plan's frame. A host failure leaves it owed, and the cycle
         // below sends it first (and fails as the host does).
-        session_->set_plan(ros::to_wire(*fresh));
+        session().set_plan(ros::to_wire(*fresh));
       }
       return command(pose, velocity, goal_checker);
     });
@@ -172,7 +175,7 @@ geometry_msgs::msg::TwistStamped PyController::command(
   nav2_core::GoalChecker * goal_checker)
 {
   const geometry_msgs::msg::PoseStamped global = ros::in_frame(
-    pose, costmap_ros_->getGlobalFrameID(), *tf_, bridge_->transform_tolerance(),
+    pose, costmap_ros_->getGlobalFrameID(), *tf_, bridge().transform_tolerance(),
     client::ErrorKind::ControllerTFError);
   sync_debug_publishers();
   const protocol::PoseStamped wire_pose = ros::to_wire(global);
@@ -181,10 +184,10 @@ geometry_msgs::msg::TwistStamped PyController::command(
   try {
     // The command another call's query carried, when it was prepared for this call; else
     // the call on its own, carrying the goal check when Nav2 calls that last
-    client::CarriedCycle * cycle = session_->cycle();
+    client::CarriedCycle * cycle = session().cycle();
     const protocol::TwistStamped cmd = cycle ?
-      cycle->compute_velocity_commands(*session_, wire_pose, wire_velocity, wire_tolerances) :
-      session_->compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
+      cycle->compute_velocity_commands(session(), wire_pose, wire_velocity, wire_tolerances) :
+      session().compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
     host_silent_ = false;
     publish_debug();
     return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);
@@ -197,10 +200,10 @@ geometry_msgs::msg::TwistStamped PyController::command(
 void PyController::setSpeedLimit(const double & speed_limit, const bool & percentage)
 {
   try {
-    session_->set_speed_limit(speed_limit, percentage);
+    session().set_speed_limit(speed_limit, percentage);
   } catch (const client::CallError & error) {
     RCLCPP_WARN(
-      bridge_->ros_logger(), "%s: speed limit %.3f%s: %s", name_.c_str(), speed_limit,
+      bridge().ros_logger(), "%s: speed limit %.3f%s: %s", name_.c_str(), speed_limit,
       percentage ? " %" : " m/s", error.log_text().c_str());
   }
 }
@@ -209,9 +212,9 @@ void PyController::setSpeedLimit(const double & speed_limit, const bool & percen
 bool PyController::cancel()
 {
   try {
-    return session_->cancel();
+    return session().cancel();
   } catch (const client::CallError & error) {
-    RCLCPP_WARN(bridge_->ros_logger(), "%s: cancel: %s", name_.c_str(), error.what());
+    RCLCPP_WARN(bridge().ros_logger(), "%s: cancel: %s", name_.c_str(), error.what());
     return true;
   }
 }
@@ -229,9 +232,9 @@ void PyController::reset()
 void PyController::send_reset()
 {
   try {
-    session_->reset(session_->timeouts().call);
+    session().reset(session().timeouts().call);
   } catch (const client::CallError & error) {
-    RCLCPP_DEBUG(bridge_->ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
+    RCLCPP_DEBUG(bridge().ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
   }
 }
 

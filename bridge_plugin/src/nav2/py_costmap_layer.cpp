@@ -172,12 +172,12 @@ void PyCostmapLayer::reset()
 
 void PyCostmapLayer::activate()
 {
-  plugin_.bridge().lifecycle("activate", [this]() {plugin_.session().activate();});
+  plugin_.activate();
 }
 
 void PyCostmapLayer::deactivate()
 {
-  plugin_.bridge().lifecycle("deactivate", [this]() {plugin_.session().deactivate();});
+  plugin_.deactivate();
 }
 
 }  // namespace nav2_pyif_bridge

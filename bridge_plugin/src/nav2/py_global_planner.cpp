@@ -1,11 +1,22 @@
 #include "nav2_pyif_bridge/py_global_planner.hpp"
 
+#include <utility>
+
 #include "pluginlib/class_list_macros.hpp"
 
 #include "nav2_pyif_bridge/ros_conversions.hpp"
 
 namespace nav2_pyif_bridge
 {
+
+void PyGlobalPlanner::configure(
+  const Nav2Node::WeakPtr & parent, std::string name, std::shared_ptr<TfBuffer> tf,
+  std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros)
+{
+  tf_ = std::move(tf);
+  costmap_ros_ = std::move(costmap_ros);
+  plugin_.start(parent, name, bind_costmap(costmap_ros_));
+}
 
 #if NAV2_PYIF_LYRICAL_API
 nav_msgs::msg::Path PyGlobalPlanner::createPlan(
@@ -35,10 +46,10 @@ nav_msgs::msg::Path PyGlobalPlanner::plan(
   const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
   const std::function<bool()> & cancel_checker)
 {
-  return bridge_->forward(
+  return plugin_.bridge().forward(
     [&]() {
       const std::string frame = costmap_ros_->getGlobalFrameID();
-      const double tolerance = bridge_->transform_tolerance();
+      const double tolerance = plugin_.bridge().transform_tolerance();
       const auto tf_error = client::ErrorKind::PlannerTFError;
       const auto wire_start = ros::to_wire(ros::in_frame(start, frame, *tf_, tolerance, tf_error));
       const auto wire_goal = ros::to_wire(ros::in_frame(goal, frame, *tf_, tolerance, tf_error));
@@ -53,8 +64,8 @@ nav_msgs::msg::Path PyGlobalPlanner::plan(
         }
       }
       const protocol::Path path =
-        session_->create_plan(wire_start, wire_goal, wire_viapoints, cancel_checker);
-      return ros::to_ros(path, frame, bridge_->clock()->now());
+        plugin_.session().create_plan(wire_start, wire_goal, wire_viapoints, cancel_checker);
+      return ros::to_ros(path, frame, plugin_.bridge().clock()->now());
     });
 }
 

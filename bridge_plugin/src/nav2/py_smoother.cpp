@@ -36,12 +36,12 @@ void PySmoother::cleanup()
 
 void PySmoother::activate()
 {
-  plugin_.bridge().lifecycle("activate", [this]() {plugin_.session().activate();});
+  plugin_.activate();
 }
 
 void PySmoother::deactivate()
 {
-  plugin_.bridge().lifecycle("deactivate", [this]() {plugin_.session().deactivate();});
+  plugin_.deactivate();
 }
 
 bool PySmoother::smooth(nav_msgs::msg::Path & path, const rclcpp::Duration & max_time)

@@ -30,9 +30,6 @@ builtin_interfaces::msg::Time from_ns(std::int64_t ns) noexcept
   return stamp;
 }
 
-namespace
-{
-
 std::array<double, 7> pose_row(const geometry_msgs::msg::Pose & p) noexcept
 {
   return {p.position.x, p.position.y, p.position.z, p.orientation.x, p.orientation.y,
@@ -52,7 +49,17 @@ geometry_msgs::msg::Pose pose_of(const double * row) noexcept
   return p;
 }
 
-}  // namespace
+geometry_msgs::msg::Twist twist_of(const std::array<double, 6> & row) noexcept
+{
+  geometry_msgs::msg::Twist t;
+  t.linear.x = row[0];
+  t.linear.y = row[1];
+  t.linear.z = row[2];
+  t.angular.x = row[3];
+  t.angular.y = row[4];
+  t.angular.z = row[5];
+  return t;
+}
 
 proto::PoseStamped to_wire(const geometry_msgs::msg::PoseStamped & pose)
 {
@@ -84,12 +91,7 @@ geometry_msgs::msg::TwistStamped to_ros(
   geometry_msgs::msg::TwistStamped out;
   out.header.frame_id = cmd.frame_id.empty() ? frame : cmd.frame_id;
   out.header.stamp = cmd.stamp_ns == 0 ? stamp : from_ns(cmd.stamp_ns);
-  out.twist.linear.x = cmd.twist[0];
-  out.twist.linear.y = cmd.twist[1];
-  out.twist.linear.z = cmd.twist[2];
-  out.twist.angular.x = cmd.twist[3];
-  out.twist.angular.y = cmd.twist[4];
-  out.twist.angular.z = cmd.twist[5];
+  out.twist = twist_of(cmd.twist);
   return out;
 }
 

@@ -1,5 +1,9 @@
-// nav2_core's smoother exceptions, apart from nav2_exceptions.cpp: smoother_exceptions.hpp and
-// controller_exceptions.hpp both define a nav2_core::InvalidPath.
+// Generated from protocol/nav2_pyif_protocol/constants.py by
+// `python -m nav2_pyif_codegen.generate`: do not edit.
+//
+// Throw nav2_core's smoother exceptions (smoother_exceptions.hpp), apart from nav2_exceptions.cpp:
+// nav2_core's smoother and controller headers both define an InvalidPath.
+
 #include "nav2_pyif_bridge/smoother_exceptions.hpp"
 
 #include <string>
@@ -20,15 +24,16 @@ void throw_smoother_exception(client::ErrorKind kind, const std::string & messag
 #if NAV2_PYIF_HAS_SMOOTHER_EXCEPTIONS
   using client::ErrorKind;
   switch (kind) {
-    case ErrorKind::InvalidSmoother: throw nav2_core::InvalidSmoother(message);
     case ErrorKind::InvalidPath: throw nav2_core::InvalidPath(message);
+    case ErrorKind::InvalidSmoother: throw nav2_core::InvalidSmoother(message);
     case ErrorKind::SmootherTimedOut: throw nav2_core::SmootherTimedOut(message);
     case ErrorKind::SmoothedPathInCollision: throw nav2_core::SmoothedPathInCollision(message);
     case ErrorKind::FailedToSmoothPath: throw nav2_core::FailedToSmoothPath(message);
     default: throw nav2_core::SmootherException(message);
   }
 #else
-  (void)kind;  // Humble has no smoother exceptions: smoother_server catches PlannerException
+  // Humble has no smoother exceptions: its smoother_server catches PlannerException
+  (void)kind;
   throw nav2_core::PlannerException(message);
 #endif
 }

@@ -16,9 +16,9 @@ namespace
 
 using client::LogLevel;
 constexpr const char * kConfigEnv = "NAV2_PYIF_ZENOH_CONFIG";
-constexpr const char * kDefaultRouter = "tcp/localhost:7447";
-constexpr const char * kFastRetry =
-  "{period_init_ms: 100, period_max_ms: 500, period_increase_factor: 2}";
+#if defined(ZENOHCXX_ZENOHPICO)
+constexpr const char * kDefaultRouter = "tcp/localhost:7447";  // no config files here
+#endif
 
 std::string json_string_list(const std::vector<std::string> & items)
 {
@@ -55,21 +55,12 @@ zenoh::Config make_config(const ZenohOptions & options)
   config.insert(Z_CONFIG_MULTICAST_SCOUTING_KEY, "false");
   return config;
 #else
-  zenoh::Config config = file.empty() ? zenoh::Config::create_default() :
-    zenoh::Config::from_file(file);
-  if (file.empty()) {
-    config.insert_json5("mode", "\"client\"");
-    config.insert_json5("scouting/multicast/enabled", "false");
-    // As the planner host's built-in config: a vanished router noticed within a second, and
-    // one that comes back (or a restarted host the plugin connects to directly) re-joined
-    // within half a second, not after Zenoh's back-off of up to 4 s.
-    config.insert_json5("transport/link/tx/lease", "1000");
-    config.insert_json5("transport/link/tx/keep_alive", "4");
-    config.insert_json5("connect/retry", kFastRetry);
-    if (options.connect.empty()) {
-      config.insert_json5("connect/endpoints", json_string_list({kDefaultRouter}));
-    }
-  }
+  // The package's default session when no file is named (share/nav2_pyif_bridge/config/
+  // default_session.json5), loaded as rmw_zenoh loads its DEFAULT_RMW_ZENOH_SESSION_CONFIG
+  // .json5: a client of tcp/localhost:7447 with the planner host's lease and retry (generated
+  // from nav2_pyif_protocol/zenoh/client.json5).
+  zenoh::Config config = zenoh::Config::from_file(
+    file.empty() ? NAV2_PYIF_DEFAULT_ZENOH_CONFIG : file);
   if (!options.connect.empty()) {
     config.insert_json5("connect/endpoints", json_string_list(options.connect));
   }
@@ -79,21 +70,16 @@ zenoh::Config make_config(const ZenohOptions & options)
 
 std::string describe(const ZenohOptions & options)
 {
-  const std::string file = config_file(options);
-  std::string out = file.empty() ? std::string() : "config file " + file;
-  const auto & connect = options.connect;
-  if (!connect.empty() || file.empty()) {
-    std::string endpoints;
 #if defined(ZENOHCXX_ZENOHPICO)
-    endpoints = connect.empty() ? kDefaultRouter : connect.front();
+  return options.connect.empty() ? kDefaultRouter : options.connect.front();
 #else
-    for (const auto & e : (connect.empty() ? std::vector<std::string>{kDefaultRouter} : connect)) {
-      endpoints += (endpoints.empty() ? "" : ", ") + e;
-    }
-#endif
-    out += (out.empty() ? "" : ", ") + endpoints;
+  const std::string file = config_file(options);
+  std::string out = file.empty() ? "the default config" : "config file " + file;
+  for (const auto & endpoint : options.connect) {
+    out += ", " + endpoint;
   }
   return out;
+#endif
 }
 
 // One session per configuration and process, shared by its plugins, and kept until the
@@ -111,6 +97,17 @@ std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options
     session = std::make_shared<zenoh::Session>(zenoh::Session::open(make_config(options)));
   }
   return session;
+}
+
+// Every query goes to all matching queryables (replicas drop what is not theirs: host=<id>).
+zenoh::Session::GetOptions get_options(const protocol::Bytes & payload, client::Duration timeout)
+{
+  zenoh::Session::GetOptions options;
+  options.target = Z_QUERY_TARGET_ALL;
+  options.payload = zenoh::Bytes(payload);
+  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
+  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
+  return options;
 }
 
 // A host appearing or going is worth a line in Nav2's log: it dates a crash, a lost link (its
@@ -256,11 +253,6 @@ std::optional<protocol::Bytes> ZenohTransport::query(
     bool done{false};
   };
   auto pending = std::make_shared<Pending>();
-  zenoh::Session::GetOptions options;
-  options.target = Z_QUERY_TARGET_ALL;  // replicas drop what is not theirs (host=<id>)
-  options.payload = zenoh::Bytes(payload);
-  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
-  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
   session->get(
     zenoh::KeyExpr(target.key), target.parameters(),
     [pending](zenoh::Reply & reply) {
@@ -278,7 +270,7 @@ std::optional<protocol::Bytes> ZenohTransport::query(
       pending->done = true;
       pending->cv.notify_all();
     },
-    std::move(options));
+    get_options(payload, timeout));
 
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   std::unique_lock<std::mutex> lock(pending->mutex);
@@ -307,14 +299,9 @@ void ZenohTransport::send(
   if (!session) {
     return;
   }
-  zenoh::Session::GetOptions options;
-  options.target = Z_QUERY_TARGET_ALL;
-  options.payload = zenoh::Bytes(payload);
-  const auto ms = std::chrono::ceil<std::chrono::milliseconds>(timeout).count();
-  options.timeout_ms = static_cast<std::uint64_t>(std::max<std::int64_t>(1, ms));
   session->get(
     zenoh::KeyExpr(target.key), target.parameters(), [](zenoh::Reply &) {}, []() {},
-    std::move(options));
+    get_options(payload, timeout));
 }
 
 }  // namespace nav2_pyif_bridge

@@ -15,6 +15,7 @@
 #include <thread>
 #include <vector>
 
+#include "nav2_pyif_bridge/client/keys.hpp"
 #include "nav2_pyif_bridge/client/local_host.hpp"
 
 namespace nav2_pyif_bridge::client
@@ -49,20 +50,20 @@ bool alive(pid_t pid)
 
 TEST(LocalHost, CommandLineForTheSeedStyle)
 {
-  LocalHostSpec spec;
-  spec.module = "nav2_pyif_planners.apf";
-  spec.delegates = {{"configure", "configure"}, {"compute_velocity_commands", "compute"}};
-  spec.paths = {"/opt/p"};
-  spec.extra_args = {"--isolation", "none"};
+  BridgeParameters spec;
+  spec.python_module = "nav2_pyif_planners.apf";
+  spec.python_delegates = {"configure", "compute_velocity_commands=compute,set_plan=plan"};
+  spec.python_path = {"/opt/p"};
+  spec.planner_host_args = {"--isolation", "none"};
   EXPECT_EQ(
     local_host_arguments(spec, "nav2_pyif/local/cs/FollowPath", "tcp/127.0.0.1:7000"),
     (std::vector<std::string>{"planner-host", "--key", "nav2_pyif/local/cs/FollowPath",
-      "--module", "nav2_pyif_planners.apf", "--delegate", "configure=configure", "--delegate",
-      "compute_velocity_commands=compute", "--path", "/opt/p", "--listen", "tcp/127.0.0.1:7000",
-      "--isolation", "none"}));
-  spec = LocalHostSpec{};
-  spec.command = "/venv/bin/planner-host";
-  spec.planner = "pkg.m:C";
+      "--module", "nav2_pyif_planners.apf", "--delegate", "configure", "--delegate",
+      "compute_velocity_commands=compute,set_plan=plan", "--path", "/opt/p", "--listen",
+      "tcp/127.0.0.1:7000", "--isolation", "none"}));
+  spec = BridgeParameters{};
+  spec.planner_host_command = "/venv/bin/planner-host";
+  spec.python_planner = "pkg.m:C";
   EXPECT_EQ(
     local_host_arguments(spec, "k", "tcp/127.0.0.1:1"),
     (std::vector<std::string>{"/venv/bin/planner-host", "--key", "k", "--planner", "pkg.m:C",
@@ -76,21 +77,6 @@ TEST(LocalHost, KeysAreValidPrefixes)
   const std::string odd = local_host_key("a*b/c", "");
   EXPECT_EQ(odd, "nav2_pyif/local/a_b_c/_");
   EXPECT_NO_THROW(validate_prefix(odd));
-}
-
-TEST(LocalHost, FindsExecutables)
-{
-  EXPECT_EQ(find_executable("sh", "/nonexistent:/bin:/usr/bin"), "/bin/sh");
-  EXPECT_EQ(find_executable("/bin/sh", ""), "/bin/sh");
-  EXPECT_EQ(find_executable("no-such-planner-host", "/bin:/usr/bin"), "");
-  char file_template[] = "/tmp/nav2_pyif_not_executable_XXXXXX";
-  const int fd = ::mkstemp(file_template);
-  ASSERT_GE(fd, 0);
-  ::close(fd);
-  ::chmod(file_template, 0644);
-  EXPECT_EQ(find_executable(file_template, "/bin"), "");  // not executable, even for root
-  std::remove(file_template);
-  EXPECT_EQ(find_executable("", "/bin"), "");
 }
 
 TEST(LocalHost, PicksAFreePort)
@@ -155,15 +141,25 @@ TEST(ProcessSupervisor, KillsAProcessThatIgnoresSigterm)
 
 TEST(ProcessSupervisor, AMissingProgramIsAClearError)
 {
-  ProcessSupervisor::Options o;
-  o.argv = {"no-such-planner-host-here"};
-  ProcessSupervisor process(o);
-  try {
-    process.start();
-    FAIL() << "started";
-  } catch (const std::runtime_error & e) {
-    EXPECT_NE(std::string(e.what()).find("no-such-planner-host-here"), std::string::npos);
+  char file_template[] = "/tmp/nav2_pyif_not_executable_XXXXXX";
+  const int fd = ::mkstemp(file_template);
+  ASSERT_GE(fd, 0);
+  ::close(fd);
+  ::chmod(file_template, 0644);  // not executable, even for root
+  const std::string programs[] = {"no-such-planner-host-here", file_template};
+  for (const std::string & program : programs) {
+    ProcessSupervisor::Options o;
+    o.argv = {program};
+    ProcessSupervisor process(o);
+    try {
+      process.start();
+      FAIL() << "started " << program;
+    } catch (const std::runtime_error & e) {
+      EXPECT_NE(std::string(e.what()).find("cannot start '" + program + "'"), std::string::npos)
+        << e.what();
+    }
   }
+  std::remove(file_template);
 }
 
 TEST(ProcessSupervisor, ChildSeesUnbufferedPython)
@@ -196,9 +192,9 @@ TEST(LocalHost, StartsTheHostCommandOnALoopbackEndpoint)
     s << "#!/bin/sh\necho \"$@\" > " << dir << "/args\nexec sleep 60\n";
   }
   ::chmod(script.c_str(), 0755);
-  LocalHostSpec spec;
-  spec.command = script;
-  spec.planner = "pkg.m:C";
+  BridgeParameters spec;
+  spec.planner_host_command = script;
+  spec.python_planner = "pkg.m:C";
   ProcessSupervisor::Options supervision;
   supervision.stop_grace = 1s;
   LocalHost host(spec, local_host_key("controller_server", "FollowPath"), {}, supervision);

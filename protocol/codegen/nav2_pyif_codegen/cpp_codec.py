@@ -16,6 +16,8 @@ from nav2_pyif_protocol.constants import (
     OPS_BY_PLUGIN,
     PROTOCOL_ERRORS,
     PROTOCOL_VERSION,
+    BehaviorFailure,
+    BehaviorStatus,
     ErrorType,
     Op,
     PluginType,
@@ -359,12 +361,42 @@ def constants_hpp() -> str:
             if e in PROTOCOL_ERRORS
         ),
         "}  // namespace error_type",
+        "",
+        "// std::nullopt for a name not in `names` (the wire's spelling, by enumerator).",
+        "template<class Enum, std::size_t N>",
+        "constexpr std::optional<Enum> from_name(",
+        "  const std::array<std::string_view, N> & names, std::string_view name) noexcept",
+        "{",
+        "  for (std::size_t i = 0; i < N; ++i) {",
+        "    if (names[i] == name) {",
+        "      return static_cast<Enum>(i);",
+        "    }",
+        "  }",
+        "  return std::nullopt;",
+        "}",
     ]
+    for enum, names in (
+        (BehaviorStatus, "kBehaviorStatusNames"),
+        (BehaviorFailure, "kBehaviorFailureNames"),
+    ):
+        assert enum.__doc__ is not None
+        body += [
+            "",
+            *comment(" ".join(enum.__doc__.split()), ""),
+            f"enum class {enum.__name__} : std::uint8_t",
+            "{",
+            *(f"  {camel(e.name.lower())}," for e in enum),
+            "};",
+            f"inline constexpr std::array<std::string_view, {len(enum)}> {names} = {{",
+            *(f'  "{e.value}",' for e in enum),
+            "};",
+        ]
     return cpp_file(
-        "Names every party of the protocol shares: the version and the error types "
-        "(PROTOCOL.md sections 3 and 7).",
-        ["<cstdint>", "<string_view>"],
+        "Names every party of the protocol shares: the version, the error types and a "
+        "behaviour's status and failure names (PROTOCOL.md sections 3, 7 and 17).",
+        ["<array>", "<cstddef>", "<cstdint>", "<optional>", "<string_view>"],
         body,
+        source="constants.py",
     )
 
 

@@ -1,6 +1,7 @@
 """Generate, from the one description of the protocol (``schema``, ``constants``), the files
 that repeat it: the C++ message structs and their codec, the plugin types and nav2_core error
-tables (bridge_plugin/), and PROTOCOL.md's field tables.
+tables, the plugin's own parameters (``bridge_params``) and its default Zenoh config
+(bridge_plugin/), PROTOCOL.md's field tables and the bridge README's parameter table.
 
     python -m nav2_pyif_codegen.generate            # rewrite them after editing schema.py
     python -m nav2_pyif_codegen.generate --check    # exit 1, naming each file, if stale
@@ -17,7 +18,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from nav2_pyif_codegen import cpp_codec, cpp_errors, spec_tables
+from nav2_pyif_codegen import cpp_codec, cpp_errors, cpp_params, spec_tables, zenoh_copy
 
 #: The repository this package lives in (protocol/codegen/nav2_pyif_codegen/ -> the repository).
 REPOSITORY = Path(__file__).resolve().parents[3]
@@ -27,9 +28,11 @@ COMMAND = cpp_codec.COMMAND
 
 def render(repository: Path = REPOSITORY) -> dict[str, str]:
     """Path (from the repository root) -> its generated text. PROTOCOL.md keeps its prose:
-    only the part between its schema-table markers is generated."""
-    out = cpp_codec.files() | cpp_errors.files()
+    only the part between its schema-table markers is generated; so does the bridge README,
+    but for its parameter table."""
+    out = cpp_codec.files() | cpp_errors.files() | cpp_params.files() | zenoh_copy.files()
     out[PROTOCOL_MD] = spec_tables.splice((repository / PROTOCOL_MD).read_text())
+    out[cpp_params.README] = cpp_params.splice_readme((repository / cpp_params.README).read_text())
     return out
 
 

@@ -26,6 +26,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import zenoh
+from nav2_pyif_protocol.bridge_params import default_seconds, timeout_default
 from nav2_pyif_protocol.codec import (
     ErrorInfo,
     ProtocolError,
@@ -55,12 +56,13 @@ _REQUEST_FIELDS = {op: [f.name for f in fields[0]] for op, fields in BODIES.item
 
 @dataclass(frozen=True)
 class Timeouts:
-    """Seconds to wait for a reply. ``call`` should stay below the controller period."""
+    """Seconds to wait for a reply. ``call`` should stay below the controller period. The
+    defaults are the Nav2 plugin's (its timeout parameters, bridge_params.py)."""
 
-    call: float = 0.04
-    lifecycle: float = 5.0
-    configure: float = 10.0
-    plan: float = 5.0
+    call: float = timeout_default(Timeout.CALL)
+    lifecycle: float = timeout_default(Timeout.LIFECYCLE)
+    configure: float = timeout_default(Timeout.CONFIGURE)
+    plan: float = timeout_default(Timeout.PLAN)
 
 
 def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
@@ -141,7 +143,7 @@ class PluginClient:
         return self.transport.session
 
     # --- public lifecycle ---------------------------------------------------------------
-    def wait_for_host(self, timeout: float = 5.0) -> bool:
+    def wait_for_host(self, timeout: float = default_seconds("wait_for_host")) -> bool:
         """Block until a planner host announces itself on this prefix."""
         return self.hosts.wait(timeout)
 

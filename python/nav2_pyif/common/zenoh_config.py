@@ -1,12 +1,13 @@
 """Zenoh session configuration from a JSON5 file or command-line flags (rmw_zenoh-style).
 
-Precedence: ``--zenoh-config FILE`` > ``$NAV2_PYIF_ZENOH_CONFIG`` > defaults; then
-``--connect`` / ``--listen`` / ``--mode`` override. Defaults, chosen as rmw_zenoh chooses
-them: the planner host is a peer that connects to a Zenoh router on tcp/localhost:7447 and
-listens on a free local port (rmw_zenoh's nodes do both: a peer that only connects cannot be
-reached by another peer through a router); the tools (``nav2-pyif reload``, ...) are clients
-of that router, as ros2cli's are, and as the C++ plugin is. Multicast scouting is off. With
-``--listen`` and no ``--connect``, the host connects nowhere and waits for plugins to dial it.
+Precedence: ``--zenoh-config FILE`` > ``$NAV2_PYIF_ZENOH_CONFIG`` > the default file of the
+session's mode; then ``--connect`` / ``--listen`` / ``--mode`` override. The defaults are files
+(nav2_pyif_protocol/zenoh/<mode>.json5, nav2_pyif_protocol.zenoh_defaults), chosen as rmw_zenoh
+chooses them: the planner host is a peer that connects to a Zenoh router on tcp/localhost:7447
+and listens on a free local port; the tools (``nav2-pyif reload``, ...) are clients of that
+router, as ros2cli's are, and as the C++ plugin is (its zenoh-c backend loads the same client
+file). Multicast scouting is off. With ``--listen`` and no ``--connect``, the host connects
+nowhere and waits for plugins to dial it.
 """
 
 from __future__ import annotations
@@ -17,23 +18,12 @@ import os
 from dataclasses import dataclass, field
 
 import zenoh
+from nav2_pyif_protocol import zenoh_defaults
 
 from nav2_pyif.common.option_types import FromVariable, endpoint, zenoh_config_file
 
-DEFAULT_ROUTER = "tcp/localhost:7447"
-LOCAL_LISTEN = "tcp/localhost:0"  # a peer's own port, found by other peers through the router
+DEFAULT_ROUTER = "tcp/localhost:7447"  # the default files' connect endpoint, for messages
 CONFIG_ENV = "NAV2_PYIF_ZENOH_CONFIG"
-# A host whose machine vanishes (power, Wi-Fi, a cut cable) closes no connection: the other
-# end notices only when nothing has arrived for one lease. Zenoh's default of 10 s left a
-# plugin calling a dead host for 10 s; with 1 s, and keep-alives 4 times per lease, the
-# router (or a plugin connected directly) withdraws the host's token within about a second.
-# Each end expires the other after the lease the other announced (zenoh-pico: the shorter
-# of the two), so the host's own lease decides, whatever the router or plugin configure.
-LEASE_MS = 1000
-KEEP_ALIVES_PER_LEASE = 4
-# A router that restarts (or a link that comes back) is re-joined within half a second, not
-# after Zenoh's back-off of up to 4 s: the robot waits for its planner meanwhile.
-CONNECT_RETRY = {"period_init_ms": 100, "period_max_ms": 500, "period_increase_factor": 2}
 
 
 @dataclass
@@ -111,22 +101,16 @@ def build_config(options: ZenohOptions) -> zenoh.Config:
             raise FileNotFoundError(f"Zenoh config file {path!r} does not exist")
         config: zenoh.Config = zenoh.Config.from_file(path)
     else:
-        config = zenoh.Config()
         mode = options.mode or options.default_mode
-        config.insert_json5("mode", json.dumps(mode))
-        config.insert_json5("scouting/multicast/enabled", json.dumps(options.multicast_scouting))
-        # Zenoh's shared-memory transport (on by default in eclipse-zenoh, off in rmw_zenoh)
-        # creates its 16 MiB pool lazily, on the first message above 3 kB: that message (in
-        # practice the first plan) took 10-20 ms instead of 1 ms. Payloads here are at most a
-        # few MB and the C++ plugin's backends do not use it: off, unless a config file says.
-        config.insert_json5("transport/shared_memory/enabled", "false")
-        config.insert_json5("transport/link/tx/lease", str(LEASE_MS))
-        config.insert_json5("transport/link/tx/keep_alive", str(KEEP_ALIVES_PER_LEASE))
-        config.insert_json5("connect/retry", json.dumps(CONNECT_RETRY))
-        if not options.connect and not options.listen:
-            config.insert_json5("connect/endpoints", json.dumps([DEFAULT_ROUTER]))
-            if mode == "peer":
-                config.insert_json5("listen/endpoints", json.dumps([LOCAL_LISTEN]))
+        config = zenoh.Config.from_file(str(zenoh_defaults.path(mode)))
+        if options.multicast_scouting:
+            config.insert_json5("scouting/multicast/enabled", "true")
+        if options.connect or options.listen:  # the flags replace both of the file's lists,
+            # but a peer given only --connect still listens on a free port of every interface
+            # (Zenoh's own default), so peers that learn it through a router can dial it
+            listen = options.listen or (["tcp/[::]:0"] if mode == "peer" else [])
+            config.insert_json5("connect/endpoints", json.dumps(options.connect))
+            config.insert_json5("listen/endpoints", json.dumps(listen))
     if path and options.mode:
         config.insert_json5("mode", json.dumps(options.mode))
     if options.connect:

@@ -109,7 +109,8 @@ def build_parser() -> argparse.ArgumentParser:
         default=[],
         metavar="ROLE=FUNCTION",
         help="role -> function of --module (the plugin's python_delegates), repeatable "
-        "or comma-separated; without it, the functions named after the roles",
+        "or comma-separated; a bare ROLE binds the function of its name; without it, the "
+        "functions named after the roles",
     )
     what.add_argument(
         "--serve",

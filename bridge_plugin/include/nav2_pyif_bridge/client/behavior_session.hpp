@@ -6,20 +6,17 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge::client
 {
 
-// TimedBehavior's Status.
-enum class BehaviorStatus : std::uint8_t {Succeeded, Failed, Running};
-
-// Why a behaviour failed: the action result's error code of that name (PROTOCOL.md section 17).
-enum class BehaviorFailure : std::uint8_t
-{
-  None, Unknown, Timeout, TfError, InvalidInput, CollisionAhead,
-};
+// TimedBehavior's Status, and why a behaviour failed: the action result's error code of that
+// name (PROTOCOL.md section 17); their wire names are generated from constants.py.
+using protocol::BehaviorFailure;
+using protocol::BehaviorStatus;
 
 struct BehaviorStep
 {
@@ -31,8 +28,14 @@ struct BehaviorStep
 };
 
 // "succeeded" / "failed" / "running" and the failure names, as the wire spells them.
-std::optional<BehaviorStatus> behavior_status_from_name(const std::string & name) noexcept;
-std::optional<BehaviorFailure> behavior_failure_from_name(const std::string & name) noexcept;
+inline std::optional<BehaviorStatus> behavior_status_from_name(std::string_view name) noexcept
+{
+  return protocol::from_name<BehaviorStatus>(protocol::kBehaviorStatusNames, name);
+}
+inline std::optional<BehaviorFailure> behavior_failure_from_name(std::string_view name) noexcept
+{
+  return protocol::from_name<BehaviorFailure>(protocol::kBehaviorFailureNames, name);
+}
 
 class BehaviorSession : public KindSession<PluginKind::Behavior>
 {

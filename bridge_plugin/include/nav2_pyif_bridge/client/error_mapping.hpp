@@ -17,43 +17,31 @@ namespace nav2_pyif_bridge::client
 {
 
 // The plugin types and the nav2_core exception classes (Jazzy / Kilted), whose names are also
-// the wire's error.type values: generated from constants.py (protocol/nav2_errors.hpp).
+// the wire's error.type values, and the lookups in their tables (plugin_type_name,
+// error_kind_name, error_kind_from_name, plugin_kind_of, belongs_to, generic_error,
+// host_failure_error, invalid_error): generated from constants.py (protocol/nav2_errors.hpp).
 using protocol::ErrorKind;
 using protocol::kErrorKindCount;
 using protocol::PluginKind;
-
-// The wire's configure.plugin_type: "controller", "global_planner", "smoother",
-// "goal_checker", "progress_checker" or "costmap_layer".
-std::string_view plugin_type_name(PluginKind kind) noexcept;
+using protocol::belongs_to;
+using protocol::error_kind_from_name;
+using protocol::error_kind_name;
+using protocol::generic_error;
+using protocol::host_failure_error;
+using protocol::invalid_error;
+using protocol::plugin_kind_of;
+using protocol::plugin_type_name;
 
 // Which nav2_core exception classes exist: Humble has only PlannerException (its controllers
 // and smoothers throw it too); Jazzy and Kilted have the controller, planner and smoother
 // classes of ErrorKind.
 enum class Nav2Api : std::uint8_t {Humble, Jazzy};
 
-std::string_view error_kind_name(ErrorKind kind) noexcept;
-// std::nullopt for a name that is no nav2_core exception (protocol errors included).
-std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept;
-// The plugin type whose exceptions `kind` belongs to (InvalidPath: the controller's).
-PluginKind plugin_kind_of(ErrorKind kind) noexcept;
-// Whether a plugin of type `plugin` throws `kind` under its own name: the controller's and the
-// smoother's own classes (InvalidPath for both), the planner's; the checkers and costmap layers
-// have no classes of their own in nav2_core: ControllerException only (a layer never throws
-// into Nav2: its plugin logs the error).
-bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept;
-// ControllerException (controller, goal and progress checker) / PlannerException /
-// SmootherException.
-ErrorKind generic_error(PluginKind kind) noexcept;
-// What a plugin throws when its host, not its planner, failed the call (none alive, no reply
-// in time, a broken transport, an Unavailable reply): NoValidControl for a controller,
-// the generic class for the others, so that Nav2's recovery conditions retry it on every
-// distribution (constants.py HOST_FAILURE_ERROR; RELIABILITY.md).
-ErrorKind host_failure_error(PluginKind kind) noexcept;
-// What a plugin throws when it cannot be configured: InvalidController / InvalidPlanner /
-// InvalidSmoother / ControllerException (checkers).
-ErrorKind invalid_error(PluginKind kind) noexcept;
 // The class actually thrown on `api`: `kind` itself on Jazzy, PlannerException on Humble.
-ErrorKind for_api(ErrorKind kind, Nav2Api api) noexcept;
+constexpr ErrorKind for_api(ErrorKind kind, Nav2Api api) noexcept
+{
+  return api == Nav2Api::Humble ? ErrorKind::PlannerException : kind;
+}
 
 // Why a call failed. Remote errors come from the host; the others happen in the plugin.
 enum class Cause : std::uint8_t

@@ -18,7 +18,7 @@
 
 #include "nav2_pyif_bridge/client/clock.hpp"
 #include "nav2_pyif_bridge/client/log.hpp"
-#include "nav2_pyif_bridge/client/settings.hpp"
+#include "nav2_pyif_bridge/client/bridge_parameters.hpp"
 
 namespace nav2_pyif_bridge::client
 {
@@ -27,17 +27,14 @@ namespace nav2_pyif_bridge::client
 // Throws std::system_error.
 std::uint16_t pick_free_tcp_port();
 
-// `command` itself when it contains a '/', else the first executable <dir>/<command> of
-// `search_path` (':'-separated, as $PATH); empty when there is none.
-std::string find_executable(const std::string & command, std::string_view search_path);
-
 // The key a local host serves for a plugin: nav2_pyif/local/<node>/<plugin>, with characters
 // a key chunk cannot hold replaced by '_'.
 std::string local_host_key(std::string_view node, std::string_view plugin);
 
-// planner-host's argument vector for `spec` serving `key`, listening on `listen_endpoint`.
+// planner-host's argument vector for the plugin's python_* and planner_host_* parameters,
+// serving `key`, listening on `listen_endpoint`. The host validates what they name.
 std::vector<std::string> local_host_arguments(
-  const LocalHostSpec & spec, const std::string & key, const std::string & listen_endpoint);
+  const BridgeParameters & spec, const std::string & key, const std::string & listen_endpoint);
 
 // Runs a program and restarts it whenever it exits, until stop(). The child gets its own
 // process group, PYTHONUNBUFFERED=1, and SIGTERM when the supervising thread dies (Linux), so
@@ -47,7 +44,7 @@ class ProcessSupervisor
 public:
   struct Options
   {
-    std::vector<std::string> argv;  // argv[0]: the program, searched on $PATH
+    std::vector<std::string> argv;  // argv[0]: the program, searched on $PATH (execvp)
     Duration restart_delay{std::chrono::seconds(1)};       // first back-off ...
     Duration max_restart_delay{std::chrono::seconds(30)};  // ... doubling up to this
     Duration stable_after{std::chrono::seconds(10)};  // a run this long resets the back-off
@@ -73,18 +70,15 @@ public:
 
 private:
   void supervise();
-  bool spawn();  // mutex_ not held
+  std::string spawn();  // "" once the process runs, else why not; mutex_ not held
 
   Options options_;
   Logger logger_;
-  std::string program_;
   std::vector<std::string> environment_;
 
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
   bool stopping_{false};
-  bool first_spawned_{false};
-  std::string spawn_error_;
   pid_t pid_{0};
   unsigned starts_{0};
   std::string last_exit_;
@@ -98,7 +92,7 @@ class LocalHost
 public:
   // Throws std::runtime_error (planner-host not found, ...).
   LocalHost(
-    const LocalHostSpec & spec, std::string key, Logger logger = {},
+    const BridgeParameters & spec, std::string key, Logger logger = {},
     ProcessSupervisor::Options supervision = {});
 
   const std::string & key() const noexcept {return key_;}

@@ -38,6 +38,7 @@
 #include <string>
 #include <utility>
 
+#include "nav2_pyif_bridge/client/bridge_parameters.hpp"
 #include "nav2_pyif_bridge/client/costmap_version.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 #include "nav2_pyif_bridge/client/keys.hpp"
@@ -47,23 +48,6 @@
 
 namespace nav2_pyif_bridge::client
 {
-
-// How long to wait for a reply (PROTOCOL.md section 8; the reference client's defaults). Which
-// one bounds an op is schema.py's OP_TIMEOUT (protocol::timeout_class).
-struct Timeouts
-{
-  // The control loop's ops (compute_velocity_commands, set_plan, set_speed_limit, cancel,
-  // reset, the checkers' and the costmap layer's): below the control period.
-  Duration call{std::chrono::milliseconds(40)};
-  // activate, deactivate, cleanup, set_parameters, cancel_plan.
-  Duration lifecycle{std::chrono::seconds(5)};
-  // configure: imports, JIT compilation.
-  Duration configure{std::chrono::seconds(10)};
-  // create_plan, smooth.
-  Duration plan{std::chrono::seconds(5)};
-
-  Duration for_op(protocol::Op op) const noexcept;
-};
 
 struct SessionConfig
 {

@@ -1,12 +1,15 @@
-// Generated from protocol/nav2_pyif_protocol/schema.py by
+// Generated from protocol/nav2_pyif_protocol/constants.py by
 // `python -m nav2_pyif_codegen.generate`: do not edit.
 //
-// Names every party of the protocol shares: the version and the error types (PROTOCOL.md sections 3
-// and 7).
+// Names every party of the protocol shares: the version, the error types and a behaviour's status
+// and failure names (PROTOCOL.md sections 3, 7 and 17).
 
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace nav2_pyif_bridge::protocol
@@ -24,5 +27,52 @@ inline constexpr std::string_view kVersionMismatch = "VersionMismatch";
 inline constexpr std::string_view kBadRequest = "BadRequest";
 inline constexpr std::string_view kUnavailable = "Unavailable";
 }  // namespace error_type
+
+// std::nullopt for a name not in `names` (the wire's spelling, by enumerator).
+template<class Enum, std::size_t N>
+constexpr std::optional<Enum> from_name(
+  const std::array<std::string_view, N> & names, std::string_view name) noexcept
+{
+  for (std::size_t i = 0; i < N; ++i) {
+    if (names[i] == name) {
+      return static_cast<Enum>(i);
+    }
+  }
+  return std::nullopt;
+}
+
+// TimedBehavior's Status (a behaviour's reply, PROTOCOL.md section 17).
+enum class BehaviorStatus : std::uint8_t
+{
+  Succeeded,
+  Failed,
+  Running,
+};
+inline constexpr std::array<std::string_view, 3> kBehaviorStatusNames = {
+  "succeeded",
+  "failed",
+  "running",
+};
+
+// Why a behaviour failed: the plugin sets the action result's error code of that name (BackUp's
+// COLLISION_AHEAD, Spin's TIMEOUT, ...; UNKNOWN where the action has no such code, and none on
+// Humble, whose behaviour results have no error code).
+enum class BehaviorFailure : std::uint8_t
+{
+  None,
+  Unknown,
+  Timeout,
+  TfError,
+  InvalidInput,
+  CollisionAhead,
+};
+inline constexpr std::array<std::string_view, 6> kBehaviorFailureNames = {
+  "",
+  "unknown",
+  "timeout",
+  "tf_error",
+  "invalid_input",
+  "collision_ahead",
+};
 
 }  // namespace nav2_pyif_bridge::protocol

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 namespace nav2_pyif_bridge::protocol
@@ -172,5 +173,63 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kInvalidError = {
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
 };
+
+template<class Kind>
+constexpr std::size_t row_of(Kind kind) noexcept {return static_cast<std::size_t>(kind);}
+
+// The wire's configure.plugin_type of a plugin type.
+constexpr std::string_view plugin_type_name(PluginKind kind) noexcept
+{
+  return kPluginKindNames[row_of(kind)];
+}
+
+// The exception's name (also its error.type on the wire).
+constexpr std::string_view error_kind_name(ErrorKind kind) noexcept
+{
+  return kErrorKindNames[row_of(kind)];
+}
+
+// The plugin type whose exceptions `kind` is one of (InvalidPath: the controller's).
+constexpr PluginKind plugin_kind_of(ErrorKind kind) noexcept
+{
+  return kErrorFamily[row_of(kind)];
+}
+
+// Whether a plugin of type `plugin` throws `kind` under its own name.
+constexpr bool belongs_to(ErrorKind kind, PluginKind plugin) noexcept
+{
+  return (kOwnErrors[row_of(plugin)] >> row_of(kind)) & 1u;
+}
+
+// The plugin type's catch-all exception.
+constexpr ErrorKind generic_error(PluginKind kind) noexcept
+{
+  return kGenericError[row_of(kind)];
+}
+
+// What a plugin throws when its host, not its planner, failed the call (none alive, no reply in
+// time, a broken transport, an Unavailable reply): the class Nav2's recovery conditions retry
+// (RELIABILITY.md).
+constexpr ErrorKind host_failure_error(PluginKind kind) noexcept
+{
+  return kHostFailureError[row_of(kind)];
+}
+
+// What a plugin throws when it cannot be configured.
+constexpr ErrorKind invalid_error(PluginKind kind) noexcept
+{
+  return kInvalidError[row_of(kind)];
+}
+
+// std::nullopt for a name that is no nav2_core exception (protocol errors included).
+constexpr std::optional<ErrorKind> error_kind_from_name(std::string_view name) noexcept
+{
+  for (std::size_t i = 0; i < kErrorKindCount; ++i) {
+    if (kErrorKindNames[i] == name) {
+      return static_cast<ErrorKind>(i);
+    }
+  }
+  return std::nullopt;
+}
 
 }  // namespace nav2_pyif_bridge::protocol
