@@ -259,6 +259,9 @@ private:
   {
     nav2_pyif_bridge::ZenohOptions zenoh;
     zenoh.connect = {endpoint};
+#if !defined(ZENOHCXX_ZENOHPICO)
+    zenoh.config_file = NAV2_PYIF_BENCH_ZENOH_CONFIG;  // not installed: the source's copy
+#endif
     return zenoh;
   }
 

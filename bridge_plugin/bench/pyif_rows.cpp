@@ -35,6 +35,9 @@ nav2_pyif_bridge::ZenohOptions connect_to(const std::string & endpoint)
 {
   nav2_pyif_bridge::ZenohOptions options;
   options.connect = {endpoint};
+#if !defined(ZENOHCXX_ZENOHPICO)
+  options.config_file = NAV2_PYIF_BENCH_ZENOH_CONFIG;  // not installed: the source's copy
+#endif
   return options;
 }
 

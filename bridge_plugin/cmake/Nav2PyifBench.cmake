@@ -14,6 +14,11 @@ add_executable(nav2_pyif_cycle_bench
   ${CMAKE_CURRENT_LIST_DIR}/../src/nav2/zenoh_transport.cpp
 )
 target_include_directories(nav2_pyif_cycle_bench PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../include)
+# The benches run from the build tree, where the installed default config is not: they name the
+# package's source copy (zenoh-c; zenoh-pico takes no file).
+set(NAV2_PYIF_BENCH_ZENOH_CONFIG
+  NAV2_PYIF_BENCH_ZENOH_CONFIG="${CMAKE_CURRENT_LIST_DIR}/../config/default_session.json5")
+target_compile_definitions(nav2_pyif_cycle_bench PRIVATE ${NAV2_PYIF_BENCH_ZENOH_CONFIG})
 # ROS targets by name: the PyPI wheels' message exports also name Python-only libraries.
 target_link_libraries(nav2_pyif_cycle_bench
   nav2_pyif_client
@@ -28,5 +33,6 @@ add_executable(nav2_pyif_fleet_client
   ${CMAKE_CURRENT_LIST_DIR}/../src/nav2/zenoh_transport.cpp
 )
 target_include_directories(nav2_pyif_fleet_client PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../include)
+target_compile_definitions(nav2_pyif_fleet_client PRIVATE ${NAV2_PYIF_BENCH_ZENOH_CONFIG})
 target_link_libraries(nav2_pyif_fleet_client nav2_pyif_client ${NAV2_PYIF_ZENOH_TARGET})
 install(TARGETS nav2_pyif_fleet_client RUNTIME DESTINATION lib/${PROJECT_NAME})
