@@ -5,6 +5,7 @@ persist between calls; debug outputs come back only when wanted, as real message
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 import sys
 from typing import Any
@@ -12,7 +13,7 @@ from typing import Any
 import numpy as np
 import pytest
 from geometry_msgs.msg import Twist
-from nav2_pyif._ros_types import MessageTypeError, message_class, serialize
+from nav2_pyif._ros_types import RMW_CHECKED, MessageTypeError, message_class, serialize
 from nav2_pyif.exceptions import ControllerException
 from nav2_pyif.inputs import from_cdr
 from nav_msgs.msg import Odometry
@@ -188,5 +189,28 @@ def test_warming_the_serialization_loads_it_before_any_input() -> None:
         "warm_serialization()\n"
         "assert 'rclpy.serialization' in sys.modules\n"
     )
-    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    env = {k: v for k, v in os.environ.items() if k not in ("RMW_IMPLEMENTATION", RMW_CHECKED)}
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=env)
     assert done.returncode == 0, done.stderr
+
+
+def test_warming_waits_for_the_hosts_rmw_check() -> None:
+    """With $RMW_IMPLEMENTATION set, a process that has not checked it (a unit test, a client)
+    warms nothing and starts no probe; a worker of a host that checked it (the marker it
+    inherits) warms as above."""
+    script = (
+        "import subprocess, sys\n"
+        "def refused(*a, **k): raise AssertionError('a process was started')\n"
+        "subprocess.run = subprocess.Popen = refused\n"
+        "from nav2_pyif._ros_types import warm_serialization\n"
+        "warm_serialization()\n"
+        "print('rclpy.serialization' in sys.modules)\n"
+    )
+    rmw = {"RMW_IMPLEMENTATION": "rmw_fastrtps_cpp"}
+    unchecked = {k: v for k, v in os.environ.items() if k != RMW_CHECKED} | rmw
+    checked = unchecked | {RMW_CHECKED: "rmw_fastrtps_cpp"}
+    for env, loaded in ((unchecked, "False"), (checked, "True")):
+        done = subprocess.run(
+            [sys.executable, "-c", script], capture_output=True, text=True, env=env
+        )
+        assert done.returncode == 0 and done.stdout.strip() == loaded, done.stdout + done.stderr

@@ -47,6 +47,16 @@ def type_name_of(msg: Any) -> str:
     return f"{package}/msg/{cls.__name__}"
 
 
+#: Set to $RMW_IMPLEMENTATION once a child process loaded it (the host checks before its
+#: workers start; they inherit the answer instead of each starting a probe of their own).
+RMW_CHECKED = "NAV2_PYIF_RMW_CHECKED"
+
+
+def _rmw_unchecked() -> bool:
+    wanted = os.environ.get("RMW_IMPLEMENTATION")
+    return bool(wanted) and os.environ.get(RMW_CHECKED) != wanted
+
+
 @cache
 def check_serialization_rmw() -> None:
     """rclpy's serialization loads an rmw implementation, and rcl ends the process (exit code
@@ -56,7 +66,7 @@ def check_serialization_rmw() -> None:
     So a child process tries first, once; when it fails, the host serializes with the default
     rmw (it makes no ROS node, and every rmw writes the same CDR) and says so."""
     wanted = os.environ.get("RMW_IMPLEMENTATION")
-    if not wanted:
+    if not wanted or not _rmw_unchecked():
         return
     probe = subprocess.run(
         [sys.executable, "-c", "import rclpy.serialization"],
@@ -73,6 +83,8 @@ def check_serialization_rmw() -> None:
             (probe.stderr.strip().splitlines() or [f"exit code {probe.returncode}"])[-1][:300],
         )
         del os.environ["RMW_IMPLEMENTATION"]
+    else:
+        os.environ[RMW_CHECKED] = wanted  # the workers, started after this, inherit it
 
 
 def deserialize(type_name: str, cdr: bytes) -> Any:
@@ -96,7 +108,11 @@ def warm_serialization() -> None:
     first control cycle with an input or a debug output cannot pay (it would overrun the
     control period, and a batch waiting on it drops its other robots' cycles). Later message
     types cost milliseconds. Without rclpy (a host with no ROS messages) there is nothing to
-    warm: inputs and debug outputs say what is missing when used."""
+    warm: inputs and debug outputs say what is missing when used. Nor where the rmw of
+    $RMW_IMPLEMENTATION was not checked yet (a process other than the host's): warming would
+    start the check's child process in configure; the first input checks, as before."""
+    if _rmw_unchecked():
+        return
     try:
         serialize(message_class("std_msgs/msg/Header")())
     except (ImportError, MessageTypeError) as exc:
