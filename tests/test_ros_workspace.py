@@ -32,6 +32,18 @@ PYTHON_PACKAGES = ("nav2_pyif", "nav2_pyif_planners", "nav2_pyif_protocol")
 LAUNCH_TEST = "src/nav2_pyif/bridge_plugin/test/nav2/test_launch_file.py"
 
 
+def _setup_or_skip(distro: str, trial: str, needs: str) -> str:
+    """``distro``'s setup script, or the trial skipped saying what it needs (``needs``, with
+    ``{distro}`` filled in) and where to name it."""
+    setup = _setup_script(distro, BACKEND)
+    if not setup:
+        pytest.skip(
+            f"the {distro} {trial} needs {needs.format(distro=distro)}: set "
+            f"{_own_variable(distro, BACKEND)} (testenv/build.sh {distro} writes one)"
+        )
+    return setup
+
+
 def _step(workspace: Path, name: str, source: str, command: str, timeout: float) -> str:
     """One shell step in ``workspace``, timed; its output, or the test fails with its tail."""
     began = time.monotonic()
@@ -44,12 +56,7 @@ def _step(workspace: Path, name: str, source: str, command: str, timeout: float)
 @pytest.mark.timeout(3600)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_a_fresh_workspace_builds_tests_and_launches_from_its_install_space(distro: str) -> None:
-    setup = _setup_script(distro, BACKEND)
-    if not setup:
-        pytest.skip(
-            f"the {distro} workspace trial needs a ROS 2 {distro} with Nav2 and zenoh-pico: "
-            f"set {_own_variable(distro, BACKEND)} (testenv/build.sh {distro} writes one)"
-        )
+    setup = _setup_or_skip(distro, "workspace trial", "a ROS 2 {distro} with Nav2 and zenoh-pico")
     source = f"set -e; source {shlex.quote(setup)} >/dev/null"
     probe = _bash(
         f'{source}; [ "$ROS_DISTRO" = {distro} ] || echo missing: ROS 2 {distro}, got $ROS_DISTRO; '
@@ -98,12 +105,7 @@ def test_the_host_alone_installs_with_pip_into_a_venv_beside_ros(
     """README's other way (Install, "Only the host, with pip"): beside a sourced ROS 2, a venv
     made with --system-site-packages, `pip install` of a clone; its planner-host runs from
     the venv and sees ROS 2's own message packages (rclpy's, not wheels)."""
-    setup = _setup_script(distro, BACKEND)
-    if not setup:
-        pytest.skip(
-            f"the {distro} pip-beside-ROS trial needs a ROS 2 {distro}: set "
-            f"{_own_variable(distro, BACKEND)} (testenv/build.sh {distro} writes one)"
-        )
+    setup = _setup_or_skip(distro, "pip-beside-ROS trial", "a ROS 2 {distro}")
     source = f"set -e; source {shlex.quote(setup)} >/dev/null"
     probe = _bash(
         f'{source}; echo "distro: $ROS_DISTRO"; python3 -c "import sys, rclpy; '

@@ -76,10 +76,14 @@ def setup_script(given: str | None) -> str:
     return setup
 
 
-def binary_path(given: str | None) -> Path:
-    binary = Path(given) if given else DEFAULT_BINARY
+def binary_path(
+    given: str | None, default: Path = DEFAULT_BINARY, what: str = "bench binary"
+) -> Path:
+    """``given``, else ``default``: an executable scripts/build_cpp_bench.sh built, or a
+    BenchSetupError saying how to build it."""
+    binary = Path(given) if given else default
     if not (binary.is_file() and os.access(binary, os.X_OK)):
-        raise BenchSetupError(f"no C++ bench binary at {binary}: {BUILD_HINT}")
+        raise BenchSetupError(f"no C++ {what} at {binary}: {BUILD_HINT}")
     return binary
 
 

@@ -316,7 +316,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         from nav2_pyif_bench.cpp_cycle_bench import setup_script
         from nav2_pyif_bench.fleet_cpp_clients import client_binary
 
-        client_binary(args.fleet_client), setup_script(args.setup)
+        client_binary(args.fleet_client)
+        setup_script(args.setup)
     results: dict[str, Any] = {}
     for batched in modes:
         sizes = (args.batch_robots if batched and args.compare else None) or args.robots

@@ -16,7 +16,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from nav2_pyif_bench.cpp_cycle_bench import ROOT, BenchSetupError, ros_environment, setup_script
+from nav2_pyif_bench.cpp_cycle_bench import ROOT, binary_path, ros_environment, setup_script
 from nav2_pyif_bench.fleet_planners import FleetPlanner, scan
 
 DEFAULT_CLIENT = ROOT / "build" / "cpp_bench" / "nav2_pyif_fleet_client"
@@ -24,13 +24,7 @@ PROCESSES = 2  # one per core: each a thread per robot, as a controller_server's
 
 
 def client_binary(given: str | None) -> Path:
-    binary = Path(given) if given else DEFAULT_CLIENT
-    if not binary.is_file():
-        raise BenchSetupError(
-            f"no C++ fleet client at {binary}: build it with scripts/build_cpp_bench.sh "
-            "(NAV2_PYIF_NAV2_SETUP names a ROS 2 setup with zenoh-cpp)"
-        )
-    return binary
+    return binary_path(given, DEFAULT_CLIENT, "fleet client")
 
 
 def _scan_file(directory: Path) -> Path:

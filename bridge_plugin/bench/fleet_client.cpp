@@ -32,6 +32,8 @@
 #include "nav2_pyif_bridge/client/costmap_version.hpp"
 #include "nav2_pyif_bridge/zenoh_transport.hpp"
 
+#include "bench_zenoh.hpp"
+
 namespace nav2_pyif_bench
 {
 namespace
@@ -175,7 +177,7 @@ public:
   Robot(const Options & options, int index, Results & results)
   : options_(options), index_(index), results_(results),
     keys_("nav2_pyif/robot" + std::to_string(index) + "/FollowPath"),
-    zenoh_(connect(options.endpoint), keys_), session_(config(options, keys_), zenoh_, costmap_)
+    zenoh_(connect_to(options.endpoint), keys_), session_(config(options, keys_), zenoh_, costmap_)
   {
     pose_.frame_id = "odom";
     pose_.pose = {1.0, 0, 0, 0, 0, 0, 1};  // 1 m into the plan (fleet_planners.robot_pose)
@@ -255,16 +257,6 @@ public:
   }
 
 private:
-  static nav2_pyif_bridge::ZenohOptions connect(const std::string & endpoint)
-  {
-    nav2_pyif_bridge::ZenohOptions zenoh;
-    zenoh.connect = {endpoint};
-#if !defined(ZENOHCXX_ZENOHPICO)
-    zenoh.config_file = NAV2_PYIF_BENCH_ZENOH_CONFIG;  // not installed: the source's copy
-#endif
-    return zenoh;
-  }
-
   static client::SessionConfig config(const Options & options, const client::KeySpace & keys)
   {
     client::SessionConfig config;

@@ -6,6 +6,8 @@
 #include <thread>
 #include <utility>
 
+#include "bench_zenoh.hpp"
+
 namespace nav2_pyif_bench
 {
 
@@ -29,16 +31,6 @@ client::SessionConfig session_config(const std::string & key)
   config.global_frame = "odom";
   config.timeouts.call = kCallTimeout;
   return config;
-}
-
-nav2_pyif_bridge::ZenohOptions connect_to(const std::string & endpoint)
-{
-  nav2_pyif_bridge::ZenohOptions options;
-  options.connect = {endpoint};
-#if !defined(ZENOHCXX_ZENOHPICO)
-  options.config_file = NAV2_PYIF_BENCH_ZENOH_CONFIG;  // not installed: the source's copy
-#endif
-  return options;
 }
 
 protocol::Path straight_plan()

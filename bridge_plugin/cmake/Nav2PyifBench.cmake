@@ -15,7 +15,7 @@ add_executable(nav2_pyif_cycle_bench
 )
 target_include_directories(nav2_pyif_cycle_bench PRIVATE ${CMAKE_CURRENT_LIST_DIR}/../include)
 # The benches run from the build tree, where the installed default config is not: they name the
-# package's source copy (zenoh-c; zenoh-pico takes no file).
+# package's source copy (bench_zenoh.hpp; zenoh-c only, zenoh-pico takes no file).
 set(NAV2_PYIF_BENCH_ZENOH_CONFIG
   NAV2_PYIF_BENCH_ZENOH_CONFIG="${CMAKE_CURRENT_LIST_DIR}/../config/default_session.json5")
 target_compile_definitions(nav2_pyif_cycle_bench PRIVATE ${NAV2_PYIF_BENCH_ZENOH_CONFIG})

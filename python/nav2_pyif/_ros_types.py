@@ -65,9 +65,9 @@ def check_serialization_rmw() -> None:
     rmw (an ament index may still list the other one, from the ROS install sourced beside).
     So a child process tries first, once; when it fails, the host serializes with the default
     rmw (it makes no ROS node, and every rmw writes the same CDR) and says so."""
-    wanted = os.environ.get("RMW_IMPLEMENTATION")
-    if not wanted or not _rmw_unchecked():
+    if not _rmw_unchecked():
         return
+    wanted = os.environ["RMW_IMPLEMENTATION"]
     probe = subprocess.run(
         [sys.executable, "-c", "import rclpy.serialization"],
         capture_output=True,
