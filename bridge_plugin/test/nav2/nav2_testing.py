@@ -261,10 +261,13 @@ def shared_router() -> str | None:
     return os.environ.get("NAV2_PYIF_SHARED_ROUTER") or None
 
 
-def prepare(logs: Path, endpoint: str | None = None) -> tuple[str, Path, Processes]:
+def prepare(
+    logs: Path, endpoint: str | None = None, domain: int | None = None
+) -> tuple[str, Path, Processes]:
     """The plugins' endpoint (by default a free one, for the host to listen on), the test's
-    Nav2 params naming it (in ``logs``), and the process set, in a ROS domain of its own (this
-    process's rclpy too). On zenoh-c ($NAV2_PYIF_ZENOH_BACKEND, set by
+    Nav2 params naming it (in ``logs``), and the process set, in a ROS domain of its own: a
+    random one this process's rclpy joins too, or ``domain``, for the processes only (the
+    caller's own rclpy context joins it). On zenoh-c ($NAV2_PYIF_ZENOH_BACKEND, set by
     tests/test_nav2_launch.py) the plugins read the deployment guide's JSON5 file
     (docs/zenoh/plugin-client.json5, its endpoint replaced) through `zenoh_config`, as a ROS
     install would; zenoh-pico takes `zenoh_connect`."""
@@ -277,8 +280,12 @@ def prepare(logs: Path, endpoint: str | None = None) -> tuple[str, Path, Process
         text = text.replace('zenoh_connect: ["@ENDPOINT@"]', f'zenoh_config: "{config}"')
     params = logs / "nav2_params.yaml"
     params.write_text(text.replace("@ENDPOINT@", endpoint))
-    os.environ["ROS_DOMAIN_ID"] = str(random.randint(100, 200))
-    return endpoint, params, Processes(logs, dict(os.environ, PYTHONUNBUFFERED="1"))
+    if domain is None:  # this process's rclpy (its default context) joins the processes'
+        os.environ["ROS_DOMAIN_ID"] = str(random.randint(100, 200))
+        env = dict(os.environ, PYTHONUNBUFFERED="1")
+    else:  # the caller's own rclpy context joins them (a second robot's stack)
+        env = dict(os.environ, PYTHONUNBUFFERED="1", ROS_DOMAIN_ID=str(domain))
+    return endpoint, params, Processes(logs, env)
 
 
 REFERENCE_PLANNERS = (

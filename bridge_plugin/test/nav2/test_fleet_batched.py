@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
 import random
 import subprocess
 import time
@@ -142,11 +141,9 @@ def fleet(tmp_path_factory: pytest.TempPathFactory, weights: Path) -> Iterator[d
         for robot, domain in zip(ROBOTS, domains, strict=True):
             robot_logs = logs / robot
             robot_logs.mkdir()
-            _, params, procs = nav2_testing.prepare(robot_logs, endpoint)
+            _, params, procs = nav2_testing.prepare(robot_logs, endpoint, domain)
             params.write_text(_robot_params(params.read_text(), robot, weights))
-            procs.env["ROS_DOMAIN_ID"] = str(domain)
             stacks[robot] = {"procs": procs, "params": params, "domain": domain}
-        os.environ.pop("ROS_DOMAIN_ID", None)  # prepare() set it; each stack has its own
 
         host = stacks["robot1"]["procs"]
         serve = [
