@@ -61,6 +61,7 @@ class MPPI(PathFollower):
         self.index = 0
         self.outline: np.ndarray | None = None
         self.last_compute_s = 0.0
+        self._along: tuple[object, np.ndarray] | None = None  # (plan, its arc lengths)
 
     def reset(self) -> None:
         self._clear_optimum()
@@ -158,11 +159,21 @@ class MPPI(PathFollower):
         """Plan points from the closest one to as far as the horizon reaches at ``vx_top``
         (plus 0.5 m), at most LOCAL_POINTS of them."""
         reach = vx_top * self.time_steps * self.model_dt + 0.5
-        ahead = path_xy[self.index :]
-        seg = np.hypot(*np.diff(ahead, axis=0).T) if len(ahead) > 1 else np.zeros(0)
-        cumulative = np.concatenate([[0.0], np.cumsum(seg)])
-        end = int(np.searchsorted(cumulative, reach)) + 1
-        local = ahead[: max(end, 1)]
+        along = self._arc_length(path_xy)
+        start = min(self.index, len(path_xy) - 1)
+        end = int(np.searchsorted(along, along[start] + reach)) + 1
+        local = path_xy[start : max(end, start + 1)]
         if len(local) > LOCAL_POINTS:
-            local = local[np.linspace(0, len(local) - 1, LOCAL_POINTS).round().astype(int)]
+            spread = np.arange(LOCAL_POINTS) * ((len(local) - 1) / (LOCAL_POINTS - 1))
+            local = local[np.rint(spread).astype(int)]
         return local
+
+    def _arc_length(self, path_xy: np.ndarray) -> np.ndarray:
+        """(N,) arc length [m] from the plan's start to each point: once per plan, not per
+        cycle (a long plan's sums were most of a batched robot's Python time)."""
+        plan, cached = self.plan, self._along
+        if cached is None or cached[0] is not plan or len(cached[1]) != len(path_xy):
+            seg = np.hypot(*np.diff(path_xy, axis=0).T) if len(path_xy) > 1 else np.zeros(0)
+            cached = self._along = (plan, np.concatenate([[0.0], np.cumsum(seg)]))
+        along: np.ndarray = cached[1]
+        return along

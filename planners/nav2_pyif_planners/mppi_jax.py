@@ -10,11 +10,14 @@ start) lives in NumPy between cycles: one transfer to the device and one back pe
 inside the step.
 
 Same parameters, cost terms and warm start as ``nav2_pyif_planners.mppi.MPPI``; what differs:
-sampling uses JAX's counter-based PRNG, arithmetic is float32, and the costmap is copied to the
-device once per costmap version. The function is compiled in ``configure`` for the costmap's
-shape, so the first control cycle does not pay for compilation (a costmap of a new shape
-recompiles once). Needs JAX: ``python -m pip install 'jax>=0.4.30'`` (CPU) or ``jax[cuda12]``;
-the bootstrap's default extras (dev) include it.
+sampling uses JAX's counter-based PRNG, arithmetic is float32, and the footprint's cost at a
+pose is one read of per-heading maximum maps (``footprint_maps``: at most about a cell's
+margin above ``MPPI``'s outline reads and never below them, for a polygon at each of its map
+headings, 22.5 degrees apart), built and copied to the device once per costmap version. The
+function is compiled in ``configure`` for the costmap's shape, so the first control cycle does
+not pay for compilation (a costmap of a new shape recompiles once). Needs JAX:
+``python -m pip install 'jax>=0.4.30'`` (CPU) or ``jax[cuda12]``; the bootstrap's default
+extras (dev) include it.
 """
 
 from __future__ import annotations
@@ -42,7 +45,13 @@ from nav2_pyif import Batch, Costmap, NoValidControl
 from nav2_pyif.batch import bucket, buckets, pad_rows
 from nav2_pyif.geometry import limit_speed
 
+from nav2_pyif_planners.footprint_maps import TURN, footprint_maps
 from nav2_pyif_planners.mppi import LOCAL_POINTS, MPPI
+
+#: JAX computes on the CPU: a batch's footprint maps are stacked in NumPy (a copy, where
+#: ``jnp.stack`` is an XLA call: 15 % of a batch of 12 robots); on an accelerator they stay
+#: on it, stacked there.
+_HOST_IS_DEVICE = jax.default_backend() == "cpu"
 
 
 def _mppi_update(
@@ -50,35 +59,38 @@ def _mppi_update(
     optimal: Any,
     state: Any,
     local: Any,
-    grid: Any,
+    layers: Any,
     origin: Any,
-    outline: Any,
     settings: Any,
 ) -> tuple[Any, Any]:
     """One MPPI iteration from standard normal draws (2, rollouts, steps) -> (shifted
-    optimum for the warm start, command (vx, wz)).
+    optimum for the warm start, command (vx, wz)); the footprint's costs from ``layers``, the
+    robot's ``FootprintMaps``.
 
     Written for XLA on a CPU as much as a GPU: vx and wz as separate (rollouts, steps)
     arrays (a trailing axis of 2 defeats vectorisation), cumulative sums as products with a
     triangular matrix (XLA's cumsum is a quadratic reduce-window on a CPU), distances to the
-    plan from split coordinates: 5-25x faster on a CPU than the obvious form."""
+    plan from split coordinates: 5-25x faster on a CPU than the obvious form. The footprint's
+    cost is one read per pose (``footprint_maps``), not one per outline point: those reads
+    were 60 % of the kernel (31 of 50 ms for 32 robots on one thread)."""
     (dt, vx_min, vx_top, wz_max, vx_std, wz_std, temperature, gamma) = settings[:8]
     (w_path, w_progress, w_obstacle, w_collision, resolution) = settings[8:]
     steps = optimal.shape[0]
-    # x @ upper: the running sum along the steps; x @ strict: the sum before each step
+    # x @ upper: the running sum along the steps
     upper = jnp.triu(jnp.ones((steps, steps), jnp.float32))
-    strict = jnp.triu(jnp.ones((steps, steps), jnp.float32), k=1)
     summed = partial(jnp.matmul, precision=jax.lax.Precision.HIGHEST)  # no TF32 on a GPU
     vx = jnp.clip(optimal[:, 0] + normal[0] * vx_std, vx_min, vx_top)
     wz = jnp.clip(optimal[:, 1] + normal[1] * wz_std, -wz_max, wz_max)
     noise_vx, noise_wz = vx - optimal[:, 0], wz - optimal[:, 1]
 
     # unicycle rollouts (batch, steps), as MPPI._rollout: each step moves along the heading
-    # before its turn
+    # before its turn; x and y summed in one product (one pass over the triangle, not two)
     yaw = state[2] + summed(wz * dt, upper)
-    heading = state[2] + summed(wz * dt, strict)
-    x = state[0] + summed(vx * jnp.cos(heading) * dt, upper)
-    y = state[1] + summed(vx * jnp.sin(heading) * dt, upper)
+    heading = yaw - wz * dt
+    rollouts = vx.shape[0]
+    moved = jnp.concatenate([vx * jnp.cos(heading) * dt, vx * jnp.sin(heading) * dt])
+    xy = summed(moved, upper)
+    x, y = state[0] + xy[:rollouts], state[1] + xy[rollouts:]
 
     # follow the path and progress along it, as MPPI._score
     dx = x[:, 3::4, None] - local[:, 0]
@@ -86,19 +98,15 @@ def _mppi_update(
     path_cost = jnp.sqrt((dx * dx + dy * dy).min(axis=-1)).mean(axis=1)
     progress = jnp.hypot(x[:, -1] - local[-1, 0], y[:, -1] - local[-1, 1])
 
-    # footprint costs at every other step: max over the outline; unknown and off-map cells
-    # count as free point by point, as MPPI's footprint_costs(..., unknown_as=0)
-    px, py, pyaw = x[:, ::2, None], y[:, ::2, None], yaw[:, ::2, None]
-    c, s = jnp.cos(pyaw), jnp.sin(pyaw)
-    wx = px + c * outline[:, 0] - s * outline[:, 1]
-    wy = py + s * outline[:, 0] + c * outline[:, 1]
-    mx = jnp.floor((wx - origin[0]) / resolution).astype(jnp.int32)
-    my = jnp.floor((wy - origin[1]) / resolution).astype(jnp.int32)
-    rows, cols = grid.shape
-    inside = (mx >= 0) & (my >= 0) & (mx < cols) & (my < rows)
-    costs = grid[jnp.clip(my, 0, rows - 1), jnp.clip(mx, 0, cols - 1)]
-    costs = jnp.where(inside & (costs != Costmap.NO_INFORMATION), costs, 0)
-    worst = costs.max(axis=-1).astype(jnp.float32)
+    # footprint costs at every other step: one read per pose of the per-heading maximum maps
+    # (footprint_maps: unknown and off-map cells count as free, as MPPI's
+    # footprint_costs(..., unknown_as=0)); a pose off the padded map reads its free edge
+    headings, rows, cols = layers.shape
+    px, py, pyaw = x[:, ::2], y[:, ::2], yaw[:, ::2]
+    col = jnp.clip(jnp.floor((px - origin[0]) / resolution).astype(jnp.int32), 0, cols - 1)
+    row = jnp.clip(jnp.floor((py - origin[1]) / resolution).astype(jnp.int32), 0, rows - 1)
+    turn = jnp.round(pyaw * (TURN / (2 * math.pi))).astype(jnp.int32) & (headings - 1)
+    worst = layers.reshape(-1)[(turn * rows + row) * cols + col].astype(jnp.float32)
     collision = (worst >= Costmap.INSCRIBED).any(axis=1)
     obstacle = (worst / 252.0).mean(axis=1)
 
@@ -124,16 +132,15 @@ def mppi_step(
     optimal: Any,
     state: Any,
     local: Any,
-    grid: Any,
+    layers: Any,
     origin: Any,
-    outline: Any,
     settings: Any,
     batch_size: int,
 ) -> tuple[Any, Any, Any]:
     """One MPPI iteration -> (next key, shifted optimum for warm start, command (vx, wz))."""
     key, draw = jax.random.split(key)
     normal = jax.random.normal(draw, (2, batch_size, optimal.shape[0]))
-    return (key, *_mppi_update(normal, optimal, state, local, grid, origin, outline, settings))
+    return (key, *_mppi_update(normal, optimal, state, local, layers, origin, settings))
 
 
 @partial(jax.jit, static_argnames=("batch_size", "steps"))
@@ -142,7 +149,7 @@ def _draw(key: Any, batch_size: int, steps: int) -> tuple[Any, Any]:
     return key, jax.random.normal(draw, (2, batch_size, steps))
 
 
-_update_fleet = jax.jit(jax.vmap(_mppi_update, in_axes=(None, 0, 0, 0, 0, 0, 0, 0)))
+_update_fleet = jax.jit(jax.vmap(_mppi_update, in_axes=(None, 0, 0, 0, 0, 0, 0)))
 
 
 def mppi_fleet(
@@ -150,16 +157,16 @@ def mppi_fleet(
     optimal: Any,
     state: Any,
     local: Any,
-    grid: Any,
+    layers: Any,
     origin: Any,
-    outline: Any,
     settings: Any,
     batch_size: int,
 ) -> tuple[Any, Any, Any]:
     """The MPPI iteration of R robots in one call: ``key`` (2,) uint32, the others with a
-    leading robot axis: optimal (R, T, 2), state (R, 3), local (R, LOCAL_POINTS, 2), grid
-    (R, H, W) uint8, origin (R, 2), outline (R, P, 2), settings (R, 13) -> (next key, shifted
-    optima (R, T, 2), commands (R, 2) vx [m/s], wz [rad/s]).
+    leading robot axis: optimal (R, T, 2), state (R, 3), local (R, LOCAL_POINTS, 2), layers
+    (R, headings, H, W) uint8 (``FootprintMaps.layers``), origin (R, 2) (their origin),
+    settings (R, 13) -> (next key, shifted optima (R, T, 2), commands (R, 2) vx [m/s],
+    wz [rad/s]).
 
     The robots share one draw of standard normal noise (common random numbers: each robot's
     samples are still i.i.d. Gaussian, scaled by its own sigma), so sampling costs the same
@@ -167,7 +174,7 @@ def mppi_fleet(
     device between them: compiled together, XLA computes the draw many times over (measured
     on a CPU: 18 ms of a 47 ms batch of 32 robots)."""
     key, normal = _draw(key, batch_size=batch_size, steps=optimal.shape[1])
-    return (key, *_update_fleet(normal, optimal, state, local, grid, origin, outline, settings))
+    return (key, *_update_fleet(normal, optimal, state, local, layers, origin, settings))
 
 
 class MPPIJax(MPPI):
@@ -206,10 +213,10 @@ class MPPIJax(MPPI):
         costmap = self.costmap
         if self._grid_version == costmap.version and self.outline is not None:
             return
-        self._grid = jnp.asarray(costmap.data)
-        self._origin = np.asarray([costmap.origin_x, costmap.origin_y], np.float32)
         self.outline = costmap.footprint_outline(spacing=max(costmap.resolution, 0.2))
-        self._outline = jnp.asarray(self.outline, jnp.float32)
+        maps = footprint_maps(costmap, self.outline)
+        self._layers = maps.layers if _HOST_IS_DEVICE else jnp.asarray(maps.layers)
+        self._origin = maps.origin.astype(np.float32)
         self._grid_version = costmap.version
 
     def _optimise(self, state: np.ndarray, path_xy: np.ndarray) -> tuple[float, float]:
@@ -235,7 +242,7 @@ class MPPIJax(MPPI):
     def _shape(self) -> tuple[Any, ...]:
         """What must match for robots to share a compiled call."""
         self._upload_costmap()
-        return (self.batch_size, self.time_steps, self._grid.shape, self._outline.shape)
+        return (self.batch_size, self.time_steps, self._layers.shape)
 
     @classmethod
     def compute_velocity_commands_batch(cls, batch: Batch) -> list[Any]:
@@ -276,10 +283,8 @@ def _optimise_fleet(
     in one ``mppi_fleet`` call; their keys and warm starts updated. -> (vx, wz) per robot."""
     inputs = [robot._step_inputs(state, path) for robot, state, path in robots]
     size = max(pad_to, bucket(len(robots)))
-    grids = [robot._grid for robot, _, _ in robots]
-    outlines = [robot._outline for robot, _, _ in robots]
-    grids += grids[-1:] * (size - len(grids))
-    outlines += outlines[-1:] * (size - len(outlines))
+    layers = [robot._layers for robot, _, _ in robots]
+    layers += layers[-1:] * (size - len(layers))
 
     def stacked(values: list[np.ndarray]) -> np.ndarray:
         return pad_rows(np.stack(values), size)
@@ -289,9 +294,8 @@ def _optimise_fleet(
         stacked([robot._optimal for robot, _, _ in robots]),
         stacked([state for state, _, _ in inputs]),
         stacked([local for _, local, _ in inputs]),
-        jnp.stack(grids),
+        (np.stack if _HOST_IS_DEVICE else jnp.stack)(layers),
         stacked([robot._origin for robot, _, _ in robots]),
-        jnp.stack(outlines),
         stacked([settings for _, _, settings in inputs]),
         batch_size=robots[0][0].batch_size,
     )
