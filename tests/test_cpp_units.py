@@ -33,6 +33,11 @@ MIRRORED = [
 MIRRORED += [
     f"Transcripts/TranscriptTest.ReplaysByteForByte/{p.stem}" for p in TRANSCRIPTS.glob("*.json")
 ]
+# and the replay of the key rules (protocol/vectors/keys.json, written by keys.py)
+MIRRORED += [
+    "KeysVector.EveryKeyUnderAPrefixIsThePythonKeySpaces",
+    "KeysVector.APrefixIsRefusedWithThePythonMessageOrAccepted",
+]
 
 
 @pytest.mark.timeout(600)

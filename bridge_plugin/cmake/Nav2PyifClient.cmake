@@ -42,9 +42,11 @@ function(nav2_pyif_client_test_sources out_var)
     ${_nav2_pyif_client_test_dir}/planner_session_test.cpp
     ${_nav2_pyif_client_test_dir}/settings_test.cpp
     ${_nav2_pyif_client_test_dir}/units_test.cpp)
-  # The shared session transcripts (PROTOCOL.md section 18), where the vectors are.
+  # The shared session transcripts (PROTOCOL.md section 18) and key rules, where the vectors
+  # are.
   if(EXISTS "${NAV2_PYIF_VECTORS_DIR}/transcripts")
-    list(APPEND sources ${_nav2_pyif_client_test_dir}/transcripts_test.cpp)
+    list(APPEND sources ${_nav2_pyif_client_test_dir}/transcripts_test.cpp
+      ${_nav2_pyif_client_test_dir}/keys_test.cpp)
   endif()
   set(${out_var} ${sources} PARENT_SCOPE)
 endfunction()
@@ -54,7 +56,8 @@ function(nav2_pyif_client_test_setup target)
   target_link_libraries(${target} nav2_pyif_client)
   if(EXISTS "${NAV2_PYIF_VECTORS_DIR}/transcripts")
     target_compile_definitions(${target} PRIVATE
-      NAV2_PYIF_TRANSCRIPTS_DIR="${NAV2_PYIF_VECTORS_DIR}/transcripts")
+      NAV2_PYIF_TRANSCRIPTS_DIR="${NAV2_PYIF_VECTORS_DIR}/transcripts"
+      NAV2_PYIF_KEYS_VECTOR="${NAV2_PYIF_VECTORS_DIR}/keys.json")
     target_link_libraries(${target} nlohmann_json::nlohmann_json)
   endif()
 endfunction()

@@ -11,7 +11,6 @@
 #include "fakes.hpp"
 #include "nav2_pyif_bridge/client/command_check.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
-#include "nav2_pyif_bridge/client/keys.hpp"
 #include "nav2_pyif_bridge/client/smoother_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
@@ -276,26 +275,6 @@ TEST(CommandCheck, PathsMustBeFinite)
     EXPECT_EQ(e.kind(), ErrorKind::NoValidPathCouldBeFound);
     EXPECT_EQ(std::string(e.what()), "create_plan reply from host h has a non-finite value in pose 2 of 3");
   }
-}
-
-// --- keys -----------------------------------------------------------------------------------
-
-TEST(Keys, LikeThePythonKeySpace)
-{
-  const KeySpace keys("nav2_pyif/robot1/FollowPath");
-  EXPECT_EQ(keys.call(proto::Op::ComputeVelocityCommands),
-    "nav2_pyif/robot1/FollowPath/rpc/compute_velocity_commands");
-  EXPECT_EQ(keys.call(proto::Op::CancelPlan), "nav2_pyif/robot1/FollowPath/cancel");
-  EXPECT_EQ(keys.hosts(), "nav2_pyif/robot1/FollowPath/host/*");
-  EXPECT_EQ(keys.host_token("h1"), "nav2_pyif/robot1/FollowPath/host/h1");
-  EXPECT_EQ(KeySpace::host_id_of("nav2_pyif/robot1/FollowPath/host/h1"), "h1");
-  for (const char * bad : {"", "/a", "a/", "a//b", "a/*/b", "a/**", "a/$x", "a?", "a/#",
-      "0/chatter", "42/a/b", "@ros2_lv/0", "a/@b"})
-  {
-    EXPECT_THROW(validate_prefix(bad), std::invalid_argument) << bad;
-  }
-  EXPECT_NO_THROW(validate_prefix("single"));
-  EXPECT_NO_THROW(validate_prefix("robot7/0/FollowPath"));  // a number later is no ROS key
 }
 
 // --- HostWatcher ----------------------------------------------------------------------------

@@ -28,6 +28,7 @@ from nav2_pyif_protocol.arrays import pack_poses, pack_xy
 from nav2_pyif_protocol.codec import ErrorInfo, Reply, Request, encode_reply, encode_request
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
 
+from nav2_pyif_codegen.key_vectors import rendered_keys
 from nav2_pyif_codegen.transcripts import rendered_transcripts
 
 INLINE_BIN_LIMIT = 4096
@@ -629,12 +630,14 @@ def index_json(vectors: list[Vector]) -> str:
 
 
 def rendered_files(vectors: list[Vector]) -> dict[str, bytes]:
-    """Relative path -> content: the vectors, and the session transcripts in transcripts/."""
+    """Relative path -> content: the vectors, the session transcripts in transcripts/ and the
+    key rules in keys.json."""
     files: dict[str, bytes] = {"index.json": index_json(vectors).encode()}
     for v in vectors:
         files[f"{v.name}.msgpack"] = v.data
         files[f"{v.name}.json"] = expected_json(v.data).encode()
     files.update(rendered_transcripts())
+    files.update(rendered_keys())
     return files
 
 
