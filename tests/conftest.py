@@ -6,6 +6,7 @@ import contextlib
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -34,6 +35,28 @@ ENV_SCRIPT = Path(os.environ.get("NAV2_PYIF_VENV", ROOT / ".venv")) / "nav2_pyif
 #: The file whose test checks, after every other test, the processes the suite did not start.
 FOREIGN_PROCESSES_TEST = "test_foreign_processes.py"
 _NEIGHBOURS = pytest.StashKey["Neighbours"]()
+
+
+_TERMINATED = pytest.StashKey[bool]()
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """SIGTERM (a cancelled CI job, ``kill``) ends the run as Ctrl-C does: pytest unwinds, so
+    the fixtures' teardown and pytest_sessionfinish stop every process the suite started (the
+    neighbours run in sessions of their own: a signal to the suite's group misses them). Then
+    pytest_unconfigure dies of the SIGTERM, for its conventional exit status."""
+
+    def interrupted(signum: int, frame: object) -> None:
+        config.stash[_TERMINATED] = True
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, interrupted)
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    if config.stash.get(_TERMINATED, False):
+        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+        os.kill(os.getpid(), signal.SIGTERM)
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
