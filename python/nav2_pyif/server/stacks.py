@@ -35,6 +35,10 @@ def install(path: str) -> IO[str]:
     """In the worker, before the planner is imported: stacks go to ``path``. Returns the file,
     which must stay open for the worker's life."""
     out = open(path, "a", encoding="utf-8", buffering=1)  # noqa: SIM115 (kept open on purpose)
+    # Both ends hold it open now: the name can go at once, not only after the planner loaded
+    # (a host killed while a slow planner imports would leave the file behind).
+    with contextlib.suppress(OSError):
+        os.unlink(path)
     faulthandler.enable(file=out, all_threads=True)
     faulthandler.register(DUMP_SIGNAL, file=out, all_threads=True, chain=False)
 
