@@ -32,14 +32,13 @@ class FootprintMaps:
     ``h * 2 pi / TURN`` with its centre in padded cell (col, row); unknown and off-map cells
     count as free. A pose at heading index ``i`` (its yaw in TURN-ths of a turn, rounded)
     reads map ``i mod headings``: 1 map for a round footprint, 8 for a centrally symmetric
-    polygon, 16 for any other. The padding (``pad`` cells each side, all free at the outer
+    polygon, 16 for any other. The padding (a ring of cells around the map, free at its outer
     edge) lets a pose off the map still see the part of its footprint on it, and a pose beyond
     the padding read the free outer edge once its cell is clipped."""
 
-    layers: ByteArray  # (headings, rows + 2 pad, cols + 2 pad)
+    layers: ByteArray  # (headings, padded rows, padded cols)
     origin: FloatArray  # (2,) world x, y [m] of the padded map's cell (0, 0) corner
     resolution: float  # [m] per cell
-    pad: int
 
     @property
     def headings(self) -> int:
@@ -81,7 +80,7 @@ def footprint_maps(costmap: Costmap, outline: FloatArray) -> FootprintMaps:
         for dx, dy in set(zip(col.astype(int).tolist(), row.astype(int).tolist(), strict=True)):
             _raise_to_shifted(layers[h], padded, dx, dy)
     origin = np.array([costmap.origin_x, costmap.origin_y]) - pad * resolution
-    return FootprintMaps(layers, origin, resolution, pad)
+    return FootprintMaps(layers, origin, resolution)
 
 
 def _half_turn_symmetric(polygon: FloatArray) -> bool:

@@ -170,7 +170,8 @@ class MPPI(PathFollower):
 
     def _arc_length(self, path_xy: np.ndarray) -> np.ndarray:
         """(N,) arc length [m] from the plan's start to each point: once per plan, not per
-        cycle (a long plan's sums were most of a batched robot's Python time)."""
+        cycle (summed per cycle, with the rest of this method, they were most of a batched
+        robot's Python time in the fleet benchmark, on a 100-point plan)."""
         plan, cached = self.plan, self._along
         if cached is None or cached[0] is not plan or len(cached[1]) != len(path_xy):
             seg = np.hypot(*np.diff(path_xy, axis=0).T) if len(path_xy) > 1 else np.zeros(0)
