@@ -22,7 +22,7 @@ from nav2_pyif.batch import bucket, buckets, pad_rows
 from nav2_pyif.geometry import limit_speed
 
 from nav2_pyif_planners.follower import PathFollower
-from nav2_pyif_planners.learned.features import features
+from nav2_pyif_planners.learned.features import features_of, plan_window
 from nav2_pyif_planners.learned.policy import Policy, default_weights, forward, import_jax
 
 
@@ -33,6 +33,15 @@ class _Served:
     policy: Policy
     infer: Callable[[Any], Any]
     device: str
+
+
+@dataclass
+class _Observed:
+    """What the policy sees of one robot, before its features are stacked with the batch's."""
+
+    scan: tuple[np.ndarray, np.ndarray]  # ranges, angles
+    window: np.ndarray  # (PLAN_POINTS, 2) the plan ahead in the robot frame
+    velocity: Any  # geometry_msgs/Twist
 
 
 #: (weights path, modification time) -> the policy served from it, shared by its sessions
@@ -84,45 +93,53 @@ class LearnedController(PathFollower):
     ) -> Any:
         return one_cycle(self, pose, velocity, goal_checker)
 
-    def _features(self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None) -> Any:
-        """This robot's features, or its command when it is at the goal (turning in place)."""
+    def _observe(
+        self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
+    ) -> tuple[Any, _Observed | None]:
+        """This robot's command, and what the policy needs to fill it in: None when it is at
+        the goal (the command then turns it in place)."""
         x, y, yaw, path = self.track(pose)
         cmd = self.command(pose)
         if self.turn_at_goal(cmd, x, y, yaw, path, goal_checker):
-            return cmd
+            return cmd, None
         scan = self.inputs.get("scan")
         if scan is None:
             raise NoValidControl("no laser scan yet: the policy needs input 'scan'")
-        return features(
-            scan.ranges,
-            scan.angles,
-            path[:, :2],
-            self.index,
-            (x, y, yaw),
-            (velocity.linear.x, velocity.angular.z),
-        )
+        window = plan_window(path[:, :2], self.index, x, y, yaw)
+        return cmd, _Observed((scan.ranges, scan.angles), window, velocity)
 
     @classmethod
     def compute_velocity_commands_batch(cls, batch: Batch) -> list[Any]:
-        """Each robot's features, then one forward pass per policy for all of them."""
+        """Each robot's features (their scans pooled together), then one forward pass per
+        policy for all of them."""
         out: list[Any] = [None] * len(batch)
-        by_policy: dict[str, list[tuple[int, LearnedController, np.ndarray]]] = {}
+        observed: list[tuple[int, LearnedController, Any, _Observed]] = []
         for i, robot in enumerate(batch.planners):
             assert isinstance(robot, LearnedController)
             args = batch.pose_messages[i], batch.velocity_messages[i], batch.goal_checkers[i]
             try:
-                f = robot._features(*args)
+                cmd, seen = robot._observe(*args)
             except Exception as exc:  # this robot's own error (no scan, no plan)
                 out[i] = exc
                 continue
-            if isinstance(f, np.ndarray):
-                by_policy.setdefault(robot.weights, []).append((i, robot, f))
+            if seen is None:
+                out[i] = cmd
             else:
-                out[i] = f
+                observed.append((i, robot, cmd, seen))
+        if not observed:
+            return out
+        rows = features_of(
+            [seen.scan for *_, seen in observed],
+            np.stack([seen.window for *_, seen in observed]),
+            np.array([(s.velocity.linear.x, s.velocity.angular.z) for *_, s in observed]),
+        )
+        by_policy: dict[str, list[int]] = {}
+        for n, (_, robot, _, _) in enumerate(observed):
+            by_policy.setdefault(robot.weights, []).append(n)
         for group in by_policy.values():
-            commands = group[0][1].act(np.stack([f for _, _, f in group]))
-            for (i, robot, _), (v, w) in zip(group, commands, strict=True):
-                cmd = robot.command(batch.pose_messages[i])
+            commands = observed[group[0]][1].act(rows[group])
+            for n, (v, w) in zip(group, commands, strict=True):
+                i, robot, cmd, _ = observed[n]
                 top = limit_speed(float(robot.policy.scale[0]), robot.speed_limit)
                 cmd.twist.linear.x = float(min(max(v, 0.0), top))
                 cmd.twist.angular.z = float(w)

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -17,11 +18,47 @@ SIZE = SECTORS + 2 * PLAN_POINTS + 2
 def scan_sectors(ranges: np.ndarray, angles: np.ndarray) -> np.ndarray:
     """(SECTORS,) nearest return per sector [m], clipped to SCAN_CLIP; sector 0 starts
     behind the robot (-pi) and they go counter-clockwise."""
-    r = np.where(np.isfinite(ranges), ranges, SCAN_CLIP).clip(0.0, SCAN_CLIP)
-    sector = ((np.mod(angles + math.pi, 2 * math.pi)) / (2 * math.pi) * SECTORS).astype(int)
-    out = np.full(SECTORS, SCAN_CLIP)
-    np.minimum.at(out, np.clip(sector, 0, SECTORS - 1), r)
+    pooled: np.ndarray = scan_sectors_of([(ranges, angles)])[0]
+    return pooled
+
+
+def scan_sectors_of(scans: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarray:
+    """(B, SECTORS): ``scan_sectors`` of each (ranges, angles). The scans whose beams point
+    the same ways (a fleet of one sensor model) are pooled in one reduction: per scan, a
+    Python-level loop over sectors costed a batched learned controller more than its
+    forward pass."""
+    out = np.full((len(scans), SECTORS), SCAN_CLIP)
+    alike: dict[bytes, list[int]] = {}
+    for i, (_, angles) in enumerate(scans):
+        alike.setdefault(np.asarray(angles).tobytes(), []).append(i)
+    for rows in alike.values():
+        order, starts, sectors = _pooling(np.asarray(scans[rows[0]][1]))
+        if len(order) == 0:
+            continue
+        ranges = np.stack([scans[i][0] for i in rows])
+        clipped = np.where(np.isfinite(ranges), ranges, SCAN_CLIP).clip(0.0, SCAN_CLIP)
+        nearest = np.minimum.reduceat(clipped[:, order], starts, axis=1)
+        out[np.ix_(np.asarray(rows), sectors)] = nearest
     return out
+
+
+#: angles' bytes -> their pooling; a host serves few sensor models, so this stays small
+_POOLINGS: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+
+
+def _pooling(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(beam order grouping each sector's beams, where each group starts, its sector)."""
+    key = angles.tobytes()
+    if key not in _POOLINGS:
+        if len(_POOLINGS) >= 64:
+            _POOLINGS.clear()
+        sector = ((np.mod(angles + math.pi, 2 * math.pi)) / (2 * math.pi) * SECTORS).astype(int)
+        sector = np.clip(sector, 0, SECTORS - 1)
+        order = np.argsort(sector, kind="stable")
+        grouped = sector[order]
+        starts = np.flatnonzero(np.r_[True, grouped[1:] != grouped[:-1]]) if len(order) else order
+        _POOLINGS[key] = (order, starts, grouped[starts])
+    return _POOLINGS[key]
 
 
 def plan_window(path_xy: np.ndarray, index: int, x: float, y: float, yaw: float) -> np.ndarray:
@@ -52,6 +89,15 @@ def features(
 ) -> np.ndarray:
     """(SIZE,) float32: scan sectors / SCAN_CLIP, the plan window [m], v [m/s], w [rad/s]."""
     window = plan_window(path_xy, index, *pose)
+    row: np.ndarray = features_of([(ranges, angles)], window[None], np.asarray([velocity]))[0]
+    return row
+
+
+def features_of(
+    scans: Sequence[tuple[np.ndarray, np.ndarray]], windows: np.ndarray, velocities: np.ndarray
+) -> np.ndarray:
+    """(B, SIZE) float32: ``features`` of B robots from their (ranges, angles), their
+    (B, PLAN_POINTS, 2) plan windows and (B, 2) velocities."""
     return np.concatenate(
-        [scan_sectors(ranges, angles) / SCAN_CLIP, window.ravel(), np.asarray(velocity)]
+        [scan_sectors_of(scans) / SCAN_CLIP, windows.reshape(len(scans), -1), velocities], axis=1
     ).astype(np.float32)
