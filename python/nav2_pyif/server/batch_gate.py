@@ -6,7 +6,12 @@ A batch leaves when every key that called in the last two control periods has a 
 is first; cycles that arrive while a batch runs form the next one. A cycle that waited more
 than a control period (an overloaded host) is answered Unavailable without being computed.
 Every other call (configure, set_plan, parameters, ...) goes straight to the shared planner,
-between two batches.
+between two batches, once that key's last cycle is answered.
+
+The batch's thread answers each cycle itself (``submit_nowait``): the key's own thread hands
+its query over and goes back to its queue. Waking each key's thread to answer after every
+batch cost the host most of its time at 100 robots: a burst of threads contending for the GIL
+while the next batch waited for it.
 """
 
 from __future__ import annotations
@@ -44,13 +49,27 @@ def check_window(window: float, period: float) -> None:
         )
 
 
+#: Sends a cycle's reply to the robot (a query's reply); called on the batch's thread
+Answer = Callable[[bytes], None]
+
+
 @dataclass
 class _Cycle:
     member: str
     payload: bytes
     arrived: float
+    answer: Answer | None = None  # None: the submitting thread waits for ``reply``
     reply: bytes = b""
     done: threading.Event = field(default_factory=threading.Event)
+
+    def finish(self, reply: bytes) -> None:
+        self.reply = reply
+        if self.answer is not None:
+            try:
+                self.answer(reply)
+            except Exception:  # the robot is gone, the session closed: the others go on
+                log.exception("could not answer a control cycle of %s", self.member)
+        self.done.set()
 
 
 class Batcher:
@@ -77,15 +96,21 @@ class Batcher:
 
     def submit(self, member: str, payload: bytes) -> bytes:
         """The reply to one control cycle, once its batch ran."""
-        cycle = _Cycle(member, payload, time.monotonic())
-        with self._cond:
-            if self._closing:
-                return self._refused(payload, "the planner host is shutting down")
-            self._pending.append(cycle)
-            self._last_call[member] = cycle.arrived
-            self._cond.notify()
+        cycle = self.submit_nowait(member, payload)
         cycle.done.wait()
         return cycle.reply
+
+    def submit_nowait(self, member: str, payload: bytes, answer: Answer | None = None) -> _Cycle:
+        """Queue one control cycle; ``answer`` gets its reply on the batch's thread."""
+        cycle = _Cycle(member, payload, time.monotonic(), answer)
+        with self._cond:
+            if not self._closing:
+                self._pending.append(cycle)
+                self._last_call[member] = cycle.arrived
+                self._cond.notify()
+                return cycle
+        cycle.finish(self._refused(payload, "the planner host is shutting down"))
+        return cycle
 
     def _callers(self, now: float) -> int:
         """Keys that sent a cycle in the last two control periods: the batch to wait for."""
@@ -120,12 +145,13 @@ class Batcher:
             if cycle.arrived < oldest:
                 self.dropped += 1
                 waited = (time.monotonic() - cycle.arrived) * 1000
-                cycle.reply = self._refused(
-                    cycle.payload,
-                    f"overloaded: this control cycle waited {waited:.0f} ms for its batch, more "
-                    f"than the {self.period * 1000:g} ms control period; not computed",
+                cycle.finish(
+                    self._refused(
+                        cycle.payload,
+                        f"overloaded: this control cycle waited {waited:.0f} ms for its batch, "
+                        f"more than the {self.period * 1000:g} ms control period; not computed",
+                    )
                 )
-                cycle.done.set()
         return fresh
 
     def _serve(self) -> None:
@@ -141,13 +167,11 @@ class Batcher:
             self.batches += 1
             self.cycles += len(batch)
             for cycle, reply in zip(batch, replies, strict=True):
-                cycle.reply = reply
-                cycle.done.set()
+                cycle.finish(reply)
         with self._cond:  # closing: nobody is left waiting
-            for cycle in self._pending:
-                cycle.reply = self._refused(cycle.payload, "the planner host is shutting down")
-                cycle.done.set()
-            self._pending.clear()
+            left, self._pending = self._pending, []
+        for cycle in left:
+            cycle.finish(self._refused(cycle.payload, "the planner host is shutting down"))
 
     def _refused(self, payload: bytes, why: str) -> bytes:
         return error_reply(peek_seq(payload), self.host_id, ErrorType.UNAVAILABLE, why)
@@ -188,6 +212,7 @@ class BatchMember:
 
     def __init__(self, group: BatchGroup, key: str) -> None:
         self.group, self.key = group, key
+        self._last_cycle: _Cycle | None = None  # this key's latest cycle, maybe in a batch
 
     @property
     def owner(self) -> object:
@@ -239,7 +264,19 @@ class BatchMember:
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
         if key_op == CYCLE_OP:
             return self.group.batcher.submit(self.key, payload)
+        self._after_last_cycle()
         return self.group.service.handle(payload, key_op)
+
+    def submit_cycle(self, payload: bytes, answer: Answer) -> None:
+        """A control cycle answered from its batch's thread; this key's next call of another
+        op waits for it (a key's calls take effect in the order they came)."""
+        self._last_cycle = self.group.batcher.submit_nowait(self.key, payload, answer)
+
+    def _after_last_cycle(self) -> None:
+        last = self._last_cycle
+        if last is not None:
+            last.done.wait()
+            self._last_cycle = None
 
     def handle_batch(self, payloads: list[bytes]) -> list[bytes]:
         return self.group.service.handle_batch(payloads)

@@ -30,6 +30,7 @@ from nav2_pyif.common.zenoh_config import (
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.roles import KIND_ROLES, check_roles, parse_delegates
 from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_arguments, start_all
+from nav2_pyif.server.heap import settle_heap
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
@@ -339,6 +340,7 @@ def main(argv: list[str] | None = None) -> int:
             for spec, service in zip(specs, services, strict=True):
                 host.serve(spec.key, service)
             serving.set()
+            settle_heap()  # what start-up built serves as long as the host
             log.info(
                 "host %s ready (%d planner%s, isolation: %s)",
                 host_id,

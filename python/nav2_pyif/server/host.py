@@ -20,6 +20,7 @@ import zenoh
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.carried import CARRIERS, Route, carry_on
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import PlannerService
@@ -36,6 +37,13 @@ def new_host_id() -> str:
 
 def _payload(query: Any) -> bytes:
     return query.payload.to_bytes() if query.payload is not None else b""
+
+
+def _answer(query: Any, reply: bytes) -> None:
+    try:
+        query.reply(query.key_expr, reply)
+    finally:
+        query.drop()  # sends the final reply marker now, not at garbage collection
 
 
 class ServedPlanner:
@@ -83,17 +91,31 @@ class ServedPlanner:
                 query.drop()  # a replica's query: its pinned host answers
                 continue
             self.queries += 1
+            handed_over = False
             try:
                 op = str(query.key_expr).rsplit("/", 1)[-1]
                 payload = _payload(query)
-                reply = self.runtime.handle(payload, key_op=op)
-                if op in CARRIERS and self.route is not None and b"carry" in payload:
-                    reply = carry_on(op, payload, reply, self.route, self.host_id)
-                query.reply(query.key_expr, reply)
+                handed_over = self._hand_over(query, op, payload)
+                if not handed_over:
+                    reply = self.runtime.handle(payload, key_op=op)
+                    if op in CARRIERS and self.route is not None and b"carry" in payload:
+                        reply = carry_on(op, payload, reply, self.route, self.host_id)
+                    query.reply(query.key_expr, reply)
             except Exception:
                 log.exception("%s: could not answer a query", self.keys.prefix)
             finally:
-                query.drop()  # sends the final reply marker now, not at garbage collection
+                if not handed_over:  # sends the final reply marker now, not at collection
+                    query.drop()
+
+    def _hand_over(self, query: Any, op: str, payload: bytes) -> bool:
+        """A batched control cycle goes to its batch, whose thread answers the query (this
+        thread is free for the next one at once); not one that carries other calls: those
+        run after it, here."""
+        submit = getattr(self.runtime, "submit_cycle", None)
+        if submit is None or op != CYCLE_OP or b"carry" in payload:
+            return False
+        submit(payload, lambda reply: _answer(query, reply))
+        return True
 
     def _addressed_elsewhere(self, query: Any) -> bool:
         """Plugins pin one host among replicas with the selector parameter host=<id>."""

@@ -51,6 +51,7 @@ from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.progress_checker import ProgressChecker
 from nav2_pyif.server.followed_plan import follow_plan
+from nav2_pyif.server.heap import settle_heap
 from nav2_pyif.server.results import (
     checked_bool,
     checked_bounds,
@@ -380,6 +381,7 @@ class PlannerRuntime:
         planner.configure()
         if isinstance(planner, Controller):
             warm_serialization()  # in configure, not in its first cycle with an input
+        settle_heap()
         context.params.on_change(planner.on_parameters_changed)
         self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)
         self.log.info(
