@@ -7,11 +7,12 @@ from __future__ import annotations
 import threading
 from collections.abc import Iterator
 
+import msgpack
 import pytest
 from nav2_pyif.server.batch_gate import BatchGroup
 from nav2_pyif.server.journal import Journal
 from nav2_pyif.server.spec import PlannerSpec
-from nav2_pyif_protocol.constants import PluginType
+from nav2_pyif_protocol.constants import ErrorType, PluginType
 
 pytestmark = pytest.mark.unit
 
@@ -122,3 +123,24 @@ def test_one_robots_failed_answer_leaves_the_others_answered(
     after = threading.Event()
     group.member("robot1").submit_cycle(b"fourth", lambda reply: after.set())
     assert after.wait(5.0)  # the batch thread went on
+
+
+def test_a_robots_newer_cycle_supersedes_its_older_one_still_waiting(
+    service: RecordingService, group: BatchGroup
+) -> None:
+    """Overload: a robot whose cycle ran out of time sends the next one; the older one, not
+    yet computed, is answered at once (Unavailable) and only the newer one is computed."""
+    group.member("robot0").submit_cycle(b"running", lambda reply: None)
+    assert service.batch_started.wait(5.0)
+    older: list[bytes] = []
+    newer = threading.Event()
+    robot1 = group.member("robot1")
+    robot1.submit_cycle(b"older", older.append)
+    robot1.submit_cycle(b"newer", lambda reply: newer.set())
+    answer = msgpack.unpackb(older[0])  # answered before the running batch ended
+    assert not answer["ok"] and answer["error"]["type"] == ErrorType.UNAVAILABLE.value
+    assert "superseded" in answer["error"]["message"]
+    service.release.set()
+    assert newer.wait(5.0)
+    assert service.calls[-1] == ("batch", (b"newer",))
+    assert group.batcher.superseded == 1

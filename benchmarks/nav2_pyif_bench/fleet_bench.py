@@ -299,6 +299,7 @@ def _summary(
         # the whole run's, set-up included: robots per batched call, cycles not computed
         "cycles_per_batch": batching.get("cycles", 0) / max(1, batching.get("batches", 0)),
         "dropped": batching.get("dropped", 0),
+        "superseded": batching.get("superseded", 0),
     }
 
 
@@ -349,7 +350,8 @@ def report(results: dict[str, Any]) -> str:
         if r["cycles_per_batch"]:
             lines.append(
                 f"  {r['mode']}, {r['robots']} robots: {r['cycles_per_batch']:.1f} cycles per "
-                f"batched call, {r['dropped']} not computed (waited a whole period)"
+                f"batched call, not computed: {r['dropped']} (waited a whole period), "
+                f"{r.get('superseded', 0)} (superseded by the robot's next cycle)"
             )
         for error in r["errors"][:2]:
             lines.append(f"  {r['mode']}, {r['robots']} robots: {error}")

@@ -87,8 +87,10 @@ class Batcher:
         self.batches = 0  # batched calls made
         self.cycles = 0  # control cycles they served
         self.dropped = 0  # cycles answered without computing: older than a control period
+        self.superseded = 0  # ... or followed by the same robot's next cycle
         self._cond = threading.Condition()
-        self._pending: list[_Cycle] = []
+        self._pending: list[_Cycle] = []  # the next batch, in arrival order
+        self._queued: dict[str, _Cycle] = {}  # member key -> its cycle in the next batch
         self._last_call: dict[str, float] = {}  # member key -> when it last sent a cycle
         self._closing = False
         self._thread = threading.Thread(target=self._serve, name=f"batch:{name}", daemon=True)
@@ -104,13 +106,32 @@ class Batcher:
         """Queue one control cycle; ``answer`` gets its reply on the batch's thread."""
         cycle = _Cycle(member, payload, time.monotonic(), answer)
         with self._cond:
-            if not self._closing:
+            closing, older = self._closing, self._queued.pop(member, None)
+            if older is not None:
+                self._pending.remove(older)
+            if not closing:
                 self._pending.append(cycle)
+                self._queued[member] = cycle
                 self._last_call[member] = cycle.arrived
                 self._cond.notify()
-                return cycle
-        cycle.finish(self._refused(payload, "the planner host is shutting down"))
+        if older is not None:
+            self._supersede(older)
+        if closing:
+            cycle.finish(self._refused(payload, "the planner host is shutting down"))
         return cycle
+
+    def _supersede(self, older: _Cycle) -> None:
+        """A robot sends its next cycle when the last one ran out of time (an overload): the
+        older one, not yet computed, is answered at once. Computing both would double that
+        robot's load at the moment the host has least to spare, and keep it overloaded."""
+        self.superseded += 1
+        older.finish(
+            self._refused(
+                older.payload,
+                "superseded: the robot sent a newer control cycle before this one's batch "
+                "ran (this one had timed out); not computed",
+            )
+        )
 
     def _callers(self, now: float) -> int:
         """Keys that sent a cycle in the last two control periods: the batch to wait for."""
@@ -133,6 +154,7 @@ class Batcher:
                     break
                 self._cond.wait(leave_at - now)
             batch, self._pending = self._pending, []
+            self._queued.clear()
             return batch
 
     def _drop_stale(self, batch: list[_Cycle]) -> list[_Cycle]:
@@ -170,6 +192,7 @@ class Batcher:
                 cycle.finish(reply)
         with self._cond:  # closing: nobody is left waiting
             left, self._pending = self._pending, []
+            self._queued.clear()
         for cycle in left:
             cycle.finish(self._refused(cycle.payload, "the planner host is shutting down"))
 
@@ -259,6 +282,7 @@ class BatchMember:
             "batches": batcher.batches,
             "cycles": batcher.cycles,
             "dropped": batcher.dropped,
+            "superseded": batcher.superseded,
         }
 
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
