@@ -255,8 +255,13 @@ std::optional<protocol::Bytes> ZenohTransport::query(
   auto pending = std::make_shared<Pending>();
   session->get(
     zenoh::KeyExpr(target.key), target.parameters(),
-    [pending](zenoh::Reply & reply) {
+    [pending, logger = logger_, key = target.key](zenoh::Reply & reply) {
       if (!reply.is_ok()) {
+        // Not a host's answer (a host answers errors inside its reply), but it says why the
+        // call may end with none: the session's or a router's error.
+        client::log(
+          logger, LogLevel::Warn,
+          "Zenoh error reply to " + key + ": " + reply.get_err().get_payload().as_string());
         return;
       }
       std::lock_guard<std::mutex> lock(pending->mutex);
