@@ -26,6 +26,7 @@ from tests.conftest import (
     free_port,
     host_process,
     make_costmap,
+    nav2_pyif_tool,
     open_client_session,
     wait_until,
 )
@@ -275,6 +276,8 @@ def test_a_cycle_that_waited_a_control_period_is_not_computed(fleet: Fleet) -> N
     assert slow[0].twist.linear.x == SPEEDS[0]  # the slow one was served
     fleet.set_fault(0, "none")
     fleet.assert_sessions_intact()
+    listed = nav2_pyif_tool("hosts", "--connect", fleet.host.endpoint, timeout=30)
+    assert "not computed (overload): 1 waited a period, 0 superseded" in listed.stdout, listed
 
 
 def test_robots_join_and_leave_while_others_cycle(fleet: Fleet) -> None:

@@ -125,7 +125,8 @@ def render(found: Survey) -> str:
         groups = {tuple(k["batch"]["keys"]): k["batch"] for k in item["keys"] if k["batch"]}
         lines += [
             f"  batched: {', '.join(keys)}: {group['cycles']} cycles in {group['batches']} "
-            f"calls, window {group['window_s'] * 1e3:g} ms"
+            f"calls, window {group['window_s'] * 1e3:g} ms; not computed (overload): "
+            f"{group.get('dropped', 0)} waited a period, {group.get('superseded', 0)} superseded"
             for keys, group in groups.items()
         ]
     return "\n".join(lines)
