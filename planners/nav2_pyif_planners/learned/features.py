@@ -30,11 +30,10 @@ def scan_sectors_of(scans: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarra
     out = np.full((len(scans), SECTORS), SCAN_CLIP)
     alike: dict[bytes, list[int]] = {}
     for i, (_, angles) in enumerate(scans):
-        alike.setdefault(np.asarray(angles).tobytes(), []).append(i)
-    for rows in alike.values():
-        order, starts, sectors = _pooling(np.asarray(scans[rows[0]][1]))
-        if len(order) == 0:
-            continue
+        if len(angles):  # a scan without beams sees nothing nearer than SCAN_CLIP
+            alike.setdefault(np.asarray(angles).tobytes(), []).append(i)
+    for key, rows in alike.items():
+        order, starts, sectors = _pooling(key, np.asarray(scans[rows[0]][1]))
         ranges = np.stack([scans[i][0] for i in rows])
         clipped = np.where(np.isfinite(ranges), ranges, SCAN_CLIP).clip(0.0, SCAN_CLIP)
         nearest = np.minimum.reduceat(clipped[:, order], starts, axis=1)
@@ -46,9 +45,9 @@ def scan_sectors_of(scans: Sequence[tuple[np.ndarray, np.ndarray]]) -> np.ndarra
 _POOLINGS: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
 
 
-def _pooling(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """(beam order grouping each sector's beams, where each group starts, its sector)."""
-    key = angles.tobytes()
+def _pooling(key: bytes, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(beam order grouping each sector's beams, where each group starts, its sector) for
+    the (non-empty) ``angles`` whose bytes are ``key``."""
     if key not in _POOLINGS:
         if len(_POOLINGS) >= 64:
             _POOLINGS.clear()
@@ -56,7 +55,7 @@ def _pooling(angles: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         sector = np.clip(sector, 0, SECTORS - 1)
         order = np.argsort(sector, kind="stable")
         grouped = sector[order]
-        starts = np.flatnonzero(np.r_[True, grouped[1:] != grouped[:-1]]) if len(order) else order
+        starts = np.flatnonzero(np.r_[True, grouped[1:] != grouped[:-1]])
         _POOLINGS[key] = (order, starts, grouped[starts])
     return _POOLINGS[key]
 

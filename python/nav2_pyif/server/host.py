@@ -62,6 +62,8 @@ class ServedPlanner:
         self.keys = keys
         self.runtime = runtime
         self.route = route  # the host's other keys, for calls carried in a cycle's query
+        # a batch group's member takes its cycles without blocking this key's thread
+        self._submit_cycle = getattr(runtime, "submit_cycle", None)
         self.host_id = host_id
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
@@ -111,10 +113,9 @@ class ServedPlanner:
         """A batched control cycle goes to its batch, whose thread answers the query (this
         thread is free for the next one at once); not one that carries other calls: those
         run after it, here."""
-        submit = getattr(self.runtime, "submit_cycle", None)
-        if submit is None or op != CYCLE_OP or b"carry" in payload:
+        if self._submit_cycle is None or op != CYCLE_OP or b"carry" in payload:
             return False
-        submit(payload, lambda reply: _answer(query, reply))
+        self._submit_cycle(payload, lambda reply: _answer(query, reply))
         return True
 
     def _addressed_elsewhere(self, query: Any) -> bool:
