@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from enum import Enum
 from typing import Final
 
-from nav2_pyif_protocol.constants import BehaviorFailure, BehaviorStatus, Op
+from nav2_pyif_protocol.constants import BehaviorFailure, BehaviorStatus, Op, PluginType
 
 # Field kinds. A struct kind is the name of an entry of STRUCTS.
 INT: Final = "int"  # msgpack int, fits int64
@@ -571,6 +571,36 @@ OP_TIMEOUT: dict[Op, Timeout] = {
     Op.ON_ACTION_COMPLETION: Timeout.LIFECYCLE,
 }
 
+
+class CostmapSent(str, Enum):
+    """Whether an op's request carries the plugin's costmap (PROTOCOL.md section 5)."""
+
+    NEVER = "never"
+    IF_CHANGED = "if_changed"  # when its version is not the one this session last delivered
+    ALWAYS = "always"  # configure: a new session starts from the whole costmap
+
+
+def _costmap_sent(op: Op) -> CostmapSent:
+    field = next((f for f in BODIES[op][0] if f.name == "costmap"), None)
+    if field is None:
+        return CostmapSent.NEVER
+    return CostmapSent.ALWAYS if field.required else CostmapSent.IF_CHANGED
+
+
+#: Each op's costmap rule, read from its request's ``costmap`` field: required -> always,
+#: optional -> when changed, none -> never. Both clients attach the costmap by this table
+#: (the C++ one generated into ops.hpp); no call site says it.
+COSTMAP_SENT: dict[Op, CostmapSent] = {op: _costmap_sent(op) for op in Op}
+
+#: What a new session on the host (a restarted host, another replica: SessionUnknown) is sent
+#: again right after configure (and activate, when active), per plugin type and in this order:
+#: what the planner was told since configure that it cannot do without. Each client re-sends
+#: it from its own state (the latest plan and goal; the speed limit in force; the behaviour's
+#: action under way, until on_action_completion) and nothing else.
+RESTORED: dict[PluginType, tuple[Op, ...]] = {
+    PluginType.CONTROLLER: (Op.SET_PLAN, Op.SET_SPEED_LIMIT),
+    PluginType.BEHAVIOR: (Op.ON_RUN,),
+}
 
 #: The control cycle in fewer queries (PROTOCOL.md section 15): op -> the ops its request may
 #: carry. Nav2's controller_server calls the goal check, the progress check and the command

@@ -48,9 +48,7 @@ BehaviorStep BehaviorSession::run(
   body.pose = pose;
   running_.reset();
   try {
-    CallOptions options;
-    options.costmap = CostmapMode::IfChanged;
-    const auto reply = call_for<proto::OnRunReply>(body, options);
+    const auto reply = call_for<proto::OnRunReply>(body);
     BehaviorStep step = step_of(reply.status, reply.failure, "on_run");
     if (step.status == BehaviorStatus::Running) {
       return failed("on_run reply from host " + last_host() + " is 'running'");
@@ -71,9 +69,7 @@ BehaviorStep BehaviorSession::cycle_update(const proto::PoseStamped & pose, doub
   body.pose = pose;
   body.elapsed = elapsed;
   try {
-    CallOptions options;
-    options.costmap = CostmapMode::IfChanged;
-    auto reply = call_for<proto::OnCycleUpdateReply>(body, options);
+    auto reply = call_for<proto::OnCycleUpdateReply>(body);
     BehaviorStep step = step_of(reply.status, reply.failure, "on_cycle_update");
     if (!step.error.empty()) {
       return step;
@@ -111,13 +107,12 @@ bool BehaviorSession::running() const
   return running_.has_value();
 }
 
-void BehaviorSession::restore_state()
+std::optional<proto::RequestBody> BehaviorSession::restored(proto::Op op)
 {
-  if (running_) {
-    CallOptions options;
-    options.allow_resync = false;
-    call(*running_, options);
+  if (op == proto::Op::OnRun && running_) {
+    return *running_;
   }
+  return std::nullopt;
 }
 
 }  // namespace nav2_pyif_bridge::client

@@ -50,7 +50,7 @@ std::optional<Carried> GoalCheckerSession::prepare_goal_check(
   const std::array<double, 6> & velocity)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  return prepare(goal_check(pose, goal, velocity), CostmapMode::None);
+  return prepare(goal_check(pose, goal, velocity));
 }
 
 std::optional<bool> GoalCheckerSession::take_goal_check(
@@ -108,7 +108,7 @@ std::optional<Carried> ProgressCheckerSession::prepare_check(const proto::PoseSt
   std::lock_guard<std::recursive_mutex> lock(mutex());
   proto::CheckRequest body;
   body.pose = pose;
-  return prepare(body, CostmapMode::None);
+  return prepare(body);
 }
 
 std::optional<bool> ProgressCheckerSession::take_check(

@@ -14,7 +14,7 @@ std::optional<CallError> ControllerSession::set_plan(const proto::Path & path)
   plan_ = path;
   plan_owed_ = true;
   try {
-    send_plan({});
+    send_plan();
   } catch (const CallError & error) {
     if (!error.host_failed()) {
       plan_owed_ = false;
@@ -25,9 +25,9 @@ std::optional<CallError> ControllerSession::set_plan(const proto::Path & path)
   return std::nullopt;
 }
 
-void ControllerSession::send_plan(const CallOptions & options)
+void ControllerSession::send_plan()
 {
-  call(proto::SetPlanRequest{*plan_, goal_}, options);
+  call(proto::SetPlanRequest{*plan_, goal_}, {});
   plan_owed_ = false;
   plan_unsent_ = false;
   goal_unsent_ = false;
@@ -76,7 +76,7 @@ CommandReplies ControllerSession::compute_velocity_commands(
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
   if (plan_owed_) {
-    send_plan({});  // a host failure here fails this cycle, as the cycle's own would
+    send_plan();  // a host failure here fails this cycle, as the cycle's own would
   }
   Attached attached;
   proto::ComputeVelocityCommandsRequest body =
@@ -84,9 +84,7 @@ CommandReplies ControllerSession::compute_velocity_commands(
   if (!carry.empty()) {
     body.carry = std::move(carry);
   }
-  CallOptions options;
-  options.costmap = CostmapMode::IfChanged;
-  auto reply = call_for<proto::ComputeVelocityCommandsReply>(body, options);
+  auto reply = call_for<proto::ComputeVelocityCommandsReply>(body);
   std::vector<proto::CarriedCall> carried = std::move(reply.carried).value_or(
     std::vector<proto::CarriedCall>{});
   return {command_of(std::move(reply), attached), std::move(carried)};
@@ -101,8 +99,7 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
     return std::nullopt;  // it would run on the host's old plan
   }
   PreparedCommand prepared;
-  auto carried = prepare(
-    command_body(pose, velocity, goal_checker, prepared.attached), CostmapMode::IfChanged);
+  auto carried = prepare(command_body(pose, velocity, goal_checker, prepared.attached));
   if (!carried) {
     return std::nullopt;
   }
@@ -145,9 +142,10 @@ proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
     body.goal = goal_;
     attached.goal = true;
   }
+  const std::uint64_t session = epoch();  // before the inputs' lock, as every caller takes them
   std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
   for (const auto & [name, latest] : inputs_) {
-    if (latest.sent != latest.generation) {
+    if (latest.sent != latest.generation || latest.sent_epoch != session) {
       if (!body.inputs) {
         body.inputs.emplace();
       }
@@ -168,9 +166,11 @@ proto::TwistStamped ControllerSession::command_of(
   // (the caller holds mutex(): plan_ and goal_ are still what was attached)
   plan_unsent_ = plan_unsent_ && !attached.plan;
   goal_unsent_ = goal_unsent_ && !attached.goal;
+  const std::uint64_t session = epoch();
   std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
   for (const auto & [name, generation] : attached.inputs) {
     inputs_[name].sent = generation;
+    inputs_[name].sent_epoch = session;
   }
   debug_ = reply.debug ? std::move(*reply.debug) : std::vector<proto::DebugOutput>{};
   return std::move(reply.cmd_vel);
@@ -231,34 +231,20 @@ bool ControllerSession::has_plan() const
   return plan_.has_value();
 }
 
-void ControllerSession::restore_state()
+std::optional<proto::RequestBody> ControllerSession::restored(proto::Op op)
 {
-  {
-    // A new session (host restart, another replica) has none of the inputs: send them all
-    // again, from the next cycle on (the retried call carries those it was built with).
-    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
-    for (auto & [name, latest] : inputs_) {
-      latest.sent = 0;
-    }
+  if (op == proto::Op::SetPlan && plan_ && !plan_owed_) {  // an owed one: its call sends it
+    plan_unsent_ = goal_unsent_ = false;  // set_plan gives both
+    return proto::SetPlanRequest{*plan_, goal_};
   }
-  CallOptions options;
-  options.allow_resync = false;
-  if (plan_ && !plan_owed_) {
-    send_plan(options);  // an owed plan is sent by the call that owes it, right after
+  if (op == proto::Op::SetSpeedLimit && speed_limit_) {
+    return *speed_limit_;
   }
-  if (speed_limit_) {
-    call(*speed_limit_, options);
-  }
+  return std::nullopt;
 }
 
 void ControllerSession::forget_state()
 {
-  {
-    std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
-    for (auto & [name, latest] : inputs_) {
-      latest.sent = 0;
-    }
-  }
   plan_.reset();
   plan_owed_ = false;
   goal_.reset();

@@ -27,7 +27,6 @@ proto::Path PlannerSession::create_plan(
     body.viapoints = viapoints;
   }
   CallOptions options;
-  options.costmap = CostmapMode::IfChanged;
   if (cancel_checker) {
     // One cancel_plan per create_plan request (a retry after SessionUnknown is a new one).
     std::uint64_t cancelled_seq = 0;

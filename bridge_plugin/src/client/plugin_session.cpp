@@ -21,10 +21,9 @@ struct HasCostmap : std::false_type {};
 template<class T>
 struct HasCostmap<T, std::void_t<decltype(std::declval<T &>().costmap)>> : std::true_type {};
 
-// The costmap rides in every request schema.py gives a costmap field (configure,
-// compute_velocity_commands, create_plan, smooth, on_run, on_cycle_update): found from the
-// generated structs, not listed here (a hand list had left out smooth's).
-void attach_costmap(proto::RequestBody & body, proto::Costmap costmap)
+// Sets the costmap field of a request that has one (schema.py COSTMAP_SENT says which ops'
+// requests carry it, and when).
+void set_costmap(proto::RequestBody & body, proto::Costmap costmap)
 {
   std::visit(
     [&costmap](auto & request) {
@@ -112,7 +111,6 @@ proto::Params PluginSession::configure_locked()
     body.nav2_params = config_.nav2_params;
   }
   CallOptions options;
-  options.costmap = CostmapMode::Always;
   options.allow_resync = false;
   auto reply = call_for<proto::ConfigureReply>(body, options);
   configured_ = true;
@@ -277,22 +275,13 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     establish();  // deferred configure, or a re-establishment that failed before
   }
 
-  proto::Request request;
-  request.sid = sid_;
-  request.epoch = epoch_;
-  request.body = body;
-  std::optional<std::uint64_t> version;
-  bool costmap_sent = false;
-  if (options.costmap != CostmapMode::None) {
-    CostmapRead read = costmap_.read(
-      options.costmap == CostmapMode::Always ? std::nullopt : delivered_costmap_);
-    version = read.version;
-    if (read.costmap) {
-      attach_costmap(request.body, std::move(*read.costmap));
-      costmap_sent = true;
-    }
-  }
-  request.seq = next_seq();
+  Carried sent;
+  sent.request.sid = sid_;
+  sent.request.epoch = epoch_;
+  sent.request.body = body;
+  attach_costmap(sent);
+  sent.request.seq = next_seq();
+  const proto::Request & request = sent.request;
 
   // After a fail-over: once, on the new replica, whose SessionUnknown re-sends the state.
   CallOptions retry = options;
@@ -317,8 +306,8 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     return call(body, retry);
   }
   if (reply.ok()) {
-    if (costmap_sent) {
-      delivered_costmap_ = version;
+    if (sent.costmap_sent) {
+      delivered_costmap_ = sent.costmap_version;
     }
     return std::get<proto::ReplyBody>(std::move(reply.outcome));
   }
@@ -347,7 +336,22 @@ void PluginSession::join(std::shared_ptr<CarriedCycle> cycle)
   cycle_ = std::move(cycle);
 }
 
-std::optional<Carried> PluginSession::prepare(proto::RequestBody body, CostmapMode costmap)
+void PluginSession::attach_costmap(Carried & carried)
+{
+  const proto::CostmapSent rule = proto::costmap_sent(carried.request.op());
+  if (rule == proto::CostmapSent::Never) {
+    return;
+  }
+  CostmapRead read = costmap_.read(
+    rule == proto::CostmapSent::Always ? std::nullopt : delivered_costmap_);
+  carried.costmap_version = read.version;
+  if (read.costmap) {
+    set_costmap(carried.request.body, std::move(*read.costmap));
+    carried.costmap_sent = true;
+  }
+}
+
+std::optional<Carried> PluginSession::prepare(proto::RequestBody body)
 {
   if (!configured_ || !established_) {
     return std::nullopt;
@@ -356,15 +360,7 @@ std::optional<Carried> PluginSession::prepare(proto::RequestBody body, CostmapMo
   carried.request.sid = sid_;
   carried.request.epoch = epoch_;
   carried.request.body = std::move(body);
-  if (costmap != CostmapMode::None) {
-    CostmapRead read = costmap_.read(
-      costmap == CostmapMode::Always ? std::nullopt : delivered_costmap_);
-    carried.costmap_version = read.version;
-    if (read.costmap) {
-      attach_costmap(carried.request.body, std::move(*read.costmap));
-      carried.costmap_sent = true;
-    }
-  }
+  attach_costmap(carried);
   try {
     carried.request.seq = seq_ + 1;
     carried.payload = proto::encode_request(carried.request);
@@ -543,12 +539,19 @@ bool PluginSession::fail_over(const std::optional<std::string> & avoid)
 void PluginSession::establish()
 {
   configure_locked();
+  CallOptions options;
+  options.allow_resync = false;
   if (active_) {
-    CallOptions options;
-    options.allow_resync = false;
     call(proto::ActivateRequest{}, options);
   }
-  restore_state();
+  for (const auto & [kind, op] : proto::kRestored) {
+    if (kind != config_.kind) {
+      continue;
+    }
+    if (std::optional<proto::RequestBody> body = restored(op)) {
+      call(*body, options);
+    }
+  }
 }
 
 void PluginSession::fail(ErrorKind kind, Cause cause, const std::string & message) const

@@ -12,9 +12,7 @@ proto::SmoothReply SmootherSession::smooth(const proto::Path & path, double max_
   proto::SmoothRequest body;
   body.path = path;
   body.max_time = max_time;
-  CallOptions options;
-  options.costmap = CostmapMode::IfChanged;
-  auto reply = call_for<proto::SmoothReply>(body, options);
+  auto reply = call_for<proto::SmoothReply>(body);
   check_path(reply.path, last_host(), ErrorKind::FailedToSmoothPath, "smooth reply");
   return reply;
 }

@@ -26,6 +26,7 @@ from nav2_pyif_protocol.schema import (
     BIN,
     BODIES,
     BOOL,
+    COSTMAP_SENT,
     FLOAT,
     FLOAT6,
     FLOAT7,
@@ -34,6 +35,7 @@ from nav2_pyif_protocol.schema import (
     PARAMS,
     REPLY_ENVELOPE,
     REQUEST_ENVELOPE,
+    RESTORED,
     ROWS,
     STR,
     STR_MAP,
@@ -41,6 +43,7 @@ from nav2_pyif_protocol.schema import (
     STRUCTS,
     UINT,
     UINT32,
+    CostmapSent,
     Field,
     Timeout,
 )
@@ -122,6 +125,12 @@ def rule(title: str) -> str:
     """A section rule as wide as the code: `// --- title ------`."""
     text = f"// --- {title} "
     return text + "-" * (WIDTH - len(text))
+
+
+def senders(op: Op, joiner: str) -> str:
+    """The plugin types that send ``op``, for a comment or a table cell."""
+    kinds = [p.value for p in PluginType if op in OPS_BY_PLUGIN[p]]
+    return "every plugin type" if len(kinds) == len(PluginType) else joiner.join(kinds)
 
 
 def camel(name: str) -> str:
@@ -274,6 +283,10 @@ def check_envelopes() -> None:
 # --- headers --------------------------------------------------------------------------------
 
 
+def _restored_count() -> int:
+    return sum(len(ops) for ops in RESTORED.values())
+
+
 def ops_hpp() -> str:
     body = [
         "",
@@ -286,9 +299,7 @@ def ops_hpp() -> str:
         "{",
     ]
     for op in Op:
-        kinds = [p.value for p in PluginType if op in OPS_BY_PLUGIN[p]]
-        who = "every plugin type" if len(kinds) == len(PluginType) else " and ".join(kinds)
-        body.append(f"  {camel(op.value)},  // {who}")
+        body.append(f"  {camel(op.value)},  // {senders(op, ' and ')}")
     body += [
         "};",
         "",
@@ -322,6 +333,39 @@ def ops_hpp() -> str:
         "  return kOpTimeout[static_cast<std::size_t>(op)];",
         "}",
         "",
+        *comment(
+            "Whether each op's request carries the plugin's costmap (schema.py COSTMAP_SENT, "
+            "from the request's costmap field; PROTOCOL.md section 5).",
+            "",
+        ),
+        "enum class CostmapSent : std::uint8_t",
+        "{",
+        *(f"  {camel(c.value)}," for c in CostmapSent),
+        "};",
+        "",
+        "inline constexpr std::array<CostmapSent, kOpCount> kOpCostmap = {",
+        *(f"  CostmapSent::{camel(COSTMAP_SENT[op].value)},  // {op.value}" for op in Op),
+        "};",
+        "",
+        "constexpr CostmapSent costmap_sent(Op op) noexcept",
+        "{",
+        "  return kOpCostmap[static_cast<std::size_t>(op)];",
+        "}",
+        "",
+        *comment(
+            "What a new session on the host is sent again after configure (and activate), "
+            "per plugin type, in this order (schema.py RESTORED; PROTOCOL.md section 4).",
+            "",
+        ),
+        f"inline constexpr std::array<std::pair<PluginKind, Op>, {_restored_count()}> "
+        "kRestored = {{",
+        *(
+            f"  {{PluginKind::{camel(plugin.value)}, Op::{camel(op.value)}}},"
+            for plugin, ops in RESTORED.items()
+            for op in ops
+        ),
+        "}};",
+        "",
         "// std::nullopt for a name this version of the protocol does not know.",
         "constexpr std::optional<Op> op_from_name(std::string_view name) noexcept",
         "{",
@@ -335,8 +379,16 @@ def ops_hpp() -> str:
     ]
     return cpp_file(
         "The operations of the protocol and their wire names (the request's `op`, also the "
-        "last chunk of the Zenoh key `P/rpc/<op>`).",
-        ["<array>", "<cstddef>", "<cstdint>", "<optional>", "<string_view>"],
+        "last chunk of the Zenoh key `P/rpc/<op>`), and each op's traits.",
+        [
+            "<array>",
+            "<cstddef>",
+            "<cstdint>",
+            "<optional>",
+            "<string_view>",
+            "<utility>",
+            '"nav2_pyif_bridge/protocol/nav2_errors.hpp"',
+        ],
         body,
     )
 

@@ -32,7 +32,7 @@ class BehaviorClient(PluginClient):
         """The action's goal (``action``: e.g. nav2_msgs/action/BackUp; ``command``: its
         fields as plain values) at robot ``pose`` (PoseStamped): SUCCEEDED to start cycling."""
         body = {"action": action, "command": dict(command), "pose": pose_to_wire(pose)}
-        reply = self._call(Op.ON_RUN, body, with_costmap=True)
+        reply = self._call(Op.ON_RUN, body)
         status = Status(reply["status"])
         self._running = body if status is Status.SUCCEEDED else None
         return status, Failure(reply["failure"])
@@ -40,7 +40,7 @@ class BehaviorClient(PluginClient):
     def cycle_update(self, pose: Any, elapsed: float) -> Step:
         """One cycle at ``pose``, ``elapsed`` s after run: the Step (cmd_vel a TwistStamped)."""
         body = {"pose": pose_to_wire(pose), "elapsed": float(elapsed)}
-        reply = self._call(Op.ON_CYCLE_UPDATE, body, with_costmap=True)
+        reply = self._call(Op.ON_CYCLE_UPDATE, body)
         cmd = reply.get("cmd_vel")
         return Step(
             Status(reply["status"]),
@@ -54,8 +54,7 @@ class BehaviorClient(PluginClient):
         self._running = None
         self._call(Op.ON_ACTION_COMPLETION, {"status": status, "elapsed": float(elapsed)})
 
-    def _restore_state(self) -> None:
+    def _restored(self, op: Op) -> dict[str, Any] | None:
         # A restarted host goes on with the action under way from its start (the C++ plugin
         # does the same).
-        if self._running is not None:
-            self._call(Op.ON_RUN, self._running, allow_resync=False)
+        return self._running if op is Op.ON_RUN else None

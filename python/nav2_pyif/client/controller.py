@@ -79,12 +79,15 @@ class ControllerClient(PluginClient):
             self._goal = goal_wire
             self._unsent.add("goal")
 
-    def _send_plan(self, *, allow_resync: bool = True) -> None:
+    def _plan_body(self) -> dict[str, Any]:
         assert self._plan is not None
         body = {"path": self._plan}
         if self._goal is not None:
             body["goal"] = self._goal
-        self._call(Op.SET_PLAN, body, allow_resync=allow_resync)
+        return body
+
+    def _send_plan(self) -> None:
+        self._call(Op.SET_PLAN, self._plan_body())
         self._plan_owed = False
         self._unsent.clear()
 
@@ -113,7 +116,7 @@ class ControllerClient(PluginClient):
             body = dict(body, plan=self._plan)
         if "goal" in carried:
             body = dict(body, goal=self._goal)
-        reply = self._call(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+        reply = self._call(Op.COMPUTE_VELOCITY_COMMANDS, body)
         self._unsent -= carried
         return reply
 
@@ -162,36 +165,30 @@ class ControllerClient(PluginClient):
         self._goal, self._unsent, self._follows = None, set(), False
         super().cleanup()
 
-    def _prepare(
-        self, op: Op, body: dict[str, Any], *, with_costmap: bool = False
-    ) -> Carried | None:
+    def _prepare(self, op: Op, body: dict[str, Any]) -> Carried | None:
         # A command prepared while the plan is owed, or before Nav2 transformed the cycle's
         # plan (Lyrical: after the goal check), would run on the host's old plan.
         if self._plan_owed or self._follows:
             return None
-        return super()._prepare(op, body, with_costmap=with_costmap)
+        return super()._prepare(op, body)
 
     def _take(
         self,
         carried: Carried | None,
         reply_bytes: bytes | None,
         body: dict[str, Any],
-        *,
-        with_costmap: bool = False,
     ) -> dict[str, Any] | None:
         # A plan that became owed (set_plan sent nothing: no host) is news to the host too.
         if self._plan_owed or self._unsent:
             return None
-        return super()._take(carried, reply_bytes, body, with_costmap=with_costmap)
+        return super()._take(carried, reply_bytes, body)
 
-    def _restore_state(self) -> None:
-        if self._plan is not None and not self._plan_owed:
-            # an owed plan is sent by the call that owes it, right after
-            self._send_plan(allow_resync=False)
-        if self._speed_limit is not None:
+    def _restored(self, op: Op) -> dict[str, Any] | None:
+        if op is Op.SET_PLAN and self._plan is not None and not self._plan_owed:
+            # (an owed plan is sent by the call that owes it, right after)
+            self._unsent.clear()  # set_plan gives both the plan and the goal
+            return self._plan_body()
+        if op is Op.SET_SPEED_LIMIT and self._speed_limit is not None:
             limit, percentage = self._speed_limit
-            self._call(
-                Op.SET_SPEED_LIMIT,
-                {"speed_limit": limit, "percentage": percentage},
-                allow_resync=False,
-            )
+            return {"speed_limit": limit, "percentage": percentage}
+        return None

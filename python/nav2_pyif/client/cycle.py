@@ -139,13 +139,12 @@ class ControlCycle:
 
     def _prepare_command(self, pose: Any, *inputs: Any) -> Carried | None:
         body = self.controller.compute_body(pose, *inputs)
-        return self.controller._prepare(Op.COMPUTE_VELOCITY_COMMANDS, body, with_costmap=True)
+        return self.controller._prepare(Op.COMPUTE_VELOCITY_COMMANDS, body)
 
     def _take(self, client: PluginClient, op: Op, body: Body) -> Body | None:
         """The carried reply of this call, when it was prepared for exactly this call."""
         carried, reply = self._pending.pop(op, (None, None))
-        with_costmap = op is Op.COMPUTE_VELOCITY_COMMANDS
-        answer = client._take(carried, reply, body, with_costmap=with_costmap)
+        answer = client._take(carried, reply, body)
         self.carried_used += answer is not None
         return answer
 

@@ -46,7 +46,7 @@ class GlobalPlannerClient(PluginClient):
                     self._send_cancel(seq)
                     cancel_sent = True
 
-        reply = self._call(Op.CREATE_PLAN, body, with_costmap=True, while_waiting=while_waiting)
+        reply = self._call(Op.CREATE_PLAN, body, while_waiting=while_waiting)
         return Plan.from_wire(reply["path"])
 
     def _send_cancel(self, target_seq: int) -> None:

@@ -37,7 +37,14 @@ from nav2_pyif_protocol.codec import (
 )
 from nav2_pyif_protocol.constants import ERRORS_BY_PLUGIN, ErrorType, Op, PluginType
 from nav2_pyif_protocol.keys import KeySpace
-from nav2_pyif_protocol.schema import BODIES, OP_TIMEOUT, Timeout
+from nav2_pyif_protocol.schema import (
+    BODIES,
+    COSTMAP_SENT,
+    OP_TIMEOUT,
+    RESTORED,
+    CostmapSent,
+    Timeout,
+)
 
 from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.transport import Transport, ZenohTransport, selector
@@ -224,8 +231,11 @@ class PluginClient:
         self.hosts.close()
 
     # --- for subclasses -----------------------------------------------------------------
-    def _restore_state(self) -> None:
-        """Re-send what the planner was told since configure (plan, speed limit)."""
+    def _restored(self, op: Op) -> Body | None:
+        """The request body that tells a new session on the host ``op``'s part of what the
+        planner was told since configure, for each op ``schema.RESTORED`` lists for this
+        plugin type (the plan, the speed limit, ...); None: nothing to re-send."""
+        return None
 
     def _configure_body(self) -> Body:
         body: Body = {
@@ -235,7 +245,6 @@ class PluginClient:
             "params": self.params,
             "global_frame": self.global_frame,
             "robot_base_frame": self.robot_base_frame,
-            "costmap": self.costmap.to_wire(),
         }
         nav2 = dict(self.nav2_params)
         if self.costmap.inflation is not None:  # as the C++ plugin reads the inflation layer
@@ -284,22 +293,25 @@ class PluginClient:
         return Request(op=op, sid=self.sid, epoch=self.epoch, seq=self._seq, body=body)
 
     # --- calls carried in another plugin's query (PROTOCOL.md section 15) -----------------
-    def _with_costmap(self, op: Op, body: Body, with_costmap: bool) -> tuple[Body, bool, int]:
-        """The body as sent (the costmap attached, in schema order, when it changed since
-        delivered), whether it carries the costmap, and the costmap's version."""
+    def _with_costmap(self, op: Op, body: Body) -> tuple[Body, bool, int]:
+        """The body as sent (the costmap attached, in schema order, as ``schema.COSTMAP_SENT``
+        says the op takes it), whether it carries the costmap, and the costmap's version."""
         version = self.costmap.version
-        send_costmap = with_costmap and version != self._delivered_costmap
+        rule = COSTMAP_SENT[op]
+        send_costmap = rule is CostmapSent.ALWAYS or (
+            rule is CostmapSent.IF_CHANGED and version != self._delivered_costmap
+        )
         if send_costmap:
             merged = dict(body, costmap=self.costmap.to_wire())
             body = {name: merged[name] for name in _REQUEST_FIELDS[op] if name in merged}
         return body, send_costmap, version
 
-    def _prepare(self, op: Op, body: Body, *, with_costmap: bool = False) -> Carried | None:
+    def _prepare(self, op: Op, body: Body) -> Carried | None:
         """An encoded request another plugin's query carries to this plugin's host; None
         when this plugin cannot send one now (not configured)."""
         if not self.configured or not self.established:
             return None
-        wire, send_costmap, version = self._with_costmap(op, body, with_costmap)
+        wire, send_costmap, version = self._with_costmap(op, body)
         request = self._next_request(op, wire)
         return Carried(request, encode_request(request), version, send_costmap)
 
@@ -308,8 +320,6 @@ class PluginClient:
         carried: Carried | None,
         reply_bytes: bytes | None,
         body: Body,
-        *,
-        with_costmap: bool = False,
     ) -> Body | None:
         """The reply body for Nav2's call ``body``, from the reply ``carried`` got, as
         ``_call`` would return it. None, and the call goes on its own, unless the call is
@@ -319,7 +329,7 @@ class PluginClient:
         own re-establishes it)."""
         if carried is None or self._seq != carried.request.seq:
             return None
-        wire, _, _ = self._with_costmap(carried.request.op, body, with_costmap)
+        wire, _, _ = self._with_costmap(carried.request.op, body)
         if encode_request(replace(carried.request, body=wire)) != carried.payload:
             return None
         return self._settle(carried, reply_bytes)
@@ -354,7 +364,6 @@ class PluginClient:
         op: Op,
         body: Body,
         *,
-        with_costmap: bool = False,
         allow_resync: bool = True,
         allow_failover: bool = True,
         while_waiting: Callable[[int], None] | None = None,
@@ -383,14 +392,13 @@ class PluginClient:
             self._establish()  # deferred configure, or a re-establishment that failed before
         # in schema order, as the validation skipped for the control cycle would write it;
         # a retry starts again from Nav2's body (the costmap may have been delivered since)
-        wire, send_costmap, version = self._with_costmap(op, body, with_costmap)
+        wire, send_costmap, version = self._with_costmap(op, body)
         request = self._next_request(op, wire)
 
         def retry() -> Body:  # once, on the new replica, whose SessionUnknown re-sends state
             return self._call(
                 op,
                 body,
-                with_costmap=with_costmap,
                 allow_failover=False,
                 while_waiting=while_waiting,
             )
@@ -412,7 +420,7 @@ class PluginClient:
         ):
             return retry()
         if reply.ok:
-            if send_costmap or op is Op.CONFIGURE:
+            if send_costmap:
                 self._delivered_costmap = version
             assert reply.body is not None
             return reply.body
@@ -422,7 +430,6 @@ class PluginClient:
             return self._call(
                 op,
                 body,
-                with_costmap=with_costmap,
                 allow_resync=False,
                 allow_failover=allow_failover,
                 while_waiting=while_waiting,
@@ -491,7 +498,10 @@ class PluginClient:
             self.configured = True
         if self.active:
             self._call(Op.ACTIVATE, {}, allow_resync=False)
-        self._restore_state()
+        for op in RESTORED.get(self.plugin_type, ()):
+            body = self._restored(op)
+            if body is not None:
+                self._call(op, body, allow_resync=False)
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,6 @@ class SmootherClient(PluginClient):
         frame); ``was_completed`` says whether the smoother finished (nav2_core's return)."""
         plan = path if isinstance(path, Plan) else Plan.from_msg(path)
         body = {"path": plan.to_wire(), "max_time": float(max_time)}
-        reply = self._call(Op.SMOOTH, body, with_costmap=True)
+        reply = self._call(Op.SMOOTH, body)
         self.was_completed = reply["was_completed"]
         return Plan.from_wire(reply["path"])

@@ -1,9 +1,10 @@
 """What each session has told its planner, so a new worker can be told the same.
 
 Recorded from requests whose replies were ok: the configure body (with the latest costmap
-substituted in), whether the session is active, the parameter changes it accepted, the latest
-plan and speed limit. Replayed, in that order, on a restarted or hot-swapped worker under the same
-session id and epoch, so the plugin never notices.
+substituted in), whether the session is active, the parameter changes it accepted, and the
+latest request of each op a new session is told again (``schema.RESTORED``: the plan, the speed
+limit, a behaviour's action under way). Replayed, in that order, on a restarted or hot-swapped
+worker under the same session id and epoch, so the plugin never notices.
 """
 
 from __future__ import annotations
@@ -17,9 +18,13 @@ from typing import Any
 import msgpack
 from nav2_pyif_protocol.codec import Request, decode_request, encode_request
 from nav2_pyif_protocol.constants import Op, PluginType
+from nav2_pyif_protocol.schema import RESTORED
 
 from nav2_pyif.exceptions import PlannerLoadError
 
+#: Every op a plugin re-sends to a new session of its own (schema.RESTORED), in that order: a
+#: new worker is told the same, from the latest of each the session sent.
+RESTORED_OPS = tuple(dict.fromkeys(op for ops in RESTORED.values() for op in ops))
 STATE_OPS = frozenset(
     {
         Op.CONFIGURE,
@@ -27,10 +32,8 @@ STATE_OPS = frozenset(
         Op.DEACTIVATE,
         Op.CLEANUP,
         Op.SET_PARAMETERS,
-        Op.SET_PLAN,
-        Op.SET_SPEED_LIMIT,
-        Op.ON_RUN,
-        Op.ON_ACTION_COMPLETION,
+        Op.ON_ACTION_COMPLETION,  # ends the on_run under way
+        *RESTORED_OPS,
     }
 )
 
@@ -51,10 +54,8 @@ class SessionRecord:
     configure: dict[str, Any]
     active: bool = False
     params: dict[str, Any] = field(default_factory=dict)
-    plan: dict[str, Any] | None = None
-    speed_limit: dict[str, Any] | None = None
-    # A behaviour's running action: its on_run, replayed so a new worker goes on with it.
-    behavior_run: dict[str, Any] | None = None
+    # The latest body of each of RESTORED_OPS (a behaviour's on_run while its action runs)
+    restored: dict[Op, dict[str, Any]] = field(default_factory=dict)
     version: int = 0  # bumped on every change: a hot swap replays what changed meanwhile
 
     def replay(self) -> list[Request]:
@@ -64,12 +65,11 @@ class SessionRecord:
         requests = [Request(Op.CONFIGURE, self.sid, self.epoch, 0, body)]
         if self.active:
             requests.append(Request(Op.ACTIVATE, self.sid, self.epoch, 0, {}))
-        if self.plan is not None:
-            requests.append(Request(Op.SET_PLAN, self.sid, self.epoch, 0, self.plan))
-        if self.speed_limit is not None:
-            requests.append(Request(Op.SET_SPEED_LIMIT, self.sid, self.epoch, 0, self.speed_limit))
-        if self.behavior_run is not None:
-            requests.append(Request(Op.ON_RUN, self.sid, self.epoch, 0, self.behavior_run))
+        requests += [
+            Request(op, self.sid, self.epoch, 0, self.restored[op])
+            for op in RESTORED_OPS
+            if op in self.restored
+        ]
         return requests
 
 
@@ -137,16 +137,14 @@ class Journal:
             record.active = op is Op.ACTIVATE
         elif op is Op.SET_PARAMETERS:
             record.params.update((k, v) for k, v in body["params"].items() if k not in rejected)
-        elif op is Op.SET_PLAN:
-            record.plan = body
         elif op is Op.COMPUTE_VELOCITY_COMMANDS:
-            record.plan = _followed(record.plan, body)
-        elif op is Op.SET_SPEED_LIMIT:
-            record.speed_limit = body
-        elif op is Op.ON_RUN:
-            record.behavior_run = body if status == "succeeded" else None
-        elif op is Op.ON_ACTION_COMPLETION:
-            record.behavior_run = None
+            plan = _followed(record.restored.get(Op.SET_PLAN), body)
+            if plan is not None:
+                record.restored[Op.SET_PLAN] = plan
+        elif (op is Op.ON_RUN and status != "succeeded") or op is Op.ON_ACTION_COMPLETION:
+            record.restored.pop(Op.ON_RUN, None)  # no action under way
+        elif op in RESTORED_OPS:
+            record.restored[op] = body
         if "costmap" in body:
             record.configure["costmap"] = body["costmap"]
 

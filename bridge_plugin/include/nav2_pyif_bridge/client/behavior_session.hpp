@@ -58,7 +58,7 @@ public:
 protected:
   // A re-established session is given the action under way again (its on_run), so the new
   // host goes on with it from where it started.
-  void restore_state() override;
+  std::optional<protocol::RequestBody> restored(protocol::Op op) override;
   void forget_state() override {running_.reset();}
 
 private:

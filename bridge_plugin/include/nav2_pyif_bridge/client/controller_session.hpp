@@ -102,7 +102,7 @@ public:
   bool has_plan() const;
 
 protected:
-  void restore_state() override;
+  std::optional<protocol::RequestBody> restored(protocol::Op op) override;
   void forget_state() override;
 
 private:
@@ -115,7 +115,7 @@ private:
     protocol::ComputeVelocityCommandsReply reply, const Attached & attached);
 
   // Sends plan_; it is no longer owed once the host has it.
-  void send_plan(const CallOptions & options);
+  void send_plan();
 
   std::optional<protocol::Path> plan_;
   bool plan_owed_{false};  // set_plan failed on the host: sent before the next cycle
@@ -126,12 +126,15 @@ private:
   bool follows_cycle_plan_{false};
   std::optional<protocol::SetSpeedLimitRequest> speed_limit_;
 
-  // The latest message of each input; `sent` is the generation the host acknowledged.
+  // The latest message of each input; `sent` is the generation the host acknowledged, in
+  // the session of `sent_epoch`: a new session (a host restart, another replica, a new
+  // configure) has none of them, so every input goes again with the next cycle.
   struct LatestInput
   {
     protocol::Input input;
     std::uint64_t generation{0};
     std::uint64_t sent{0};
+    std::uint64_t sent_epoch{0};
   };
   // Its own lock: subscription callbacks must not wait for a control cycle's round trip.
   mutable std::mutex inputs_mutex_;

@@ -4,8 +4,9 @@
 //   1. no host alive under P/host/*: fail at once with the host-failure exception, send nothing;
 //   2. no reply within the op's timeout: the host-failure exception (NoValidControl, ...);
 //   3. SessionUnknown (the host restarted, or another replica answered): epoch + 1, configure
-//      (current parameters, full costmap), activate if active, re-send the subclass's state
-//      (plan, speed limit), then retry the call once; a second SessionUnknown fails it;
+//      (current parameters, full costmap), activate if active, re-send the state schema.py's
+//      RESTORED names (plan, speed limit, ...), then retry the call once; a second
+//      SessionUnknown fails it;
 //   4. the costmap travels only when its version differs from the one this session last
 //      delivered (delivered = sent in a request that got an ok reply; configure forgets it);
 //   5. a reply of another seq, or one that does not decode, fails the call (generic);
@@ -134,10 +135,8 @@ public:
   void set_timeouts(const Timeouts & timeouts);
 
 protected:
-  enum class CostmapMode {None, IfChanged, Always};
   struct CallOptions
   {
-    CostmapMode costmap{CostmapMode::None};
     bool allow_resync{true};
     bool allow_failover{true};
     std::optional<Duration> timeout;  // instead of the op's (Timeouts::for_op)
@@ -148,7 +147,7 @@ protected:
   // A request for another plugin's query to carry, numbered and with the costmap as call()
   // would send them; std::nullopt when this session cannot send one now (not established:
   // its call on its own establishes it). The caller holds mutex().
-  std::optional<Carried> prepare(protocol::RequestBody body, CostmapMode costmap);
+  std::optional<Carried> prepare(protocol::RequestBody body);
   // The body of the reply to a carried request, as call() would return it; std::nullopt when
   // the call must go on its own: it did not run, or its host does not serve this key or know
   // this session (Unavailable, SessionUnknown: the call on its own re-establishes it). Other
@@ -170,8 +169,13 @@ protected:
     return std::get<ReplyT>(call(body, options));
   }
 
-  // Re-send what the planner was told since configure (plan, speed limit); mutex() held.
-  virtual void restore_state() {}
+  // The request that tells a new session on the host `op`'s part of what the planner was
+  // told since configure, for each op schema.py's RESTORED lists for this plugin type, in
+  // its order (the plan, the speed limit, ...); std::nullopt: nothing to re-send. mutex() held.
+  virtual std::optional<protocol::RequestBody> restored(protocol::Op /*op*/)
+  {
+    return std::nullopt;
+  }
   // Forget that state (cleanup ends the session); mutex() held.
   virtual void forget_state() {}
 
@@ -191,6 +195,8 @@ private:
   void pin_host();
   bool fail_over(const std::optional<std::string> & avoid);
   protocol::Reply exchange(const protocol::Request & request, const CallOptions & options);
+  // Attaches the costmap to `carried.request` as schema.py's COSTMAP_SENT says its op takes it.
+  void attach_costmap(Carried & carried);
 
   SessionConfig config_;
   KeySpace keys_;

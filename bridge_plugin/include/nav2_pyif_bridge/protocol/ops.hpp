@@ -2,7 +2,7 @@
 // `python -m nav2_pyif_codegen.generate`: do not edit.
 //
 // The operations of the protocol and their wire names (the request's `op`, also the last chunk of
-// the Zenoh key `P/rpc/<op>`).
+// the Zenoh key `P/rpc/<op>`), and each op's traits.
 
 #pragma once
 
@@ -11,6 +11,9 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <utility>
+
+#include "nav2_pyif_bridge/protocol/nav2_errors.hpp"
 
 namespace nav2_pyif_bridge::protocol
 {
@@ -114,6 +117,53 @@ constexpr TimeoutClass timeout_class(Op op) noexcept
 {
   return kOpTimeout[static_cast<std::size_t>(op)];
 }
+
+// Whether each op's request carries the plugin's costmap (schema.py COSTMAP_SENT, from the
+// request's costmap field; PROTOCOL.md section 5).
+enum class CostmapSent : std::uint8_t
+{
+  Never,
+  IfChanged,
+  Always,
+};
+
+inline constexpr std::array<CostmapSent, kOpCount> kOpCostmap = {
+  CostmapSent::Always,  // configure
+  CostmapSent::Never,  // activate
+  CostmapSent::Never,  // deactivate
+  CostmapSent::Never,  // cleanup
+  CostmapSent::Never,  // set_parameters
+  CostmapSent::Never,  // set_plan
+  CostmapSent::IfChanged,  // compute_velocity_commands
+  CostmapSent::Never,  // set_speed_limit
+  CostmapSent::Never,  // cancel
+  CostmapSent::Never,  // reset
+  CostmapSent::IfChanged,  // create_plan
+  CostmapSent::Never,  // cancel_plan
+  CostmapSent::IfChanged,  // smooth
+  CostmapSent::Never,  // is_goal_reached
+  CostmapSent::Never,  // get_tolerances
+  CostmapSent::Never,  // check
+  CostmapSent::Never,  // update_bounds
+  CostmapSent::Never,  // update_costs
+  CostmapSent::Never,  // match_size
+  CostmapSent::IfChanged,  // on_run
+  CostmapSent::IfChanged,  // on_cycle_update
+  CostmapSent::Never,  // on_action_completion
+};
+
+constexpr CostmapSent costmap_sent(Op op) noexcept
+{
+  return kOpCostmap[static_cast<std::size_t>(op)];
+}
+
+// What a new session on the host is sent again after configure (and activate), per plugin type, in
+// this order (schema.py RESTORED; PROTOCOL.md section 4).
+inline constexpr std::array<std::pair<PluginKind, Op>, 3> kRestored = {{
+  {PluginKind::Controller, Op::SetPlan},
+  {PluginKind::Controller, Op::SetSpeedLimit},
+  {PluginKind::Behavior, Op::OnRun},
+}};
 
 // std::nullopt for a name this version of the protocol does not know.
 constexpr std::optional<Op> op_from_name(std::string_view name) noexcept
