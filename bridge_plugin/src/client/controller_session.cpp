@@ -203,7 +203,7 @@ void ControllerSession::set_speed_limit(double speed_limit, bool percentage)
   try {
     call(body, {});
   } catch (const CallError & error) {
-    if (error.unreachable()) {
+    if (error.host_failed()) {
       speed_limit_ = body;  // a speed zone must not be forgotten: the next host gets it
     }
     throw;

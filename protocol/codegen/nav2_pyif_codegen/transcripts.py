@@ -282,7 +282,8 @@ def restarted_host() -> Script:
         "restarted_host",
         "the host restarts (a new host id) and the costmap changes: the next cycle's "
         "SessionUnknown makes the client re-send configure (epoch 2, the new costmap), "
-        "activate, the plan and the speed limit, then retry the cycle without the costmap",
+        "activate, the plan and the speed limit the planner last accepted (not the one it "
+        "refused), then retry the cycle without the costmap",
         c,
     )
     s.hosts(HOST_A)
@@ -290,6 +291,10 @@ def restarted_host() -> Script:
     s.call(c, "set_speed_limit", speed_limit=0.3, percentage=False)
     limit = {"speed_limit": 0.3, "percentage": False}
     s.exchange(c, Op.SET_SPEED_LIMIT, limit, {})
+    s.call(c, "set_speed_limit", speed_limit=9.0, percentage=False)
+    refused = ErrorInfo(ErrorType.CONTROLLER_EXCEPTION.value, "9.0 m/s is above max_vel_x")
+    s.exchange(c, Op.SET_SPEED_LIMIT, {"speed_limit": 9.0, "percentage": False}, refused)
+    s.raises("ControllerException")
     pose, velocity = stamped(0.1, 0.0, 0.0, 1000), [0.2, 0.0, 0.0, 0.0, 0.0, 0.0]
     s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
     _command(s, c, pose, velocity, {"cmd_vel": cmd(0.3)})

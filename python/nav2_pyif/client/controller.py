@@ -149,9 +149,15 @@ class ControllerClient(PluginClient):
         return twist_stamped_from_wire(reply["cmd_vel"])
 
     def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:
-        # kept even if this call fails (no host right now): a slow zone must survive a restart
+        """Kept for a new session once the planner accepted it, and also when the host failed
+        the call (a slow zone must survive a restart); one the planner refused is not."""
+        try:
+            self._call(Op.SET_SPEED_LIMIT, {"speed_limit": speed_limit, "percentage": percentage})
+        except Nav2Error as exc:
+            if exc.host_failed:
+                self._speed_limit = (speed_limit, percentage)
+            raise
         self._speed_limit = (speed_limit, percentage)
-        self._call(Op.SET_SPEED_LIMIT, {"speed_limit": speed_limit, "percentage": percentage})
 
     def cancel(self) -> bool:
         cancelled: bool = self._call(Op.CANCEL, {})["cancelled"]

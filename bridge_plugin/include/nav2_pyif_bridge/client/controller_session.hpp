@@ -91,8 +91,9 @@ public:
     const std::optional<protocol::GoalChecker> & goal_checker,
     std::vector<protocol::CarriedCall> carry);
 
-  // Remembered after an ok reply, and also when no host could be reached (the reference
-  // client forgets it then), so a host that comes back drives at the latest limit.
+  // Remembered after an ok reply, and also when the host failed the call (none alive, no
+  // reply in time, Unavailable), so a host that comes back drives at the latest limit; one
+  // the planner refused is not (as the reference client).
   void set_speed_limit(double speed_limit, bool percentage);
   bool cancel();
   // `timeout` instead of the lifecycle one (Nav2 resets its controller at the end of every
