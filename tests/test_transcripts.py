@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 from nav2_pyif._messages import pose_from_wire, twist_from_list, twist_to_list
 from nav2_pyif.client import (
+    BehaviorClient,
     ControlCycle,
     ControllerClient,
     CostmapLayerClient,
@@ -39,6 +40,7 @@ CLIENTS: dict[str, type[PluginClient]] = {
     "progress_checker": ProgressCheckerClient,
     "costmap_layer": CostmapLayerClient,
     "global_planner": GlobalPlannerClient,
+    "behavior": BehaviorClient,
 }
 
 
@@ -163,6 +165,16 @@ class Replay:
         if name == "create_plan":
             assert isinstance(client, GlobalPlannerClient)
             return client.create_plan(pose_from_wire(args["start"]), pose_from_wire(args["goal"]))
+        if name == "run":
+            assert isinstance(client, BehaviorClient)
+            status, _ = client.run(args["action"], args["command"], pose_from_wire(args["pose"]))
+            return status.value
+        if name == "cycle_update":
+            assert isinstance(client, BehaviorClient)
+            return client.cycle_update(pose_from_wire(args["pose"]), args["elapsed"]).status.value
+        if name == "action_completion":
+            assert isinstance(client, BehaviorClient)
+            return client.action_completion(args["status"], args["elapsed"])
         assert not args, f"{name} takes no arguments"
         return getattr(client, name)()  # configure, defer_configure, the lifecycle, reset
 
@@ -178,4 +190,4 @@ def test_the_reference_client_replays_the_transcript(path: Path) -> None:
 def test_every_transcript_is_replayed() -> None:
     names = {p.stem for p in TRANSCRIPTS.glob("*.json")}
     assert {"restarted_host", "fail_over", "deferred_configure", "silent_host"} <= names
-    assert {"carried_goal_first", "carried_goal_last"} <= names
+    assert {"carried_goal_first", "carried_goal_last", "behavior_restarted_host"} <= names

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "fakes.hpp"
+#include "nav2_pyif_bridge/client/behavior_session.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/client/checker_sessions.hpp"
 #include "nav2_pyif_bridge/client/controller_session.hpp"
@@ -300,6 +301,9 @@ private:
     if (type == "global_planner") {
       return std::make_unique<PlannerSession>(config, transport_, costmap_);
     }
+    if (type == "behavior") {
+      return std::make_unique<BehaviorSession>(config, transport_, costmap_);
+    }
     throw std::invalid_argument("a plugin type the replay does not know: " + type);
   }
 
@@ -361,10 +365,26 @@ private:
       return cycle_ ? cycle_->check(checker, pose) : checker.check(pose);
     } else if (name == "create_plan") {
       as<PlannerSession>(id).create_plan(pose_of(args["start"]), pose_of(args["goal"]));
+    } else if (name == "run") {
+      return status_name(
+        as<BehaviorSession>(id).run(args["action"], params_of(args["command"]),
+        pose_of(args["pose"])));
+    } else if (name == "cycle_update") {
+      return status_name(
+        as<BehaviorSession>(id).cycle_update(pose_of(args["pose"]), args["elapsed"]));
+    } else if (name == "action_completion") {
+      as<BehaviorSession>(id).action_completion(args["status"], args["elapsed"]);
     } else {
       ADD_FAILURE() << "a call the replay does not know: " << name;
     }
     return nullptr;
+  }
+
+  // A behaviour step's status as the wire names it (a failed call is a failed step).
+  static std::string status_name(const BehaviorStep & step)
+  {
+    EXPECT_EQ(step.error, "") << "the behaviour's call failed";
+    return std::string(protocol::kBehaviorStatusNames[static_cast<std::size_t>(step.status)]);
   }
 
   // Each plugin type's own reset (no timeout given: the op's class, as the table says).

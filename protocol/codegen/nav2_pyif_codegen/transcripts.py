@@ -496,6 +496,60 @@ def carried_goal_last() -> Script:
     return s
 
 
+def behavior() -> Plugin:
+    return Plugin("behavior", "behavior", "backup", "behavior_server", "b" * 32)
+
+
+def behavior_restarted_host() -> Script:
+    b = behavior()
+    s = Script(
+        "behavior_restarted_host",
+        "a behaviour's host restarts while its action runs: the next cycle's SessionUnknown "
+        "makes the client re-send configure, activate and the action's on_run (it goes on "
+        "from its start), then retry the cycle; once the action completed, a restarted host "
+        "gets no on_run",
+        b,
+    )
+    s.hosts(HOST_A)
+    s.call(b, "configure")
+    s.configure(b, HOST_A)
+    s.call(b, "activate")
+    s.exchange(b, Op.ACTIVATE, {}, {})
+    command = {"target_x": -0.3, "target_y": 0.0, "target_z": 0.0, "speed": 0.1}
+    run = {
+        "action": "nav2_msgs/action/BackUp",
+        "command": command,
+        "pose": stamped(0.0, 0.0, 0.0, 1),
+    }
+    s.call(b, "run", **run)
+    s.exchange(b, Op.ON_RUN, run, {"status": "succeeded", "failure": ""})
+    s.returns("succeeded")
+    back = {"frame_id": "base_link", "stamp_ns": 42, "twist": [-0.1, 0.0, 0.0, 0.0, 0.0, 0.0]}
+    cycle = {"pose": stamped(-0.05, 0.0, 0.0, 2), "elapsed": 0.5}
+    running = {"status": "running", "failure": "", "cmd_vel": back}
+    s.call(b, "cycle_update", **cycle)
+    s.exchange(b, Op.ON_CYCLE_UPDATE, cycle, running)
+    s.returns("running")
+    s.hosts(HOST_B)
+    s.call(b, "cycle_update", **cycle)
+    s.exchange(b, Op.ON_CYCLE_UPDATE, cycle, SESSION_UNKNOWN, HOST_B)
+    s.configure(b)
+    s.exchange(b, Op.ACTIVATE, {}, {})
+    s.exchange(b, Op.ON_RUN, run, {"status": "succeeded", "failure": ""})
+    s.exchange(b, Op.ON_CYCLE_UPDATE, cycle, running)
+    s.returns("running")
+    s.call(b, "action_completion", status="succeeded", elapsed=3.0)
+    s.exchange(b, Op.ON_ACTION_COMPLETION, {"status": "succeeded", "elapsed": 3.0}, {})
+    s.hosts(HOST_A)
+    s.call(b, "run", **run)
+    s.exchange(b, Op.ON_RUN, run, SESSION_UNKNOWN, HOST_A)
+    s.configure(b)
+    s.exchange(b, Op.ACTIVATE, {}, {})
+    s.exchange(b, Op.ON_RUN, run, {"status": "failed", "failure": "collision_ahead"})
+    s.returns("failed")
+    return s
+
+
 TRANSCRIPTS = (
     restarted_host,
     fail_over,
@@ -503,6 +557,7 @@ TRANSCRIPTS = (
     silent_host,
     carried_goal_first,
     carried_goal_last,
+    behavior_restarted_host,
 )
 
 
