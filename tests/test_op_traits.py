@@ -8,10 +8,13 @@ from typing import Any
 
 import msgpack
 import pytest
+from nav2_pyif.client import SmootherClient, Timeouts
+from nav2_pyif.client.transport import MockTransport, StaticHosts
+from nav2_pyif.plan import Plan
 from nav2_pyif.server.journal import Journal
-from nav2_pyif_protocol.codec import Request, decode_request, encode_request
+from nav2_pyif_protocol.codec import Reply, Request, decode_request, encode_reply, encode_request
 from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, Op, PluginType
-from nav2_pyif_protocol.schema import COSTMAP_SENT, RESTORED, CostmapSent
+from nav2_pyif_protocol.schema import COSTMAP_SENT, RESTORED, SMOOTH_GRACE_S, CostmapSent
 
 from tests.conftest import ROOT, make_costmap
 
@@ -100,3 +103,29 @@ def test_a_behaviour_is_restored_only_while_its_action_runs() -> None:
     assert _replayed(journal) == ["configure"]
     _note(journal, Op.ON_RUN, run, status="failed")  # refused: no action under way
     assert _replayed(journal) == ["configure"]
+
+
+def test_smooth_waits_its_max_time_and_a_grace_or_the_plan_timeout_when_longer() -> None:
+    """As the C++ SmootherSession (units_test.cpp: WaitsMaxTimeAndAGrace...)."""
+    waits: list[float] = []
+
+    def host(key: str, host: str | None, payload: bytes, timeout: float) -> bytes:
+        request = decode_request(payload)
+        waits.append(timeout)
+        body: dict[str, Any] = {"declared": {}}
+        if request.op is Op.SMOOTH:
+            body = {"path": request.body["path"], "was_completed": True}
+        return encode_reply(Reply(seq=request.seq, ok=True, host="h", body=body), request.op)
+
+    hosts = StaticHosts()
+    hosts.set(["h"])
+    timeouts = Timeouts(call=0.04, lifecycle=1.5, configure=10.0, plan=2.0)
+    client = SmootherClient(
+        MockTransport(host, hosts), "nav2_pyif/t/smoother", make_costmap(), timeouts=timeouts
+    )
+    client.configure()
+    path = Plan([[0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0]] * 3, "odom", 1)
+    client.smooth(path, 5.0)
+    client.smooth(path, 0.5)
+    assert waits[1:] == [5.0 + SMOOTH_GRACE_S, 2.0]
+    assert client.timeouts.plan == 2.0

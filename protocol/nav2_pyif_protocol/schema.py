@@ -571,6 +571,10 @@ OP_TIMEOUT: dict[Op, Timeout] = {
     Op.ON_ACTION_COMPLETION: Timeout.LIFECYCLE,
 }
 
+#: smooth gives the smoother ``max_time``: a client awaits the reply that long and this much
+#: more [s], or its plan timeout when that is longer.
+SMOOTH_GRACE_S: Final = 1.0
+
 
 class CostmapSent(str, Enum):
     """Whether an op's request carries the plugin's costmap (PROTOCOL.md section 5)."""

@@ -217,12 +217,10 @@ bool ControllerSession::cancel()
   return call_for<proto::CancelReply>(proto::CancelRequest{}).cancelled;
 }
 
-void ControllerSession::reset(std::optional<Duration> timeout)
+void ControllerSession::reset()
 {
   std::lock_guard<std::recursive_mutex> lock(mutex());
-  CallOptions options;
-  options.timeout = timeout;
-  call(proto::ResetRequest{}, options);
+  call(proto::ResetRequest{}, {});
 }
 
 bool ControllerSession::has_plan() const

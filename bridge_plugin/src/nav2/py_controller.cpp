@@ -232,7 +232,7 @@ void PyController::reset()
 void PyController::send_reset()
 {
   try {
-    session().reset(session().timeouts().call);
+    session().reset();
   } catch (const client::CallError & error) {
     RCLCPP_DEBUG(bridge().ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
   }

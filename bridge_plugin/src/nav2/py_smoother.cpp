@@ -1,7 +1,5 @@
 #include "nav2_pyif_bridge/py_smoother.hpp"
 
-#include <algorithm>
-#include <chrono>
 #include <utility>
 
 #include "pluginlib/class_list_macros.hpp"
@@ -48,22 +46,8 @@ bool PySmoother::smooth(nav_msgs::msg::Path & path, const rclcpp::Duration & max
 {
   return plugin_.bridge().forward(
     [&]() {
-      auto & session = plugin_.session();
-      // smoother_server gives the smoother max_time: wait for the host a little longer.
-      client::Timeouts timeouts = session.timeouts();
-      const client::Timeouts configured = timeouts;
-      const auto allowed = std::chrono::duration_cast<client::Duration>(
-        std::chrono::nanoseconds(max_time.nanoseconds()) + std::chrono::seconds(1));
-      timeouts.plan = std::max(timeouts.plan, allowed);
-      session.set_timeouts(timeouts);
-      protocol::SmoothReply reply;
-      try {
-        reply = session.smooth(ros::to_wire(path), max_time.seconds());
-      } catch (...) {
-        session.set_timeouts(configured);
-        throw;
-      }
-      session.set_timeouts(configured);
+      const protocol::SmoothReply reply =
+        plugin_.session().smooth(ros::to_wire(path), max_time.seconds());
       path = ros::to_ros(reply.path, path.header.frame_id, path.header.stamp);
       return reply.was_completed;
     });

@@ -580,14 +580,15 @@ TEST_F(ControllerSessionTest, ABrokenTransportIsUnreachableNotAPlannerError)
   EXPECT_FALSE(s.active());
 }
 
-TEST_F(ControllerSessionTest, ResetCanUseAShorterTimeout)
+TEST_F(ControllerSessionTest, ResetWaitsTheCallTimeout)
 {
   auto & s = make();
   s.configure();
   host.next_call_time = 10s;
   const Duration before = clock.elapsed();
-  EXPECT_THROW(s.reset(100ms), CallError);
-  EXPECT_EQ(clock.elapsed() - before, Duration{100ms});  // not the 5 s lifecycle timeout
+  EXPECT_THROW(s.reset(), CallError);
+  EXPECT_EQ(clock.elapsed() - before, s.timeouts().call);  // not the 5 s lifecycle timeout
+  EXPECT_LT(s.timeouts().call, s.timeouts().lifecycle);
 }
 
 TEST_F(ControllerSessionTest, CleanupForgetsTheStateAndEndsTheSession)

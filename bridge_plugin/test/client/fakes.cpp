@@ -205,7 +205,7 @@ std::optional<proto::Bytes> FakeHost::query(
     throw std::runtime_error("Failed to perform get operation(Error code: -100 )");
   }
   received.push_back({target.key, target.host, proto::decode_request(payload), payload.size(),
-      false, ""});
+      false, "", timeout});
   const proto::Request request = received.back().request;
   EXPECT_EQ(target.key.substr(target.key.rfind('/') + 1), proto::op_name(request.op()));
   std::string id;
@@ -258,10 +258,10 @@ std::optional<proto::Bytes> FakeHost::query(
   return proto::encode_reply(reply);
 }
 
-void FakeHost::send(const Target & target, const proto::Bytes & payload, Duration)
+void FakeHost::send(const Target & target, const proto::Bytes & payload, Duration timeout)
 {
   received.push_back({target.key, target.host, proto::decode_request(payload), payload.size(),
-      true, ""});
+      true, "", timeout});
   const auto & request = received.back().request;
   EXPECT_EQ(target.key.substr(target.key.rfind('/') + 1), "cancel");
   std::string id;

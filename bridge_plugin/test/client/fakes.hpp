@@ -109,6 +109,7 @@ public:
     std::size_t bytes{0};
     bool answered{false};  // false: nobody answered before the plugin's timeout
     std::string answered_by;
+    Duration timeout{};  // how long the plugin waited for the reply
   };
   std::vector<Received> received;
   std::vector<std::string> carried_ops;  // op names of the requests other queries carried

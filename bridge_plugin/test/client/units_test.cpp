@@ -352,5 +352,22 @@ TEST(CostmapDelivery, AChangedCostmapRidesInTheSmoothersRequest)
   EXPECT_EQ(smooth.costmap->resolution, 0.1);
 }
 
+TEST(SmootherSessionTest, WaitsMaxTimeAndAGraceOrThePlanTimeoutWhenLonger)
+{
+  FakeClock clock;
+  FakeHost host(clock);  // answers smooth with BadRequest: only the wait matters here
+  GridCostmap costmap;
+  SessionConfig config;
+  config.key_prefix = "nav2_pyif/test_robot/simple_smoother";
+  config.timeouts.plan = std::chrono::seconds(2);
+  SmootherSession session(config, host, costmap);
+  session.configure();
+  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 5.0);});
+  EXPECT_EQ(host.received.back().timeout, Duration(std::chrono::seconds(6)));
+  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 0.5);});
+  EXPECT_EQ(host.received.back().timeout, Duration(std::chrono::seconds(2)));
+  EXPECT_EQ(session.timeouts().plan, Duration(std::chrono::seconds(2)));  // not changed
+}
+
 }  // namespace
 }  // namespace nav2_pyif_bridge::client::test

@@ -37,6 +37,7 @@ from nav2_pyif_protocol.schema import (
     REQUEST_ENVELOPE,
     RESTORED,
     ROWS,
+    SMOOTH_GRACE_S,
     STR,
     STR_MAP,
     STRUCT_DOCS,
@@ -332,6 +333,13 @@ def ops_hpp() -> str:
         "{",
         "  return kOpTimeout[static_cast<std::size_t>(op)];",
         "}",
+        "",
+        *comment(
+            "smooth gives the smoother max_time: the reply is awaited that long and this much "
+            "more [s], or the plan timeout when that is longer (schema.py SMOOTH_GRACE_S).",
+            "",
+        ),
+        f"inline constexpr double kSmoothGraceS = {SMOOTH_GRACE_S!r};",
         "",
         *comment(
             "Whether each op's request carries the plugin's costmap (schema.py COSTMAP_SENT, "

@@ -367,19 +367,21 @@ class PluginClient:
         allow_resync: bool = True,
         allow_failover: bool = True,
         while_waiting: Callable[[int], None] | None = None,
+        timeout: float | None = None,
     ) -> Body:
         """One call, following the rules above. ``while_waiting(seq)`` runs about every 5 ms
-        while the reply is awaited."""
+        while the reply is awaited; ``timeout`` [s] instead of the op's class's."""
         if op is not Op.CONFIGURE and not self.configured:
             raise generic_error(self.plugin_type)(
                 f"{op.value} before configure on {self.keys.prefix}"
             )
+        wait = self._timeout(op) if timeout is None else timeout
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
         if not alive and OP_TIMEOUT[op] is Timeout.PLAN:
             # create_plan and smooth run in their server's own thread while the robot follows
             # its last path: they wait, up to their timeout, for a host to come back, as for a
             # slow planner, so that a host restart costs no recovery. The others fail at once.
-            self.hosts.wait_for(bool, self._timeout(op))
+            self.hosts.wait_for(bool, wait)
             alive = self.hosts.alive
         if not alive:
             raise host_failure_error(self.plugin_type)(
@@ -401,10 +403,11 @@ class PluginClient:
                 body,
                 allow_failover=False,
                 while_waiting=while_waiting,
+                timeout=timeout,
             )
 
         try:
-            reply = self._exchange(request, while_waiting)
+            reply = self._exchange(request, while_waiting, wait)
         except Nav2Error:
             # No reply in time (or a bad one): the pinned replica died (its token may not be
             # gone yet) or hangs. Another alive replica gets the call instead.
@@ -433,13 +436,15 @@ class PluginClient:
                 allow_resync=False,
                 allow_failover=allow_failover,
                 while_waiting=while_waiting,
+                timeout=timeout,
             )
         raise error_from_reply(reply.error, self.plugin_type)
 
-    def _exchange(self, request: Request, while_waiting: Callable[[int], None] | None) -> Reply:
+    def _exchange(
+        self, request: Request, while_waiting: Callable[[int], None] | None, timeout: float
+    ) -> Reply:
         # The control cycle's body is built in schema order by this package: skip re-checking.
         payload = encode_request(request, validate=request.op is not Op.COMPUTE_VELOCITY_COMMANDS)
-        timeout = self._timeout(request.op)
         poll = None if while_waiting is None else (lambda: while_waiting(request.seq))
         start = time.perf_counter_ns()
         answer = self.transport.query(self.keys.call(request.op), self.host, payload, timeout, poll)

@@ -96,9 +96,9 @@ public:
   // the planner refused is not (as the reference client).
   void set_speed_limit(double speed_limit, bool percentage);
   bool cancel();
-  // `timeout` instead of the lifecycle one (Nav2 resets its controller at the end of every
-  // goal, in the action's thread: the plugin keeps that short).
-  void reset(std::optional<Duration> timeout = std::nullopt);
+  // A control-loop call (schema.py OP_TIMEOUT): Nav2 resets its controller at the end of every
+  // goal, in the action's thread, and an abort must not wait on a silent host.
+  void reset();
 
   bool has_plan() const;
 

@@ -13,7 +13,8 @@ public:
   using KindSession::KindSession;
 
   // `path` in its own frame, `max_time` [s] -> the smoothed path (every value finite, else
-  // FailedToSmoothPath) and whether the smoother finished (nav2_core's smooth() return).
+  // FailedToSmoothPath) and whether the smoother finished (nav2_core's smooth() return). The
+  // reply is awaited max_time and protocol::kSmoothGraceS more, or the plan timeout if longer.
   protocol::SmoothReply smooth(const protocol::Path & path, double max_time);
 };
 

@@ -118,6 +118,10 @@ constexpr TimeoutClass timeout_class(Op op) noexcept
   return kOpTimeout[static_cast<std::size_t>(op)];
 }
 
+// smooth gives the smoother max_time: the reply is awaited that long and this much more [s], or the
+// plan timeout when that is longer (schema.py SMOOTH_GRACE_S).
+inline constexpr double kSmoothGraceS = 1.0;
+
 // Whether each op's request carries the plugin's costmap (schema.py COSTMAP_SENT, from the
 // request's costmap field; PROTOCOL.md section 5).
 enum class CostmapSent : std::uint8_t
