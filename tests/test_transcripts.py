@@ -190,4 +190,5 @@ def test_the_reference_client_replays_the_transcript(path: Path) -> None:
 def test_every_transcript_is_replayed() -> None:
     names = {p.stem for p in TRANSCRIPTS.glob("*.json")}
     assert {"restarted_host", "fail_over", "deferred_configure", "silent_host"} <= names
+    assert {"interrupted_restore"} <= names
     assert {"carried_goal_first", "carried_goal_last", "behavior_restarted_host"} <= names

@@ -541,16 +541,21 @@ void PluginSession::establish()
   configure_locked();
   CallOptions options;
   options.allow_resync = false;
-  if (active_) {
-    call(proto::ActivateRequest{}, options);
-  }
-  for (const auto & [kind, op] : proto::kRestored) {
-    if (kind != config_.kind) {
-      continue;
+  try {
+    if (active_) {
+      call(proto::ActivateRequest{}, options);
     }
-    if (std::optional<proto::RequestBody> body = restored(op)) {
-      call(*body, options);
+    for (const auto & [kind, op] : proto::kRestored) {
+      if (kind != config_.kind) {
+        continue;
+      }
+      if (std::optional<proto::RequestBody> body = restored(op)) {
+        call(*body, options);
+      }
     }
+  } catch (const CallError &) {
+    established_ = false;  // the host lacks part of the state: the next call starts again
+    throw;
   }
 }
 

@@ -367,6 +367,36 @@ def deferred_configure() -> Script:
     return s
 
 
+def interrupted_restore() -> Script:
+    c = controller()
+    s = Script(
+        "interrupted_restore",
+        "a restarted host takes configure and activate but leaves the restored plan "
+        "unanswered: the cycle fails, and the session is not taken as established with a "
+        "host that lacks the plan; the next cycle establishes it again (epoch 3), plan "
+        "included, before it is sent",
+        c,
+    )
+    s.hosts(HOST_A)
+    _bring_up(s, c, HOST_A)
+    s.hosts(HOST_B)
+    pose, velocity = stamped(0.1, 0.0, 0.0, 1000), [0.2, 0.0, 0.0, 0.0, 0.0, 0.0]
+    s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
+    _command(s, c, pose, velocity, SESSION_UNKNOWN, HOST_B)
+    s.configure(c)
+    s.exchange(c, Op.ACTIVATE, {}, {})
+    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, SILENCE)
+    s.raises("NoValidControl")
+    pose = stamped(0.2, 0.0, 0.0, 2000)
+    s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
+    s.configure(c)
+    s.exchange(c, Op.ACTIVATE, {}, {})
+    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, {})
+    _command(s, c, pose, velocity, {"cmd_vel": cmd(0.3)})
+    s.returns(cmd(0.3)["twist"])
+    return s
+
+
 def silent_host() -> Script:
     c, g, p = controller(), goal_checker(), progress_checker()
     layer = Plugin("costmap_layer", "costmap_layer", "keepout", "local_costmap", "7" * 32)
@@ -554,6 +584,7 @@ TRANSCRIPTS = (
     restarted_host,
     fail_over,
     deferred_configure,
+    interrupted_restore,
     silent_host,
     carried_goal_first,
     carried_goal_last,

@@ -501,12 +501,16 @@ class PluginClient:
             self.configure()
         finally:
             self.configured = True
-        if self.active:
-            self._call(Op.ACTIVATE, {}, allow_resync=False)
-        for op in RESTORED.get(self.plugin_type, ()):
-            body = self._restored(op)
-            if body is not None:
-                self._call(op, body, allow_resync=False)
+        try:
+            if self.active:
+                self._call(Op.ACTIVATE, {}, allow_resync=False)
+            for op in RESTORED.get(self.plugin_type, ()):
+                body = self._restored(op)
+                if body is not None:
+                    self._call(op, body, allow_resync=False)
+        except Nav2Error:
+            self.established = False  # the host lacks part of the state: the next call retries
+            raise
 
 
 @dataclass(frozen=True)
