@@ -348,19 +348,23 @@ def deferred_configure() -> Script:
     s = Script(
         "deferred_configure",
         "Nav2 configures and activates the plugin before any host runs: nothing is sent, the "
-        "plan is kept as owed (set_plan does not raise); the first cycle once a host is alive "
-        "establishes the session (configure, activate), sends the plan, then the cycle",
+        "plan is kept as owed (set_plan does not raise), and a speed limit fails at once but "
+        "is kept; the first cycle once a host is alive establishes the session (configure, "
+        "activate, the speed limit), sends the plan, then the cycle",
         c,
     )
     s.hosts()
     s.call(c, "defer_configure")
     s.call(c, "activate")
     s.call(c, "set_plan", path=PLAN)
+    s.call(c, "set_speed_limit", speed_limit=40.0, percentage=True)
+    s.raises("NoValidControl")
     s.hosts(HOST_A)
     pose, velocity = stamped(0.1, 0.0, 0.0, 1000), [0.2, 0.0, 0.0, 0.0, 0.0, 0.0]
     s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
     s.configure(c, HOST_A)
     s.exchange(c, Op.ACTIVATE, {}, {})
+    s.exchange(c, Op.SET_SPEED_LIMIT, {"speed_limit": 40.0, "percentage": True}, {})
     s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, {})
     _command(s, c, pose, velocity, {"cmd_vel": cmd(0.3)})
     s.returns(cmd(0.3)["twist"])
