@@ -136,6 +136,10 @@ class Replay:
             plan = args["path"]
             assert isinstance(client, ControllerClient)
             return client.set_plan(Plan(plan["poses"], plan["frame_id"], plan["stamp_ns"]))
+        if name == "follow":
+            plan, goal = args["path"], pose_from_wire(args["goal"])
+            assert isinstance(client, ControllerClient)
+            return client.follow(Plan(plan["poses"], plan["frame_id"], plan["stamp_ns"]), goal)
         if name == "set_speed_limit":
             assert isinstance(client, ControllerClient)
             return client.set_speed_limit(args["speed_limit"], args["percentage"])

@@ -338,6 +338,8 @@ private:
       reset(id);
     } else if (name == "set_plan") {
       as<ControllerSession>(id).set_plan(path_of(args["path"]));
+    } else if (name == "follow") {
+      as<ControllerSession>(id).follow(path_of(args["path"]), pose_of(args["goal"]));
     } else if (name == "set_speed_limit") {
       as<ControllerSession>(id).set_speed_limit(args["speed_limit"], args["percentage"]);
     } else if (name == "compute_velocity_commands") {

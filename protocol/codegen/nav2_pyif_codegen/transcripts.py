@@ -401,6 +401,45 @@ def interrupted_restore() -> Script:
     return s
 
 
+def followed_plan() -> Script:
+    c = controller()
+    s = Script(
+        "followed_plan",
+        "Lyrical: controller_server hands the controller the plan it transformed and the "
+        "global goal every cycle (follow); a cycle carries each only when it changed since the "
+        "host got it (stamps aside), and a restarted host gets both with set_plan",
+        c,
+    )
+    s.hosts(HOST_A)
+    s.call(c, "configure")
+    s.configure(c, HOST_A)
+    s.call(c, "activate")
+    s.exchange(c, Op.ACTIVATE, {}, {})
+    goal = stamped(1.0, 0.0, 0.0, 7)
+    pose, velocity = stamped(0.1, 0.0, 0.0, 1000), [0.2, 0.0, 0.0, 0.0, 0.0, 0.0]
+    s.call(c, "follow", path=PLAN, goal=goal)
+    s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
+    body = dict(_command_body(pose, velocity), plan=wire_path(PLAN), goal=goal)
+    s.exchange(c, Op.COMPUTE_VELOCITY_COMMANDS, body, {"cmd_vel": cmd(0.3)})
+    s.returns(cmd(0.3)["twist"])
+    pose = stamped(0.2, 0.0, 0.0, 2000)
+    s.call(c, "follow", path=dict(PLAN, stamp_ns=2000), goal=dict(goal, stamp_ns=2000))
+    s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
+    _command(s, c, pose, velocity, {"cmd_vel": cmd(0.3)})
+    s.returns(cmd(0.3)["twist"])
+    s.hosts(HOST_B)
+    pose = stamped(0.3, 0.0, 0.0, 3000)
+    s.call(c, "follow", path=dict(PLAN, stamp_ns=3000), goal=dict(goal, stamp_ns=3000))
+    s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
+    _command(s, c, pose, velocity, SESSION_UNKNOWN, HOST_B)
+    s.configure(c)
+    s.exchange(c, Op.ACTIVATE, {}, {})
+    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN), "goal": goal}, {})
+    _command(s, c, pose, velocity, {"cmd_vel": cmd(0.4)})
+    s.returns(cmd(0.4)["twist"])
+    return s
+
+
 def silent_host() -> Script:
     c, g, p = controller(), goal_checker(), progress_checker()
     layer = Plugin("costmap_layer", "costmap_layer", "keepout", "local_costmap", "7" * 32)
@@ -589,6 +628,7 @@ TRANSCRIPTS = (
     fail_over,
     deferred_configure,
     interrupted_restore,
+    followed_plan,
     silent_host,
     carried_goal_first,
     carried_goal_last,
