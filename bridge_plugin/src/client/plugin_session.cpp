@@ -377,22 +377,7 @@ std::optional<proto::ReplyBody> PluginSession::settle(
   if (!answer) {
     return std::nullopt;
   }
-  const proto::Op op = carried.request.op();
-  const std::string op_text(proto::op_name(op));
-  proto::Reply reply;
-  try {
-    reply = proto::decode_reply(*answer, op);
-  } catch (const proto::DecodeError & error) {
-    fail(
-      generic_error(config_.kind), Cause::BadReply,
-      "bad carried reply to " + op_text + ": " + error.what());
-  }
-  if (reply.seq != carried.request.seq) {
-    fail(
-      generic_error(config_.kind), Cause::BadReply,
-      "carried reply to " + op_text + " has seq " + std::to_string(reply.seq) + ", expected " +
-      std::to_string(carried.request.seq));
-  }
+  proto::Reply reply = checked_reply(*answer, carried.request, "carried reply");
   if (reply.ok()) {
     last_host_ = reply.host;
     if (carried.costmap_sent) {
@@ -473,19 +458,28 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
       op_text + " got no reply from " + keys_.prefix() + " within " + milliseconds(timeout) +
       " ms");
   }
+  proto::Reply reply = checked_reply(*answer, request, "reply");
+  last_host_ = reply.host;
+  return reply;
+}
+
+proto::Reply PluginSession::checked_reply(
+  const proto::Bytes & answer, const proto::Request & request, const std::string & what) const
+{
+  const std::string op_text(proto::op_name(request.op()));
   proto::Reply reply;
   try {
-    reply = proto::decode_reply(*answer, op);
+    reply = proto::decode_reply(answer, request.op());
   } catch (const proto::DecodeError & error) {
-    fail(generic_error(config_.kind), Cause::BadReply, "bad reply to " + op_text + ": " + error.what());
+    fail(generic_error(config_.kind), Cause::BadReply, "bad " + what + " to " + op_text + ": " +
+      error.what());
   }
   if (reply.seq != request.seq) {
     fail(
       generic_error(config_.kind), Cause::BadReply,
-      "reply to " + op_text + " has seq " + std::to_string(reply.seq) + ", expected " +
+      what + " to " + op_text + " has seq " + std::to_string(reply.seq) + ", expected " +
       std::to_string(request.seq));
   }
-  last_host_ = reply.host;
   return reply;
 }
 

@@ -195,6 +195,10 @@ private:
   void pin_host();
   bool fail_over(const std::optional<std::string> & avoid);
   protocol::Reply exchange(const protocol::Request & request, const CallOptions & options);
+  // The decoded reply to `request`, else BadReply ("bad <what> to <op>: ...", or its seq).
+  protocol::Reply checked_reply(
+    const protocol::Bytes & answer, const protocol::Request & request,
+    const std::string & what) const;
   // Attaches the costmap to `carried.request` as schema.py's COSTMAP_SENT says its op takes it.
   void attach_costmap(Carried & carried);
 
