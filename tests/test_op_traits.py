@@ -12,6 +12,7 @@ from nav2_pyif.client import SmootherClient, Timeouts
 from nav2_pyif.client.transport import MockTransport, StaticHosts
 from nav2_pyif.plan import Plan
 from nav2_pyif.server.journal import Journal
+from nav2_pyif_codegen.cpp_codec import camel
 from nav2_pyif_protocol.codec import Reply, Request, decode_request, encode_reply, encode_request
 from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, Op, PluginType
 from nav2_pyif_protocol.schema import COSTMAP_SENT, RESTORED, SMOOTH_GRACE_S, CostmapSent
@@ -35,8 +36,7 @@ def test_the_costmap_rides_where_the_schema_gives_it_a_field() -> None:
     }
     header = OPS_HPP.read_text()
     for op, rule in COSTMAP_SENT.items():
-        camel = "".join(part.title() for part in rule.value.split("_"))
-        assert f"CostmapSent::{camel},  // {op.value}\n" in header, op
+        assert f"CostmapSent::{camel(rule.value)},  // {op.value}\n" in header, op
 
 
 def test_each_plugin_type_restores_only_ops_it_sends_in_the_generated_order() -> None:
@@ -45,8 +45,7 @@ def test_each_plugin_type_restores_only_ops_it_sends_in_the_generated_order() ->
         assert Op.CONFIGURE not in ops and Op.ACTIVATE not in ops  # sent before, always
     header = OPS_HPP.read_text()
     pairs = [
-        f"{{PluginKind::{''.join(p.title() for p in plugin.value.split('_'))}, "
-        f"Op::{''.join(p.title() for p in op.value.split('_'))}}}"
+        f"{{PluginKind::{camel(plugin.value)}, Op::{camel(op.value)}}}"
         for plugin, ops in RESTORED.items()
         for op in ops
     ]

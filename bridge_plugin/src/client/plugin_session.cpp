@@ -275,13 +275,12 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     establish();  // deferred configure, or a re-establishment that failed before
   }
 
-  Carried sent;
-  sent.request.sid = sid_;
-  sent.request.epoch = epoch_;
-  sent.request.body = body;
-  attach_costmap(sent);
-  sent.request.seq = next_seq();
-  const proto::Request & request = sent.request;
+  proto::Request request;
+  request.sid = sid_;
+  request.epoch = epoch_;
+  request.body = body;
+  const CostmapAttached costmap = attach_costmap(request);
+  request.seq = next_seq();
 
   // After a fail-over: once, on the new replica, whose SessionUnknown re-sends the state.
   CallOptions retry = options;
@@ -306,8 +305,8 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     return call(body, retry);
   }
   if (reply.ok()) {
-    if (sent.costmap_sent) {
-      delivered_costmap_ = sent.costmap_version;
+    if (costmap.sent) {
+      delivered_costmap_ = costmap.version;
     }
     return std::get<proto::ReplyBody>(std::move(reply.outcome));
   }
@@ -336,19 +335,19 @@ void PluginSession::join(std::shared_ptr<CarriedCycle> cycle)
   cycle_ = std::move(cycle);
 }
 
-void PluginSession::attach_costmap(Carried & carried)
+PluginSession::CostmapAttached PluginSession::attach_costmap(proto::Request & request)
 {
-  const proto::CostmapSent rule = proto::costmap_sent(carried.request.op());
+  const proto::CostmapSent rule = proto::costmap_sent(request.op());
   if (rule == proto::CostmapSent::Never) {
-    return;
+    return {};
   }
   CostmapRead read = costmap_.read(
     rule == proto::CostmapSent::Always ? std::nullopt : delivered_costmap_);
-  carried.costmap_version = read.version;
-  if (read.costmap) {
-    set_costmap(carried.request.body, std::move(*read.costmap));
-    carried.costmap_sent = true;
+  if (!read.costmap) {
+    return {read.version, false};
   }
+  set_costmap(request.body, std::move(*read.costmap));
+  return {read.version, true};
 }
 
 std::optional<Carried> PluginSession::prepare(proto::RequestBody body)
@@ -360,7 +359,9 @@ std::optional<Carried> PluginSession::prepare(proto::RequestBody body)
   carried.request.sid = sid_;
   carried.request.epoch = epoch_;
   carried.request.body = std::move(body);
-  attach_costmap(carried);
+  const CostmapAttached costmap = attach_costmap(carried.request);
+  carried.costmap_version = costmap.version;
+  carried.costmap_sent = costmap.sent;
   try {
     carried.request.seq = seq_ + 1;
     carried.payload = proto::encode_request(carried.request);

@@ -251,14 +251,29 @@ def _plain_costmap(wire: dict[str, Any]) -> dict[str, Any]:
 # --- the transcripts ---------------------------------------------------------------------
 
 
+def _start(s: Script, plugin: Plugin, host: str) -> None:
+    """Nav2 configures and activates ``plugin``, on ``host``."""
+    s.call(plugin, "configure")
+    s.configure(plugin, host)
+    s.call(plugin, "activate")
+    s.exchange(plugin, Op.ACTIVATE, {}, {})
+
+
 def _bring_up(s: Script, c: Plugin, host: str) -> None:
     """configure, activate and set_plan of controller ``c`` on ``host``."""
-    s.call(c, "configure")
-    s.configure(c, host)
-    s.call(c, "activate")
-    s.exchange(c, Op.ACTIVATE, {}, {})
+    _start(s, c, host)
     s.call(c, "set_plan", path=PLAN)
     s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, {})
+
+
+def _reestablish(
+    s: Script, c: Plugin, plan: dict[str, Any], plan_reply: dict[str, Any] | None = None
+) -> None:
+    """Controller ``c`` establishes its session again on the same host: configure, activate
+    and the restored ``set_plan`` body ``plan``, answered ``plan_reply`` (None: silence)."""
+    s.configure(c)
+    s.exchange(c, Op.ACTIVATE, {}, {})
+    s.exchange(c, Op.SET_PLAN, plan, plan_reply)
 
 
 def _command_body(pose: dict[str, Any], velocity: list[float]) -> dict[str, Any]:
@@ -305,9 +320,7 @@ def restarted_host() -> Script:
     s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
     with_costmap = dict(_command_body(pose, velocity), costmap=s.costmap)
     s.exchange(c, Op.COMPUTE_VELOCITY_COMMANDS, with_costmap, SESSION_UNKNOWN, HOST_B)
-    s.configure(c)
-    s.exchange(c, Op.ACTIVATE, {}, {})
-    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, {})
+    _reestablish(s, c, {"path": wire_path(PLAN)}, {})
     s.exchange(c, Op.SET_SPEED_LIMIT, limit, {})
     _command(s, c, pose, velocity, {"cmd_vel": cmd(0.4)})
     s.returns(cmd(0.4)["twist"])
@@ -330,9 +343,7 @@ def fail_over() -> Script:
     _command(s, c, pose, velocity, SILENCE)
     _command(s, c, pose, velocity, SESSION_UNKNOWN,
                HOST_B)  # fmt: skip
-    s.configure(c)
-    s.exchange(c, Op.ACTIVATE, {}, {})
-    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, {})
+    _reestablish(s, c, {"path": wire_path(PLAN)}, {})
     _command(s, c, pose, velocity, {"cmd_vel": cmd(0.3)})
     s.returns(cmd(0.3)["twist"])
     s.hosts(HOST_B)  # the silent replica's token goes at last
@@ -387,15 +398,11 @@ def interrupted_restore() -> Script:
     pose, velocity = stamped(0.1, 0.0, 0.0, 1000), [0.2, 0.0, 0.0, 0.0, 0.0, 0.0]
     s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
     _command(s, c, pose, velocity, SESSION_UNKNOWN, HOST_B)
-    s.configure(c)
-    s.exchange(c, Op.ACTIVATE, {}, {})
-    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, SILENCE)
+    _reestablish(s, c, {"path": wire_path(PLAN)}, SILENCE)
     s.raises("NoValidControl")
     pose = stamped(0.2, 0.0, 0.0, 2000)
     s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
-    s.configure(c)
-    s.exchange(c, Op.ACTIVATE, {}, {})
-    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN)}, {})
+    _reestablish(s, c, {"path": wire_path(PLAN)}, {})
     _command(s, c, pose, velocity, {"cmd_vel": cmd(0.3)})
     s.returns(cmd(0.3)["twist"])
     return s
@@ -411,10 +418,7 @@ def followed_plan() -> Script:
         c,
     )
     s.hosts(HOST_A)
-    s.call(c, "configure")
-    s.configure(c, HOST_A)
-    s.call(c, "activate")
-    s.exchange(c, Op.ACTIVATE, {}, {})
+    _start(s, c, HOST_A)
     goal = stamped(1.0, 0.0, 0.0, 7)
     pose, velocity = stamped(0.1, 0.0, 0.0, 1000), [0.2, 0.0, 0.0, 0.0, 0.0, 0.0]
     s.call(c, "follow", path=PLAN, goal=goal)
@@ -432,9 +436,7 @@ def followed_plan() -> Script:
     s.call(c, "follow", path=dict(PLAN, stamp_ns=3000), goal=dict(goal, stamp_ns=3000))
     s.call(c, "compute_velocity_commands", **_command_body(pose, velocity))
     _command(s, c, pose, velocity, SESSION_UNKNOWN, HOST_B)
-    s.configure(c)
-    s.exchange(c, Op.ACTIVATE, {}, {})
-    s.exchange(c, Op.SET_PLAN, {"path": wire_path(PLAN), "goal": goal}, {})
+    _reestablish(s, c, {"path": wire_path(PLAN), "goal": goal}, {})
     _command(s, c, pose, velocity, {"cmd_vel": cmd(0.4)})
     s.returns(cmd(0.4)["twist"])
     return s
@@ -584,10 +586,7 @@ def behavior_restarted_host() -> Script:
         b,
     )
     s.hosts(HOST_A)
-    s.call(b, "configure")
-    s.configure(b, HOST_A)
-    s.call(b, "activate")
-    s.exchange(b, Op.ACTIVATE, {}, {})
+    _start(s, b, HOST_A)
     command = {"target_x": -0.3, "target_y": 0.0, "target_z": 0.0, "speed": 0.1}
     run = {
         "action": "nav2_msgs/action/BackUp",

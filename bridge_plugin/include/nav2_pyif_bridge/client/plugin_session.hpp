@@ -199,8 +199,14 @@ private:
   protocol::Reply checked_reply(
     const protocol::Bytes & answer, const protocol::Request & request,
     const std::string & what) const;
-  // Attaches the costmap to `carried.request` as schema.py's COSTMAP_SENT says its op takes it.
-  void attach_costmap(Carried & carried);
+  // The costmap read for a request, and whether it was attached (delivered once answered ok).
+  struct CostmapAttached
+  {
+    std::optional<std::uint64_t> version;
+    bool sent{false};
+  };
+  // Attaches the costmap to `request` as schema.py's COSTMAP_SENT says its op takes it.
+  CostmapAttached attach_costmap(protocol::Request & request);
 
   SessionConfig config_;
   KeySpace keys_;
