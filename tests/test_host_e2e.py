@@ -407,3 +407,30 @@ def test_a_misspelt_parameter_is_reported_and_an_undeclared_update_refused(
         "it declares: gain, label"
     }
     assert client.compute_velocity_commands(pose(), Twist()).twist.linear.y == 4.0
+
+
+def test_nested_keys_answer_only_their_own_calls_and_a_wildcard_query_is_ignored(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """A host declares one queryable per key, on the key's whole subtree: a key nested under
+    another (allowed, if unusual) is still answered by its own planner alone, and a wildcard
+    query over the keys gets no reply rather than a wrong one."""
+    inner = f"{KEY}/inner"
+    host = start_host(
+        "--serve",
+        f"{KEY}=echo_planners:EchoController",
+        "--serve",
+        f"{inner}=echo_planners:LinePlanner",
+    )
+    session = zsession_factory(host.endpoint)
+    outer_client = ControllerClient(session, KEY, make_costmap(), timeouts=GENEROUS)
+    inner_client = GlobalPlannerClient(session, inner, make_costmap(), timeouts=GENEROUS)
+    for client in (outer_client, inner_client):
+        assert client.wait_for_host(15), host.log()
+        client.configure()
+        client.activate()
+    assert len(inner_client.create_plan(pose(0, 0), pose(1, 1))) > 1  # only a planner plans
+    assert outer_client.compute_velocity_commands(pose(), Twist()).header.frame_id == "base_link"
+    replies = list(session.get(f"{KEY}/**", timeout=2.0))
+    assert replies == [], [str(r.ok.key_expr) if r.ok else r.err for r in replies]
+    assert "Traceback" not in host.log()

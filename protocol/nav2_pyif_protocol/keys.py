@@ -53,6 +53,11 @@ class KeySpace:
         return f"{self.prefix}/rpc/*"
 
     @property
+    def all(self) -> str:
+        """Every key under the prefix: what a host serving it declares (one queryable)."""
+        return f"{self.prefix}/**"
+
+    @property
     def cancel(self) -> str:
         return f"{self.prefix}/cancel"
 

@@ -8,15 +8,18 @@ than a control period (an overloaded host) is answered Unavailable without being
 Every other call (configure, set_plan, parameters, ...) goes straight to the shared planner,
 between two batches, once that key's last cycle is answered.
 
-The batch's thread answers each cycle itself (``submit_nowait``): the key's own thread hands
-its query over and goes back to its queue. Waking each key's thread to answer after every
-batch cost the host most of its time at 100 robots: a burst of threads contending for the GIL
-while the next batch waited for it.
+The batch's answering thread answers each cycle itself (``submit_nowait``): the key's own
+thread hands its query over and goes back to its queue. Waking each key's thread to answer
+after every batch cost the host most of its time at 100 robots: a burst of threads contending
+for the GIL while the next batch waited for it. The answers are sent while the next batch
+runs, not before it: at 120 robots, sending a batch's 100 replies took 6 ms of a 40 ms cycle
+on the one thread that also feeds the planner.
 """
 
 from __future__ import annotations
 
 import logging
+import queue
 import threading
 import time
 from collections.abc import Callable
@@ -93,8 +96,14 @@ class Batcher:
         self._queued: dict[str, _Cycle] = {}  # member key -> its cycle in the next batch
         self._last_call: dict[str, float] = {}  # member key -> when it last sent a cycle
         self._closing = False
-        self._thread = threading.Thread(target=self._serve, name=f"batch:{name}", daemon=True)
-        self._thread.start()
+        # batches computed, with their replies, for the answering thread; None: no more
+        self._answers: queue.SimpleQueue[list[tuple[_Cycle, bytes]] | None] = queue.SimpleQueue()
+        self._threads = [
+            threading.Thread(target=self._serve, name=f"batch:{name}", daemon=True),
+            threading.Thread(target=self._answer, name=f"answers:{name}", daemon=True),
+        ]
+        for thread in self._threads:
+            thread.start()
 
     def submit(self, member: str, payload: bytes) -> bytes:
         """The reply to one control cycle, once its batch ran."""
@@ -188,13 +197,19 @@ class Batcher:
                 replies = [self._refused(c.payload, f"the batch failed: {exc}") for c in batch]
             self.batches += 1
             self.cycles += len(batch)
-            for cycle, reply in zip(batch, replies, strict=True):
-                cycle.finish(reply)
+            self._answers.put(list(zip(batch, replies, strict=True)))
         with self._cond:  # closing: nobody is left waiting
             left, self._pending = self._pending, []
             self._queued.clear()
-        for cycle in left:
-            cycle.finish(self._refused(cycle.payload, "the planner host is shutting down"))
+        self._answers.put(
+            [(c, self._refused(c.payload, "the planner host is shutting down")) for c in left]
+        )
+        self._answers.put(None)
+
+    def _answer(self) -> None:
+        while (answers := self._answers.get()) is not None:
+            for cycle, reply in answers:
+                cycle.finish(reply)
 
     def _refused(self, payload: bytes, why: str) -> bytes:
         return error_reply(peek_seq(payload), self.host_id, ErrorType.UNAVAILABLE, why)
@@ -203,7 +218,8 @@ class Batcher:
         with self._cond:
             self._closing = True
             self._cond.notify_all()
-        self._thread.join(10.0)
+        for thread in self._threads:
+            thread.join(10.0)
 
 
 class BatchGroup:
