@@ -130,3 +130,11 @@ def test_the_carrot_is_lookahead_metres_past_the_nearest_point() -> None:
     assert api.remaining_length(xy, 10) == pytest.approx(3.0)
     assert api.limit_speed(0.5, (50.0, True)) == 0.25
     assert api.limit_speed(0.5, (0.3, False)) == 0.3
+
+
+def test_a_plans_arc_length_at_each_pose() -> None:
+    xy = np.array([[0.0, 0.0], [3.0, 4.0], [3.0, 4.0], [3.0, 5.0]])
+    plan = api.Plan(xy, "map")
+    assert plan.along.tolist() == [0.0, 5.0, 5.0, 6.0]  # a repeated pose adds nothing
+    assert api.Plan(np.zeros((1, 7)), "map").along.tolist() == [0.0]
+    assert api.Plan(np.zeros((0, 7)), "map").along.tolist() == []

@@ -79,6 +79,16 @@ class Plan:
         out[:, 2] = quaternion_to_yaw(self.array[:, 3:])
         return out
 
+    @cached_property
+    def along(self) -> FloatArray:
+        """(N,) arc length [m] from the first pose to each (0 for the first): computed once
+        per plan, not in every control cycle."""
+        out = np.zeros(len(self))
+        if len(self) > 1:
+            seg = np.diff(self.array[:, :2], axis=0)
+            np.cumsum(np.hypot(seg[:, 0], seg[:, 1]), out=out[1:])
+        return out
+
     @property
     def xy(self) -> FloatArray:
         """(N, 2) x, y [m] (a view)."""

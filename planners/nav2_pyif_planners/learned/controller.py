@@ -54,6 +54,11 @@ def _served(path: Path) -> _Served:
         jax = import_jax()
         policy = Policy.load(path)
         device = jax.devices()[0]  # a GPU when JAX has one, else the CPU
+        if device.platform == "cpu":
+            # Each result is waited for at once (the commands go back in this cycle), so on a
+            # CPU asynchronous dispatch only adds a hand-off to XLA's thread: 28 against 67 us
+            # a batch of 32 on a loaded 2-core machine. A GPU keeps it.
+            jax.config.update("jax_cpu_enable_async_dispatch", False)
         params = [(jax.device_put(w, device), jax.device_put(b, device)) for w, b in policy.layers]
         _SERVED[key] = _Served(policy, jax.jit(lambda x: forward(params, x)), str(device))
     return _SERVED[key]
@@ -105,7 +110,8 @@ class LearnedController(PathFollower):
         scan = self.inputs.get("scan")
         if scan is None:
             raise NoValidControl("no laser scan yet: the policy needs input 'scan'")
-        window = plan_window(path[:, :2], self.index, x, y, yaw)
+        along = self.plan.along if self.plan is not None else None
+        window = plan_window(path[:, :2], self.index, x, y, yaw, along)
         return cmd, _Observed((scan.ranges, scan.angles), window, velocity)
 
     @classmethod

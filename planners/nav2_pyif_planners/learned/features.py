@@ -60,20 +60,24 @@ def _pooling(key: bytes, angles: np.ndarray) -> tuple[np.ndarray, np.ndarray, np
     return _POOLINGS[key]
 
 
-def plan_window(path_xy: np.ndarray, index: int, x: float, y: float, yaw: float) -> np.ndarray:
+def plan_window(
+    path_xy: np.ndarray,
+    index: int,
+    x: float,
+    y: float,
+    yaw: float,
+    along: np.ndarray | None = None,
+) -> np.ndarray:
     """(PLAN_POINTS, 2) plan points every PLAN_SPACING metres from ``index`` on, in the robot
-    frame (the last point repeated past the plan's end)."""
-    ahead = path_xy[index:]
-    if len(ahead) == 1:
-        points = np.repeat(ahead, PLAN_POINTS, axis=0)
-    else:
-        seg = np.hypot(*np.diff(ahead, axis=0).T)
+    frame (the last point repeated past the plan's end). ``along``: the plan's arc length at
+    each point (``Plan.along``, computed once per plan); measured here when not given."""
+    if along is None:
+        seg = np.hypot(*np.diff(path_xy[:, :2], axis=0).T)
         along = np.concatenate([[0.0], np.cumsum(seg)])
-        wanted = PLAN_SPACING * np.arange(1, PLAN_POINTS + 1)
-        points = np.column_stack(
-            [np.interp(wanted, along, ahead[:, 0]), np.interp(wanted, along, ahead[:, 1])]
-        )
-    dx, dy = points[:, 0] - x, points[:, 1] - y
+    wanted = along[index] + PLAN_SPACING * np.arange(1, PLAN_POINTS + 1)
+    ahead, from_here = path_xy[index:], along[index:]
+    dx = np.interp(wanted, from_here, ahead[:, 0]) - x
+    dy = np.interp(wanted, from_here, ahead[:, 1]) - y
     c, s = math.cos(yaw), math.sin(yaw)
     return np.column_stack([c * dx + s * dy, -s * dx + c * dy])
 
