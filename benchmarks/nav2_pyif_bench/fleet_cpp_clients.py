@@ -8,6 +8,7 @@ limit shows. Built by scripts/build_cpp_bench.sh; runs in the ROS environment of
 from __future__ import annotations
 
 import json
+import math
 import shlex
 import subprocess
 import tempfile
@@ -89,8 +90,21 @@ def run_cpp_clients(
             on_go(started)
             samples: list[tuple[float, bool]] = []
             errors: list[str] = list(failed)
-            for proc, _ in processes:
-                out, _ = proc.communicate(timeout=seconds + 120)
+            for proc, indices in processes:
+                try:
+                    out, _ = proc.communicate(timeout=seconds + 120)
+                except subprocess.TimeoutExpired:
+                    # A robot's call that never ended (no reply and no end of replies from
+                    # Zenoh): its process's robots count as missing every period, and the
+                    # other sizes of the run go on.
+                    proc.kill()
+                    proc.communicate()
+                    samples += [(math.nan, False)] * (len(indices) * round(seconds / period))
+                    errors.append(
+                        f"{binary.name} robots {indices[0]}..{indices[-1]}: the process did "
+                        f"not end {seconds + 120:g} s after its start; its samples are lost"
+                    )
+                    continue
                 result: dict[str, Any] = json.loads(out.strip().splitlines()[-1])
                 samples += [(ns / 1e9, bool(ok)) for ns, ok in result["samples"]]
                 errors += result["errors"]
