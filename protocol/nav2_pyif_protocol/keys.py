@@ -53,9 +53,9 @@ class KeySpace:
         return f"{self.prefix}/rpc/*"
 
     @property
-    def all(self) -> str:
-        """Every key under the prefix: what a host serving it declares (one queryable)."""
-        return f"{self.prefix}/**"
+    def admin(self) -> str:
+        """Every admin query under the prefix (``admin_reload``, ``admin_info``)."""
+        return f"{self.prefix}/admin/*"
 
     @property
     def cancel(self) -> str:

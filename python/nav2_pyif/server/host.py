@@ -51,14 +51,16 @@ def _answer(query: Any, reply: bytes) -> None:
 class ServedPlanner:
     """One planner answering under one key prefix.
 
-    One queryable per key, on ``{prefix}/**``, not one per kind of query: Zenoh matches each
-    incoming query against every queryable of the session, so at 120 keys four queryables each
-    cost the host more CPU than the batched planner call (measured with perf: 22 % of the
-    host's time in key-expression intersection). Its callback runs on Zenoh's own thread and
-    only sorts the query: a call goes to this key's call thread (answered in order, so planners
-    need not be thread-safe); a batched control cycle with nothing queued before it goes
-    straight to its batch; a cancel or an admin query to this key's side thread, so it is
-    answered while a call runs."""
+    Three queryables per key (its calls ``P/rpc/*``, ``P/cancel``, ``P/admin/*``), not one per
+    query kind and not one on ``P/**``: Zenoh matches each incoming query against every
+    queryable of the session, and at 120 keys four queryables each cost the host more CPU than
+    the batched planner call (perf: 22 % of its time in key-expression intersection), but a
+    router's access control lets a robot see only declarations on its calls, cancel and hosts
+    keys (docs/DEPLOYMENT.md), and zenoh-pico sends no query to a key it has seen no queryable
+    for. One callback serves all three, on Zenoh's own thread, and only sorts the query: a call
+    goes to this key's call thread (answered in order, so planners need not be thread-safe); a
+    batched control cycle with nothing queued before it goes straight to its batch; a cancel or
+    an admin query to this key's side thread, so it is answered while a call runs."""
 
     def __init__(
         self,
@@ -95,9 +97,10 @@ class ServedPlanner:
         ]
         for thread in self._threads:
             thread.start()
-        self._queryable = session.declare_queryable(
-            keys.all, zenoh.handlers.Callback(self._on_query, indirect=False)
-        )
+        self._queryables = [
+            session.declare_queryable(key, zenoh.handlers.Callback(self._on_query, indirect=False))
+            for key in (keys.calls, keys.cancel, keys.admin)
+        ]
         # Announce last: a plugin that sees the token can call at once.
         self._token = session.liveliness().declare_token(keys.host_token(host_id))
 
@@ -116,7 +119,7 @@ class ServedPlanner:
         elif (side := self._side_ops.get(key)) is not None:
             self._side.put((query, side))
         else:
-            query.drop()  # not a query of this key's (a nested key's, or a wildcard)
+            query.drop()  # not a query of this key's (a wildcard, another admin verb)
 
     def _serve(self) -> None:
         while (item := self._calls.get()) is not None:
@@ -240,7 +243,8 @@ class ServedPlanner:
         return message
 
     def close(self) -> None:
-        for entity in (self._token, self._queryable):
+        entities: list[Any] = [self._token, *self._queryables]
+        for entity in entities:
             with contextlib.suppress(Exception):  # already gone with the session
                 entity.undeclare()
         self._calls.put(None)
