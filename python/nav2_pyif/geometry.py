@@ -79,6 +79,16 @@ def path_length(path_xy: Any) -> float:
     return float(np.hypot(seg[:, 0], seg[:, 1]).sum())
 
 
+def arc_lengths(path_xy: FloatArray) -> FloatArray:
+    """(N,) arc length [m] along ``path_xy`` ((N, 2+)) from its first point to each (0 for the
+    first; a repeated point adds nothing)."""
+    out = np.zeros(len(path_xy))
+    if len(path_xy) > 1:
+        seg = np.diff(path_xy[:, :2], axis=0)
+        np.cumsum(np.hypot(seg[:, 0], seg[:, 1]), out=out[1:])
+    return out
+
+
 def remaining_length(path_xy: FloatArray, index: int) -> float:
     """Arc length [m] of ``path_xy`` ((N, 2+)) from point ``index`` to its end."""
     return path_length(path_xy[index:])

@@ -21,7 +21,7 @@ from nav2_pyif_protocol.arrays import (
 )
 
 from nav2_pyif._messages import ns_to_stamp, stamp_to_ns
-from nav2_pyif.geometry import path_length
+from nav2_pyif.geometry import arc_lengths, path_length
 
 
 class Plan:
@@ -83,11 +83,7 @@ class Plan:
     def along(self) -> FloatArray:
         """(N,) arc length [m] from the first pose to each (0 for the first): computed once
         per plan, not in every control cycle."""
-        out = np.zeros(len(self))
-        if len(self) > 1:
-            seg = np.diff(self.array[:, :2], axis=0)
-            np.cumsum(np.hypot(seg[:, 0], seg[:, 1]), out=out[1:])
-        return out
+        return arc_lengths(self.array)
 
     @property
     def xy(self) -> FloatArray:

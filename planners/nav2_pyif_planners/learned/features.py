@@ -7,6 +7,7 @@ import math
 from collections.abc import Sequence
 
 import numpy as np
+from nav2_pyif.geometry import arc_lengths
 
 SECTORS = 24  # scan sectors over a full turn (the nearest return in each)
 SCAN_CLIP = 3.0  # [m] farther returns read as this: only the near field matters here
@@ -72,8 +73,7 @@ def plan_window(
     frame (the last point repeated past the plan's end). ``along``: the plan's arc length at
     each point (``Plan.along``, computed once per plan); measured here when not given."""
     if along is None:
-        seg = np.hypot(*np.diff(path_xy[:, :2], axis=0).T)
-        along = np.concatenate([[0.0], np.cumsum(seg)])
+        along = arc_lengths(path_xy)
     wanted = along[index] + PLAN_SPACING * np.arange(1, PLAN_POINTS + 1)
     ahead, from_here = path_xy[index:], along[index:]
     dx = np.interp(wanted, from_here, ahead[:, 0]) - x

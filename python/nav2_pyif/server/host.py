@@ -84,8 +84,12 @@ class ServedPlanner:
         # (unix time, label) of each planner this key served, a hot swap's too: who served when
         self.history: deque[tuple[float, str]] = deque([(time.time(), runtime.label)], maxlen=32)
         self._rpc = f"{keys.prefix}/rpc/"
-        self._side_ops = {keys.cancel: self._on_cancel, keys.admin_reload: self._on_reload}
-        self._side_ops[keys.admin_info] = self._on_info
+        # answered on this key's side thread; a replica's are dropped before (_on_query)
+        self._side_ops = {
+            keys.cancel: self._on_cancel,
+            keys.admin_reload: self._on_reload,
+            keys.admin_info: self._on_info,
+        }
         self._calls: queue.SimpleQueue[tuple[Any, str] | None] = queue.SimpleQueue()
         self._side: queue.SimpleQueue[tuple[Any, Callable[[Any], None]] | None]
         self._side = queue.SimpleQueue()
@@ -159,9 +163,6 @@ class ServedPlanner:
         return host is not None and host != self.host_id
 
     def _on_cancel(self, query: Any) -> None:
-        if self._addressed_elsewhere(query):
-            query.drop()
-            return
         try:
             query.reply(query.key_expr, self.runtime.handle_cancel(_payload(query)))
         except Exception:
@@ -187,8 +188,7 @@ class ServedPlanner:
 
     def _on_info(self, query: Any) -> None:
         try:
-            if not self._addressed_elsewhere(query):
-                query.reply(query.key_expr, msgpack.packb(self.info()))
+            query.reply(query.key_expr, msgpack.packb(self.info()))
         except Exception:
             log.exception("%s: could not answer an info query", self.keys.prefix)
         finally:
@@ -196,7 +196,8 @@ class ServedPlanner:
 
     def _on_reload(self, query: Any) -> None:
         """Hot swap request: {planner?, module?, delegates?} -> {ok, message}. Loading takes
-        a while: done on a thread so Zenoh's callback thread is not held."""
+        a while: done on a thread of its own so the key's side thread answers cancels
+        meanwhile."""
         threading.Thread(target=self._reload, args=(query,), daemon=True).start()
 
     def _reload(self, query: Any) -> None:
