@@ -12,6 +12,7 @@ from nav2_pyif.client import SmootherClient, Timeouts
 from nav2_pyif.client.transport import MockTransport, StaticHosts
 from nav2_pyif.plan import Plan
 from nav2_pyif.server.journal import Journal
+from nav2_pyif.server.supervisor import Deadlines
 from nav2_pyif_codegen.cpp_codec import camel
 from nav2_pyif_protocol.codec import Reply, Request, decode_request, encode_reply, encode_request
 from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, Op, PluginType
@@ -105,7 +106,7 @@ def test_a_behaviour_is_restored_only_while_its_action_runs() -> None:
 
 
 def test_smooth_waits_its_max_time_and_a_grace_or_the_plan_timeout_when_longer() -> None:
-    """As the C++ SmootherSession (units_test.cpp: WaitsMaxTimeAndAGrace...)."""
+    """As the C++ session (units_test.cpp: SmootherSessionTest.WaitsMaxTimeAndAGrace...)."""
     waits: list[float] = []
 
     def host(key: str, host: str | None, payload: bytes, timeout: float) -> bytes:
@@ -128,3 +129,20 @@ def test_smooth_waits_its_max_time_and_a_grace_or_the_plan_timeout_when_longer()
     client.smooth(path, 0.5)
     assert waits[1:] == [5.0 + SMOOTH_GRACE_S, 2.0]
     assert client.timeouts.plan == 2.0
+
+
+def test_the_host_lets_a_smoother_use_its_max_time_and_the_grace() -> None:
+    """The host's side of the same wait: its plan deadline would otherwise answer a smoother
+    given a longer max_time Unavailable before the plugin stops waiting."""
+    deadlines = Deadlines(plan=30.0)
+    path = {"frame_id": "map", "stamp_ns": 0, "poses": b""}
+
+    def smooth(max_time: float) -> bytes:
+        return encode_request(
+            Request(Op.SMOOTH, "s" * 32, 1, 1, {"path": path, "max_time": max_time})
+        )
+
+    assert deadlines.of("smooth", smooth(40.0)) == 40.0 + SMOOTH_GRACE_S
+    assert deadlines.of("smooth", smooth(0.5)) == 30.0
+    assert deadlines.of("smooth", b"\xc1 not msgpack") == 30.0
+    assert deadlines.of("create_plan", smooth(40.0)) == 30.0

@@ -11,7 +11,6 @@ find_package(Threads REQUIRED)
 add_library(nav2_pyif_client STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/behavior_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/carried_cycle.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/../src/client/checker_sessions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/clock.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/command_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/controller_session.cpp
@@ -19,12 +18,10 @@ add_library(nav2_pyif_client STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/error_mapping.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/host_watcher.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/keys.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/../src/client/layer_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/local_host.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/planner_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/plugin_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/settings.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/../src/client/smoother_session.cpp
 )
 target_include_directories(nav2_pyif_client PUBLIC ${CMAKE_CURRENT_LIST_DIR}/../include)
 target_link_libraries(nav2_pyif_client PUBLIC nav2_pyif_protocol_codec Threads::Threads)

@@ -20,7 +20,7 @@
 
 #include "nav2_pyif_bridge/bridged_session.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
-#include "nav2_pyif_bridge/client/checker_sessions.hpp"
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge
 {

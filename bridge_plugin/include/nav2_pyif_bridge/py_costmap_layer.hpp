@@ -13,7 +13,7 @@
 #include "nav2_costmap_2d/costmap_layer.hpp"
 
 #include "nav2_pyif_bridge/bridged_session.hpp"
-#include "nav2_pyif_bridge/client/layer_session.hpp"
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge
 {

@@ -11,7 +11,7 @@
 #include "rclcpp/rclcpp.hpp"
 
 #include "nav2_pyif_bridge/bridged_session.hpp"
-#include "nav2_pyif_bridge/client/smoother_session.hpp"
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge
 {

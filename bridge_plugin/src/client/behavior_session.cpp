@@ -2,8 +2,6 @@
 
 #include <utility>
 
-#include "nav2_pyif_bridge/client/command_check.hpp"
-
 namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
@@ -27,7 +25,7 @@ BehaviorStep BehaviorSession::step_of(
   const auto f = behavior_failure_from_name(failure);
   if (!s || !f) {
     return failed(
-      std::string(what) + " reply from host " + last_host() + " has status '" + status +
+      std::string(what) + " reply from host " + current().last_host + " has status '" + status +
       "' and failure '" + failure + "'");
   }
   BehaviorStep step;
@@ -48,10 +46,10 @@ BehaviorStep BehaviorSession::run(
   body.pose = pose;
   running_.reset();
   try {
-    const auto reply = call_for<proto::OnRunReply>(body);
+    const auto reply = call(body);
     BehaviorStep step = step_of(reply.status, reply.failure, "on_run");
     if (step.status == BehaviorStatus::Running) {
-      return failed("on_run reply from host " + last_host() + " is 'running'");
+      return failed("on_run reply from host " + current().last_host + " is 'running'");
     }
     if (step.status == BehaviorStatus::Succeeded) {
       running_ = std::move(body);
@@ -69,13 +67,12 @@ BehaviorStep BehaviorSession::cycle_update(const proto::PoseStamped & pose, doub
   body.pose = pose;
   body.elapsed = elapsed;
   try {
-    auto reply = call_for<proto::OnCycleUpdateReply>(body);
+    auto reply = call(body);
     BehaviorStep step = step_of(reply.status, reply.failure, "on_cycle_update");
     if (!step.error.empty()) {
       return step;
     }
-    if (reply.cmd_vel && step.status == BehaviorStatus::Running) {
-      check_command(*reply.cmd_vel, last_host());
+    if (step.status == BehaviorStatus::Running) {
       step.cmd_vel = std::move(reply.cmd_vel);
     }
     if (reply.feedback) {

@@ -70,6 +70,16 @@ std::optional<Pending> take_for(std::optional<Pending> & slot, const PluginSessi
   return pending;
 }
 
+// `body` carrying `carry`, when there is any.
+template<class Request>
+Request carrying(Request body, CarriedCalls carry)
+{
+  if (!carry.empty()) {
+    body.carry = std::move(carry);
+  }
+  return body;
+}
+
 template<class Prepared>
 void add(
   CarriedCalls & carry, std::optional<Prepared> & pending, const PluginSession & session,
@@ -114,20 +124,23 @@ void CarriedCycle::count(bool carried)
 
 bool CarriedCycle::is_goal_reached(
   GoalCheckerSession & checker, const std::optional<proto::PoseStamped> & robot,
-  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
-  const std::array<double, 6> & velocity, const std::optional<proto::GoalChecker> & tolerances)
+  const proto::IsGoalReachedRequest & request,
+  const std::optional<proto::GoalChecker> & tolerances)
 {
+  const std::array<double, 6> & velocity = request.velocity;
   std::optional<Pending<Carried>> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    last_goal_check_ = Seen{pose, velocity};
+    last_goal_check_ = Seen{request.pose, velocity};
     learn(true, last_command_ == last_goal_check_);
     goal_checker_ = &checker;
     mine = take_for(goal_check_, checker);
   }
   std::optional<bool> reached;
   if (mine) {
-    reached = checker.take_goal_check(std::move(mine->prepared), mine->reply, pose, goal, velocity);
+    if (auto reply = checker.take(std::move(mine->prepared), mine->reply, request)) {
+      reached = reply->reached;
+    }
     count(reached.has_value());
   }
   if (!reached) {
@@ -141,7 +154,7 @@ bool CarriedCycle::is_goal_reached(
       if (!goal_last_ && robot) {
         command_inputs_ = CommandInputs{*robot, velocity, tolerances};
         if (progress_checker_ != nullptr) {
-          if (auto carried = progress_checker_->prepare_check(*robot)) {
+          if (auto carried = progress_checker_->prepare(progress_check(*robot))) {
             check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
             add(carry, check, *progress_checker_, check->prepared);
           }
@@ -155,32 +168,34 @@ bool CarriedCycle::is_goal_reached(
       }
       ++queries_;
     }
-    GoalCheckReplies replies = checker.is_goal_reached(pose, goal, velocity, std::move(carry));
+    proto::IsGoalReachedReply reply = checker.call(carrying(request, std::move(carry)));
+    CarriedCalls replies = std::move(reply.carried).value_or(CarriedCalls{});
     std::lock_guard<std::mutex> lock(mutex_);
     std::size_t next = 0;
-    keep(check_, std::move(check), replies.carried, next, progress_checker_);
-    keep(compute_, std::move(compute), replies.carried, next, controller_);
-    reached = replies.reached;
+    keep(check_, std::move(check), replies, next, progress_checker_);
+    keep(compute_, std::move(compute), replies, next, controller_);
+    reached = reply.reached;
   }
   std::lock_guard<std::mutex> lock(mutex_);
-  goal_ = goal;  // what a command's query may carry next, until the checker is reset
-  goal_seq_ = checker.last_seq();
+  goal_ = request.goal;  // what a command's query may carry next, until the checker is reset
+  goal_seq_ = checker.state().last_seq;
   return *reached;
 }
 
-bool CarriedCycle::check(ProgressCheckerSession & session, const proto::PoseStamped & pose)
+bool CarriedCycle::check(ProgressCheckerSession & session, const proto::CheckRequest & request)
 {
+  const proto::PoseStamped & pose = request.pose;
   std::optional<Pending<Carried>> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     mine = take_for(check_, session);
   }
   if (mine) {
-    const std::optional<bool> carried =
-      session.take_check(std::move(mine->prepared), mine->reply, pose);
+    const std::optional<proto::CheckReply> carried =
+      session.take(std::move(mine->prepared), mine->reply, request);
     count(carried.has_value());
     if (carried) {
-      return *carried;
+      return carried->making_progress;
     }
   }
   std::optional<Pending<PreparedCommand>> compute;
@@ -199,11 +214,12 @@ bool CarriedCycle::check(ProgressCheckerSession & session, const proto::PoseStam
     }
     ++queries_;
   }
-  CheckReplies replies = session.check(pose, std::move(carry));
+  proto::CheckReply reply = session.call(carrying(request, std::move(carry)));
+  CarriedCalls replies = std::move(reply.carried).value_or(CarriedCalls{});
   std::lock_guard<std::mutex> lock(mutex_);
   std::size_t next = 0;
-  keep(compute_, std::move(compute), replies.carried, next, controller_);
-  return replies.making_progress;
+  keep(compute_, std::move(compute), replies, next, controller_);
+  return reply.making_progress;
 }
 
 proto::TwistStamped CarriedCycle::compute_velocity_commands(
@@ -233,8 +249,12 @@ proto::TwistStamped CarriedCycle::compute_velocity_commands(
     goal_check_.reset();
     // Goal last: the goal check for the goal its checker was last given, unless it was
     // reset since (controller_server resets it with every new plan)
-    if (goal_last_ && goal_ && goal_checker_ != nullptr && goal_checker_->last_seq() == goal_seq_) {
-      if (auto carried = goal_checker_->prepare_goal_check(pose.pose, *goal_, velocity)) {
+    if (goal_last_ && goal_ && goal_checker_ != nullptr &&
+      goal_checker_->state().last_seq == goal_seq_)
+    {
+      if (auto carried =
+        goal_checker_->prepare(client::goal_check(pose.pose, *goal_, velocity)))
+      {
         goal_check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
         add(carry, goal_check, *goal_checker_, goal_check->prepared);
       }

@@ -2,9 +2,11 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstddef>
 #include <sstream>
 #include <string_view>
+#include <variant>
 
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
 
@@ -63,6 +65,42 @@ void check_path(
               << i / protocol::kPoseRowSize << " of " << path.pose_count();
       throw CallError(kind, Cause::Local, message.str());
     }
+  }
+}
+
+void check_window(
+  const protocol::UpdateCostsReply & reply, const protocol::UpdateCostsRequest & request,
+  const std::string & host)
+{
+  const std::int64_t width = request.max_i - request.min_i;
+  const std::int64_t height = request.max_j - request.min_j;
+  if (static_cast<std::int64_t>(reply.width) != width ||
+    static_cast<std::int64_t>(reply.height) != height)
+  {
+    throw CallError(
+            ErrorKind::ControllerException, Cause::BadReply,
+            "update_costs reply" + host_part(host) + " is " + std::to_string(reply.width) +
+            " x " + std::to_string(reply.height) + " cells, the window " + std::to_string(width) +
+            " x " + std::to_string(height));
+  }
+}
+
+void check_reply(
+  const protocol::RequestBody & request, const protocol::ReplyBody & reply,
+  const std::string & host)
+{
+  if (const auto * command = std::get_if<protocol::ComputeVelocityCommandsReply>(&reply)) {
+    check_command(command->cmd_vel, host);
+  } else if (const auto * step = std::get_if<protocol::OnCycleUpdateReply>(&reply)) {
+    if (step->cmd_vel) {
+      check_command(*step->cmd_vel, host);
+    }
+  } else if (const auto * plan = std::get_if<protocol::CreatePlanReply>(&reply)) {
+    check_path(plan->path, host);
+  } else if (const auto * smoothed = std::get_if<protocol::SmoothReply>(&reply)) {
+    check_path(smoothed->path, host, ErrorKind::FailedToSmoothPath, "smooth reply");
+  } else if (const auto * costs = std::get_if<protocol::UpdateCostsReply>(&reply)) {
+    check_window(*costs, std::get<protocol::UpdateCostsRequest>(request), host);
   }
 }
 

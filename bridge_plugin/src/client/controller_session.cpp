@@ -2,8 +2,6 @@
 
 #include <utility>
 
-#include "nav2_pyif_bridge/client/command_check.hpp"
-
 namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
@@ -84,7 +82,7 @@ CommandReplies ControllerSession::compute_velocity_commands(
   if (!carry.empty()) {
     body.carry = std::move(carry);
   }
-  auto reply = call_for<proto::ComputeVelocityCommandsReply>(body);
+  auto reply = call(body);
   std::vector<proto::CarriedCall> carried = std::move(reply.carried).value_or(
     std::vector<proto::CarriedCall>{});
   return {command_of(std::move(reply), attached), std::move(carried)};
@@ -122,8 +120,7 @@ std::optional<proto::TwistStamped> ControllerSession::take_command(
   if (!body) {
     return std::nullopt;
   }
-  return command_of(
-    std::get<proto::ComputeVelocityCommandsReply>(std::move(*body)), prepared.attached);
+  return command_of(std::move(*body), prepared.attached);
 }
 
 proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
@@ -142,7 +139,7 @@ proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
     body.goal = goal_;
     attached.goal = true;
   }
-  const std::uint64_t session = epoch();  // before the inputs' lock, as every caller takes them
+  const std::uint64_t session = current().epoch;
   std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
   for (const auto & [name, latest] : inputs_) {
     if (latest.sent != latest.generation || latest.sent_epoch != session) {
@@ -162,11 +159,10 @@ proto::ComputeVelocityCommandsRequest ControllerSession::command_body(
 proto::TwistStamped ControllerSession::command_of(
   proto::ComputeVelocityCommandsReply reply, const Attached & attached)
 {
-  check_command(reply.cmd_vel, last_host());
   // (the caller holds mutex(): plan_ and goal_ are still what was attached)
   plan_unsent_ = plan_unsent_ && !attached.plan;
   goal_unsent_ = goal_unsent_ && !attached.goal;
-  const std::uint64_t session = epoch();
+  const std::uint64_t session = current().epoch;
   std::lock_guard<std::mutex> inputs_lock(inputs_mutex_);
   for (const auto & [name, generation] : attached.inputs) {
     inputs_[name].sent = generation;
@@ -209,18 +205,6 @@ void ControllerSession::set_speed_limit(double speed_limit, bool percentage)
     throw;
   }
   speed_limit_ = body;
-}
-
-bool ControllerSession::cancel()
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex());
-  return call_for<proto::CancelReply>(proto::CancelRequest{}).cancelled;
-}
-
-void ControllerSession::reset()
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex());
-  call(proto::ResetRequest{}, {});
 }
 
 bool ControllerSession::has_plan() const

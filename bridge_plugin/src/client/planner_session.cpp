@@ -2,8 +2,6 @@
 
 #include <utility>
 
-#include "nav2_pyif_bridge/client/command_check.hpp"
-
 namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
@@ -37,8 +35,7 @@ proto::Path PlannerSession::create_plan(
         }
       };
   }
-  auto reply = call_for<proto::CreatePlanReply>(body, options);
-  check_path(reply.path, last_host());
+  auto reply = call(body, options);
   return std::move(reply.path);
 }
 
@@ -46,7 +43,7 @@ void PlannerSession::send_cancel(std::uint64_t target_seq)
 {
   proto::Request request;
   request.sid = sid();
-  request.epoch = epoch();
+  request.epoch = current().epoch;
   request.seq = next_seq();
   request.body = proto::CancelPlanRequest{target_seq};
   // Fire and forget: the planner's own answer to create_plan (PlannerCancelled) is what counts.

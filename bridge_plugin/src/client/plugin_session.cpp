@@ -1,6 +1,8 @@
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
+#include <algorithm>
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <random>
 #include <type_traits>
@@ -8,6 +10,7 @@
 #include <variant>
 
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
+#include "nav2_pyif_bridge/client/command_check.hpp"
 
 namespace nav2_pyif_bridge::client
 {
@@ -97,9 +100,9 @@ proto::Params PluginSession::configure()
 
 proto::Params PluginSession::configure_locked()
 {
-  ++epoch_;
-  delivered_costmap_.reset();
-  established_ = false;
+  ++state_.epoch;
+  state_.delivered_costmap.reset();
+  state_.established = false;
   proto::ConfigureRequest body;
   body.plugin_type = std::string(plugin_type_name(config_.kind));
   body.name = config_.name;
@@ -112,11 +115,11 @@ proto::Params PluginSession::configure_locked()
   }
   CallOptions options;
   options.allow_resync = false;
-  auto reply = call_for<proto::ConfigureReply>(body, options);
-  configured_ = true;
-  established_ = true;
-  served_ = reply.planner.value_or("");
-  debug_outputs_ = reply.debug_outputs.value_or(proto::StringMap{});
+  auto reply = call(body, options);
+  state_.configured = true;
+  state_.established = true;
+  state_.served = reply.planner.value_or("");
+  state_.debug_outputs = reply.debug_outputs.value_or(proto::StringMap{});
   if (reply.undeclared && !reply.undeclared->empty()) {
     std::string names;
     std::string reasons;
@@ -139,15 +142,15 @@ proto::Params PluginSession::configure_locked()
 void PluginSession::defer_configure()
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  configured_ = true;
-  established_ = false;
+  state_.configured = true;
+  state_.established = false;
 }
 
 void PluginSession::activate()
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  if (configured_ && !established_) {
-    active_ = true;  // sent when the session is established
+  if (state_.configured && !state_.established) {
+    state_.active = true;  // sent when the session is established
     if (transport_.hosts_alive()) {
       try {
         establish();
@@ -169,14 +172,14 @@ void PluginSession::activate()
     unreachable_transition(error, true);
     return;
   }
-  active_ = true;
+  state_.active = true;
 }
 
 void PluginSession::deactivate()
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  if (configured_ && !established_) {
-    active_ = false;
+  if (state_.configured && !state_.established) {
+    state_.active = false;
     return;
   }
   try {
@@ -188,13 +191,13 @@ void PluginSession::deactivate()
     unreachable_transition(error, false);
     return;
   }
-  active_ = false;
+  state_.active = false;
 }
 
 void PluginSession::unreachable_transition(const CallError & error, bool active)
 {
-  active_ = active;
-  established_ = false;  // the next call re-establishes, in this state
+  state_.active = active;
+  state_.established = false;  // the next call re-establishes, in this state
   log(
     logger_, LogLevel::Warn,
     keys_.prefix() + ": " + error.what() + "; the session is re-established (" +
@@ -204,15 +207,16 @@ void PluginSession::unreachable_transition(const CallError & error, bool active)
 void PluginSession::cleanup()
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  const bool send = !configured_ || established_;  // not configured: the call says so
+  // not configured: the call says so
+  const bool send = !state_.configured || state_.established;
   struct Reset
   {
     PluginSession & session;
     ~Reset()
     {
-      session.configured_ = false;
-      session.established_ = false;
-      session.active_ = false;
+      session.state_.configured = false;
+      session.state_.established = false;
+      session.state_.active = false;
       session.forget_state();
     }
   } reset{*this};
@@ -226,13 +230,13 @@ void PluginSession::cleanup()
 proto::StringMap PluginSession::set_parameters(const proto::Params & changes)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  if (!configured_ || !established_) {
+  if (!state_.configured || !state_.established) {
     for (const auto & [name, value] : changes) {
       config_.params.set(name, value);
     }
     return {};
   }
-  auto reply = call_for<proto::SetParametersReply>(proto::SetParametersRequest{changes});
+  auto reply = call(proto::SetParametersRequest{changes});
   for (const auto & [name, value] : changes) {
     if (reply.rejected.find(name) == nullptr) {
       config_.params.set(name, value);
@@ -248,11 +252,12 @@ bool PluginSession::wait_for_host(Duration timeout)
 
 // --- the call procedure ---------------------------------------------------------------------
 
-proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const CallOptions & options)
+proto::ReplyBody PluginSession::call_body(
+  const proto::RequestBody & body, const CallOptions & options)
 {
   const proto::Op op = proto::op_of(body);
   const std::string op_text(proto::op_name(op));
-  if (op != proto::Op::Configure && !configured_) {
+  if (op != proto::Op::Configure && !state_.configured) {
     fail(
       generic_error(config_.kind), Cause::NotConfigured,
       op_text + " before configure on " + keys_.prefix());
@@ -263,7 +268,7 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
   // loop's and the lifecycle's ops fail at once.
   if (!transport_.hosts_alive() &&
     !(proto::timeout_class(op) == proto::TimeoutClass::Plan &&
-    transport_.wait_for_host(options.timeout.value_or(config_.timeouts.for_op(op)))))
+    transport_.wait_for_host(options.timeout.value_or(timeout_of(body)))))
   {
     fail(
       host_failure_error(config_.kind), Cause::NoHost,
@@ -271,13 +276,13 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
       keys_.prefix() + " ...); " + op_text + " not sent");
   }
   pin_host();
-  if (op != proto::Op::Configure && !established_) {
+  if (op != proto::Op::Configure && !state_.established) {
     establish();  // deferred configure, or a re-establishment that failed before
   }
 
   proto::Request request;
   request.sid = sid_;
-  request.epoch = epoch_;
+  request.epoch = state_.epoch;
   request.body = body;
   const CostmapAttached costmap = attach_costmap(request);
   request.seq = next_seq();
@@ -294,20 +299,21 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     // one: another alive replica gets the call instead.
     const bool exchange_failed = error.cause() == Cause::TimedOut ||
       error.cause() == Cause::BadReply;
-    if (exchange_failed && options.allow_failover && fail_over(pinned_host_)) {
-      return call(body, retry);
+    if (exchange_failed && options.allow_failover && fail_over(state_.pinned_host)) {
+      return call_body(body, retry);
     }
     throw;
   }
   if (!reply.ok() && reply.error().type == proto::error_type::kUnavailable &&
     options.allow_failover && fail_over(reply.host))
   {
-    return call(body, retry);
+    return call_body(body, retry);
   }
   if (reply.ok()) {
     if (costmap.sent) {
-      delivered_costmap_ = costmap.version;
+      state_.delivered_costmap = costmap.version;
     }
+    check_reply(body, reply.body(), reply.host);
     return std::get<proto::ReplyBody>(std::move(reply.outcome));
   }
   const proto::Error & error = reply.error();
@@ -315,7 +321,7 @@ proto::ReplyBody PluginSession::call(const proto::RequestBody & body, const Call
     reestablish(reply.host);
     CallOptions again = options;
     again.allow_resync = false;
-    return call(body, again);
+    return call_body(body, again);
   }
   throw error_from_reply(error, config_.kind);
 }
@@ -335,6 +341,18 @@ void PluginSession::join(std::shared_ptr<CarriedCycle> cycle)
   cycle_ = std::move(cycle);
 }
 
+Duration PluginSession::timeout_of(const proto::RequestBody & body) const
+{
+  const Duration timeout = config_.timeouts.for_op(proto::op_of(body));
+  if (const auto * smooth = std::get_if<proto::SmoothRequest>(&body)) {
+    // the smoother is given max_time: its reply is awaited that long and the grace more
+    return std::max(
+      timeout, std::chrono::duration_cast<Duration>(
+        std::chrono::duration<double>(smooth->max_time + proto::kSmoothGraceS)));
+  }
+  return timeout;
+}
+
 PluginSession::CostmapAttached PluginSession::attach_costmap(proto::Request & request)
 {
   const proto::CostmapSent rule = proto::costmap_sent(request.op());
@@ -342,7 +360,7 @@ PluginSession::CostmapAttached PluginSession::attach_costmap(proto::Request & re
     return {};
   }
   CostmapRead read = costmap_.read(
-    rule == proto::CostmapSent::Always ? std::nullopt : delivered_costmap_);
+    rule == proto::CostmapSent::Always ? std::nullopt : state_.delivered_costmap);
   if (!read.costmap) {
     return {read.version, false};
   }
@@ -352,18 +370,19 @@ PluginSession::CostmapAttached PluginSession::attach_costmap(proto::Request & re
 
 std::optional<Carried> PluginSession::prepare(proto::RequestBody body)
 {
-  if (!configured_ || !established_) {
+  std::lock_guard<std::recursive_mutex> lock(mutex_);
+  if (!state_.configured || !state_.established) {
     return std::nullopt;
   }
   Carried carried;
   carried.request.sid = sid_;
-  carried.request.epoch = epoch_;
+  carried.request.epoch = state_.epoch;
   carried.request.body = std::move(body);
   const CostmapAttached costmap = attach_costmap(carried.request);
   carried.costmap_version = costmap.version;
   carried.costmap_sent = costmap.sent;
   try {
-    carried.request.seq = seq_ + 1;
+    carried.request.seq = state_.last_seq + 1;
     carried.payload = proto::encode_request(carried.request);
   } catch (const proto::EncodeError &) {
     return std::nullopt;  // the call on its own reports it
@@ -380,10 +399,11 @@ std::optional<proto::ReplyBody> PluginSession::settle(
   }
   proto::Reply reply = checked_reply(*answer, carried.request, "carried reply");
   if (reply.ok()) {
-    last_host_ = reply.host;
+    state_.last_host = reply.host;
     if (carried.costmap_sent) {
-      delivered_costmap_ = carried.costmap_version;
+      state_.delivered_costmap = carried.costmap_version;
     }
+    check_reply(carried.request.body, reply.body(), reply.host);
     return std::get<proto::ReplyBody>(std::move(reply.outcome));
   }
   const proto::Error & error = reply.error();
@@ -392,14 +412,14 @@ std::optional<proto::ReplyBody> PluginSession::settle(
   {
     return std::nullopt;
   }
-  last_host_ = reply.host;
+  state_.last_host = reply.host;
   throw error_from_reply(error, config_.kind);
 }
 
-std::optional<proto::ReplyBody> PluginSession::take(
+std::optional<proto::ReplyBody> PluginSession::take_body(
   Carried carried, const std::optional<proto::Bytes> & answer, proto::RequestBody body)
 {
-  if (seq_ != carried.request.seq) {
+  if (state_.last_seq != carried.request.seq) {
     return std::nullopt;  // something else went on this session since: the host has moved on
   }
   if (carried.costmap_version) {
@@ -413,7 +433,7 @@ std::optional<proto::ReplyBody> PluginSession::take(
   }
   proto::Request real;
   real.sid = sid_;
-  real.epoch = epoch_;
+  real.epoch = state_.epoch;
   real.seq = carried.request.seq;
   real.body = std::move(body);
   try {
@@ -436,7 +456,7 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
   } catch (const proto::EncodeError & error) {
     fail(generic_error(config_.kind), Cause::Local, "cannot encode " + op_text + ": " + error.what());
   }
-  const Duration timeout = options.timeout.value_or(config_.timeouts.for_op(op));
+  const Duration timeout = options.timeout.value_or(timeout_of(request.body));
   WaitHook hook;
   const WaitHook * hook_ptr = nullptr;
   if (options.while_waiting) {
@@ -460,7 +480,7 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
       " ms");
   }
   proto::Reply reply = checked_reply(*answer, request, "reply");
-  last_host_ = reply.host;
+  state_.last_host = reply.host;
   return reply;
 }
 
@@ -490,33 +510,33 @@ void PluginSession::reestablish(const std::string & host)
     logger_, LogLevel::Warn,
     keys_.prefix() + ": host " + host + " does not know session " + sid_.substr(0, 8) +
     "; re-sending state");
-  ++resyncs_;
+  ++state_.resyncs;
   establish();
 }
 
 void PluginSession::pin_host()
 {
   const HostWatcher::Hosts alive = transport_.hosts().alive();
-  if (alive.empty() || alive.count(pinned_host_) != 0) {
+  if (alive.empty() || alive.count(state_.pinned_host) != 0) {
     return;
   }
   const std::string & smallest = *alive.begin();
-  if (!pinned_host_.empty()) {
+  if (!state_.pinned_host.empty()) {
     log(
       logger_, LogLevel::Warn,
-      keys_.prefix() + ": host " + pinned_host_ + " is gone; using " + smallest);
-    ++failovers_;
+      keys_.prefix() + ": host " + state_.pinned_host + " is gone; using " + smallest);
+    ++state_.failovers;
   }
-  pinned_host_ = smallest;
+  state_.pinned_host = smallest;
 }
 
 bool PluginSession::fail_over(const std::optional<std::string> & avoid)
 {
   HostWatcher::Hosts alive = transport_.hosts().alive();
-  if (!avoid && alive.count(pinned_host_) != 0) {
+  if (!avoid && alive.count(state_.pinned_host) != 0) {
     return false;
   }
-  alive.erase(pinned_host_);
+  alive.erase(state_.pinned_host);
   if (avoid) {
     alive.erase(*avoid);
   }
@@ -525,9 +545,9 @@ bool PluginSession::fail_over(const std::optional<std::string> & avoid)
   }
   log(
     logger_, LogLevel::Warn,
-    keys_.prefix() + ": failing over from host " + pinned_host_ + " to " + *alive.begin());
-  pinned_host_ = *alive.begin();
-  ++failovers_;
+    keys_.prefix() + ": failing over from host " + state_.pinned_host + " to " + *alive.begin());
+  state_.pinned_host = *alive.begin();
+  ++state_.failovers;
   return true;
 }
 
@@ -537,7 +557,7 @@ void PluginSession::establish()
   CallOptions options;
   options.allow_resync = false;
   try {
-    if (active_) {
+    if (state_.active) {
       call(proto::ActivateRequest{}, options);
     }
     for (const auto & [kind, op] : proto::kRestored) {
@@ -545,11 +565,11 @@ void PluginSession::establish()
         continue;
       }
       if (std::optional<proto::RequestBody> body = restored(op)) {
-        call(*body, options);
+        call_body(*body, options);
       }
     }
   } catch (const CallError &) {
-    established_ = false;  // the host lacks part of the state: the next call starts again
+    state_.established = false;  // the host lacks part of the state: the next call starts again
     throw;
   }
 }
@@ -561,76 +581,10 @@ void PluginSession::fail(ErrorKind kind, Cause cause, const std::string & messag
 
 // --- state ----------------------------------------------------------------------------------
 
-std::uint64_t PluginSession::epoch() const
+SessionState PluginSession::state() const
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return epoch_;
-}
-
-std::uint64_t PluginSession::last_seq() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return seq_;
-}
-
-bool PluginSession::configured() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return configured_;
-}
-
-bool PluginSession::established() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return established_;
-}
-
-bool PluginSession::active() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return active_;
-}
-
-std::uint64_t PluginSession::resyncs() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return resyncs_;
-}
-
-std::string PluginSession::last_host() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return last_host_;
-}
-
-std::string PluginSession::served() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return served_;
-}
-
-proto::StringMap PluginSession::debug_outputs() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return debug_outputs_;
-}
-
-std::string PluginSession::pinned_host() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return pinned_host_;
-}
-
-std::uint64_t PluginSession::failovers() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return failovers_;
-}
-
-std::optional<std::uint64_t> PluginSession::delivered_costmap() const
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  return delivered_costmap_;
+  return state_;
 }
 
 proto::Params PluginSession::params() const

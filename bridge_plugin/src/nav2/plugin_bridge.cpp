@@ -146,11 +146,11 @@ void PluginBridge::configure(client::PluginSession & session)
   } else {
     try {
       const proto::Params declared = session.configure();
-      const std::string served = session.served();
+      const client::SessionState state = session.state();
       RCLCPP_INFO(
         logger_, "%s: configured on host %s (session %s)%s%s", name_.c_str(),
-        session.last_host().c_str(), session.sid().substr(0, 8).c_str(),
-        served.empty() ? "" : ", serving ", served.c_str());
+        state.last_host.c_str(), session.sid().substr(0, 8).c_str(),
+        state.served.empty() ? "" : ", serving ", state.served.c_str());
       declare_planner_parameters(declared);
     } catch (const CallError & error) {
       if (!error.unreachable()) {

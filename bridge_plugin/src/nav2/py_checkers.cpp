@@ -12,6 +12,14 @@ namespace nav2_pyif_bridge
 namespace
 {
 
+protocol::IsGoalReachedRequest goal_check(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity)
+{
+  return client::goal_check(
+    ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity));
+}
+
 void fill_tolerances(
   const protocol::GetTolerancesReply & tolerances, geometry_msgs::msg::Pose & pose_tolerance,
   geometry_msgs::msg::Twist & vel_tolerance) noexcept
@@ -42,7 +50,7 @@ void PyGoalChecker::reset()
   plugin_.bridge().forward(
     [this]() {
       tolerances_.reset();
-      plugin_.session().reset();
+      plugin_.session().call(protocol::ResetRequest{});
     });
 }
 
@@ -60,8 +68,9 @@ bool PyGoalChecker::isGoalXYReached(
 {
   return plugin_.bridge().forward(
     [&]() {
-      return plugin_.session().is_goal_xy_reached(
-        ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity));
+      protocol::IsGoalReachedRequest request = goal_check(query_pose, goal_pose, velocity);
+      request.xy_only = true;
+      return plugin_.session().call(request).reached;
     });
 }
 
@@ -111,21 +120,20 @@ bool PyGoalChecker::goal_reached(
     looked_up ? ros::tolerances(this) : std::nullopt;
   return plugin_.bridge().forward(
     [&]() {
+      const protocol::IsGoalReachedRequest request = goal_check(query_pose, goal_pose, velocity);
       if (cycle_) {
         return cycle_->is_goal_reached(
           plugin_.session(),
-          looked_up ? std::make_optional(ros::to_wire(robot)) : std::nullopt,
-          ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity), tolerances);
+          looked_up ? std::make_optional(ros::to_wire(robot)) : std::nullopt, request, tolerances);
       }
-      return plugin_.session().is_goal_reached(
-        ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity));
+      return plugin_.session().call(request).reached;
     });
 }
 
 const protocol::GetTolerancesReply & PyGoalChecker::cached_tolerances()
 {
   if (!tolerances_) {
-    tolerances_ = plugin_.session().get_tolerances();
+    tolerances_ = plugin_.session().call(protocol::GetTolerancesRequest{});
   }
   return *tolerances_;
 }
@@ -148,12 +156,12 @@ bool PyProgressChecker::check(geometry_msgs::msg::PoseStamped & current_pose)
 {
   return plugin_.bridge().forward(
     [&]() {
-      const protocol::PoseStamped pose = ros::to_wire(current_pose);
+      const auto request = client::progress_check(ros::to_wire(current_pose));
       client::ProgressCheckerSession & session = plugin_.session();
       // The answer the goal check's query carried, when it was prepared for this pose;
       // else a check that carries the command
       client::CarriedCycle * cycle = session.cycle();
-      return cycle ? cycle->check(session, pose) : session.check(pose);
+      return cycle ? cycle->check(session, request) : session.call(request).making_progress;
     });
 }
 
@@ -164,7 +172,7 @@ void PyProgressChecker::reset()
       if (client::CarriedCycle * cycle = plugin_.session().cycle()) {
         cycle->use_progress_checker(plugin_.session());  // the new goal's progress checker
       }
-      plugin_.session().reset();
+      plugin_.session().call(protocol::ResetRequest{});
     });
 }
 

@@ -65,7 +65,7 @@ void PyController::sync_debug_publishers()
   if (!node || !plugin_.started()) {
     return;
   }
-  const protocol::StringMap declared = session().debug_outputs();
+  const protocol::StringMap declared = session().state().debug_outputs;
   std::vector<std::string> wanted;
   for (const auto & [output, type] : declared) {
     auto found = debug_publishers_.find(output);
@@ -212,7 +212,7 @@ void PyController::setSpeedLimit(const double & speed_limit, const bool & percen
 bool PyController::cancel()
 {
   try {
-    return session().cancel();
+    return session().call(protocol::CancelRequest{}).cancelled;
   } catch (const client::CallError & error) {
     RCLCPP_WARN(bridge().ros_logger(), "%s: cancel: %s", name_.c_str(), error.what());
     return true;
@@ -232,7 +232,7 @@ void PyController::reset()
 void PyController::send_reset()
 {
   try {
-    session().reset();
+    session().call(protocol::ResetRequest{});
   } catch (const client::CallError & error) {
     RCLCPP_DEBUG(bridge().ros_logger(), "%s: reset: %s", name_.c_str(), error.what());
   }

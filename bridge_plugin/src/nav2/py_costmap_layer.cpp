@@ -81,7 +81,7 @@ void PyCostmapLayer::updateBounds(
   request.max_x = *max_x;
   request.max_y = *max_y;
   try {
-    const auto grown = plugin_.session().update_bounds(request);
+    const auto grown = plugin_.session().call(request);
     *min_x = std::min(*min_x, grown.min_x);
     *min_y = std::min(*min_y, grown.min_y);
     *max_x = std::max(*max_x, grown.max_x);
@@ -107,7 +107,7 @@ void PyCostmapLayer::updateCosts(
   request.resolution = master_grid.getResolution();
   proto::UpdateCostsReply reply;
   try {
-    reply = plugin_.session().update_costs(request);
+    reply = plugin_.session().call(request);
   } catch (const client::CallError & error) {
     failed("update_costs", error);
     return;
@@ -154,7 +154,7 @@ void PyCostmapLayer::matchSize()
   request.origin_x = master->getOriginX();
   request.origin_y = master->getOriginY();
   try {
-    plugin_.session().match_size(request);
+    plugin_.session().call(request);
   } catch (const client::CallError & error) {
     failed("match_size", error);
   }
@@ -164,7 +164,7 @@ void PyCostmapLayer::reset()
 {
   resetMaps();
   try {
-    plugin_.session().reset();
+    plugin_.session().call(proto::ResetRequest{});
   } catch (const client::CallError & error) {
     failed("reset", error);
   }

@@ -46,8 +46,10 @@ bool PySmoother::smooth(nav_msgs::msg::Path & path, const rclcpp::Duration & max
 {
   return plugin_.bridge().forward(
     [&]() {
-      const protocol::SmoothReply reply =
-        plugin_.session().smooth(ros::to_wire(path), max_time.seconds());
+      protocol::SmoothRequest request;
+      request.path = ros::to_wire(path);
+      request.max_time = max_time.seconds();
+      const protocol::SmoothReply reply = plugin_.session().call(request);
       path = ros::to_ros(reply.path, path.header.frame_id, path.header.stamp);
       return reply.was_completed;
     });

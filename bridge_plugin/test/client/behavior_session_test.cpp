@@ -169,7 +169,7 @@ TEST_F(BehaviorSessionTest, ARestartedHostIsGivenTheActionUnderWayAgain)
   EXPECT_EQ(step.status, BehaviorStatus::Running);
   EXPECT_NEAR(number(step.feedback, "distance_traveled"), 0.2, 1e-9);  // from where it started
   EXPECT_EQ(number(step.feedback, "runs"), 1.0);
-  EXPECT_EQ(s.resyncs(), 1u);
+  EXPECT_EQ(s.state().resyncs, 1u);
   // once the action ended, a restart re-sends no on_run
   s.action_completion("succeeded", 2.0);
   host.restart();

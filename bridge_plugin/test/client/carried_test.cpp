@@ -12,7 +12,6 @@
 
 #include "fakes.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
-#include "nav2_pyif_bridge/client/checker_sessions.hpp"
 #include "nav2_pyif_bridge/client/controller_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
@@ -225,7 +224,8 @@ TEST_F(CarriedTest, TheCheckersResetIsAControlLoopCallNotALifecycleOne)
   const Checkers made = checkers(timeouts);
   host.call_time = 100s;
   for (const auto & reset : std::vector<std::function<void()>>{
-      [&made] {made.goal->reset();}, [&made] {made.progress->reset();}})
+      [&made] {made.goal->call(proto::ResetRequest{});},
+      [&made] {made.progress->call(proto::ResetRequest{});}})
   {
     const Duration before = clock.elapsed();
     EXPECT_THROW(reset(), CallError);
@@ -248,14 +248,15 @@ TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
   const std::array<double, 7> goal{3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
   const proto::PoseStamped robot = pose_at(1.0, 1.0);
   auto goal_check = [&] {
-      return cycle->is_goal_reached(goal_checker, robot, robot.pose, goal, kVelocity, kTolerances);
+      return cycle->is_goal_reached(
+        goal_checker, robot, client::goal_check(robot.pose, goal, kVelocity), kTolerances);
     };
   auto moved = pose_at(1.05, 1.0);  // TF moved on between Nav2's two pose lookups
   moved.stamp_ns += 20000000;
 
   std::size_t before = host.received.size();
   EXPECT_FALSE(goal_check());
-  EXPECT_TRUE(cycle->check(progress_checker, moved));
+  EXPECT_TRUE(cycle->check(progress_checker, progress_check(moved)));
   const auto cmd = cycle->compute_velocity_commands(*session, moved, kVelocity, kTolerances);
   EXPECT_EQ(cmd.twist[5], 2.0);  // its second run: the first was for the goal check's pose
   // two queries, not three: the command came in the check's reply
@@ -269,7 +270,7 @@ TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
   // Another velocity than the goal check's (odometry moved on too): the command goes alone.
   before = host.received.size();
   EXPECT_FALSE(goal_check());
-  EXPECT_TRUE(cycle->check(progress_checker, moved));
+  EXPECT_TRUE(cycle->check(progress_checker, progress_check(moved)));
   std::array<double, 6> faster = kVelocity;
   faster[0] += 0.01;
   cycle->compute_velocity_commands(*session, moved, faster, kTolerances);
@@ -281,14 +282,14 @@ TEST_F(CarriedTest, AProgressCheckForAMovedPoseCarriesTheCommandPreparedForIt)
   host.making_progress = false;
   host.carried_ops.clear();
   EXPECT_FALSE(goal_check());
-  EXPECT_FALSE(cycle->check(progress_checker, moved));
+  EXPECT_FALSE(cycle->check(progress_checker, progress_check(moved)));
   EXPECT_EQ(host.carried_ops, (std::vector<std::string>{"check"}));
 
   // The same pose as the goal check's: its carried answers are used, nothing more is sent.
   host.making_progress = true;
   EXPECT_FALSE(goal_check());
   before = host.received.size();
-  EXPECT_TRUE(cycle->check(progress_checker, robot));
+  EXPECT_TRUE(cycle->check(progress_checker, progress_check(robot)));
   cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);
   EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{}));
   EXPECT_FALSE(cycle->goal_last());
@@ -307,7 +308,7 @@ TEST_F(CarriedTest, GoalLastAResetOrAMovedPoseSendsTheGoalCheckOnItsOwn)
   auto command_then_goal_check = [&](const proto::PoseStamped & robot, const auto & looked_up) {
       cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);
       return cycle->is_goal_reached(
-        goal_checker, std::nullopt, looked_up.pose, goal, kVelocity, std::nullopt);
+        goal_checker, std::nullopt, goal_check(looked_up.pose, goal, kVelocity), std::nullopt);
     };
   command_then_goal_check(pose_at(0.5, 1.0), pose_at(0.5, 1.0));  // shows the order
   ASSERT_TRUE(cycle->goal_last());
@@ -316,7 +317,7 @@ TEST_F(CarriedTest, GoalLastAResetOrAMovedPoseSendsTheGoalCheckOnItsOwn)
   EXPECT_EQ(host.ops_since(before), (std::vector<std::string>{"compute_velocity_commands"}));
   EXPECT_EQ(host.carried_ops.back(), "is_goal_reached");
   // A reset (a new plan): the goal checker may have another goal; the command carries none.
-  goal_checker.reset();
+  goal_checker.call(proto::ResetRequest{});
   before = host.received.size();
   command_then_goal_check(pose_at(0.7, 1.0), pose_at(0.7, 1.0));
   EXPECT_EQ(
@@ -391,16 +392,19 @@ protected:
       const std::vector<double> carried = drive(
         goal_last,
         [&] {
-          return cycle->is_goal_reached(*made.goal, robot, robot.pose, goal, kVelocity,
-          kTolerances);
+          return cycle->is_goal_reached(
+            *made.goal, robot, goal_check(robot.pose, goal, kVelocity), kTolerances);
         },
-        progress ? std::function<bool()>{[&] {return cycle->check(*made.progress, robot);}} :
+        progress ? std::function<bool()>{[&] {return cycle->check(*made.progress, progress_check(robot));}} :
         nullptr,
         [&] {return cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);});
       queries += host.received.size() - before;
       const std::vector<double> uncarried = drive(
-        goal_last, [&] {return plain.goal->is_goal_reached(robot.pose, goal, kVelocity);},
-        progress ? std::function<bool()>{[&] {return plain.progress->check(robot);}} : nullptr,
+        goal_last,
+        [&] {return plain.goal->call(goal_check(robot.pose, goal, kVelocity)).reached;},
+        progress ?
+        std::function<bool()>{[&] {return plain.progress->call(progress_check(robot)).making_progress;}} :
+        nullptr,
         [&] {return alone.compute_velocity_commands(robot, kVelocity, kTolerances);});
       EXPECT_EQ(carried, uncarried) << "cycle " << step;
     }

@@ -63,7 +63,7 @@ TEST_F(ControllerSessionTest, ConfigureWarnsOfParametersThePlannerIgnores)
   params.set("lable", std::string("x"));
   auto & s = make(params);
   s.configure();
-  EXPECT_EQ(s.served(), "fakes:Echo");
+  EXPECT_EQ(s.state().served, "fakes:Echo");
   EXPECT_TRUE(log.contains(
       std::string(kKey) + ": the planner ignores parameter(s) gian, lable: 'gian' is not "
       "declared (declared: gain, label); 'lable' is not declared (declared: gain, label)"));
@@ -107,11 +107,11 @@ TEST_F(ControllerSessionTest, FullSession)
   EXPECT_EQ(cmd2.twist[1], 5.0);
   EXPECT_EQ(cmd2.twist[2], 0.4);
   EXPECT_EQ(cmd2.twist[4], 0.0);  // no goal checker this time
-  EXPECT_TRUE(s.cancel());
-  s.reset();
+  EXPECT_TRUE(s.call(proto::CancelRequest{}).cancelled);
+  s.call(proto::ResetRequest{});
   s.deactivate();
   s.cleanup();
-  EXPECT_FALSE(s.configured());
+  EXPECT_FALSE(s.state().configured);
 
   const std::size_t sent = host.received.size();
   const CallError e = error_of([&] {compute();});
@@ -119,7 +119,7 @@ TEST_F(ControllerSessionTest, FullSession)
   EXPECT_EQ(e.cause(), Cause::NotConfigured);
   EXPECT_EQ(std::string(e.what()), "compute_velocity_commands before configure on " + std::string(kKey));
   EXPECT_EQ(host.received.size(), sent);
-  EXPECT_EQ(s.resyncs(), 0u);
+  EXPECT_EQ(s.state().resyncs, 0u);
 
   EXPECT_EQ(
     host.ops(), (std::vector<std::string>{"configure", "activate", "set_plan",
@@ -147,7 +147,7 @@ TEST_F(ControllerSessionTest, CostmapTravelsOnlyWhenChanged)
 {
   auto & s = make();
   s.configure();  // carries version 1
-  EXPECT_EQ(s.delivered_costmap(), 1u);
+  EXPECT_EQ(s.state().delivered_costmap, 1u);
   s.activate();
   std::vector<bool> sent;
   std::vector<double> seen;
@@ -175,10 +175,10 @@ TEST_F(ControllerSessionTest, CostmapIsDeliveredOnlyByAnOkReply)
   host.error_once = proto::Error{"FailedToMakeProgress", "stuck", "", ""};
   EXPECT_THROW(compute(), CallError);
   EXPECT_TRUE(host.last_had_costmap());
-  EXPECT_EQ(s.delivered_costmap(), 1u);  // the failed call delivered nothing
+  EXPECT_EQ(s.state().delivered_costmap, 1u);  // the failed call delivered nothing
   compute();
   EXPECT_TRUE(host.last_had_costmap());  // so it travels again
-  EXPECT_EQ(s.delivered_costmap(), 2u);
+  EXPECT_EQ(s.state().delivered_costmap, 2u);
   compute();
   EXPECT_FALSE(host.last_had_costmap());
 }
@@ -263,8 +263,8 @@ TEST_F(ControllerSessionTest, HostRestartMidSessionRestoresThePlan)
   EXPECT_EQ(cmd.twist[1], 6.0);   // parameter change restored
   EXPECT_EQ(cmd.twist[2], 30.0);  // speed limit restored
   EXPECT_EQ(cmd.twist[3], 2.0);   // the current costmap
-  EXPECT_EQ(s.resyncs(), 1u);
-  EXPECT_EQ(s.epoch(), 2u);
+  EXPECT_EQ(s.state().resyncs, 1u);
+  EXPECT_EQ(s.state().epoch, 2u);
   EXPECT_TRUE(log.contains("does not know session " + s.sid().substr(0, 8)));
 
   EXPECT_EQ(
@@ -352,8 +352,8 @@ TEST_F(ControllerSessionTest, EachOpUsesItsTimeout)
       }), Duration{40ms});
   EXPECT_EQ(waited([&] {s.set_speed_limit(1.0, false);}), Duration{40ms});
   EXPECT_EQ(waited([&] {compute();}), Duration{40ms});
-  EXPECT_EQ(waited([&] {s.cancel();}), Duration{40ms});
-  EXPECT_EQ(waited([&] {s.reset();}), Duration{40ms});  // Nav2 resets after every goal
+  EXPECT_EQ(waited([&] {s.call(proto::CancelRequest{}).cancelled;}), Duration{40ms});
+  EXPECT_EQ(waited([&] {s.call(proto::ResetRequest{});}), Duration{40ms});  // Nav2 resets after every goal
   EXPECT_EQ(waited([&] {s.set_parameters(proto::Params{});}), Duration{2s});
 }
 
@@ -369,9 +369,9 @@ TEST_F(ControllerSessionTest, AReplyOfAnotherSeqIsAnError)
   EXPECT_EQ(
     std::string(e.what()), "reply to activate has seq " + std::to_string(seq + 1) +
     ", expected " + std::to_string(seq));
-  EXPECT_FALSE(s.active());
+  EXPECT_FALSE(s.state().active);
   s.activate();
-  EXPECT_TRUE(s.active());
+  EXPECT_TRUE(s.state().active);
 }
 
 TEST_F(ControllerSessionTest, AReplyThatDoesNotDecodeIsAnError)
@@ -394,7 +394,7 @@ TEST_F(ControllerSessionTest, ASecondSessionUnknownFailsTheCall)
   EXPECT_EQ(e.kind(), ErrorKind::ControllerException);
   EXPECT_EQ(e.remote().type, "SessionUnknown");
   EXPECT_EQ(std::string(e.what()).rfind("[SessionUnknown] ", 0), 0u);
-  EXPECT_EQ(s.resyncs(), 1u);
+  EXPECT_EQ(s.state().resyncs, 1u);
   EXPECT_EQ(host.ops(), (std::vector<std::string>{"configure", "activate", "configure", "activate"}));
 }
 
@@ -448,7 +448,7 @@ TEST_F(ControllerSessionTest, DeferredConfigureEstablishesAtTheFirstCall)
   EXPECT_THROW(s.configure(), CallError);
   s.defer_configure();  // what the plugin does when no host is there at bring-up
   s.activate();         // local only: no host yet
-  EXPECT_TRUE(s.active());
+  EXPECT_TRUE(s.state().active);
   proto::Params changes;
   changes.set("gain", 3.0);
   EXPECT_TRUE(s.set_parameters(changes).empty());  // kept for configure
@@ -463,8 +463,8 @@ TEST_F(ControllerSessionTest, DeferredConfigureEstablishesAtTheFirstCall)
   const auto & configure = std::get<proto::ConfigureRequest>(host.received[0].request.body);
   EXPECT_EQ(std::get<double>(*configure.params.find("gain")), 3.0);
   EXPECT_EQ(compute().twist[0], 5.0);
-  EXPECT_EQ(s.resyncs(), 0u);
-  EXPECT_TRUE(s.established());
+  EXPECT_EQ(s.state().resyncs, 0u);
+  EXPECT_TRUE(s.state().established);
 }
 
 TEST_F(ControllerSessionTest, ActivateEstablishesADeferredSessionWhenAHostAppeared)
@@ -475,7 +475,7 @@ TEST_F(ControllerSessionTest, ActivateEstablishesADeferredSessionWhenAHostAppear
   host.start();
   s.activate();
   EXPECT_EQ(host.ops(), (std::vector<std::string>{"configure", "activate"}));
-  EXPECT_TRUE(s.established());
+  EXPECT_TRUE(s.state().established);
 }
 
 TEST_F(ControllerSessionTest, AFailedReestablishmentIsRetriedByTheNextCall)
@@ -495,8 +495,8 @@ TEST_F(ControllerSessionTest, AFailedReestablishmentIsRetriedByTheNextCall)
   EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
   EXPECT_EQ(
     host.ops_since(sent), (std::vector<std::string>{"compute_velocity_commands", "configure"}));
-  EXPECT_TRUE(s.configured());  // not "before configure" from now on
-  EXPECT_FALSE(s.established());
+  EXPECT_TRUE(s.state().configured);  // not "before configure" from now on
+  EXPECT_FALSE(s.state().established);
 
   host.call_time = 0s;
   sent = host.received.size();
@@ -504,7 +504,7 @@ TEST_F(ControllerSessionTest, AFailedReestablishmentIsRetriedByTheNextCall)
   EXPECT_EQ(
     host.ops_since(sent), (std::vector<std::string>{"configure", "activate", "set_plan",
       "compute_velocity_commands"}));
-  EXPECT_EQ(s.epoch(), 3u);
+  EXPECT_EQ(s.state().epoch, 3u);
 }
 
 TEST_F(ControllerSessionTest, LifecycleTransitionsWithoutAHostAreAppliedLater)
@@ -513,8 +513,8 @@ TEST_F(ControllerSessionTest, LifecycleTransitionsWithoutAHostAreAppliedLater)
   s.configure();
   host.kill();
   EXPECT_NO_THROW(s.activate());  // Nav2's activation does not fail for a missing host
-  EXPECT_TRUE(s.active());
-  EXPECT_FALSE(s.established());
+  EXPECT_TRUE(s.state().active);
+  EXPECT_FALSE(s.state().established);
   host.start();
   const std::size_t sent = host.received.size();
   compute();
@@ -523,7 +523,7 @@ TEST_F(ControllerSessionTest, LifecycleTransitionsWithoutAHostAreAppliedLater)
       "compute_velocity_commands"}));
   host.kill();
   EXPECT_NO_THROW(s.deactivate());
-  EXPECT_FALSE(s.active());
+  EXPECT_FALSE(s.state().active);
   host.start();
   s.set_plan(straight_path(2, 1, 0));
   EXPECT_EQ(host.ops_since(sent + 3), (std::vector<std::string>{"configure", "set_plan"}));
@@ -577,7 +577,7 @@ TEST_F(ControllerSessionTest, ABrokenTransportIsUnreachableNotAPlannerError)
   EXPECT_NE(std::string(e.what()).find("Zenoh query failed"), std::string::npos);
   host.transport_error_once = true;
   EXPECT_NO_THROW(s.deactivate());  // Nav2's deactivation goes on
-  EXPECT_FALSE(s.active());
+  EXPECT_FALSE(s.state().active);
 }
 
 TEST_F(ControllerSessionTest, ResetWaitsTheCallTimeout)
@@ -586,7 +586,7 @@ TEST_F(ControllerSessionTest, ResetWaitsTheCallTimeout)
   s.configure();
   host.next_call_time = 10s;
   const Duration before = clock.elapsed();
-  EXPECT_THROW(s.reset(), CallError);
+  EXPECT_THROW(s.call(proto::ResetRequest{}), CallError);
   EXPECT_EQ(clock.elapsed() - before, s.timeouts().call);  // not the 5 s lifecycle timeout
   EXPECT_LT(s.timeouts().call, s.timeouts().lifecycle);
 }
@@ -600,8 +600,8 @@ TEST_F(ControllerSessionTest, CleanupForgetsTheStateAndEndsTheSession)
   EXPECT_TRUE(s.has_plan());
   host.kill();
   EXPECT_THROW(s.cleanup(), CallError);  // no host: the call fails ...
-  EXPECT_FALSE(s.configured());           // ... the session ends anyway
-  EXPECT_FALSE(s.active());
+  EXPECT_FALSE(s.state().configured);           // ... the session ends anyway
+  EXPECT_FALSE(s.state().active);
   EXPECT_FALSE(s.has_plan());
 }
 
@@ -626,7 +626,7 @@ TEST_F(ControllerSessionTest, QueriesGoToThePinnedReplica)
   auto & s = make();
   s.configure();
   s.activate();
-  EXPECT_EQ(s.pinned_host(), "a-replica");
+  EXPECT_EQ(s.state().pinned_host, "a-replica");
   for (const auto & r : host.received) {
     EXPECT_EQ(r.host, "a-replica");
     EXPECT_EQ(r.answered_by, "a-replica");
@@ -646,7 +646,7 @@ TEST_F(ControllerSessionTest, AGoneTokenMovesThePinBeforeTheCall)
   host.kill_replica("a-replica");
   const std::size_t sent = host.received.size();
   EXPECT_TRUE(std::isfinite(compute().twist[0]));
-  EXPECT_EQ(s.failovers(), 1u);
+  EXPECT_EQ(s.state().failovers, 1u);
   EXPECT_TRUE(log.contains("host a-replica is gone; using " + host.host_id()));
   EXPECT_EQ(host.received[sent].host, host.host_id());  // no query to the dead one
   EXPECT_EQ(
@@ -662,8 +662,8 @@ TEST_F(ControllerSessionTest, UnavailableFailsOverWhenAnotherReplicaIsAlive)
   s.activate();
   host.error_once = proto::Error{"Unavailable", "worker restarting", "", ""};
   EXPECT_TRUE(std::isfinite(compute().twist[0]));
-  EXPECT_EQ(s.pinned_host(), host.host_id());
-  EXPECT_EQ(s.failovers(), 1u);
+  EXPECT_EQ(s.state().pinned_host, host.host_id());
+  EXPECT_EQ(s.state().failovers, 1u);
 }
 
 TEST_F(ControllerSessionTest, UnavailableWithoutAReplicaFails)
@@ -674,7 +674,7 @@ TEST_F(ControllerSessionTest, UnavailableWithoutAReplicaFails)
   const CallError e = error_of([&] {s.activate();});
   EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);  // a host failure: Nav2 recovers from it
   EXPECT_EQ(std::string(e.what()), "[Unavailable] worker restarting");
-  EXPECT_EQ(s.failovers(), 0u);
+  EXPECT_EQ(s.state().failovers, 0u);
 }
 
 TEST_F(ControllerSessionTest, AFailoverRetriesOnlyOnce)
@@ -689,7 +689,7 @@ TEST_F(ControllerSessionTest, AFailoverRetriesOnlyOnce)
   host.freeze_replica(host.host_id());
   const CallError e = error_of([&] {compute();});
   EXPECT_EQ(e.kind(), ErrorKind::NoValidControl);
-  EXPECT_EQ(s.failovers(), 1u);
+  EXPECT_EQ(s.state().failovers, 1u);
 }
 
 }  // namespace

@@ -72,7 +72,7 @@ TEST_F(PlannerSessionTest, APlanWaitsForARestartingHostWithinItsTimeout)
   const proto::Path plan = s.create_plan(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map"));
   EXPECT_EQ(plan.pose_count(), 25u);
   EXPECT_EQ(clock.elapsed() - killed, Duration{2s});  // waited for it, not a recovery
-  EXPECT_EQ(s.resyncs(), 1u);
+  EXPECT_EQ(s.state().resyncs, 1u);
 
   host.kill();
   const Duration before = clock.elapsed();
@@ -164,8 +164,8 @@ TEST_F(PlannerSessionTest, HostRestartReestablishes)
   make();
   host.restart();
   EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(1, 1)).pose_count(), 25u);
-  EXPECT_EQ(session->resyncs(), 1u);
-  EXPECT_EQ(session->epoch(), 2u);
+  EXPECT_EQ(session->state().resyncs, 1u);
+  EXPECT_EQ(session->state().epoch, 2u);
 }
 
 }  // namespace

@@ -24,9 +24,7 @@
 #include "fakes.hpp"
 #include "nav2_pyif_bridge/client/behavior_session.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
-#include "nav2_pyif_bridge/client/checker_sessions.hpp"
 #include "nav2_pyif_bridge/client/controller_session.hpp"
-#include "nav2_pyif_bridge/client/layer_session.hpp"
 #include "nav2_pyif_bridge/client/planner_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
@@ -335,7 +333,7 @@ private:
     } else if (name == "cleanup") {
       session.cleanup();
     } else if (name == "reset") {
-      reset(id);
+      session.call(proto::ResetRequest{});  // every plugin type's: the op's timeout class
     } else if (name == "set_plan") {
       as<ControllerSession>(id).set_plan(path_of(args["path"]));
     } else if (name == "follow") {
@@ -356,15 +354,15 @@ private:
       const auto pose = pose_of(args["pose"]);
       const auto goal = args["goal"].get<std::array<double, 7>>();
       const auto velocity = args["velocity"].get<std::array<double, 6>>();
+      const auto request = goal_check(pose.pose, goal, velocity);
       if (cycle_) {
-        return cycle_->is_goal_reached(
-          checker, pose, pose.pose, goal, velocity, tolerances_of(args["tolerances"]));
+        return cycle_->is_goal_reached(checker, pose, request, tolerances_of(args["tolerances"]));
       }
-      return checker.is_goal_reached(pose.pose, goal, velocity);
+      return checker.call(request).reached;
     } else if (name == "check") {
       auto & checker = as<ProgressCheckerSession>(id);
-      const auto pose = pose_of(args["pose"]);
-      return cycle_ ? cycle_->check(checker, pose) : checker.check(pose);
+      const auto request = progress_check(pose_of(args["pose"]));
+      return cycle_ ? cycle_->check(checker, request) : checker.call(request).making_progress;
     } else if (name == "create_plan") {
       as<PlannerSession>(id).create_plan(pose_of(args["start"]), pose_of(args["goal"]));
     } else if (name == "run") {
@@ -387,21 +385,6 @@ private:
   {
     EXPECT_EQ(step.error, "") << "the behaviour's call failed";
     return std::string(protocol::kBehaviorStatusNames[static_cast<std::size_t>(step.status)]);
-  }
-
-  // Each plugin type's own reset (no timeout given: the op's class, as the table says).
-  void reset(const std::string & id)
-  {
-    PluginSession & session = *sessions_.at(id);
-    if (auto * controller = dynamic_cast<ControllerSession *>(&session)) {
-      controller->reset();
-    } else if (auto * goal = dynamic_cast<GoalCheckerSession *>(&session)) {
-      goal->reset();
-    } else if (auto * progress = dynamic_cast<ProgressCheckerSession *>(&session)) {
-      progress->reset();
-    } else {
-      as<CostmapLayerSession>(id).reset();
-    }
   }
 
   FakeClock clock_;

@@ -11,7 +11,7 @@
 #include "fakes.hpp"
 #include "nav2_pyif_bridge/client/command_check.hpp"
 #include "nav2_pyif_bridge/client/error_mapping.hpp"
-#include "nav2_pyif_bridge/client/smoother_session.hpp"
+#include "nav2_pyif_bridge/client/plugin_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
 {
@@ -333,6 +333,14 @@ TEST(HostWatcher, WakesARealWaiterFromAnotherThread)
 
 // --- The costmap rides in every request that has the field ------------------------------------
 
+proto::SmoothRequest smooth_request(double max_time)
+{
+  proto::SmoothRequest request;
+  request.path = straight_path(5, 1.0, 0.0);
+  request.max_time = max_time;
+  return request;
+}
+
 TEST(CostmapDelivery, AChangedCostmapRidesInTheSmoothersRequest)
 {
   // smooth's costmap was left out of a hand-written list: smoother_server's costmap reached
@@ -346,7 +354,7 @@ TEST(CostmapDelivery, AChangedCostmapRidesInTheSmoothersRequest)
   SmootherSession session(config, host, costmap);
   session.configure();
   costmap.resolution = 0.1;
-  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 0.1);});
+  error_of([&] {session.call(smooth_request(0.1));});
   const auto & smooth = std::get<proto::SmoothRequest>(host.last().body);
   ASSERT_TRUE(smooth.costmap.has_value());
   EXPECT_EQ(smooth.costmap->resolution, 0.1);
@@ -362,9 +370,9 @@ TEST(SmootherSessionTest, WaitsMaxTimeAndAGraceOrThePlanTimeoutWhenLonger)
   config.timeouts.plan = std::chrono::seconds(2);
   SmootherSession session(config, host, costmap);
   session.configure();
-  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 5.0);});
+  error_of([&] {session.call(smooth_request(5.0));});
   EXPECT_EQ(host.received.back().timeout, Duration(std::chrono::seconds(6)));
-  error_of([&] {session.smooth(straight_path(5, 1.0, 0.0), 0.5);});
+  error_of([&] {session.call(smooth_request(0.5));});
   EXPECT_EQ(host.received.back().timeout, Duration(std::chrono::seconds(2)));
   EXPECT_EQ(session.timeouts().plan, Duration(std::chrono::seconds(2)));  // not changed
 }

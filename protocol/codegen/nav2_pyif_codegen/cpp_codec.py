@@ -519,6 +519,20 @@ def bodies_hpp() -> str:
         "",
         "static_assert(std::variant_size_v<RequestBody> == kOpCount);",
         "static_assert(std::variant_size_v<ReplyBody> == kOpCount);",
+        "",
+        "// The reply body of each request body: ReplyOf<SmoothRequest> is SmoothReply.",
+        "template<class Request>",
+        "struct ReplyOfT;",
+        *(
+            line
+            for op in Op
+            for line in (
+                f"template<> struct ReplyOfT<{body_name(op, 'Request')}>",
+                f"{{using type = {body_name(op, 'Reply')};}};",
+            )
+        ),
+        "template<class Request>",
+        "using ReplyOf = typename ReplyOfT<Request>::type;",
     ]
     return cpp_file(
         "The operation-specific bodies of requests and replies (PROTOCOL.md section 13, "

@@ -31,7 +31,7 @@ from dataclasses import dataclass
 
 import msgpack
 from nav2_pyif_protocol.constants import ErrorType, PluginType
-from nav2_pyif_protocol.schema import OP_TIMEOUT
+from nav2_pyif_protocol.schema import OP_TIMEOUT, SMOOTH_GRACE_S
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.batch_runtime import BATCH_OP, CYCLE_OP
@@ -62,9 +62,23 @@ class Deadlines:
     lifecycle: float = 10.0
     hang_grace: float = 3.0  # then a worker still busy is killed and restarted
 
-    def of(self, op: str) -> float:
+    def of(self, op: str, payload: bytes = b"") -> float:
+        """``op``'s deadline; a ``smooth`` request's ``max_time`` and SMOOTH_GRACE_S when
+        longer, as the plugin waits that long for the smoother it gave that time."""
         deadline: float = getattr(self, _DEADLINE_OF.get(op, "call"))
+        if op == "smooth":
+            deadline = max(deadline, _smooth_max_time(payload) + SMOOTH_GRACE_S)
         return deadline
+
+
+def _smooth_max_time(payload: bytes) -> float:
+    """A smooth request's max_time, or 0 where it has none a worker would accept."""
+    try:
+        max_time = msgpack.unpackb(payload, raw=False)["body"]["max_time"]
+    except Exception:
+        return 0.0
+    ok = isinstance(max_time, (int, float)) and not isinstance(max_time, bool)
+    return float(max_time) if ok and math.isfinite(max_time) and max_time > 0 else 0.0
 
 
 def _dumped(stack: str, when: str) -> str:
@@ -339,7 +353,7 @@ class SupervisedPlanner:
                     f"{self.spec.key}: planner unavailable: {self.reason}",
                     self.reason_stack,
                 )
-            deadline = self.deadlines.of(op)
+            deadline = self.deadlines.of(op, payload)
             try:
                 reply = worker.call(op, payload, deadline)
             except WorkerDied as died:
@@ -513,7 +527,7 @@ class SupervisedPlanner:
             self.journal.forget(sid)
 
     def _caller(self, worker: Worker) -> Callable[[str, bytes], bytes | None]:
-        return lambda op, payload: worker.call(op, payload, self.deadlines.of(op))
+        return lambda op, payload: worker.call(op, payload, self.deadlines.of(op, payload))
 
     # --- hot swap ----------------------------------------------------------------------
     def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:

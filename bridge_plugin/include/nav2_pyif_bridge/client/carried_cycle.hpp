@@ -24,12 +24,29 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <vector>
 
-#include "nav2_pyif_bridge/client/checker_sessions.hpp"
 #include "nav2_pyif_bridge/client/controller_session.hpp"
 
 namespace nav2_pyif_bridge::client
 {
+
+// The encoded requests a call's query carries for other keys, or the encoded replies of
+// those that ran, in order (PROTOCOL.md section 15).
+using CarriedCalls = std::vector<protocol::CarriedCall>;
+
+// Nav2's goal check (pose and goal in the costmap's global frame, velocity in the robot's) and
+// progress check, as the requests the cycle takes.
+inline protocol::IsGoalReachedRequest goal_check(
+  const std::array<double, 7> & pose, const std::array<double, 7> & goal,
+  const std::array<double, 6> & velocity)
+{
+  return {pose, goal, velocity, std::nullopt, std::nullopt};
+}
+inline protocol::CheckRequest progress_check(const protocol::PoseStamped & pose)
+{
+  return {pose, std::nullopt};
+}
 
 class CarriedCycle
 {
@@ -45,15 +62,14 @@ public:
   void forget(const PluginSession & session);
 
   // Nav2's three calls. `robot`: the goal checker's own lookup of the robot's pose when it
-  // gives Nav2's `pose` (the stamped message the other calls then get, when TF has not
-  // moved on); without it the goal check carries nothing. `tolerances`: what the
-  // controller will be given.
+  // gives Nav2's pose (the stamped message the other calls then get, when TF has not moved
+  // on); without it the goal check carries nothing. `tolerances`: what the controller will
+  // be given.
   bool is_goal_reached(
     GoalCheckerSession & checker, const std::optional<protocol::PoseStamped> & robot,
-    const std::array<double, 7> & pose, const std::array<double, 7> & goal,
-    const std::array<double, 6> & velocity,
+    const protocol::IsGoalReachedRequest & request,
     const std::optional<protocol::GoalChecker> & tolerances);
-  bool check(ProgressCheckerSession & session, const protocol::PoseStamped & pose);
+  bool check(ProgressCheckerSession & session, const protocol::CheckRequest & request);
   protocol::TwistStamped compute_velocity_commands(
     ControllerSession & session, const protocol::PoseStamped & pose,
     const std::array<double, 6> & velocity,

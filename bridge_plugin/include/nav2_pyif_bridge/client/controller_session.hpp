@@ -95,10 +95,6 @@ public:
   // reply in time, Unavailable), so a host that comes back drives at the latest limit; one
   // the planner refused is not (as the reference client).
   void set_speed_limit(double speed_limit, bool percentage);
-  bool cancel();
-  // A control-loop call (schema.py OP_TIMEOUT): Nav2 resets its controller at the end of every
-  // goal, in the action's thread, and an abort must not wait on a silent host.
-  void reset();
 
   bool has_plan() const;
 

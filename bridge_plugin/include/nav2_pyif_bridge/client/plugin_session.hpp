@@ -1,29 +1,17 @@
 // One plugin instance's session with the planner host: sid, epoch and seq, and the call
-// procedure of PROTOCOL.md section 4 ("Plugin rules"), exactly as the reference client
-// (python/nav2_pyif/client/plugin_client.py) does it:
-//   1. no host alive under P/host/*: fail at once with the host-failure exception, send nothing;
-//   2. no reply within the op's timeout: the host-failure exception (NoValidControl, ...);
-//   3. SessionUnknown (the host restarted, or another replica answered): epoch + 1, configure
-//      (current parameters, full costmap), activate if active, re-send the state schema.py's
-//      RESTORED names (plan, speed limit, ...), then retry the call once; a second
-//      SessionUnknown fails it;
-//   4. the costmap travels only when its version differs from the one this session last
-//      delivered (delivered = sent in a request that got an ok reply; configure forgets it);
-//   5. a reply of another seq, or one that does not decode, fails the call (generic);
-//   6. other error replies throw the nav2_core-named exception (error_mapping.hpp);
-//   7. replicas (PROTOCOL.md section 1): the session pins the smallest alive host id and
-//      addresses every query to it (Target::host); when the pinned host's token is gone, or
-//      a call gets no reply in time, a bad reply or Unavailable while another host is alive,
-//      it pins another one and retries the call once there (whose SessionUnknown re-sends
-//      the state), so a replica's death fails no call.
-// Every failure is a CallError. Thread-safe: each public call holds the session's lock (Nav2
-// calls from its action thread, parameter changes come from the executor's thread).
+// procedure as PROTOCOL.md states it and the reference client (python/nav2_pyif/client/
+// plugin_client.py) does it: the plugin rules of section 4 (fail fast without a host,
+// SessionUnknown -> re-establish and retry once), the replicas of section 1 (pin one, fail
+// over), the costmap of section 5 (only when changed), the timeouts of section 8, the
+// reply checks and nav2_core exceptions of section 7. Every failure is a CallError.
+// Thread-safe: each public call holds the session's lock (Nav2 calls from its action thread,
+// parameter changes come from the executor's thread).
 //
-// Two additions for a plugin living inside Nav2 (the reference client has no need of them):
+// Additions for a plugin living inside Nav2 (the reference client has no need of them):
 // - defer_configure(): Nav2 configures its plugins at bring-up, maybe before any host runs.
 //   The plugin then marks the session configured without a host; the first call that needs
-//   the host establishes it as rule 3 does (configure, activate if active, state), and
-//   activate/deactivate/cleanup/set_parameters before that only update the local state.
+//   the host establishes it as a re-establishment does, and activate/deactivate/cleanup/
+//   set_parameters before that only update the local state.
 // - activate/deactivate with no host (none alive, or no reply in time) do not fail: Nav2's
 //   lifecycle goes on, and the next call re-establishes the session in the new state.
 // - a failed re-establishment leaves the session configured and not established, so the
@@ -76,6 +64,32 @@ struct Carried
   bool costmap_sent{false};
 };
 
+// What a session is now, for the plugins' logs and the tests.
+struct SessionState
+{
+  std::uint64_t epoch{0};
+  std::uint64_t last_seq{0};
+  bool configured{false};
+  bool established{false};
+  bool active{false};
+  std::uint64_t resyncs{0};                      // re-establishments after SessionUnknown
+  std::string last_host;                         // the host of the last reply
+  std::string served;                            // the configure reply's planner; "" if unsaid
+  protocol::StringMap debug_outputs;             // the served planner's (name -> ROS type)
+  std::string pinned_host;                       // the replica queries go to
+  std::uint64_t failovers{0};                    // times another replica was pinned
+  std::optional<std::uint64_t> delivered_costmap;
+};
+
+struct CallOptions
+{
+  bool allow_resync{true};
+  bool allow_failover{true};
+  std::optional<Duration> timeout;  // instead of the op's (Timeouts::for_op)
+  // Runs about every 5 ms while waiting for the reply, with the request's seq.
+  std::function<void(std::uint64_t)> while_waiting;
+};
+
 class PluginSession
 {
 public:
@@ -105,6 +119,37 @@ public:
   // the changes are only kept for configure (nothing rejects them).
   protocol::StringMap set_parameters(const protocol::Params & changes);
 
+  // One call of `body`'s op, by PROTOCOL.md section 4's plugin rules; its reply's body. Every
+  // failure is a CallError.
+  template<class Request>
+  protocol::ReplyOf<Request> call(const Request & body, const CallOptions & options = {})
+  {
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
+    return std::get<protocol::ReplyOf<Request>>(call_body(body, options));
+  }
+
+  // A request for another plugin's query to carry (PROTOCOL.md section 15), numbered and
+  // with the costmap as call() would send them; std::nullopt when this session cannot send
+  // one now (not established: its call on its own establishes it).
+  std::optional<Carried> prepare(protocol::RequestBody body);
+  // The reply to a carried request for Nav2's call `body`, when that call is the prepared
+  // one: its request encodes to the same bytes (the prepared seq, and the costmap as call()
+  // would attach it) and nothing was sent on this session since it was prepared. Else, or
+  // when the carried call did not run, or its host does not serve this key or know this
+  // session (Unavailable, SessionUnknown), std::nullopt: the call goes on its own. Other
+  // errors throw as call() does.
+  template<class Request>
+  std::optional<protocol::ReplyOf<Request>> take(
+    Carried carried, const std::optional<protocol::Bytes> & reply, Request body)
+  {
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
+    auto out = take_body(std::move(carried), reply, std::move(body));
+    if (!out) {
+      return std::nullopt;
+    }
+    return std::get<protocol::ReplyOf<Request>>(std::move(*out));
+  }
+
   // The carried cycle of the controller_server this plugin is in (carried_cycle.hpp);
   // nullptr until joined.
   void join(std::shared_ptr<CarriedCycle> cycle);
@@ -113,62 +158,15 @@ public:
   // Block until a host is alive (the transport's liveliness watch); false on timeout.
   bool wait_for_host(Duration timeout);
 
-  // --- state, for the plugins' logs and the tests ---
   const KeySpace & keys() const noexcept {return keys_;}
   PluginKind kind() const noexcept {return config_.kind;}
   const std::string & sid() const noexcept {return sid_;}
-  std::uint64_t epoch() const;
-  std::uint64_t last_seq() const;
-  bool configured() const;
-  bool established() const;
-  bool active() const;
-  std::uint64_t resyncs() const;              // re-establishments after SessionUnknown
-  std::string last_host() const;              // the host of the last reply
-  std::string served() const;                 // the configure reply's planner; "" if unsaid
-  // The debug outputs the served planner may return (name -> ROS type), from configure.
-  protocol::StringMap debug_outputs() const;
-  std::string pinned_host() const;            // the replica queries go to; "" before the first
-  std::uint64_t failovers() const;            // times another replica was pinned
-  std::optional<std::uint64_t> delivered_costmap() const;
+  SessionState state() const;
   protocol::Params params() const;
   Timeouts timeouts() const;
   void set_timeouts(const Timeouts & timeouts);
 
 protected:
-  struct CallOptions
-  {
-    bool allow_resync{true};
-    bool allow_failover{true};
-    std::optional<Duration> timeout;  // instead of the op's (Timeouts::for_op)
-    // Runs about every 5 ms while waiting for the reply, with the request's seq.
-    std::function<void(std::uint64_t)> while_waiting;
-  };
-
-  // A request for another plugin's query to carry, numbered and with the costmap as call()
-  // would send them; std::nullopt when this session cannot send one now (not established:
-  // its call on its own establishes it). The caller holds mutex().
-  std::optional<Carried> prepare(protocol::RequestBody body);
-  // The body of the reply to a carried request, as call() would return it; std::nullopt when
-  // the call must go on its own: it did not run, or its host does not serve this key or know
-  // this session (Unavailable, SessionUnknown: the call on its own re-establishes it). Other
-  // errors throw as call() does. The caller holds mutex().
-  std::optional<protocol::ReplyBody> settle(
-    const Carried & carried, const std::optional<protocol::Bytes> & reply);
-  // The body of the reply to a carried request for Nav2's call `body`, when that call is the
-  // prepared one: its request encodes to the same bytes (the prepared seq, and the costmap
-  // as call() would attach it) and nothing was sent on this session since it was prepared;
-  // then as settle(). Else std::nullopt: the call goes on its own. mutex() held.
-  std::optional<protocol::ReplyBody> take(
-    Carried carried, const std::optional<protocol::Bytes> & reply, protocol::RequestBody body);
-
-  // One call, following rules 1-6. The caller holds mutex().
-  protocol::ReplyBody call(const protocol::RequestBody & body, const CallOptions & options);
-  template<class ReplyT>
-  ReplyT call_for(const protocol::RequestBody & body, const CallOptions & options = {})
-  {
-    return std::get<ReplyT>(call(body, options));
-  }
-
   // The request that tells a new session on the host `op`'s part of what the planner was
   // told since configure, for each op schema.py's RESTORED lists for this plugin type, in
   // its order (the plan, the speed limit, ...); std::nullopt: nothing to re-send. mutex() held.
@@ -179,12 +177,16 @@ protected:
   // Forget that state (cleanup ends the session); mutex() held.
   virtual void forget_state() {}
 
+  // One call (call()'s procedure), the caller holding mutex().
+  protocol::ReplyBody call_body(const protocol::RequestBody & body, const CallOptions & options);
+  // The session's state, the caller holding mutex().
+  const SessionState & current() const noexcept {return state_;}
   std::recursive_mutex & mutex() const noexcept {return mutex_;}
   Transport & transport() noexcept {return transport_;}
   const Logger & logger() const noexcept {return logger_;}
-  std::uint64_t next_seq() noexcept {return ++seq_;}
+  std::uint64_t next_seq() noexcept {return ++state_.last_seq;}
   // Where a query for `key` goes: the pinned replica.
-  Target target(std::string key) const {return Target{std::move(key), pinned_host_};}
+  Target target(std::string key) const {return Target{std::move(key), state_.pinned_host};}
   [[noreturn]] void fail(ErrorKind kind, Cause cause, const std::string & message) const;
 
 private:
@@ -194,6 +196,11 @@ private:
   void reestablish(const std::string & host);
   void pin_host();
   bool fail_over(const std::optional<std::string> & avoid);
+  std::optional<protocol::ReplyBody> take_body(
+    Carried carried, const std::optional<protocol::Bytes> & reply, protocol::RequestBody body);
+  // The body of the reply to a carried request, as call() would return it (take()).
+  std::optional<protocol::ReplyBody> settle(
+    const Carried & carried, const std::optional<protocol::Bytes> & reply);
   protocol::Reply exchange(const protocol::Request & request, const CallOptions & options);
   // The decoded reply to `request`, else BadReply ("bad <what> to <op>: ...", or its seq).
   protocol::Reply checked_reply(
@@ -205,6 +212,9 @@ private:
     std::optional<std::uint64_t> version;
     bool sent{false};
   };
+  // How long a call of `body` waits for its reply and, for a plan-class op, for a host: its
+  // timeout class's (schema.py OP_TIMEOUT), a smooth's max_time and SMOOTH_GRACE_S if longer.
+  Duration timeout_of(const protocol::RequestBody & body) const;
   // Attaches the costmap to `request` as schema.py's COSTMAP_SENT says its op takes it.
   CostmapAttached attach_costmap(protocol::Request & request);
 
@@ -216,23 +226,12 @@ private:
   std::string sid_;
 
   mutable std::recursive_mutex mutex_;
-  std::uint64_t epoch_{0};
-  std::uint64_t seq_{0};
-  bool configured_{false};
-  bool established_{false};
-  bool active_{false};
-  std::uint64_t resyncs_{0};
-  std::string last_host_;
-  std::string served_;
-  protocol::StringMap debug_outputs_;
-  std::string pinned_host_;
-  std::uint64_t failovers_{0};
-  std::optional<std::uint64_t> delivered_costmap_;
+  SessionState state_;
   std::shared_ptr<CarriedCycle> cycle_;
 };
 
 // The base of the sessions of one plugin type: ControllerSession, PlannerSession,
-// SmootherSession, GoalCheckerSession, ProgressCheckerSession.
+// BehaviorSession, and the aliases below.
 template<PluginKind Kind>
 class KindSession : public PluginSession
 {
@@ -244,6 +243,13 @@ public:
     SessionConfig config, Transport & transport, CostmapSource & costmap, Logger logger = {})
   : PluginSession(Kind, std::move(config), transport, costmap, std::move(logger)) {}
 };
+
+// The plugin types whose calls need nothing of their own: PluginSession's typed call, prepare
+// and take serve them. None has state to re-send after a host restart.
+using GoalCheckerSession = KindSession<PluginKind::GoalChecker>;
+using ProgressCheckerSession = KindSession<PluginKind::ProgressChecker>;
+using CostmapLayerSession = KindSession<PluginKind::CostmapLayer>;
+using SmootherSession = KindSession<PluginKind::Smoother>;
 
 // The same pose message, header included: whether Nav2's call is the one a carried request
 // was prepared for.

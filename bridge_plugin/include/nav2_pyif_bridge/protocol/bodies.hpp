@@ -423,4 +423,54 @@ inline Op op_of(const ReplyBody & body) noexcept {return static_cast<Op>(body.in
 static_assert(std::variant_size_v<RequestBody> == kOpCount);
 static_assert(std::variant_size_v<ReplyBody> == kOpCount);
 
+// The reply body of each request body: ReplyOf<SmoothRequest> is SmoothReply.
+template<class Request>
+struct ReplyOfT;
+template<> struct ReplyOfT<ConfigureRequest>
+{using type = ConfigureReply;};
+template<> struct ReplyOfT<ActivateRequest>
+{using type = ActivateReply;};
+template<> struct ReplyOfT<DeactivateRequest>
+{using type = DeactivateReply;};
+template<> struct ReplyOfT<CleanupRequest>
+{using type = CleanupReply;};
+template<> struct ReplyOfT<SetParametersRequest>
+{using type = SetParametersReply;};
+template<> struct ReplyOfT<SetPlanRequest>
+{using type = SetPlanReply;};
+template<> struct ReplyOfT<ComputeVelocityCommandsRequest>
+{using type = ComputeVelocityCommandsReply;};
+template<> struct ReplyOfT<SetSpeedLimitRequest>
+{using type = SetSpeedLimitReply;};
+template<> struct ReplyOfT<CancelRequest>
+{using type = CancelReply;};
+template<> struct ReplyOfT<ResetRequest>
+{using type = ResetReply;};
+template<> struct ReplyOfT<CreatePlanRequest>
+{using type = CreatePlanReply;};
+template<> struct ReplyOfT<CancelPlanRequest>
+{using type = CancelPlanReply;};
+template<> struct ReplyOfT<SmoothRequest>
+{using type = SmoothReply;};
+template<> struct ReplyOfT<IsGoalReachedRequest>
+{using type = IsGoalReachedReply;};
+template<> struct ReplyOfT<GetTolerancesRequest>
+{using type = GetTolerancesReply;};
+template<> struct ReplyOfT<CheckRequest>
+{using type = CheckReply;};
+template<> struct ReplyOfT<UpdateBoundsRequest>
+{using type = UpdateBoundsReply;};
+template<> struct ReplyOfT<UpdateCostsRequest>
+{using type = UpdateCostsReply;};
+template<> struct ReplyOfT<MatchSizeRequest>
+{using type = MatchSizeReply;};
+template<> struct ReplyOfT<OnRunRequest>
+{using type = OnRunReply;};
+template<> struct ReplyOfT<OnCycleUpdateRequest>
+{using type = OnCycleUpdateReply;};
+template<> struct ReplyOfT<OnActionCompletionRequest>
+{using type = OnActionCompletionReply;};
+template<class Request>
+using ReplyOf = typename ReplyOfT<Request>::type;
+
 }  // namespace nav2_pyif_bridge::protocol
