@@ -1,6 +1,6 @@
 """The C++ plugin's logic (bridge_plugin/src/client: session, epoch and seq, state re-sent
 after a host restart, fail fast, timeouts, costmap versions, error mapping, settings, the local
-planner host's supervision), run by ctest on fakes, without Nav2 or Zenoh. Built by the same
+planner host's start and stop), run by ctest on fakes, without Nav2 or Zenoh. Built by the same
 codec-only CMake tree as tests/test_cpp_codec.py (its ``build_dir`` fixture), labelled
 ``client``; skipped with that test's reasons on machines without the C++ toolchain.
 """

@@ -1,6 +1,6 @@
 # The plugin's logic without Nav2 or Zenoh (src/client): session/epoch/seq handling, the call
 # procedure of PROTOCOL.md section 4, error mapping, costmap versions, settings, the local
-# planner host's supervision. A static library linked into the Nav2 plugins, and tested on its
+# planner host's start and stop. A static library linked into the Nav2 plugins, and tested on its
 # own in both builds of CMakeLists.txt:
 #
 #   nav2_pyif_client_test_sources(<out_var>)   the GoogleTest sources (test/client)

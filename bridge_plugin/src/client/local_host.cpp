@@ -9,12 +9,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cerrno>
-#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <system_error>
+#include <thread>
 #include <utility>
 
 extern char ** environ;  // NOLINT: POSIX
@@ -24,31 +23,22 @@ namespace nav2_pyif_bridge::client
 namespace
 {
 
-std::string describe_status(int status)
-{
-  if (WIFEXITED(status)) {
-    return "exited with status " + std::to_string(WEXITSTATUS(status));
-  }
-  if (WIFSIGNALED(status)) {
-    const int sig = WTERMSIG(status);
-    const char * name = ::strsignal(sig);
-    return "killed by signal " + std::to_string(sig) + (name ? std::string(" (") + name + ")" : "");
-  }
-  return "ended with wait status " + std::to_string(status);
-}
-
-std::string seconds_text(Duration d)
-{
-  return std::to_string(std::chrono::duration_cast<std::chrono::milliseconds>(d).count() / 1000.0)
-         .substr(0, 4) + " s";
-}
-
 std::string command_line(const std::vector<std::string> & argv)
 {
   std::string out;
   for (const auto & arg : argv) {
     out += (out.empty() ? "" : " ") + arg;
   }
+  return out;
+}
+
+std::vector<char *> pointers(std::vector<std::string> & strings)
+{
+  std::vector<char *> out;
+  for (auto & text : strings) {
+    out.push_back(text.data());
+  }
+  out.push_back(nullptr);
   return out;
 }
 
@@ -93,7 +83,8 @@ std::string local_host_key(std::string_view node, std::string_view plugin)
 std::vector<std::string> local_host_arguments(
   const BridgeParameters & spec, const std::string & key, const std::string & listen_endpoint)
 {
-  std::vector<std::string> argv{spec.planner_host_command, "--key", key};
+  // --respawn: planner-host restarts the host itself whenever it exits
+  std::vector<std::string> argv{spec.planner_host_command, "--respawn", "--key", key};
   auto add = [&argv](const char * flag, const std::string & value) {
       if (!value.empty()) {
         argv.insert(argv.end(), {flag, value});
@@ -112,58 +103,24 @@ std::vector<std::string> local_host_arguments(
   return argv;
 }
 
-// --- ProcessSupervisor ----------------------------------------------------------------------
-
-ProcessSupervisor::ProcessSupervisor(Options options, Logger logger)
-: options_(std::move(options)), logger_(std::move(logger))
+LocalHost::LocalHost(
+  const BridgeParameters & spec, std::string key, Logger logger, Duration stop_grace)
+: key_(std::move(key)), endpoint_("tcp/127.0.0.1:" + std::to_string(pick_free_tcp_port())),
+  logger_(std::move(logger)), stop_grace_(stop_grace)
 {
-  if (options_.argv.empty()) {
-    throw std::invalid_argument("ProcessSupervisor: empty argv");
-  }
-}
-
-ProcessSupervisor::~ProcessSupervisor()
-{
-  stop();
-}
-
-void ProcessSupervisor::start()
-{
-  environment_.clear();
+  // Everything the child needs is built before fork: it may not allocate before execve.
+  std::vector<std::string> args = local_host_arguments(spec, key_, endpoint_);
+  std::vector<std::string> environment{"PYTHONUNBUFFERED=1"};
   for (char ** entry = environ; entry && *entry; ++entry) {
     if (std::strncmp(*entry, "PYTHONUNBUFFERED=", 17) != 0) {
-      environment_.emplace_back(*entry);
+      environment.emplace_back(*entry);
     }
   }
-  environment_.emplace_back("PYTHONUNBUFFERED=1");
-
-  if (thread_.joinable()) {
-    throw std::logic_error("ProcessSupervisor::start called twice");
-  }
-  stopping_ = false;
-  const std::string error = spawn();
-  if (!error.empty()) {
-    throw std::runtime_error(error);
-  }
-  thread_ = std::thread([this]() {supervise();});
-}
-
-std::string ProcessSupervisor::spawn()
-{
-  std::vector<char *> argv;
-  for (auto & arg : options_.argv) {
-    argv.push_back(arg.data());
-  }
-  argv.push_back(nullptr);
-  std::vector<char *> envp;
-  for (auto & entry : environment_) {
-    envp.push_back(entry.data());
-  }
-  envp.push_back(nullptr);
-
-  int error_pipe[2];
+  const std::vector<char *> argv = pointers(args);
+  const std::vector<char *> envp = pointers(environment);
+  int error_pipe[2];  // the child writes execvpe's errno there; closed by a successful exec
   if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
-    return "pipe: " + std::string(std::strerror(errno));
+    throw std::system_error(errno, std::generic_category(), "pipe2");
   }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
@@ -172,7 +129,7 @@ std::string ProcessSupervisor::spawn()
     ::setpgid(0, 0);
     ::prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (::getppid() != parent) {
-      ::_exit(127);
+      ::_exit(127);  // the parent died before prctl
     }
     sigset_t none;
     ::sigemptyset(&none);
@@ -182,10 +139,11 @@ std::string ProcessSupervisor::spawn()
     [[maybe_unused]] const auto written = ::write(error_pipe[1], &error, sizeof(error));
     ::_exit(127);
   }
+  const int fork_error = errno;
   ::close(error_pipe[1]);
   if (pid < 0) {
     ::close(error_pipe[0]);
-    return "fork: " + std::string(std::strerror(errno));
+    throw std::system_error(fork_error, std::generic_category(), "fork");
   }
   int exec_error = 0;
   ssize_t got = 0;
@@ -194,128 +152,40 @@ std::string ProcessSupervisor::spawn()
   } while (got < 0 && errno == EINTR);
   ::close(error_pipe[0]);
   if (got == static_cast<ssize_t>(sizeof(exec_error))) {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    return "cannot start '" + options_.argv.front() + "': " + std::strerror(exec_error);
+    ::waitpid(pid, nullptr, 0);
+    throw std::runtime_error("cannot start '" + args.front() + "': " + std::strerror(exec_error));
   }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    pid_ = pid;
-    ++starts_;
-    if (stopping_) {
-      ::kill(pid, SIGKILL);  // stop() came while it started, and will not signal it
-    }
-  }
-  changed_.notify_all();
+  pid_ = pid;
   log(
     logger_, LogLevel::Info,
-    "planner host started (pid " + std::to_string(pid) + "): " + command_line(options_.argv));
-  return {};
+    "planner host started (pid " + std::to_string(pid) + "): " + command_line(args));
 }
 
-void ProcessSupervisor::supervise()
+int LocalHost::stop()
 {
-  Duration delay = options_.restart_delay;
-  std::unique_lock<std::mutex> lock(mutex_);
-  for (;;) {
-    if (const pid_t pid = pid_; pid > 0) {  // the process started last: wait for its end
-      const auto started_at = std::chrono::steady_clock::now();
-      lock.unlock();
-      int status = 0;
-      pid_t waited = 0;
-      do {
-        waited = ::waitpid(pid, &status, 0);
-      } while (waited < 0 && errno == EINTR);
-      lock.lock();
-      pid_ = 0;
-      last_exit_ = waited == pid ? describe_status(status) : "lost (waitpid failed)";
-      changed_.notify_all();
-      if (std::chrono::steady_clock::now() - started_at >= options_.stable_after) {
-        delay = options_.restart_delay;
-      }
-      if (!stopping_) {
-        log(
-          logger_, LogLevel::Error, "planner host (pid " + std::to_string(pid) + ") " +
-          last_exit_ + "; restarting in " + seconds_text(delay));
-      }
-    }
-    if (changed_.wait_for(lock, delay, [this]() {return stopping_;})) {
-      return;
-    }
-    delay = std::min(delay * 2, options_.max_restart_delay);
-    lock.unlock();
-    const std::string error = spawn();
-    lock.lock();
-    if (!error.empty()) {
-      log(logger_, LogLevel::Error, "planner host: " + error);
-    }
+  const pid_t pid = std::exchange(pid_, 0);
+  if (pid <= 0) {
+    return -1;
   }
-}
-
-void ProcessSupervisor::stop()
-{
-  pid_t pid = 0;
+  ::kill(pid, SIGTERM);
+  int status = 0;
+  const auto deadline = std::chrono::steady_clock::now() + stop_grace_;
+  pid_t waited = 0;
+  while ((waited = ::waitpid(pid, &status, WNOHANG)) == 0 &&
+    std::chrono::steady_clock::now() < deadline)
   {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!thread_.joinable()) {
-      return;
-    }
-    stopping_ = true;
-    pid = pid_;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  changed_.notify_all();
-  if (pid > 0) {
-    ::kill(pid, SIGTERM);
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (!changed_.wait_for(lock, options_.stop_grace, [this]() {return pid_ == 0;})) {
-      log(
-        logger_, LogLevel::Warn, "planner host (pid " + std::to_string(pid) +
-        ") ignored SIGTERM; killing it");
-      ::kill(-pid, SIGKILL);
-      ::kill(pid, SIGKILL);
+  if (waited == 0) {
+    log(
+      logger_, LogLevel::Warn, "planner host (pid " + std::to_string(pid) +
+      ") ignored SIGTERM; killing it");
+    ::kill(-pid, SIGKILL);
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
   }
-  thread_.join();
-  if (pid > 0) {
-    ::kill(-pid, SIGKILL);  // whatever the host left in its process group (its workers)
-  }
-}
-
-pid_t ProcessSupervisor::pid() const
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  return pid_;
-}
-
-unsigned ProcessSupervisor::starts() const
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  return starts_;
-}
-
-std::string ProcessSupervisor::last_exit() const
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  return last_exit_;
-}
-
-bool ProcessSupervisor::wait_for_starts(unsigned n, Duration timeout) const
-{
-  std::unique_lock<std::mutex> lock(mutex_);
-  return changed_.wait_for(lock, timeout, [this, n]() {return starts_ >= n;});
-}
-
-// --- LocalHost ------------------------------------------------------------------------------
-
-LocalHost::LocalHost(
-  const BridgeParameters & spec, std::string key, Logger logger,
-  ProcessSupervisor::Options supervision)
-: key_(std::move(key))
-{
-  endpoint_ = "tcp/127.0.0.1:" + std::to_string(pick_free_tcp_port());
-  supervision.argv = local_host_arguments(spec, key_, endpoint_);
-  process_ = std::make_unique<ProcessSupervisor>(std::move(supervision), std::move(logger));
-  process_->start();
+  ::kill(-pid, SIGKILL);  // whatever the host left in its process group (its workers)
+  return status;
 }
 
 }  // namespace nav2_pyif_bridge::client

@@ -61,23 +61,14 @@ std::string milliseconds(Duration d)
 std::string new_session_id()
 {
   std::random_device device;
-  std::array<std::uint8_t, 16> bytes{};
-  for (std::size_t i = 0; i < bytes.size(); i += 4) {
-    const std::uint32_t word = device();
-    for (std::size_t j = 0; j < 4; ++j) {
-      bytes[i + j] = static_cast<std::uint8_t>(word >> (8 * j));
-    }
-  }
-  bytes[6] = static_cast<std::uint8_t>((bytes[6] & 0x0f) | 0x40);  // version 4
-  bytes[8] = static_cast<std::uint8_t>((bytes[8] & 0x3f) | 0x80);  // RFC 4122 variant
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string out;
-  out.reserve(32);
-  for (const std::uint8_t byte : bytes) {
-    out += kHex[byte >> 4];
-    out += kHex[byte & 0x0f];
-  }
-  return out;
+  std::uniform_int_distribution<std::uint64_t> any;
+  const std::uint64_t high = (any(device) & ~std::uint64_t{0xf000}) | 0x4000;  // version 4
+  const std::uint64_t low = (any(device) >> 2) | (std::uint64_t{1} << 63);  // RFC 4122 variant
+  std::array<char, 33> text{};
+  std::snprintf(
+    text.data(), text.size(), "%016llx%016llx", static_cast<unsigned long long>(high),
+    static_cast<unsigned long long>(low));
+  return text.data();
 }
 
 PluginSession::PluginSession(

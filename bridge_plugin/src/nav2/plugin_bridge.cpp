@@ -114,22 +114,14 @@ client::SessionConfig PluginBridge::session_config() const
 
 client::Logger PluginBridge::logger() const
 {
-  const rclcpp::Logger logger = logger_;
-  return [logger](LogLevel level, const std::string & text) {
-           switch (level) {
-             case LogLevel::Debug:
-               RCLCPP_DEBUG(logger, "%s", text.c_str());
-               break;
-             case LogLevel::Info:
-               RCLCPP_INFO(logger, "%s", text.c_str());
-               break;
-             case LogLevel::Warn:
-               RCLCPP_WARN(logger, "%s", text.c_str());
-               break;
-             case LogLevel::Error:
-               RCLCPP_ERROR(logger, "%s", text.c_str());
-               break;
-           }
+  return [logger = logger_](LogLevel level, const std::string & text) {
+           // client::LogLevel's order: Debug, Info, Warn, Error
+           static constexpr int kSeverity[] = {
+             RCUTILS_LOG_SEVERITY_DEBUG, RCUTILS_LOG_SEVERITY_INFO, RCUTILS_LOG_SEVERITY_WARN,
+             RCUTILS_LOG_SEVERITY_ERROR};
+           RCUTILS_LOG_COND_NAMED(
+             kSeverity[static_cast<int>(level)], RCUTILS_LOG_CONDITION_EMPTY,
+             RCUTILS_LOG_CONDITION_EMPTY, logger.get_name(), "%s", text.c_str());
          };
 }
 

@@ -379,3 +379,22 @@ TEST(SmootherSessionTest, WaitsMaxTimeAndAGraceOrThePlanTimeoutWhenLonger)
 
 }  // namespace
 }  // namespace nav2_pyif_bridge::client::test
+
+namespace nav2_pyif_bridge::client::test
+{
+namespace
+{
+
+TEST(SessionId, IsAUuid4InHexAsPythonWritesIt)
+{
+  const std::string a = new_session_id();
+  const std::string b = new_session_id();
+  ASSERT_EQ(a.size(), 32u);
+  EXPECT_EQ(a.find_first_not_of("0123456789abcdef"), std::string::npos) << a;
+  EXPECT_EQ(a[12], '4') << a;  // the version nibble
+  EXPECT_NE(std::string("89ab").find(a[16]), std::string::npos) << a;  // the RFC 4122 variant
+  EXPECT_NE(a, b);
+}
+
+}  // namespace
+}  // namespace nav2_pyif_bridge::client::test

@@ -2,7 +2,7 @@
 YAML names only `python_module` (the APF controller of nav2_pyif_planners.apf: plain functions
 named after the roles, so no `python_delegates` is needed) and the planner's
 `python_planner`; each plugin starts
-and supervises its own `planner-host`, the robot reaches the goal, and the hosts end with Nav2.
+its own `planner-host --respawn`, the robot reaches the goal, and the hosts end with Nav2.
 
 Needs what test_nav2_pyif.py needs; the planner host command must be one executable here
 (`planner_host_command`): `planner-host` on PATH or $NAV2_PYIF_PLANNER_HOST.

@@ -35,6 +35,7 @@ from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
 from nav2_pyif.server.reload_policy import ReloadPolicy
+from nav2_pyif.server.respawn import keep
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 from nav2_pyif.server.supervisor import Deadlines, SupervisedPlanner
@@ -72,6 +73,9 @@ examples:
   # accept nav2-pyif reload from the network, to the served planners or my_planners.*
   planner-host --key nav2_pyif/robot1/FollowPath --planner my_planners.a:A \\
       --allow-remote-reload --reload-allow 'my_planners.*'
+
+  # started again whenever it exits (as the Nav2 plugin runs the host it starts itself)
+  planner-host --respawn --key nav2_pyif/robot1/FollowPath --module my_pkg.apf
 
   # every option also reads NAV2_PYIF_<OPTION> (containers); command-line flags win
   NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
@@ -199,6 +203,14 @@ def build_parser() -> argparse.ArgumentParser:
         'host only (kill -HUP "$(cat FILE)": reload every planner); removed on exit',
     )
     parser.add_argument(
+        "--respawn",
+        action="store_true",
+        help="keep the host running: serve from a child process started again whenever it "
+        "exits (after 1 s, doubling to 30 s; 1 s again after a run of 10 s); SIGINT or SIGTERM "
+        "stop both (the child gets SIGTERM, SIGKILL 5 s later). The Nav2 plugin starts its "
+        "local host so",
+    )
+    parser.add_argument(
         "--log-level",
         default="INFO",
         choices=["DEBUG", "INFO", "WARNING", "ERROR"],
@@ -206,6 +218,11 @@ def build_parser() -> argparse.ArgumentParser:
     )
     document_environment(parser)
     return parser
+
+
+def without_respawn(argv: list[str]) -> list[str]:
+    """``argv`` less ``--respawn`` (or an abbreviation argparse took for it)."""
+    return [a for a in argv if not (a.startswith("--res") and "--respawn".startswith(a))]
 
 
 def collect_specs(args: argparse.Namespace, parser: argparse.ArgumentParser) -> list[PlannerSpec]:
@@ -287,6 +304,9 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
     )
+    if args.respawn:
+        os.environ.pop("NAV2_PYIF_RESPAWN", None)  # the child serves, it keeps nothing
+        return keep([sys.executable, "-m", "nav2_pyif.server.cli", *without_respawn(given)])
     # A planner served in this process (--isolation none) that segfaults leaves its stack.
     faulthandler.enable()
     log = logging.getLogger("nav2_pyif.server.host")

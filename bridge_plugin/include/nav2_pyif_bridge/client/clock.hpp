@@ -1,5 +1,5 @@
-// Time, behind an interface where a unit waits (for a host's liveliness token, between
-// restarts of a local host), so the tests can run those waits on a fake clock in no time.
+// Time, behind an interface where a unit waits (for a host's liveliness token), so the tests
+// can run those waits on a fake clock in no time.
 #pragma once
 
 #include <chrono>

@@ -1,6 +1,6 @@
 // The plugin's YAML parameters (everything under its namespace, e.g. FollowPath.*): the
 // bridge's own, and the rest, forwarded to the planner in configure. With python_module or
-// python_planner the plugin starts and supervises its own planner host (local_host.hpp) and
+// python_planner the plugin starts its own planner host (local_host.hpp) and
 // connects to it directly; `key` is then optional. What the local host is given (module,
 // delegates, planner) it validates itself. The bridge's own parameters (their names, types,
 // defaults, docs) are one table: bridge_parameters.hpp, generated, and the bridge README's.
