@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import re
+import shlex
 import signal
 import sys
 import time
@@ -86,6 +87,50 @@ def test_a_killed_keeper_leaves_no_host(tmp_path: Path) -> None:
     kept.proc.kill()
     kept.proc.wait(10)
     assert wait_until(lambda: not survivors(tree), 10), survivors(tree)
+
+
+def test_a_keeper_ends_with_the_plugin_that_started_it(tmp_path: Path) -> None:
+    """The Nav2 plugin names itself in NAV2_PYIF_PARENT_PID: a killed Nav2 (here a shell
+    killed with SIGKILL, which can clean nothing up) leaves neither keeper nor host."""
+    kept = [
+        sys.executable,
+        "-c",
+        KEEPER,
+        json.dumps(FAST),
+        "sh",
+        "-c",
+        "echo $$ > pid; exec sleep 60",
+    ]
+    starter = Command(
+        tmp_path, "sh", "-c", f"cd {tmp_path}; NAV2_PYIF_PARENT_PID=$$ {shlex.join(kept)} & wait"
+    )
+    host = host_pid(tmp_path, starter)
+    tree = process_tree(starter.proc.pid)
+    assert host in tree and len(tree) == 2, tree  # the keeper and the host
+    starter.proc.kill()
+    starter.proc.wait(10)
+    assert wait_until(lambda: not survivors(tree), 10), survivors(tree)
+
+
+def test_a_keeper_whose_plugin_is_gone_already_starts_nothing(tmp_path: Path) -> None:
+    kept = keeper(tmp_path, "echo $$ > pid; exec sleep 60")
+    kept.proc.kill()
+    kept.proc.wait(10)
+    (tmp_path / "orphan").mkdir()
+    orphan = Command(
+        tmp_path / "orphan",
+        "env",
+        f"NAV2_PYIF_PARENT_PID={kept.proc.pid}",  # not this keeper's parent: gone
+        sys.executable,
+        "-c",
+        KEEPER,
+        json.dumps(FAST),
+        "sh",
+        "-c",
+        "echo started > started; exec sleep 60",
+    )
+    assert orphan.proc.wait(10) == 1, orphan.text()
+    assert not (tmp_path / "orphan" / "started").exists()
 
 
 def test_the_back_off_doubles_to_its_bound_and_resets_after_a_stable_run(tmp_path: Path) -> None:

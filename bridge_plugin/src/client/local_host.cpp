@@ -1,10 +1,9 @@
 #include "nav2_pyif_bridge/client/local_host.hpp"
 
 #include <arpa/inet.h>
-#include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
-#include <sys/prctl.h>
+#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -108,52 +107,35 @@ LocalHost::LocalHost(
 : key_(std::move(key)), endpoint_("tcp/127.0.0.1:" + std::to_string(pick_free_tcp_port())),
   logger_(std::move(logger)), stop_grace_(stop_grace)
 {
-  // Everything the child needs is built before fork: it may not allocate before execve.
   std::vector<std::string> args = local_host_arguments(spec, key_, endpoint_);
-  std::vector<std::string> environment{"PYTHONUNBUFFERED=1"};
+  // The keeper binds itself to this process (planner-host --respawn: PR_SET_PDEATHSIG, and no
+  // start if this process is gone already), so a crashed Nav2 leaves no planner host behind.
+  std::vector<std::string> environment{
+    "PYTHONUNBUFFERED=1", "NAV2_PYIF_PARENT_PID=" + std::to_string(::getpid())};
   for (char ** entry = environ; entry && *entry; ++entry) {
-    if (std::strncmp(*entry, "PYTHONUNBUFFERED=", 17) != 0) {
+    if (std::strncmp(*entry, "PYTHONUNBUFFERED=", 17) != 0 &&
+      std::strncmp(*entry, "NAV2_PYIF_PARENT_PID=", 21) != 0)
+    {
       environment.emplace_back(*entry);
     }
   }
   const std::vector<char *> argv = pointers(args);
   const std::vector<char *> envp = pointers(environment);
-  int error_pipe[2];  // the child writes execvpe's errno there; closed by a successful exec
-  if (::pipe2(error_pipe, O_CLOEXEC) != 0) {
-    throw std::system_error(errno, std::generic_category(), "pipe2");
-  }
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // The child: async-signal-safe calls only until execve.
-    ::setpgid(0, 0);
-    ::prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (::getppid() != parent) {
-      ::_exit(127);  // the parent died before prctl
-    }
-    sigset_t none;
-    ::sigemptyset(&none);
-    ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    ::execvpe(argv[0], argv.data(), envp.data());  // $PATH searched as a shell does
-    const int error = errno;
-    [[maybe_unused]] const auto written = ::write(error_pipe[1], &error, sizeof(error));
-    ::_exit(127);
-  }
-  const int fork_error = errno;
-  ::close(error_pipe[1]);
-  if (pid < 0) {
-    ::close(error_pipe[0]);
-    throw std::system_error(fork_error, std::generic_category(), "fork");
-  }
-  int exec_error = 0;
-  ssize_t got = 0;
-  do {
-    got = ::read(error_pipe[0], &exec_error, sizeof(exec_error));
-  } while (got < 0 && errno == EINTR);
-  ::close(error_pipe[0]);
-  if (got == static_cast<ssize_t>(sizeof(exec_error))) {
-    ::waitpid(pid, nullptr, 0);
-    throw std::runtime_error("cannot start '" + args.front() + "': " + std::strerror(exec_error));
+  // A process group of its own (stop() signals the group: the host's workers too), and no
+  // signal blocked by the thread that starts it.
+  posix_spawnattr_t attributes;
+  ::posix_spawnattr_init(&attributes);
+  ::posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGMASK);
+  ::posix_spawnattr_setpgroup(&attributes, 0);
+  sigset_t none;
+  ::sigemptyset(&none);
+  ::posix_spawnattr_setsigmask(&attributes, &none);
+  pid_t pid = 0;
+  // $PATH searched as a shell does; glibc reports a failed exec here (ENOENT, EACCES, ...)
+  const int error = ::posix_spawnp(&pid, argv[0], nullptr, &attributes, argv.data(), envp.data());
+  ::posix_spawnattr_destroy(&attributes);
+  if (error != 0) {
+    throw std::runtime_error("cannot start '" + args.front() + "': " + std::strerror(error));
   }
   pid_ = pid;
   log(

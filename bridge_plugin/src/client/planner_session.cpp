@@ -1,29 +1,12 @@
 #include "nav2_pyif_bridge/client/planner_session.hpp"
 
-#include <utility>
-
 namespace nav2_pyif_bridge::client
 {
 namespace proto = protocol;
 
 proto::Path PlannerSession::create_plan(
-  const proto::PoseStamped & start, const proto::PoseStamped & goal,
-  const std::function<bool()> & cancel_checker)
+  const proto::CreatePlanRequest & request, const std::function<bool()> & cancel_checker)
 {
-  return create_plan(start, goal, std::nullopt, cancel_checker);
-}
-
-proto::Path PlannerSession::create_plan(
-  const proto::PoseStamped & start, const proto::PoseStamped & goal,
-  const std::optional<proto::Path> & viapoints, const std::function<bool()> & cancel_checker)
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex());
-  proto::CreatePlanRequest body;
-  body.start = start;
-  body.goal = goal;
-  if (viapoints && viapoints->pose_count() > 0) {
-    body.viapoints = viapoints;
-  }
   CallOptions options;
   if (cancel_checker) {
     // One cancel_plan per create_plan request (a retry after SessionUnknown is a new one).
@@ -35,8 +18,7 @@ proto::Path PlannerSession::create_plan(
         }
       };
   }
-  auto reply = call(body, options);
-  return std::move(reply.path);
+  return call(request, options).path;
 }
 
 void PlannerSession::send_cancel(std::uint64_t target_seq)

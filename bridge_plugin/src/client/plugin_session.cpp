@@ -137,62 +137,37 @@ void PluginSession::defer_configure()
   state_.established = false;
 }
 
-void PluginSession::activate()
+void PluginSession::activate() {transition(true);}
+void PluginSession::deactivate() {transition(false);}
+
+void PluginSession::transition(bool active)
 {
   std::lock_guard<std::recursive_mutex> lock(mutex_);
-  if (state_.configured && !state_.established) {
-    state_.active = true;  // sent when the session is established
-    if (transport_.hosts_alive()) {
-      try {
+  try {
+    if (state_.configured && !state_.established) {
+      state_.active = active;  // sent when the session is established
+      if (active && transport_.hosts_alive()) {
         establish();
-      } catch (const CallError & error) {
-        if (!error.unreachable()) {
-          throw;
-        }
-        log(logger_, LogLevel::Warn, keys_.prefix() + ": " + error.what());
       }
+      return;
     }
-    return;
-  }
-  try {
-    call(proto::ActivateRequest{}, {});
+    if (active) {
+      call(proto::ActivateRequest{});
+    } else {
+      call(proto::DeactivateRequest{});
+    }
+    state_.active = active;
   } catch (const CallError & error) {
     if (!error.unreachable()) {
       throw;
     }
-    unreachable_transition(error, true);
-    return;
+    state_.active = active;
+    state_.established = false;  // the next call re-establishes, in this state
+    log(
+      logger_, LogLevel::Warn,
+      keys_.prefix() + ": " + error.what() + "; the session is re-established (" +
+      (active ? "active" : "inactive") + ") by the next call");
   }
-  state_.active = true;
-}
-
-void PluginSession::deactivate()
-{
-  std::lock_guard<std::recursive_mutex> lock(mutex_);
-  if (state_.configured && !state_.established) {
-    state_.active = false;
-    return;
-  }
-  try {
-    call(proto::DeactivateRequest{}, {});
-  } catch (const CallError & error) {
-    if (!error.unreachable()) {
-      throw;
-    }
-    unreachable_transition(error, false);
-    return;
-  }
-  state_.active = false;
-}
-
-void PluginSession::unreachable_transition(const CallError & error, bool active)
-{
-  state_.active = active;
-  state_.established = false;  // the next call re-establishes, in this state
-  log(
-    logger_, LogLevel::Warn,
-    keys_.prefix() + ": " + error.what() + "; the session is re-established (" +
-    (active ? "active" : "inactive") + ") by the next call");
 }
 
 void PluginSession::cleanup()

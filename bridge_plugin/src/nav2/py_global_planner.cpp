@@ -51,20 +51,20 @@ nav_msgs::msg::Path PyGlobalPlanner::plan(
       const std::string frame = costmap_ros_->getGlobalFrameID();
       const double tolerance = plugin_.bridge().transform_tolerance();
       const auto tf_error = client::ErrorKind::PlannerTFError;
-      const auto wire_start = ros::to_wire(ros::in_frame(start, frame, *tf_, tolerance, tf_error));
-      const auto wire_goal = ros::to_wire(ros::in_frame(goal, frame, *tf_, tolerance, tf_error));
-      std::optional<protocol::Path> wire_viapoints;
+      protocol::CreatePlanRequest request;
+      request.start = ros::to_wire(ros::in_frame(start, frame, *tf_, tolerance, tf_error));
+      request.goal = ros::to_wire(ros::in_frame(goal, frame, *tf_, tolerance, tf_error));
       if (!viapoints.empty()) {
-        wire_viapoints.emplace();
-        wire_viapoints->frame_id = frame;
-        wire_viapoints->stamp_ns = wire_goal.stamp_ns;
+        request.viapoints.emplace();
+        request.viapoints->frame_id = frame;
+        request.viapoints->stamp_ns = request.goal.stamp_ns;
         for (const geometry_msgs::msg::PoseStamped & viapoint : viapoints) {
-          const auto & pose = ros::to_wire(ros::in_frame(viapoint, frame, *tf_, tolerance, tf_error));
-          wire_viapoints->poses.insert(wire_viapoints->poses.end(), pose.pose.begin(), pose.pose.end());
+          const auto pose = ros::to_wire(ros::in_frame(viapoint, frame, *tf_, tolerance, tf_error));
+          auto & poses = request.viapoints->poses;
+          poses.insert(poses.end(), pose.pose.begin(), pose.pose.end());
         }
       }
-      const protocol::Path path =
-        plugin_.session().create_plan(wire_start, wire_goal, wire_viapoints, cancel_checker);
+      const protocol::Path path = plugin_.session().create_plan(request, cancel_checker);
       return ros::to_ros(path, frame, plugin_.bridge().clock()->now());
     });
 }

@@ -395,16 +395,15 @@ protected:
           return cycle->is_goal_reached(
             *made.goal, robot, goal_check(robot.pose, goal, kVelocity), kTolerances);
         },
-        progress ? std::function<bool()>{[&] {return cycle->check(*made.progress, progress_check(robot));}} :
-        nullptr,
+        progress ? std::function<bool()>{
+          [&] {return cycle->check(*made.progress, progress_check(robot));}} : nullptr,
         [&] {return cycle->compute_velocity_commands(*session, robot, kVelocity, kTolerances);});
       queries += host.received.size() - before;
       const std::vector<double> uncarried = drive(
         goal_last,
         [&] {return plain.goal->call(goal_check(robot.pose, goal, kVelocity)).reached;},
-        progress ?
-        std::function<bool()>{[&] {return plain.progress->call(progress_check(robot)).making_progress;}} :
-        nullptr,
+        progress ? std::function<bool()>{
+          [&] {return plain.progress->call(progress_check(robot)).making_progress;}} : nullptr,
         [&] {return alone.compute_velocity_commands(robot, kVelocity, kTolerances);});
       EXPECT_EQ(carried, uncarried) << "cycle " << step;
     }

@@ -547,6 +547,15 @@ proto::Path straight_path(std::size_t n, double x, double y)
   return path;
 }
 
+proto::CreatePlanRequest plan_request(
+  const proto::PoseStamped & start, const proto::PoseStamped & goal)
+{
+  proto::CreatePlanRequest request;
+  request.start = start;
+  request.goal = goal;
+  return request;
+}
+
 proto::PoseStamped pose_at(double x, double y, const std::string & frame)
 {
   return proto::PoseStamped{frame, 1700000000000000000, {x, y, 0.0, 0.0, 0.0, 0.0, 1.0}};

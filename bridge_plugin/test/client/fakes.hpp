@@ -203,5 +203,8 @@ CallError error_of(Call && call)
 // A straight n-pose path from (0, 0) to (x, y) in frame "odom".
 protocol::Path straight_path(std::size_t n, double x, double y);
 protocol::PoseStamped pose_at(double x, double y, const std::string & frame = "odom");
+// A create_plan request from `start` to `goal`.
+protocol::CreatePlanRequest plan_request(
+  const protocol::PoseStamped & start, const protocol::PoseStamped & goal);
 
 }  // namespace nav2_pyif_bridge::client::test

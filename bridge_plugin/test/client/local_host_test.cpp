@@ -173,13 +173,16 @@ TEST(LocalHost, AMissingProgramIsAClearError)
   }
 }
 
-TEST(LocalHost, HostSeesUnbufferedPython)
+TEST(LocalHost, HostSeesUnbufferedPythonAndThePluginsPid)
 {
   ::setenv("PYTHONUNBUFFERED", "0", 1);  // replaced, not inherited
-  FakeHost fake("echo $PYTHONUNBUFFERED > $DIR/env; exec sleep 60");
+  ::setenv("NAV2_PYIF_PARENT_PID", "1", 1);
+  FakeHost fake("echo $PYTHONUNBUFFERED $NAV2_PYIF_PARENT_PID > $DIR/env; exec sleep 60");
   LocalHost host(fake.spec(), "k", {}, 1s);
   ::unsetenv("PYTHONUNBUFFERED");
-  EXPECT_EQ(fake.written("env"), "1");
+  ::unsetenv("NAV2_PYIF_PARENT_PID");
+  // the keeper binds itself to this process: SIGTERM when it dies (planner-host --respawn)
+  EXPECT_EQ(fake.written("env"), "1 " + std::to_string(::getpid()));
 }
 
 }  // namespace

@@ -53,13 +53,14 @@ TEST_F(PlannerSessionTest, PlansAndSendsTheCostmapOnce)
   auto & s = make();
   const auto configure = std::get<proto::ConfigureRequest>(host.received[0].request.body);
   EXPECT_EQ(configure.plugin_type, "global_planner");
-  const proto::Path plan = s.create_plan(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map"));
+  const proto::Path plan =
+    s.create_plan(plan_request(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map")));
   EXPECT_EQ(plan.pose_count(), 25u);
   EXPECT_EQ(plan.poses[24 * 7], 2.0);
   EXPECT_EQ(plan.poses[24 * 7 + 1], 1.0);
   EXPECT_FALSE(host.last_had_costmap());  // configure delivered it
   costmap.resolution = 0.1;
-  s.create_plan(pose_at(0, 0, "map"), pose_at(1.0, 1.0, "map"));
+  s.create_plan(plan_request(pose_at(0, 0, "map"), pose_at(1.0, 1.0, "map")));
   EXPECT_TRUE(host.last_had_costmap());
 }
 
@@ -69,14 +70,15 @@ TEST_F(PlannerSessionTest, APlanWaitsForARestartingHostWithinItsTimeout)
   host.kill();
   const Duration killed = clock.elapsed();
   clock.at(killed + 2s, [&] {host.start();});  // the host is back 2 s later
-  const proto::Path plan = s.create_plan(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map"));
+  const proto::Path plan =
+    s.create_plan(plan_request(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map")));
   EXPECT_EQ(plan.pose_count(), 25u);
   EXPECT_EQ(clock.elapsed() - killed, Duration{2s});  // waited for it, not a recovery
   EXPECT_EQ(s.state().resyncs, 1u);
 
   host.kill();
   const Duration before = clock.elapsed();
-  const CallError e = error_of([&] {s.create_plan(pose_at(0, 0), pose_at(1, 1));});
+  const CallError e = error_of([&] {s.create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)));});
   EXPECT_EQ(e.cause(), Cause::NoHost);
   EXPECT_EQ(clock.elapsed() - before, Duration{5s});  // no host came: the plan timeout
 }
@@ -85,7 +87,8 @@ TEST_F(PlannerSessionTest, PlannerErrorsAreTyped)
 {
   make();
   set_mode("occupied");
-  const CallError e = error_of([&] {session->create_plan(pose_at(0, 0), pose_at(1, 1));});
+  const CallError e =
+    error_of([&] {session->create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)));});
   EXPECT_EQ(e.kind(), ErrorKind::GoalOccupied);
   EXPECT_EQ(std::string(e.what()), "goal is in a wall");
   EXPECT_EQ(for_api(e.kind(), Nav2Api::Humble), ErrorKind::PlannerException);
@@ -102,29 +105,31 @@ TEST_F(PlannerSessionTest, CancellationIsForwardedOnceAndThePlannerAnswers)
   const CallError e = error_of(
     [&] {
       session->create_plan(
-        pose_at(0, 0), pose_at(1, 1), [&] {++polls; return clock.elapsed() > cancel_at;});
+        plan_request(pose_at(0, 0), pose_at(1, 1)),
+        [&] {++polls; return clock.elapsed() > cancel_at;});
     });
   EXPECT_EQ(e.kind(), ErrorKind::PlannerCancelled);
   EXPECT_LT(clock.elapsed() - started, Duration{2s});  // cancelled, not the planner's 10 s
   EXPECT_GE(polls, 40);                                 // polled every 5 ms
   EXPECT_EQ(session->cancels_sent(), 1u);
   ASSERT_EQ(host.ops_since(sent), (std::vector<std::string>{"create_plan", "cancel_plan"}));
-  const auto & plan_request = host.received[sent].request;
+  const auto & sent_plan = host.received[sent].request;
   const auto & cancel = host.received[sent + 1];
   EXPECT_EQ(cancel.key, std::string(kKey) + "/cancel");
-  EXPECT_EQ(std::get<proto::CancelPlanRequest>(cancel.request.body).target_seq, plan_request.seq);
-  EXPECT_GT(cancel.request.seq, plan_request.seq);  // its own seq
-  EXPECT_EQ(cancel.request.epoch, plan_request.epoch);
+  EXPECT_EQ(std::get<proto::CancelPlanRequest>(cancel.request.body).target_seq, sent_plan.seq);
+  EXPECT_GT(cancel.request.seq, sent_plan.seq);  // its own seq
+  EXPECT_EQ(cancel.request.epoch, sent_plan.epoch);
 
   set_mode("ok");
-  EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(3, 3)).pose_count(), 25u);
+  EXPECT_EQ(session->create_plan(plan_request(pose_at(0, 0), pose_at(3, 3))).pose_count(), 25u);
 }
 
 TEST_F(PlannerSessionTest, ACheckerThatNeverCancelsSendsNothing)
 {
   make();
   host.next_call_time = 50ms;
-  const auto plan = session->create_plan(pose_at(0, 0), pose_at(1, 1), [] {return false;});
+  const auto plan =
+    session->create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)), [] {return false;});
   EXPECT_EQ(plan.pose_count(), 25u);
   EXPECT_EQ(session->cancels_sent(), 0u);
 }
@@ -133,7 +138,8 @@ TEST_F(PlannerSessionTest, TimeoutIsThePlannerExceptionNav2RecoversFrom)
 {
   make();
   host.next_call_time = 6s;
-  const CallError e = error_of([&] {session->create_plan(pose_at(0, 0), pose_at(1, 1));});
+  const CallError e =
+    error_of([&] {session->create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)));});
   EXPECT_EQ(e.kind(), ErrorKind::PlannerException);
   EXPECT_EQ(e.cause(), Cause::TimedOut);
   EXPECT_EQ(
@@ -145,7 +151,8 @@ TEST_F(PlannerSessionTest, NonFinitePlansNeverReachNav2)
 {
   make();
   set_mode("nan");
-  const CallError e = error_of([&] {session->create_plan(pose_at(0, 0), pose_at(1, 1));});
+  const CallError e =
+    error_of([&] {session->create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)));});
   EXPECT_EQ(e.kind(), ErrorKind::NoValidPathCouldBeFound);
   EXPECT_NE(std::string(e.what()).find("pose 0"), std::string::npos) << e.what();
 }
@@ -154,7 +161,8 @@ TEST_F(PlannerSessionTest, NoHostIsTheGenericPlannerException)
 {
   make();
   host.kill();
-  const CallError e = error_of([&] {session->create_plan(pose_at(0, 0), pose_at(1, 1));});
+  const CallError e =
+    error_of([&] {session->create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)));});
   EXPECT_EQ(e.kind(), ErrorKind::PlannerException);
   EXPECT_EQ(e.cause(), Cause::NoHost);
 }
@@ -163,7 +171,7 @@ TEST_F(PlannerSessionTest, HostRestartReestablishes)
 {
   make();
   host.restart();
-  EXPECT_EQ(session->create_plan(pose_at(0, 0), pose_at(1, 1)).pose_count(), 25u);
+  EXPECT_EQ(session->create_plan(plan_request(pose_at(0, 0), pose_at(1, 1))).pose_count(), 25u);
   EXPECT_EQ(session->state().resyncs, 1u);
   EXPECT_EQ(session->state().epoch, 2u);
 }

@@ -364,7 +364,8 @@ private:
       const auto request = progress_check(pose_of(args["pose"]));
       return cycle_ ? cycle_->check(checker, request) : checker.call(request).making_progress;
     } else if (name == "create_plan") {
-      as<PlannerSession>(id).create_plan(pose_of(args["start"]), pose_of(args["goal"]));
+      as<PlannerSession>(id).create_plan(
+        plan_request(pose_of(args["start"]), pose_of(args["goal"])));
     } else if (name == "run") {
       return status_name(
         as<BehaviorSession>(id).run(args["action"], params_of(args["command"]),

@@ -4,8 +4,9 @@ whenever it exits, after a back-off (1 s, doubling to 30 s; back to 1 s after a 
 The Nav2 plugin starts its local host so: the plugin only starts and stops one process, the
 restarts are here. The child stays in the keeper's process group (a signal to the group, as
 the plugin's clean-up sends, reaches both) and gets SIGTERM if the keeper dies (Linux), so a
-killed keeper leaves no host behind. SIGINT, SIGTERM or SIGHUP to the keeper: SIGTERM to the
-child, SIGKILL after a grace, exit 128 + the signal's number.
+killed keeper leaves no host behind; the keeper gets SIGTERM when the plugin that started it
+dies ($NAV2_PYIF_PARENT_PID). SIGINT, SIGTERM or SIGHUP to the keeper: SIGTERM to the child,
+SIGKILL after a grace, exit 128 + the signal's number.
 """
 
 from __future__ import annotations
@@ -23,6 +24,8 @@ from nav2_pyif.common.signals import Interrupted, deferred, raise_on_signals
 
 log = logging.getLogger("nav2_pyif.server.respawn")
 PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
+#: Set by the Nav2 plugin that starts a local host: its process id.
+PARENT_ENV = "NAV2_PYIF_PARENT_PID"
 
 
 def _die_with(parent: int) -> Callable[[], None]:
@@ -36,6 +39,14 @@ def _die_with(parent: int) -> Callable[[], None]:
             os._exit(1)
 
     return preexec
+
+
+def _bind_to_starter() -> None:
+    """SIGTERM to this keeper when the process named by $NAV2_PYIF_PARENT_PID (the Nav2 plugin
+    that started it) dies, and an exit now if it is gone already (Linux)."""
+    parent = os.environ.pop(PARENT_ENV, "")
+    if parent.isdigit() and sys.platform == "linux":
+        _die_with(int(parent))()
 
 
 def describe(returncode: int) -> str:
@@ -73,6 +84,7 @@ def keep(
     """Run ``command`` until a terminating signal, restarting it whenever it exits; returns
     the signal's exit code."""
     raise_on_signals()
+    _bind_to_starter()
     preexec = _die_with(os.getpid()) if sys.platform == "linux" else None
     delay, child = first_delay, None
     try:

@@ -34,9 +34,10 @@ std::vector<std::string> local_host_arguments(
   const BridgeParameters & spec, const std::string & key, const std::string & listen_endpoint);
 
 // A planner host started for one plugin: picks a loopback port and runs
-// local_host_arguments() in a process group of its own, with PYTHONUNBUFFERED=1 and SIGTERM
-// when the thread that started it dies (Linux), so a crashed Nav2 leaves no planner host
-// behind. The plugin connects to endpoint() and uses key().
+// local_host_arguments() in a process group of its own, with PYTHONUNBUFFERED=1 and
+// NAV2_PYIF_PARENT_PID, by which the keeper gets SIGTERM when the thread that started it dies
+// (Linux), so a crashed Nav2 leaves no planner host behind. The plugin connects to endpoint()
+// and uses key().
 class LocalHost
 {
 public:

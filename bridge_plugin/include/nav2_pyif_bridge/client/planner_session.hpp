@@ -15,17 +15,13 @@ class PlannerSession : public KindSession<PluginKind::GlobalPlanner>
 public:
   using KindSession::KindSession;
 
-  // start, goal in the costmap's global frame -> the plan (every value finite, else
-  // NoValidPathCouldBeFound). While waiting, `cancel_checker` (when set) is polled about every
-  // 5 ms; once it returns true, one cancel_plan goes to P/cancel and the wait goes on for the
-  // planner's answer (PlannerCancelled when it honours it).
+  // The plan from `request`'s start, goal and (Lyrical) viapoints, in the costmap's global
+  // frame; every value finite, else NoValidPathCouldBeFound. While waiting, `cancel_checker`
+  // (when set) is polled about every 5 ms; once it returns true, one cancel_plan goes to
+  // P/cancel and the wait goes on for the planner's answer (PlannerCancelled when it honours
+  // it).
   protocol::Path create_plan(
-    const protocol::PoseStamped & start, const protocol::PoseStamped & goal,
-    const std::function<bool()> & cancel_checker = {});
-  // The same through `viapoints` (Lyrical; same frame), none when std::nullopt or empty.
-  protocol::Path create_plan(
-    const protocol::PoseStamped & start, const protocol::PoseStamped & goal,
-    const std::optional<protocol::Path> & viapoints, const std::function<bool()> & cancel_checker);
+    const protocol::CreatePlanRequest & request, const std::function<bool()> & cancel_checker = {});
 
   // cancel_plan requests sent so far.
   std::uint64_t cancels_sent() const;

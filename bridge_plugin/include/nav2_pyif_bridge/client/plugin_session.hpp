@@ -192,7 +192,8 @@ protected:
 private:
   protocol::Params configure_locked();
   void establish();
-  void unreachable_transition(const CallError & error, bool active);
+  // activate (true) or deactivate; with no host, only the state the next call sends.
+  void transition(bool active);
   void reestablish(const std::string & host);
   void pin_host();
   bool fail_over(const std::optional<std::string> & avoid);
