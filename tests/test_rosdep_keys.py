@@ -84,7 +84,16 @@ STD_HEADERS = {
     "typeinfo", "unordered_map", "unordered_set", "utility", "valarray", "variant", "vector",
 }
 # fmt: on
-LIBC_HEADERS = {"unistd.h", "signal.h", "fcntl.h", "errno.h", "poll.h", "pthread.h", "netdb.h"}
+LIBC_HEADERS = {
+    "unistd.h",
+    "signal.h",
+    "spawn.h",
+    "fcntl.h",
+    "errno.h",
+    "poll.h",
+    "pthread.h",
+    "netdb.h",
+}
 LIBC_DIRS = ("sys/", "netinet/", "arpa/")
 
 _INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]+)[>"]', re.M)
