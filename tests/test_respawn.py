@@ -4,7 +4,9 @@ processes (a shell stands in for the host; one test runs the real command)."""
 
 from __future__ import annotations
 
+import contextlib
 import json
+import os
 import re
 import shlex
 import signal
@@ -104,12 +106,17 @@ def test_a_keeper_ends_with_the_plugin_that_started_it(tmp_path: Path) -> None:
     starter = Command(
         tmp_path, "sh", "-c", f"cd {tmp_path}; NAV2_PYIF_PARENT_PID=$$ {shlex.join(kept)} & wait"
     )
-    host = host_pid(tmp_path, starter)
-    tree = process_tree(starter.proc.pid)
-    assert host in tree and len(tree) == 2, tree  # the keeper and the host
-    starter.proc.kill()
-    starter.proc.wait(10)
-    assert wait_until(lambda: not survivors(tree), 10), survivors(tree)
+    try:
+        host = host_pid(tmp_path, starter)
+        tree = process_tree(starter.proc.pid)
+        assert host in tree and len(tree) == 2, tree  # the keeper and the host
+        starter.proc.kill()
+        starter.proc.wait(10)
+        assert wait_until(lambda: not survivors(tree), 10), survivors(tree)
+    finally:  # whatever a failure left: the starter's group holds the keeper and the host
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(starter.proc.pid, signal.SIGKILL)
+        starter.proc.wait(10)
 
 
 def test_a_keeper_whose_plugin_is_gone_already_starts_nothing(tmp_path: Path) -> None:
