@@ -10,6 +10,7 @@ import os
 import re
 import shlex
 import signal
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -30,11 +31,14 @@ KEEPER = (
 FAST = {"first_delay": 0.1, "max_delay": 0.4, "stable_after": 1.0, "grace": 0.5}
 
 
+def keeper_argv(script: str, **timings: float) -> list[str]:
+    """The command line of a keeper of ``sh -c script``, with FAST's timings or these."""
+    return [sys.executable, "-c", KEEPER, json.dumps({**FAST, **timings}), "sh", "-c", script]
+
+
 def keeper(tmp_path: Path, script: str, **timings: float) -> Command:
-    """A keeper of ``sh -c script`` run in ``tmp_path``, with FAST's timings or these."""
-    options = json.dumps({**FAST, **timings})
-    script = f"cd {tmp_path}; {script}"
-    return Command(tmp_path, sys.executable, "-c", KEEPER, options, "sh", "-c", script)
+    """A keeper of ``sh -c script`` run in ``tmp_path``."""
+    return Command(tmp_path, *keeper_argv(f"cd {tmp_path}; {script}", **timings))
 
 
 def delays(text: str) -> list[str]:
@@ -94,15 +98,7 @@ def test_a_killed_keeper_leaves_no_host(tmp_path: Path) -> None:
 def test_a_keeper_ends_with_the_plugin_that_started_it(tmp_path: Path) -> None:
     """The Nav2 plugin names itself in NAV2_PYIF_PARENT_PID: a killed Nav2 (here a shell
     killed with SIGKILL, which can clean nothing up) leaves neither keeper nor host."""
-    kept = [
-        sys.executable,
-        "-c",
-        KEEPER,
-        json.dumps(FAST),
-        "sh",
-        "-c",
-        "echo $$ > pid; exec sleep 60",
-    ]
+    kept = keeper_argv("echo $$ > pid; exec sleep 60")
     starter = Command(
         tmp_path, "sh", "-c", f"cd {tmp_path}; NAV2_PYIF_PARENT_PID=$$ {shlex.join(kept)} & wait"
     )
@@ -120,21 +116,14 @@ def test_a_keeper_ends_with_the_plugin_that_started_it(tmp_path: Path) -> None:
 
 
 def test_a_keeper_whose_plugin_is_gone_already_starts_nothing(tmp_path: Path) -> None:
-    kept = keeper(tmp_path, "echo $$ > pid; exec sleep 60")
-    kept.proc.kill()
-    kept.proc.wait(10)
+    gone = subprocess.Popen(["true"])  # a process id that no longer runs
+    gone.wait()
     (tmp_path / "orphan").mkdir()
     orphan = Command(
         tmp_path / "orphan",
         "env",
-        f"NAV2_PYIF_PARENT_PID={kept.proc.pid}",  # not this keeper's parent: gone
-        sys.executable,
-        "-c",
-        KEEPER,
-        json.dumps(FAST),
-        "sh",
-        "-c",
-        "echo started > started; exec sleep 60",
+        f"NAV2_PYIF_PARENT_PID={gone.pid}",  # not this keeper's parent: gone
+        *keeper_argv(f"cd {tmp_path / 'orphan'}; echo started > started; exec sleep 60"),
     )
     assert orphan.proc.wait(10) == 1, orphan.text()
     assert not (tmp_path / "orphan" / "started").exists()
