@@ -178,7 +178,7 @@ bool CarriedCycle::is_goal_reached(
   }
   std::lock_guard<std::mutex> lock(mutex_);
   goal_ = request.goal;  // what a command's query may carry next, until the checker is reset
-  goal_seq_ = checker.state().last_seq;
+  goal_seq_ = checker.last_seq();
   return *reached;
 }
 
@@ -249,12 +249,8 @@ proto::TwistStamped CarriedCycle::compute_velocity_commands(
     goal_check_.reset();
     // Goal last: the goal check for the goal its checker was last given, unless it was
     // reset since (controller_server resets it with every new plan)
-    if (goal_last_ && goal_ && goal_checker_ != nullptr &&
-      goal_checker_->state().last_seq == goal_seq_)
-    {
-      if (auto carried =
-        goal_checker_->prepare(client::goal_check(pose.pose, *goal_, velocity)))
-      {
+    if (goal_last_ && goal_ && goal_checker_ != nullptr && goal_checker_->last_seq() == goal_seq_) {
+      if (auto carried = goal_checker_->prepare(client::goal_check(pose.pose, *goal_, velocity))) {
         goal_check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
         add(carry, goal_check, *goal_checker_, goal_check->prepared);
       }

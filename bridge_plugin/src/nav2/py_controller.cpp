@@ -65,7 +65,7 @@ void PyController::sync_debug_publishers()
   if (!node || !plugin_.started()) {
     return;
   }
-  const protocol::StringMap declared = session().state().debug_outputs;
+  const protocol::StringMap declared = session().debug_outputs();
   std::vector<std::string> wanted;
   for (const auto & [output, type] : declared) {
     auto found = debug_publishers_.find(output);

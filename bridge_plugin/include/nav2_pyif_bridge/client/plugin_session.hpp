@@ -162,6 +162,18 @@ public:
   PluginKind kind() const noexcept {return config_.kind;}
   const std::string & sid() const noexcept {return sid_;}
   SessionState state() const;
+  // The two reads of the control cycle (state() copies every string): the seq last sent, and
+  // the debug outputs the served planner declares.
+  std::uint64_t last_seq() const
+  {
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
+    return state_.last_seq;
+  }
+  protocol::StringMap debug_outputs() const
+  {
+    std::lock_guard<std::recursive_mutex> lock(mutex_);
+    return state_.debug_outputs;
+  }
   protocol::Params params() const;
   Timeouts timeouts() const;
   void set_timeouts(const Timeouts & timeouts);
