@@ -53,7 +53,7 @@ public:
   PluginBridge & operator=(const PluginBridge &) = delete;
 
   // The parts a session is made of (the plugin creates its typed session with them).
-  client::SessionConfig session_config() const;
+  const client::SessionConfig & session_config() const noexcept {return config_;}
   client::Transport & transport() {return *transport_;}
   client::CostmapSource & costmap() {return *costmap_source_;}
   client::Logger logger() const;
@@ -86,7 +86,7 @@ public:
       call();
     } catch (const client::CallError & error) {
       RCLCPP_ERROR(
-        logger_, "%s: %s failed: %s", name_.c_str(), transition, error.log_text().c_str());
+        logger_, "%s: %s failed: %s", config_.name.c_str(), transition, error.log_text().c_str());
     }
   }
 
@@ -101,20 +101,15 @@ private:
   void declare_planner_parameters(const protocol::Params & declared);
 
   rclcpp_lifecycle::LifecycleNode::WeakPtr node_;
-  std::string name_;
-  std::string node_name_;
-  client::PluginKind kind_;
   rclcpp::Logger logger_;
   rclcpp::Clock::SharedPtr clock_;
-  std::string global_frame_;
-  std::string robot_base_frame_;
   double transform_tolerance_{0.1};
 
   client::BridgeParameters settings_;
   std::vector<client::InputSpec> inputs_;
-  protocol::Params forwarded_;
-  protocol::Params nav2_params_;  // configure's nav2_params: Nav2's, outside our namespace
-  std::string key_;
+  // The session's: the plugin's name, node and frames, the forwarded parameters, the key, and
+  // configure's nav2_params (Nav2's own, outside the plugin's namespace)
+  client::SessionConfig config_;
   std::unique_ptr<client::LocalHost> local_host_;
   std::unique_ptr<ZenohTransport> transport_;
   std::unique_ptr<client::CostmapSource> costmap_source_;

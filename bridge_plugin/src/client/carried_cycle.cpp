@@ -58,18 +58,6 @@ void CarriedCycle::forget(const PluginSession & session)
 namespace
 {
 
-// The pending call prepared for `session`, taken out of `slot` (which is emptied either way:
-// a call prepared for another session is not coming).
-template<class Pending>
-std::optional<Pending> take_for(std::optional<Pending> & slot, const PluginSession & session)
-{
-  std::optional<Pending> pending = std::exchange(slot, std::nullopt);
-  if (pending && pending->session != &session) {
-    pending.reset();
-  }
-  return pending;
-}
-
 // `body` carrying `carry`, when there is any.
 template<class Request>
 Request carrying(Request body, CarriedCalls carry)
@@ -80,21 +68,32 @@ Request carrying(Request body, CarriedCalls carry)
   return body;
 }
 
-template<class Prepared>
-void add(
-  CarriedCalls & carry, std::optional<Prepared> & pending, const PluginSession & session,
-  const Carried & carried)
-{
-  carry.push_back(proto::CarriedCall{session.keys().prefix(), carried.payload});
-  pending->session = &session;
-}
-
 }  // namespace
 
-template<class Prepared>
+std::optional<CarriedCycle::Pending> CarriedCycle::take_for(
+  std::optional<Pending> & slot, const PluginSession & session)
+{
+  // (emptied either way: a call prepared for another session is not coming)
+  std::optional<Pending> pending = std::exchange(slot, std::nullopt);
+  if (pending && pending->session != &session) {
+    pending.reset();
+  }
+  return pending;
+}
+
+std::optional<CarriedCycle::Pending> CarriedCycle::add(
+  CarriedCalls & carry, const PluginSession & session, std::optional<Carried> prepared)
+{
+  if (!prepared) {
+    return std::nullopt;
+  }
+  carry.push_back(proto::CarriedCall{session.keys().prefix(), prepared->payload});
+  return Pending{&session, std::move(*prepared), std::nullopt};
+}
+
 void CarriedCycle::keep(
-  std::optional<Pending<Prepared>> & slot, std::optional<Pending<Prepared>> pending,
-  CarriedCalls & replies, std::size_t & next, const PluginSession * current)
+  std::optional<Pending> & slot, std::optional<Pending> pending, CarriedCalls & replies,
+  std::size_t & next, const PluginSession * current)
 {
   if (!pending) {
     return;
@@ -128,7 +127,7 @@ bool CarriedCycle::is_goal_reached(
   const std::optional<proto::GoalChecker> & tolerances)
 {
   const std::array<double, 6> & velocity = request.velocity;
-  std::optional<Pending<Carried>> mine;
+  std::optional<Pending> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     last_goal_check_ = Seen{request.pose, velocity};
@@ -144,8 +143,8 @@ bool CarriedCycle::is_goal_reached(
     count(reached.has_value());
   }
   if (!reached) {
-    std::optional<Pending<Carried>> check;
-    std::optional<Pending<PreparedCommand>> compute;
+    std::optional<Pending> check;
+    std::optional<Pending> compute;
     CarriedCalls carry;
     {
       std::lock_guard<std::mutex> lock(mutex_);
@@ -154,16 +153,12 @@ bool CarriedCycle::is_goal_reached(
       if (!goal_last_ && robot) {
         command_inputs_ = CommandInputs{*robot, velocity, tolerances};
         if (progress_checker_ != nullptr) {
-          if (auto carried = progress_checker_->prepare(progress_check(*robot))) {
-            check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
-            add(carry, check, *progress_checker_, check->prepared);
-          }
+          check =
+            add(carry, *progress_checker_, progress_checker_->prepare(progress_check(*robot)));
         }
         if (controller_ != nullptr) {
-          if (auto prepared = controller_->prepare_command(*robot, velocity, tolerances)) {
-            compute = Pending<PreparedCommand>{nullptr, std::move(*prepared), std::nullopt};
-            add(carry, compute, *controller_, compute->prepared.carried);
-          }
+          compute =
+            add(carry, *controller_, controller_->prepare_command(*robot, velocity, tolerances));
         }
       }
       ++queries_;
@@ -185,7 +180,7 @@ bool CarriedCycle::is_goal_reached(
 bool CarriedCycle::check(ProgressCheckerSession & session, const proto::CheckRequest & request)
 {
   const proto::PoseStamped & pose = request.pose;
-  std::optional<Pending<Carried>> mine;
+  std::optional<Pending> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     mine = take_for(check_, session);
@@ -198,7 +193,7 @@ bool CarriedCycle::check(ProgressCheckerSession & session, const proto::CheckReq
       return carried->making_progress;
     }
   }
-  std::optional<Pending<PreparedCommand>> compute;
+  std::optional<Pending> compute;
   CarriedCalls carry;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -206,11 +201,9 @@ bool CarriedCycle::check(ProgressCheckerSession & session, const proto::CheckReq
     // Goal first, TF moved on since the goal check: the command prepared for it will not fit
     if (!goal_last_ && inputs && controller_ != nullptr && !same_pose(inputs->pose, pose)) {
       compute_.reset();
-      if (auto prepared = controller_->prepare_command(pose, inputs->velocity, inputs->tolerances))
-      {
-        compute = Pending<PreparedCommand>{nullptr, std::move(*prepared), std::nullopt};
-        add(carry, compute, *controller_, compute->prepared.carried);
-      }
+      compute = add(
+        carry, *controller_,
+        controller_->prepare_command(pose, inputs->velocity, inputs->tolerances));
     }
     ++queries_;
   }
@@ -226,7 +219,7 @@ proto::TwistStamped CarriedCycle::compute_velocity_commands(
   ControllerSession & session, const proto::PoseStamped & pose,
   const std::array<double, 6> & velocity, const std::optional<proto::GoalChecker> & goal_checker)
 {
-  std::optional<Pending<PreparedCommand>> mine;
+  std::optional<Pending> mine;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     command_inputs_.reset();
@@ -242,7 +235,7 @@ proto::TwistStamped CarriedCycle::compute_velocity_commands(
       return std::move(*carried);
     }
   }
-  std::optional<Pending<Carried>> goal_check;
+  std::optional<Pending> goal_check;
   CarriedCalls carry;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -250,10 +243,8 @@ proto::TwistStamped CarriedCycle::compute_velocity_commands(
     // Goal last: the goal check for the goal its checker was last given, unless it was
     // reset since (controller_server resets it with every new plan)
     if (goal_last_ && goal_ && goal_checker_ != nullptr && goal_checker_->last_seq() == goal_seq_) {
-      if (auto carried = goal_checker_->prepare(client::goal_check(pose.pose, *goal_, velocity))) {
-        goal_check = Pending<Carried>{nullptr, std::move(*carried), std::nullopt};
-        add(carry, goal_check, *goal_checker_, goal_check->prepared);
-      }
+      const auto request = client::goal_check(pose.pose, *goal_, velocity);
+      goal_check = add(carry, *goal_checker_, goal_checker_->prepare(request));
     }
     ++queries_;
   }

@@ -88,7 +88,7 @@ CommandReplies ControllerSession::compute_velocity_commands(
   return {command_of(std::move(reply), attached), std::move(carried)};
 }
 
-std::optional<PreparedCommand> ControllerSession::prepare_command(
+std::optional<Carried> ControllerSession::prepare_command(
   const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
   const std::optional<proto::GoalChecker> & goal_checker)
 {
@@ -96,17 +96,12 @@ std::optional<PreparedCommand> ControllerSession::prepare_command(
   if (plan_owed_ || follows_cycle_plan_) {
     return std::nullopt;  // it would run on the host's old plan
   }
-  PreparedCommand prepared;
-  auto carried = prepare(command_body(pose, velocity, goal_checker, prepared.attached));
-  if (!carried) {
-    return std::nullopt;
-  }
-  prepared.carried = std::move(*carried);
-  return prepared;
+  Attached attached;  // acknowledged by take_command, which attaches the same
+  return prepare(command_body(pose, velocity, goal_checker, attached));
 }
 
 std::optional<proto::TwistStamped> ControllerSession::take_command(
-  PreparedCommand prepared, const std::optional<proto::Bytes> & reply,
+  Carried prepared, const std::optional<proto::Bytes> & reply,
   const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
   const std::optional<proto::GoalChecker> & goal_checker)
 {
@@ -114,13 +109,14 @@ std::optional<proto::TwistStamped> ControllerSession::take_command(
   if (plan_owed_) {
     return std::nullopt;  // set_plan sent nothing (no host): the plan is news to the host too
   }
+  // Taken only when it encodes to the prepared bytes: the same plan, goal and inputs attached
   Attached attached;
-  auto body = take(
-    std::move(prepared.carried), reply, command_body(pose, velocity, goal_checker, attached));
+  auto body =
+    take(std::move(prepared), reply, command_body(pose, velocity, goal_checker, attached));
   if (!body) {
     return std::nullopt;
   }
-  return command_of(std::move(*body), prepared.attached);
+  return command_of(std::move(*body), attached);
 }
 
 proto::ComputeVelocityCommandsRequest ControllerSession::command_body(

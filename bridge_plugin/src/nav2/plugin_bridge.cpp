@@ -53,40 +53,45 @@ proto::Params read_parameters(rclcpp_lifecycle::LifecycleNode & node, const std:
 PluginBridge::PluginBridge(
   const rclcpp_lifecycle::LifecycleNode::SharedPtr & node, const std::string & name,
   client::PluginKind kind, CostmapBinding costmap)
-: node_(node), name_(name), node_name_(node->get_name()), kind_(kind),
-  logger_(node->get_logger().get_child(name)), clock_(node->get_clock()),
-  global_frame_(std::move(costmap.global_frame)),
-  robot_base_frame_(std::move(costmap.robot_base_frame)),
-  transform_tolerance_(costmap.transform_tolerance),
-  nav2_params_(std::move(costmap.inflation)),
-  costmap_source_(std::move(costmap.source))
+: node_(node), logger_(node->get_logger().get_child(name)), clock_(node->get_clock()),
+  transform_tolerance_(costmap.transform_tolerance), costmap_source_(std::move(costmap.source))
 {
+  config_.kind = kind;
+  config_.name = name;
+  config_.node = node->get_name();
+  config_.nav2_params = std::move(costmap.inflation);
+  config_.global_frame = std::move(costmap.global_frame);
+  config_.robot_base_frame = std::move(costmap.robot_base_frame);
   // The controller server's rate: a controller's control period (an MPC's time step).
   if (node->has_parameter("controller_frequency")) {
     if (auto hz = ros::to_wire(node->get_parameter("controller_frequency").get_parameter_value())) {
-      nav2_params_.set("controller_frequency", std::move(*hz));
+      config_.nav2_params.set("controller_frequency", std::move(*hz));
     }
   }
   try {
     client::PluginParameters parameters = client::split_parameters(read_parameters(*node, name));
     settings_ = std::move(parameters.settings);
     inputs_ = std::move(parameters.inputs);
-    forwarded_ = std::move(parameters.forwarded);
-    key_ = settings_.key.empty() ? client::local_host_key(node_name_, name_) : settings_.key;
+    config_.params = std::move(parameters.forwarded);
+    config_.timeouts = settings_.timeouts;
+    config_.key_prefix =
+      settings_.key.empty() ? client::local_host_key(config_.node, name) : settings_.key;
     ZenohOptions zenoh{settings_.zenoh_config, settings_.zenoh_connect};
     if (client::starts_local_host(settings_)) {
-      local_host_ = std::make_unique<client::LocalHost>(settings_, key_, logger());
+      local_host_ = std::make_unique<client::LocalHost>(settings_, config_.key_prefix, logger());
       zenoh = ZenohOptions{"", {local_host_->endpoint()}};
     }
-    transport_ = std::make_unique<ZenohTransport>(zenoh, client::KeySpace(key_), logger());
+    transport_ =
+      std::make_unique<ZenohTransport>(zenoh, client::KeySpace(config_.key_prefix), logger());
   } catch (const std::exception & error) {
-    RCLCPP_FATAL(logger_, "%s: %s", name_.c_str(), error.what());
+    RCLCPP_FATAL(logger_, "%s: %s", config_.name.c_str(), error.what());
     throw_nav2_exception(
-      kind_, client::for_api(client::invalid_error(kind_), kNav2Api), name_ + ": " + error.what());
+      config_.kind, client::for_api(client::invalid_error(config_.kind), kNav2Api),
+      config_.name + ": " + error.what());
   }
   RCLCPP_INFO(
-    logger_, "%s: Python planner on Zenoh key %s (%s, %s%s)", name_.c_str(), key_.c_str(),
-    zenoh_backend(), transport_->where().c_str(),
+    logger_, "%s: Python planner on Zenoh key %s (%s, %s%s)", config_.name.c_str(),
+    config_.key_prefix.c_str(), zenoh_backend(), transport_->where().c_str(),
     local_host_ ? ", local planner-host started by this plugin" : "");
 }
 
@@ -95,21 +100,6 @@ PluginBridge::~PluginBridge()
   parameter_callback_.reset();
   transport_.reset();
   local_host_.reset();  // stops the process
-}
-
-client::SessionConfig PluginBridge::session_config() const
-{
-  client::SessionConfig config;
-  config.kind = kind_;
-  config.key_prefix = key_;
-  config.name = name_;
-  config.node = node_name_;
-  config.params = forwarded_;
-  config.nav2_params = nav2_params_;
-  config.global_frame = global_frame_;
-  config.robot_base_frame = robot_base_frame_;
-  config.timeouts = settings_.timeouts;
-  return config;
 }
 
 client::Logger PluginBridge::logger() const
@@ -132,15 +122,15 @@ void PluginBridge::configure(client::PluginSession & session)
   if (!session.wait_for_host(wait)) {
     RCLCPP_WARN(
       logger_, "%s: no planner host on %s after %.1f s; configure deferred to the first call "
-      "(start one: planner-host --key %s ...)", name_.c_str(), key_.c_str(),
-      std::chrono::duration<double>(wait).count(), key_.c_str());
+      "(start one: planner-host --key %s ...)", config_.name.c_str(), config_.key_prefix.c_str(),
+      std::chrono::duration<double>(wait).count(), config_.key_prefix.c_str());
     session.defer_configure();
   } else {
     try {
       const proto::Params declared = session.configure();
       const client::SessionState state = session.state();
       RCLCPP_INFO(
-        logger_, "%s: configured on host %s (session %s)%s%s", name_.c_str(),
+        logger_, "%s: configured on host %s (session %s)%s%s", config_.name.c_str(),
         state.last_host.c_str(), session.sid().substr(0, 8).c_str(),
         state.served.empty() ? "" : ", serving ", state.served.c_str());
       declare_planner_parameters(declared);
@@ -149,7 +139,8 @@ void PluginBridge::configure(client::PluginSession & session)
         fail(error);
       }
       RCLCPP_WARN(
-        logger_, "%s: %s; configure deferred to the first call", name_.c_str(), error.what());
+        logger_, "%s: %s; configure deferred to the first call", config_.name.c_str(),
+        error.what());
       session.defer_configure();
     }
   }
@@ -168,7 +159,7 @@ void PluginBridge::cleanup(client::PluginSession & session) noexcept
   try {
     session.cleanup();
   } catch (const std::exception & error) {
-    RCLCPP_WARN(logger_, "%s: cleanup: %s", name_.c_str(), error.what());
+    RCLCPP_WARN(logger_, "%s: cleanup: %s", config_.name.c_str(), error.what());
   }
   session_ = nullptr;
 }
@@ -181,7 +172,7 @@ void PluginBridge::declare_planner_parameters(const proto::Params & declared)
   }
   declaring_ = true;
   for (const auto & [name, value] : declared) {
-    const std::string full_name = name_ + "." + name;
+    const std::string full_name = config_.name + "." + name;
     try {
       if (!node->has_parameter(full_name)) {
         node->declare_parameter(full_name, ros::to_ros(value), dynamically_typed());
@@ -209,7 +200,7 @@ rcl_interfaces::msg::SetParametersResult PluginBridge::on_parameters(
       problems += (problems.empty() ? "" : "; ") + text;
     };
   for (const auto & parameter : parameters) {
-    const auto name = client::plugin_parameter_name(parameter.get_name(), name_);
+    const auto name = client::plugin_parameter_name(parameter.get_name(), config_.name);
     if (!name) {
       continue;
     }
@@ -256,11 +247,11 @@ rcl_interfaces::msg::SetParametersResult PluginBridge::on_parameters(
 void PluginBridge::fail(const CallError & error) const
 {
   if (!error.remote().traceback.empty()) {
-    RCLCPP_ERROR(logger_, "%s: %s", name_.c_str(), error.log_text().c_str());
+    RCLCPP_ERROR(logger_, "%s: %s", config_.name.c_str(), error.log_text().c_str());
   } else {
-    RCLCPP_DEBUG(logger_, "%s: %s", name_.c_str(), error.what());
+    RCLCPP_DEBUG(logger_, "%s: %s", config_.name.c_str(), error.what());
   }
-  throw_nav2_exception(kind_, client::for_api(error.kind(), kNav2Api), error.what());
+  throw_nav2_exception(config_.kind, client::for_api(error.kind(), kNav2Api), error.what());
 }
 
 }  // namespace nav2_pyif_bridge

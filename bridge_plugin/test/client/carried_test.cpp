@@ -77,7 +77,7 @@ protected:
     return made;
   }
 
-  PreparedCommand prepare()
+  Carried prepare()
   {
     auto prepared = session->prepare_command(pose_at(1.0, 1.0), kVelocity, kTolerances);
     EXPECT_TRUE(prepared.has_value());
@@ -93,8 +93,8 @@ protected:
 
 TEST_F(CarriedTest, ThePreparedCommandIsUsedWhenNav2CallsWithTheSameInputs)
 {
-  const PreparedCommand prepared = prepare();
-  const auto reply = run(prepared.carried);
+  const Carried prepared = prepare();
+  const auto reply = run(prepared);
   const std::size_t queries = host.received.size();
   const auto cmd =
     session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
@@ -105,7 +105,40 @@ TEST_F(CarriedTest, ThePreparedCommandIsUsedWhenNav2CallsWithTheSameInputs)
   // the costmap it carried counts as delivered: the next cycle sends none
   session->compute_velocity_commands(pose_at(1.0, 1.0), kVelocity, kTolerances);
   EXPECT_FALSE(host.last_had_costmap());
-  EXPECT_GT(host.last().seq, prepared.carried.request.seq);
+  EXPECT_GT(host.last().seq, prepared.request.seq);
+}
+
+// The inputs attached: those of the last request the host got, when it was a command.
+std::vector<std::string> inputs_sent(const FakeHost & host)
+{
+  std::vector<std::string> names;
+  const auto & body = std::get<proto::ComputeVelocityCommandsRequest>(host.last().body);
+  for (const auto & input : body.inputs.value_or(std::vector<proto::Input>{})) {
+    names.push_back(input.name + "@" + std::to_string(input.stamp_ns));
+  }
+  return names;
+}
+
+TEST_F(CarriedTest, TheInputsACarriedCommandTookAreAcknowledgedANewerOneIsNot)
+{
+  session->set_input(proto::Input{"scan", "sensor_msgs/msg/LaserScan", 1, {0, 1, 0, 0, 7}});
+  Carried prepared = prepare();
+  auto reply = run(prepared);
+  EXPECT_EQ(inputs_sent(host), (std::vector<std::string>{"scan@1"}));
+  ASSERT_TRUE(session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
+  session->compute_velocity_commands(pose_at(1.0, 1.0), kVelocity, kTolerances);
+  EXPECT_EQ(inputs_sent(host), std::vector<std::string>{});  // the host has it
+
+  // a scan that arrives between the prepared command and Nav2's: the call goes on its own,
+  // with it
+  prepared = prepare();
+  reply = run(prepared);
+  session->set_input(proto::Input{"scan", "sensor_msgs/msg/LaserScan", 2, {0, 1, 0, 0, 8}});
+  EXPECT_FALSE(session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
+  session->compute_velocity_commands(pose_at(1.0, 1.0), kVelocity, kTolerances);
+  EXPECT_EQ(inputs_sent(host), (std::vector<std::string>{"scan@2"}));
+  session->compute_velocity_commands(pose_at(1.0, 1.0), kVelocity, kTolerances);
+  EXPECT_EQ(inputs_sent(host), std::vector<std::string>{});
 }
 
 TEST_F(CarriedTest, AnyOtherInputMakesTheCallGoOnItsOwn)
@@ -124,22 +157,22 @@ TEST_F(CarriedTest, AnyOtherInputMakesTheCallGoOnItsOwn)
       std::tuple{pose_at(1.0, 1.0), kVelocity, std::optional{looser}},
       std::tuple{pose_at(1.0, 1.0), kVelocity, std::optional<proto::GoalChecker>{}}})
   {
-    const PreparedCommand prepared = prepare();
-    EXPECT_FALSE(session->take_command(prepared, run(prepared.carried), pose, velocity,
+    const Carried prepared = prepare();
+    EXPECT_FALSE(session->take_command(prepared, run(prepared), pose, velocity,
       tolerances).has_value());
   }
 }
 
 TEST_F(CarriedTest, ACostmapOrPlanChangedSinceMakesTheCallGoOnItsOwn)
 {
-  PreparedCommand prepared = prepare();
-  auto reply = run(prepared.carried);
+  Carried prepared = prepare();
+  auto reply = run(prepared);
   costmap.data[5] = 99;
   EXPECT_FALSE(
     session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
 
   prepared = prepare();
-  reply = run(prepared.carried);
+  reply = run(prepared);
   session->set_plan(straight_path(10, 1.0, 0.0));  // localisation moved the plan's frame
   EXPECT_FALSE(
     session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances));
@@ -147,26 +180,26 @@ TEST_F(CarriedTest, ACostmapOrPlanChangedSinceMakesTheCallGoOnItsOwn)
 
 TEST_F(CarriedTest, NoReplyUnavailableOrSessionUnknownMakeTheCallGoOnItsOwn)
 {
-  PreparedCommand prepared = prepare();
+  Carried prepared = prepare();
   EXPECT_FALSE(session->take_command(
     prepared, std::nullopt, pose_at(1.0, 1.0), kVelocity, kTolerances));  // did not run
 
   prepared = prepare();
   host.restart();  // the new host knows no session
   EXPECT_FALSE(session->take_command(
-    prepared, run(prepared.carried), pose_at(1.0, 1.0), kVelocity, kTolerances));
+    prepared, run(prepared), pose_at(1.0, 1.0), kVelocity, kTolerances));
 
   prepared = prepare();
   host.error_once = proto::Error{"Unavailable", "restarting", "", ""};
   EXPECT_FALSE(session->take_command(
-    prepared, run(prepared.carried), pose_at(1.0, 1.0), kVelocity, kTolerances));
+    prepared, run(prepared), pose_at(1.0, 1.0), kVelocity, kTolerances));
 }
 
 TEST_F(CarriedTest, AnErrorReplyIsTheCallsError)
 {
-  PreparedCommand prepared = prepare();
+  Carried prepared = prepare();
   host.error_once = proto::Error{"NoValidControl", "blocked", "Traceback ...", "x.Y"};
-  const auto reply = run(prepared.carried);
+  const auto reply = run(prepared);
   const CallError e = error_of([&] {
         session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
       });
@@ -183,9 +216,9 @@ TEST_F(CarriedTest, AnErrorReplyIsTheCallsError)
 
 TEST_F(CarriedTest, ANonFiniteCarriedCommandIsRefusedAsOnItsOwn)
 {
-  const PreparedCommand prepared = prepare();
+  const Carried prepared = prepare();
   host.nan_once = true;
-  const auto reply = run(prepared.carried);
+  const auto reply = run(prepared);
   const CallError e = error_of([&] {
         session->take_command(prepared, reply, pose_at(1.0, 1.0), kVelocity, kTolerances);
       });

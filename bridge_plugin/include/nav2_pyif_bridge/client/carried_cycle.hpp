@@ -82,11 +82,11 @@ public:
   bool goal_last() const;
 
 private:
-  template<class Prepared>
+  // A call prepared for `session`, and the reply its carrier's query brought back.
   struct Pending
   {
     const PluginSession * session{nullptr};
-    Prepared prepared;
+    Carried prepared;
     std::optional<protocol::Bytes> reply;
   };
   // The goal check's inputs, for the command the check carries when TF moved on (goal first).
@@ -100,20 +100,25 @@ private:
 
   // Evidence of the order; switches when one cycle fits one order and not the other.
   void learn(bool goal_last_seen, bool seen);
+  // The pending call prepared for `session`, taken out of `slot`.
+  static std::optional<Pending> take_for(
+    std::optional<Pending> & slot, const PluginSession & session);
+  // A prepared call joins `carry`, and waits for its reply.
+  static std::optional<Pending> add(
+    CarriedCalls & carry, const PluginSession & session, std::optional<Carried> prepared);
   // The carried replies of a carrier's query, handed to the pending calls prepared for it.
-  template<class Prepared>
   void keep(
-    std::optional<Pending<Prepared>> & slot, std::optional<Pending<Prepared>> pending,
-    CarriedCalls & replies, std::size_t & next, const PluginSession * current);
+    std::optional<Pending> & slot, std::optional<Pending> pending, CarriedCalls & replies,
+    std::size_t & next, const PluginSession * current);
   void count(bool carried);
 
   mutable std::mutex mutex_;
   ControllerSession * controller_{nullptr};
   ProgressCheckerSession * progress_checker_{nullptr};
   GoalCheckerSession * goal_checker_{nullptr};  // the one Nav2 called last
-  std::optional<Pending<Carried>> check_;
-  std::optional<Pending<PreparedCommand>> compute_;
-  std::optional<Pending<Carried>> goal_check_;
+  std::optional<Pending> check_;
+  std::optional<Pending> compute_;
+  std::optional<Pending> goal_check_;
   std::optional<CommandInputs> command_inputs_;  // this cycle's, until the progress check
   bool goal_last_{false};
   bool seen_first_{false};

@@ -25,13 +25,6 @@ struct Attached
   bool goal{false};  // and its global goal
 };
 
-// A control cycle's command request prepared for another plugin's query to carry.
-struct PreparedCommand
-{
-  Carried carried;
-  Attached attached;
-};
-
 // The command and the encoded replies of the calls its query carried (those that ran).
 struct CommandReplies
 {
@@ -74,14 +67,14 @@ public:
     const std::optional<protocol::GoalChecker> & goal_checker);
   // The same call prepared for another plugin's query to carry (PROTOCOL.md section 15);
   // std::nullopt when the session cannot prepare one now.
-  std::optional<PreparedCommand> prepare_command(
+  std::optional<Carried> prepare_command(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
   // The command from the carried reply, when Nav2's call is the prepared one
-  // (PluginSession::take) and no plan is owed; else std::nullopt, and the call goes on its
-  // own. Errors throw as compute_velocity_commands.
+  // (PluginSession::take: it attaches what the prepared one did) and no plan is owed; else
+  // std::nullopt, and the call goes on its own. Errors throw as compute_velocity_commands.
   std::optional<protocol::TwistStamped> take_command(
-    PreparedCommand prepared, const std::optional<protocol::Bytes> & reply,
+    Carried prepared, const std::optional<protocol::Bytes> & reply,
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
   // compute_velocity_commands carrying the calls that follow it in the cycle (the goal
