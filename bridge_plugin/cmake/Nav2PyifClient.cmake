@@ -11,7 +11,6 @@ find_package(Threads REQUIRED)
 add_library(nav2_pyif_client STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/behavior_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/carried_cycle.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/../src/client/clock.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/command_check.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/controller_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/costmap_version.cpp

@@ -64,7 +64,6 @@ public:
 
   // Where the session connects, for messages ("tcp/localhost:7447", "config file x.json5").
   const std::string & where() const noexcept {return where_;}
-  bool connected() const;
 
 private:
   struct Link;  // the session and the liveliness subscriber

@@ -161,7 +161,6 @@ bool CarriedCycle::is_goal_reached(
             add(carry, *controller_, controller_->prepare_command(*robot, velocity, tolerances));
         }
       }
-      ++queries_;
     }
     proto::IsGoalReachedReply reply = checker.call(carrying(request, std::move(carry)));
     CarriedCalls replies = std::move(reply.carried).value_or(CarriedCalls{});
@@ -205,7 +204,6 @@ bool CarriedCycle::check(ProgressCheckerSession & session, const proto::CheckReq
         carry, *controller_,
         controller_->prepare_command(pose, inputs->velocity, inputs->tolerances));
     }
-    ++queries_;
   }
   proto::CheckReply reply = session.call(carrying(request, std::move(carry)));
   CarriedCalls replies = std::move(reply.carried).value_or(CarriedCalls{});
@@ -246,7 +244,6 @@ proto::TwistStamped CarriedCycle::compute_velocity_commands(
       const auto request = client::goal_check(pose.pose, *goal_, velocity);
       goal_check = add(carry, *goal_checker_, goal_checker_->prepare(request));
     }
-    ++queries_;
   }
   CommandReplies replies =
     session.compute_velocity_commands(pose, velocity, goal_checker, std::move(carry));
@@ -260,12 +257,6 @@ std::uint64_t CarriedCycle::carried_used() const
 {
   std::lock_guard<std::mutex> lock(mutex_);
   return carried_used_;
-}
-
-std::uint64_t CarriedCycle::queries() const
-{
-  std::lock_guard<std::mutex> lock(mutex_);
-  return queries_;
 }
 
 bool CarriedCycle::goal_last() const

@@ -232,11 +232,6 @@ std::shared_ptr<zenoh::Session> ZenohTransport::session() const
   return link_ ? link_->session : nullptr;
 }
 
-bool ZenohTransport::connected() const
-{
-  return session() != nullptr;
-}
-
 std::optional<protocol::Bytes> ZenohTransport::query(
   const client::Target & target, const protocol::Bytes & payload, client::Duration timeout,
   const client::WaitHook * hook)

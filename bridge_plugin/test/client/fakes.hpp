@@ -36,7 +36,6 @@ public:
   void wait_for(
     std::condition_variable & cv, std::unique_lock<std::mutex> & lock,
     Duration timeout) override;
-  void sleep_for(Duration duration) override {advance(duration);}
 
   // Move time forward, running each event scheduled up to the new time, in order.
   void advance(Duration duration);

@@ -75,10 +75,8 @@ public:
     const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
 
-  // Calls answered from a carried reply; queries sent (carrying or not); whether the goal
-  // check was found to end the cycle.
+  // Calls answered from a carried reply; whether the goal check was found to end the cycle.
   std::uint64_t carried_used() const;
-  std::uint64_t queries() const;
   bool goal_last() const;
 
 private:
@@ -128,7 +126,6 @@ private:
   std::optional<std::array<double, 7>> goal_;  // the goal checker's last goal
   std::uint64_t goal_seq_{0};  // the goal checker's seq after that call: reset since?
   std::uint64_t carried_used_{0};
-  std::uint64_t queries_{0};
 };
 
 }  // namespace nav2_pyif_bridge::client

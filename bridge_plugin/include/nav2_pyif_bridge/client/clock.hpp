@@ -23,21 +23,25 @@ public:
   // (spurious wake-ups, a fake clock): callers re-check their condition and the time.
   virtual void wait_for(
     std::condition_variable & cv, std::unique_lock<std::mutex> & lock, Duration timeout) = 0;
-
-  virtual void sleep_for(Duration duration) = 0;
 };
 
 // std::chrono::steady_clock.
 class SteadyClock final : public Clock
 {
 public:
-  static SteadyClock & instance();
+  static SteadyClock & instance()
+  {
+    static SteadyClock clock;
+    return clock;
+  }
 
   TimePoint now() const override {return std::chrono::steady_clock::now();}
   void wait_for(
     std::condition_variable & cv, std::unique_lock<std::mutex> & lock,
-    Duration timeout) override;
-  void sleep_for(Duration duration) override;
+    Duration timeout) override
+  {
+    cv.wait_for(lock, timeout);
+  }
 };
 
 // Milliseconds as a double, for messages ("within 40 ms").
