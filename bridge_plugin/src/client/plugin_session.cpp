@@ -246,11 +246,8 @@ proto::ReplyBody PluginSession::call_body(
     establish();  // deferred configure, or a re-establishment that failed before
   }
 
-  proto::Request request;
-  request.sid = sid_;
-  request.epoch = state_.epoch;
-  request.body = body;
-  const CostmapAttached costmap = attach_costmap(request);
+  CostmapAttached costmap;
+  proto::Request request = request_for(body, costmap);
   request.seq = next_seq();
 
   // After a fail-over: once, on the new replica, whose SessionUnknown re-sends the state.
@@ -276,11 +273,7 @@ proto::ReplyBody PluginSession::call_body(
     return call_body(body, retry);
   }
   if (reply.ok()) {
-    if (costmap.sent) {
-      state_.delivered_costmap = costmap.version;
-    }
-    check_reply(body, reply.body(), reply.host);
-    return std::get<proto::ReplyBody>(std::move(reply.outcome));
+    return accepted(reply, body, costmap);
   }
   const proto::Error & error = reply.error();
   if (error.type == proto::error_type::kSessionUnknown && options.allow_resync) {
@@ -319,19 +312,32 @@ Duration PluginSession::timeout_of(const proto::RequestBody & body) const
   return timeout;
 }
 
-PluginSession::CostmapAttached PluginSession::attach_costmap(proto::Request & request)
+proto::Request PluginSession::request_for(proto::RequestBody body, CostmapAttached & costmap)
 {
+  proto::Request request;
+  request.sid = sid_;
+  request.epoch = state_.epoch;
+  request.body = std::move(body);
   const proto::CostmapSent rule = proto::costmap_sent(request.op());
-  if (rule == proto::CostmapSent::Never) {
-    return {};
+  if (rule != proto::CostmapSent::Never) {
+    CostmapRead read = costmap_.read(
+      rule == proto::CostmapSent::Always ? std::nullopt : state_.delivered_costmap);
+    costmap = {read.version, read.costmap.has_value()};
+    if (read.costmap) {
+      set_costmap(request.body, std::move(*read.costmap));
+    }
   }
-  CostmapRead read = costmap_.read(
-    rule == proto::CostmapSent::Always ? std::nullopt : state_.delivered_costmap);
-  if (!read.costmap) {
-    return {read.version, false};
+  return request;
+}
+
+proto::ReplyBody PluginSession::accepted(
+  proto::Reply & reply, const proto::RequestBody & body, const CostmapAttached & costmap)
+{
+  if (costmap.sent) {
+    state_.delivered_costmap = costmap.version;
   }
-  set_costmap(request.body, std::move(*read.costmap));
-  return {read.version, true};
+  check_reply(body, reply.body(), reply.host);
+  return std::get<proto::ReplyBody>(std::move(reply.outcome));
 }
 
 std::optional<Carried> PluginSession::prepare(proto::RequestBody body)
@@ -341,12 +347,7 @@ std::optional<Carried> PluginSession::prepare(proto::RequestBody body)
     return std::nullopt;
   }
   Carried carried;
-  carried.request.sid = sid_;
-  carried.request.epoch = state_.epoch;
-  carried.request.body = std::move(body);
-  const CostmapAttached costmap = attach_costmap(carried.request);
-  carried.costmap_version = costmap.version;
-  carried.costmap_sent = costmap.sent;
+  carried.request = request_for(std::move(body), carried.costmap);
   try {
     carried.request.seq = state_.last_seq + 1;
     carried.payload = proto::encode_request(carried.request);
@@ -366,11 +367,7 @@ std::optional<proto::ReplyBody> PluginSession::settle(
   proto::Reply reply = checked_reply(*answer, carried.request, "carried reply");
   if (reply.ok()) {
     state_.last_host = reply.host;
-    if (carried.costmap_sent) {
-      state_.delivered_costmap = carried.costmap_version;
-    }
-    check_reply(carried.request.body, reply.body(), reply.host);
-    return std::get<proto::ReplyBody>(std::move(reply.outcome));
+    return accepted(reply, carried.request.body, carried.costmap);
   }
   const proto::Error & error = reply.error();
   if (error.type == proto::error_type::kSessionUnknown ||
@@ -388,20 +385,17 @@ std::optional<proto::ReplyBody> PluginSession::take_body(
   if (state_.last_seq != carried.request.seq) {
     return std::nullopt;  // something else went on this session since: the host has moved on
   }
-  if (carried.costmap_version) {
+  if (const auto version = carried.costmap.version) {
     // Reading with the prepared version as the known one copies nothing when it is current.
-    if (costmap_.read(carried.costmap_version).version != *carried.costmap_version) {
+    if (costmap_.read(version).version != *version) {
       return std::nullopt;  // call() would attach the newer costmap
     }
     // The same version, and the same delivered one (nothing sent since): call() would
     // attach the costmap the prepared request has, or none as it has none.
     move_costmap(carried.request.body, body);
   }
-  proto::Request real;
-  real.sid = sid_;
-  real.epoch = state_.epoch;
-  real.seq = carried.request.seq;
-  real.body = std::move(body);
+  const proto::Request real{
+    proto::kProtocolVersion, sid_, state_.epoch, carried.request.seq, std::move(body)};
   try {
     if (proto::encode_request(real) != carried.payload) {
       return std::nullopt;

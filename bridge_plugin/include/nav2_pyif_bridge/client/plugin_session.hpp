@@ -54,14 +54,20 @@ struct SessionConfig
 
 class CarriedCycle;
 
+// The costmap read for a request, and whether it was attached (delivered once answered ok).
+struct CostmapAttached
+{
+  std::optional<std::uint64_t> version;
+  bool sent{false};
+};
+
 // A request prepared to travel inside another plugin's query (PROTOCOL.md section 15): a
 // call of the control cycle carries those that follow it.
 struct Carried
 {
   protocol::Request request;
-  protocol::Bytes payload;                      // the encoded request
-  std::optional<std::uint64_t> costmap_version;  // the costmap it was prepared with
-  bool costmap_sent{false};
+  protocol::Bytes payload;  // the encoded request
+  CostmapAttached costmap;  // the costmap it was prepared with
 };
 
 // What a session is now, for the plugins' logs and the tests.
@@ -219,17 +225,15 @@ private:
   protocol::Reply checked_reply(
     const protocol::Bytes & answer, const protocol::Request & request,
     const std::string & what) const;
-  // The costmap read for a request, and whether it was attached (delivered once answered ok).
-  struct CostmapAttached
-  {
-    std::optional<std::uint64_t> version;
-    bool sent{false};
-  };
   // How long a call of `body` waits for its reply and, for a plan-class op, for a host: its
   // timeout class's (schema.py OP_TIMEOUT), a smooth's max_time and SMOOTH_GRACE_S if longer.
   Duration timeout_of(const protocol::RequestBody & body) const;
-  // Attaches the costmap to `request` as schema.py's COSTMAP_SENT says its op takes it.
-  CostmapAttached attach_costmap(protocol::Request & request);
+  // A request of this session's sid and epoch (seq 0) with the costmap attached as schema.py's
+  // COSTMAP_SENT says `body`'s op takes it.
+  protocol::Request request_for(protocol::RequestBody body, CostmapAttached & costmap);
+  // The body of an ok reply to a request of `body`, checked; the costmap it took delivered.
+  protocol::ReplyBody accepted(
+    protocol::Reply & reply, const protocol::RequestBody & body, const CostmapAttached & costmap);
 
   SessionConfig config_;
   KeySpace keys_;
