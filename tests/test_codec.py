@@ -74,7 +74,7 @@ def test_version_mismatch_names_both_versions() -> None:
         (msgpack.packb([1, 2]), "not a msgpack map"),
         (raw(op="fly"), "unknown op 'fly'"),
         (raw(sid=5), "request.sid: expected str"),
-        (raw(epoch=0), "epoch must be >= 1"),
+        (raw(epoch=0), "request.epoch: expected an int >= 1, got 0"),
         (raw(body={"velocity": [0.0] * 6}), "missing field 'pose'"),
         (raw(body={"pose": POSE, "velocity": [0.0] * 5}), "array of 6 floats"),
         (

@@ -11,7 +11,7 @@ import sys
 from pathlib import Path
 
 import pytest
-from nav2_pyif_codegen import cpp_codec, cpp_errors, cpp_params, generate
+from nav2_pyif_codegen import cpp_envelopes, cpp_errors, cpp_params, generate
 from nav2_pyif_protocol import bridge_params, schema
 from nav2_pyif_protocol.constants import (
     ERRORS_BY_PLUGIN,
@@ -137,13 +137,61 @@ def test_the_timeouts_have_one_default() -> None:
     assert Timeouts().call == 0.04
 
 
-def test_an_envelope_change_asks_for_the_hand_written_envelope(
+def test_one_envelope_field_reaches_the_cpp_struct_and_both_codecs(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
+    """The envelopes are generated like the bodies: a field added to the reply's is a member
+    of Reply, counted, written in its schema place and read back (before the body)."""
+    added = schema.Field("trace_id", schema.STR, required=False, doc="the caller's trace id")
+    monkeypatch.setattr(cpp_envelopes, "REPLY_ENVELOPE", (*schema.REPLY_ENVELOPE, added))
+    files = generate.render(ROOT)
+
+    messages = files["bridge_plugin/include/nav2_pyif_bridge/protocol/messages.hpp"]
+    assert "  // optional: the caller's trace id\n  std::optional<std::string> trace_id;\n" in (
+        messages
+    )
+    codec = files["bridge_plugin/src/protocol/envelopes.cpp"]
+    assert "  w.map(std::size_t{6} + (reply.trace_id ? 1u : 0u));\n" in codec
+    assert (
+        '  w.i64(reply.compute_ns);\n  if (reply.trace_id) {\n    w.key("trace_id");\n'
+        '    w.str(*reply.trace_id, where.key("trace_id"));\n  }\n  return w.take();\n'
+    ) in codec
+    assert (
+        '  out.trace_id = m.optional("trace_id", read_str);\n  if (ok) {\n'
+        '    out.outcome = read_reply_body(op, body_map(m, "body"),'
+    ) in codec
+
+
+def test_an_envelope_rule_the_generator_lacks_is_refused(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A second version field (a copy of `v`, role and all) has no C++ rendering: generating
+    stops, naming the envelope, rather than writing a codec that reads one of them."""
     extra = dataclasses.replace(schema.REPLY_ENVELOPE[0], name="trace_id")
-    monkeypatch.setattr(cpp_codec, "REPLY_ENVELOPE", (*schema.REPLY_ENVELOPE, extra))
-    with pytest.raises(SystemExit, match=r"encode\.cpp and decode\.cpp"):
-        cpp_codec.files()
+    monkeypatch.setattr(cpp_envelopes, "REPLY_ENVELOPE", (*schema.REPLY_ENVELOPE, extra))
+    with pytest.raises(SystemExit, match=r"the reply envelope in schema\.py has 2 version"):
+        generate.render(ROOT)
+
+
+def test_the_envelope_rules_are_the_schemas() -> None:
+    """The rules of the envelopes' fields, as schema.py states them, in the generated C++: the
+    version read first, the op from the body's type, epoch's minimum, ok's body or error."""
+    codec = (ROOT / "bridge_plugin/src/protocol/envelopes.cpp").read_text()
+    messages = (ROOT / "bridge_plugin/include/nav2_pyif_bridge/protocol/messages.hpp").read_text()
+    epoch = next(f for f in schema.REQUEST_ENVELOPE if f.name == "epoch")
+    assert epoch.minimum == 1
+    assert "  std::uint64_t epoch{1};" in messages
+    assert '  out.epoch = m.required("epoch", read_at_least<read_u64, 1>);' in codec
+    assert "  Op op() const noexcept {return op_of(body);}" in messages
+    assert "  std::variant<ReplyBody, Error> outcome;" in messages
+    assert "  bool ok() const noexcept {return outcome.index() == 0;}" in messages
+    for what in ("request", "reply"):
+        decode = codec.split(f" decode_{what}(", 1)[1].split("\n}\n", 1)[0]
+        reads = [line.strip() for line in decode.splitlines() if "m.required(" in line]
+        assert decode.index('read_version(m, "v")') < decode.index("m.required(")
+        names = [f.name for f in getattr(schema, f"{what.upper()}_ENVELOPE")]
+        read = [line.split('"')[1] for line in reads]
+        assert read == [n for n in names if n in read], f"{what}: {read} not in schema order"
 
 
 def test_the_cpp_error_tables_say_what_constants_py_says() -> None:

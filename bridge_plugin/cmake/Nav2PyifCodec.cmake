@@ -18,12 +18,12 @@ if(NOT MSGPACK_C_INCLUDE_DIR OR NOT MSGPACK_C_LIBRARY)
     "and MSGPACK_C_LIBRARY")
 endif()
 
-# body_codec.cpp (and the public headers ops, types, bodies, fields, constants) are generated
-# from protocol/nav2_pyif_protocol/schema.py: python -m nav2_pyif_codegen.generate
+# body_codec.cpp and envelopes.cpp (and the public headers ops, types, bodies, fields,
+# messages, constants) are generated from protocol/nav2_pyif_protocol/schema.py:
+# python -m nav2_pyif_codegen.generate
 add_library(nav2_pyif_protocol_codec STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/body_codec.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/decode.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/encode.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/envelopes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/parse.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/reader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/protocol/utf8.cpp

@@ -18,6 +18,7 @@ from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
 from nav2_pyif_protocol.schema import (
     BIN,
     BODIES,
+    BODY,
     BOOL,
     FLOAT,
     FLOAT6,
@@ -211,6 +212,18 @@ _CHECKERS: dict[str, Any] = {
 }
 
 
+def _at_least(check: Any, minimum: int) -> Any:
+    """An int field with a ``minimum`` in the schema (a request's epoch)."""
+
+    def check_minimum(value: Any) -> int:
+        checked: int = check(value)
+        if checked < minimum:
+            raise _Invalid("", f"expected an int >= {minimum}, got {checked}")
+        return checked
+
+    return check_minimum
+
+
 @dataclass(frozen=True)
 class _Compiled:
     """A field table compiled from the schema: each field's checker (or its structure's
@@ -228,6 +241,8 @@ def _compile(fields: tuple[Field, ...]) -> _Compiled:
             out.append((f.name, None, f.required, _compile(STRUCTS[f.kind]), f.many))
         elif f.rows:
             out.append((f.name, _rows(ROWS[f.rows][0]), f.required, None, f.many))
+        elif f.minimum is not None:
+            out.append((f.name, _at_least(_CHECKERS[f.kind], f.minimum), f.required, None, f.many))
         else:
             out.append((f.name, _CHECKERS[f.kind], f.required, None, f.many))
     return _Compiled(tuple(out), tuple((f.name, f.cells) for f in fields if f.cells))
@@ -303,8 +318,8 @@ def _checked(where: str, compiled: _Compiled, value: Any, canonical: bool) -> di
 
 _REQUEST_BODIES = {op: _compile(fields[0]) for op, fields in BODIES.items()}
 _REPLY_BODIES = {op: _compile(fields[1]) for op, fields in BODIES.items()}
-_REQUEST_ENVELOPE = _compile(tuple(f for f in REQUEST_ENVELOPE if f.name != "body"))
-_REPLY_ENVELOPE = _compile(tuple(f for f in REPLY_ENVELOPE if f.name != "body"))
+_REQUEST_ENVELOPE = _compile(tuple(f for f in REQUEST_ENVELOPE if f.kind != BODY))
+_REPLY_ENVELOPE = _compile(tuple(f for f in REPLY_ENVELOPE if f.kind != BODY))
 _ERROR = _compile(STRUCTS["Error"])
 
 
@@ -365,8 +380,6 @@ def decode_request(data: bytes) -> Request:
     _checked("request", _REQUEST_ENVELOPE, raw, False)
     op = _parse_op(raw["op"])
     body = _checked(f"{op.value} request body", _REQUEST_BODIES[op], raw.get("body", {}), False)
-    if raw["epoch"] < 1 or raw["seq"] < 0:
-        raise _bad("request epoch must be >= 1 and seq >= 0")
     return Request(op=op, sid=raw["sid"], epoch=raw["epoch"], seq=raw["seq"], body=body)
 
 

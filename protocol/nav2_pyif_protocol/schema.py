@@ -28,6 +28,18 @@ FLOAT6: Final = "float[6]"  # msgpack array of 6 float64
 FLOAT7: Final = "float[7]"  # msgpack array of 7 float64
 PARAMS: Final = "params"  # map str -> bool | int | float | str | array of one of those
 STR_MAP: Final = "map<str,str>"
+BODY: Final = "body"  # envelopes only: the op's body, a map of the fields BODIES gives it
+
+
+class Role(str, Enum):
+    """What an envelope field is beside its kind: a rule of its own in both codecs."""
+
+    #: Read before any other field (a message of another version may differ in anything
+    #: else); a value other than PROTOCOL_VERSION is VersionMismatch.
+    VERSION = "version"
+    #: The name of the op whose body the envelope's BODY field is: an Op's value, or
+    #: BadRequest. The C++ Request derives it from its body's type, so the two always agree.
+    OP = "op"
 
 
 #: Packed float64 arrays (``bin``): row name -> (values per row, what a row holds).
@@ -51,6 +63,15 @@ class Field:
     default: tuple[float, ...] = ()
     #: A msgpack array of values of ``kind`` (a structure or STR), possibly empty.
     many: bool = False
+    #: INT / UINT only: the smallest value decoders accept (also a new C++ struct's value).
+    minimum: int | None = None
+    #: Envelopes only: the field's rule beyond its kind (see Role).
+    role: Role | None = None
+    #: BOOL, envelopes only: the two optional fields it chooses between, exactly one of them
+    #: sent: the first when it is true, the second when false (a reply's body or error). The
+    #: chosen one must be there, but for a BODY field, which reads as {} when left out. The
+    #: C++ holds the two as one std::variant; the flag is which alternative it holds.
+    selects: tuple[str, str] | None = None
 
 
 def _f(
@@ -63,8 +84,11 @@ def _f(
     cells: tuple[str, ...] = (),
     default: tuple[float, ...] = (),
     many: bool = False,
+    minimum: int | None = None,
+    role: Role | None = None,
+    selects: tuple[str, str] | None = None,
 ) -> Field:
-    return Field(name, kind, required, doc, rows, cells, default, many)
+    return Field(name, kind, required, doc, rows, cells, default, many, minimum, role, selects)
 
 
 #: What each structure is, for the generated C++ and PROTOCOL.md.
@@ -166,19 +190,24 @@ STRUCTS: dict[str, tuple[Field, ...]] = {
 }
 
 REQUEST_ENVELOPE: tuple[Field, ...] = (
-    _f("v", INT, "protocol version"),
-    _f("op", STR, "operation (also the last key chunk)"),
+    _f("v", INT, "protocol version", role=Role.VERSION),
+    _f("op", STR, "operation (also the last key chunk)", role=Role.OP),
     _f("sid", STR, "session id chosen by the client at configure"),
-    _f("epoch", UINT, "session epoch: 1 at the first configure, +1 at each re-establishment"),
+    _f(
+        "epoch",
+        UINT,
+        "session epoch: 1 at the first configure, +1 at each re-establishment",
+        minimum=1,
+    ),
     _f("seq", UINT, "per-plugin sequence number, strictly increasing across epochs"),
-    _f("body", "body", "operation-specific map"),
+    _f("body", BODY, "operation-specific map"),
 )
 
 REPLY_ENVELOPE: tuple[Field, ...] = (
-    _f("v", INT, "protocol version"),
+    _f("v", INT, "protocol version", role=Role.VERSION),
     _f("seq", UINT, "the request's seq"),
-    _f("ok", BOOL, "true: body follows; false: error follows"),
-    _f("body", "body", "operation-specific map (ok replies)", required=False),
+    _f("ok", BOOL, "true: body follows; false: error follows", selects=("body", "error")),
+    _f("body", BODY, "operation-specific map (ok replies)", required=False),
     _f("error", "Error", "failure (error replies)", required=False),
     _f("host", STR, "id of the host that answered"),
     _f("compute_ns", INT, "time spent in the planner's method [ns]; 0 when not called"),

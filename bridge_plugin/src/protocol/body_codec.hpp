@@ -1,8 +1,8 @@
 // Generated from protocol/nav2_pyif_protocol/schema.py by
 // `python -m nav2_pyif_codegen.generate`: do not edit.
 //
-// Encode and decode every structure and op body of the schema (the envelopes, encode.cpp and
-// decode.cpp, call these).
+// Encode and decode every structure and op body of the schema (the envelopes, envelopes.cpp, call
+// these).
 
 #pragma once
 

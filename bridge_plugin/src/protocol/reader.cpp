@@ -110,6 +110,15 @@ ParamValue read_param(const Object & object, const FieldPath & where, std::strin
   }
 }
 
+std::string known_ops()
+{
+  std::string out;
+  for (const auto name : kOpNames) {
+    out.append(out.empty() ? "" : ", ").append(name);
+  }
+  return out;
+}
+
 }  // namespace
 
 void fail(const FieldPath & where, const std::string & problem)
@@ -272,6 +281,16 @@ const msgpack_object_array & read_array_items(const Object & object, const Field
   return object.via.array;
 }
 
+Op read_op(const Object & object, const FieldPath & where)
+{
+  const std::string name = read_str(object, where);
+  const auto op = op_from_name(name);
+  if (!op) {
+    fail(where, "unknown op '" + name + "'; known: " + known_ops());
+  }
+  return *op;
+}
+
 Params read_params(const Object & object, const FieldPath & where)
 {
   if (object.type != MSGPACK_OBJECT_MAP) {
@@ -326,6 +345,40 @@ const Object * MapReader::find(std::string_view key) const noexcept
     return nullptr;
   }
   return found;
+}
+
+std::int64_t read_version(const MapReader & message, std::string_view key)
+{
+  const Object * v = message.find(key);
+  if (v != nullptr && v->type == MSGPACK_OBJECT_POSITIVE_INTEGER &&
+    v->via.u64 == static_cast<std::uint64_t>(kProtocolVersion))
+  {
+    return kProtocolVersion;
+  }
+  std::string theirs = "missing";
+  if (v != nullptr) {
+    theirs = v->type == MSGPACK_OBJECT_POSITIVE_INTEGER ? std::to_string(v->via.u64) :
+      v->type == MSGPACK_OBJECT_NEGATIVE_INTEGER ? std::to_string(v->via.i64) :
+      std::string("of type ") + type_name(*v);
+  }
+  const std::string what = message.where().str();
+  throw DecodeError(
+          error_type::kVersionMismatch, message.where().key(key).str(),
+          what + " speaks protocol version " + theirs + "; this codec speaks " +
+          std::to_string(kProtocolVersion));
+}
+
+const Object & body_map(const MapReader & message, std::string_view key)
+{
+  static const Object empty_map = [] {
+      Object o{};
+      o.type = MSGPACK_OBJECT_MAP;
+      o.via.map.size = 0;
+      o.via.map.ptr = nullptr;
+      return o;
+    }();
+  const Object * body = message.find(key);
+  return body != nullptr ? *body : empty_map;
 }
 
 }  // namespace nav2_pyif_bridge::protocol::detail

@@ -1,7 +1,8 @@
 // Typed reads of a decoded msgpack tree, each naming the field at fault when the tree breaks
-// the schema. The generated body_codec.cpp says *which* fields a message has; this says how
-// each kind of field is read and checked (PROTOCOL.md section 2: an int is accepted where a
-// float is specified, nil counts as absent, unknown keys are ignored).
+// the schema. The generated body_codec.cpp and envelopes.cpp say *which* fields a message has;
+// this says how each kind of field is read and checked (PROTOCOL.md section 2: an int is
+// accepted where a float is specified, nil counts as absent, unknown keys are ignored), and
+// how the envelope fields with a rule of their own are read (the version, the op, the body).
 #pragma once
 
 #include <msgpack.h>
@@ -13,10 +14,12 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "field_path.hpp"
+#include "nav2_pyif_bridge/protocol/ops.hpp"
 #include "nav2_pyif_bridge/protocol/params.hpp"
 
 namespace nav2_pyif_bridge::protocol::detail
@@ -78,6 +81,23 @@ auto read_array(const Object & object, const FieldPath & where)
   return out;
 }
 
+// An int field with a `minimum` in the schema (a request's epoch): read by Read, and refused
+// when smaller.
+template<auto Read, auto Minimum>
+auto read_at_least(const Object & object, const FieldPath & where)
+{
+  const auto value = Read(object, where);
+  if (value < static_cast<std::remove_const_t<decltype(value)>>(Minimum)) {
+    fail(where, "expected an int >= " + std::to_string(Minimum) + ", got " +
+      std::to_string(value));
+  }
+  return value;
+}
+
+// An op's name (the envelope's Role.OP field): DecodeError listing the known ones when it is
+// none of them.
+Op read_op(const Object & object, const FieldPath & where);
+
 // A map with string keys, read field by field.
 class MapReader
 {
@@ -120,5 +140,14 @@ private:
   // to live further up the stack.
   FieldPath where_;
 };
+
+// The envelope's version (Role.VERSION), read before any other field: a message of another
+// version may differ in anything else. A DecodeError of type VersionMismatch, naming what the
+// message is ("request"), unless it is kProtocolVersion.
+std::int64_t read_version(const MapReader & message, std::string_view key);
+
+// The envelope's body map (a BODY field), or an empty one when absent: the Python codec reads a
+// missing body as {}.
+const Object & body_map(const MapReader & message, std::string_view key);
 
 }  // namespace nav2_pyif_bridge::protocol::detail

@@ -32,7 +32,8 @@ public:
 
   void map(std::size_t entries);
   void array(std::size_t elements);
-  // Map keys are the schema's ASCII literals, so they skip the UTF-8 check of str().
+  // Map keys (and op names) are the schema's ASCII literals, so they skip the UTF-8 check of
+  // str().
   void key(std::string_view name);
   // Throws EncodeError naming `where` when the text is not UTF-8.
   void str(std::string_view text, const FieldPath & where);

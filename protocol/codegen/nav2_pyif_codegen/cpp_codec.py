@@ -2,13 +2,14 @@
 
 One function per generated file; each returns the file's text. The generated code calls the
 hand-written runtime in bridge_plugin/src/protocol (Writer, MapReader and the read_* / write
-primitives, one per field kind); the envelopes (encode.cpp, decode.cpp) stay hand-written
-because their fields carry rules of their own (the version first, the op from the body's
-type, either a body or an error).
+primitives, one per field kind). The envelopes, whose fields carry rules of their own (the
+version first, the op from the body's type, either a body or an error), are rendered by
+cpp_envelopes on the functions here.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import textwrap
 from collections.abc import Iterable
 
@@ -33,8 +34,6 @@ from nav2_pyif_protocol.schema import (
     INT,
     OP_TIMEOUT,
     PARAMS,
-    REPLY_ENVELOPE,
-    REQUEST_ENVELOPE,
     RESTORED,
     ROWS,
     SMOOTH_GRACE_S,
@@ -53,12 +52,6 @@ COMMAND = "python -m nav2_pyif_codegen.generate"
 WIDTH = 100
 INCLUDE = "nav2_pyif_bridge/protocol"
 NAMESPACE = "nav2_pyif_bridge::protocol"
-
-# The envelope fields encode.cpp / decode.cpp write and read by hand.
-HAND_WRITTEN_ENVELOPES = {
-    "request": ("v", "op", "sid", "epoch", "seq", "body"),
-    "reply": ("v", "seq", "ok", "body", "error", "host", "compute_ns"),
-}
 
 # kind -> (C++ type, initializer, reader, writer call with {v} value and {w} path)
 _SCALARS: dict[str, tuple[str, str, str, str]] = {
@@ -176,17 +169,23 @@ def initializer(f: Field) -> str:
         return ""
     if f.default:
         return "{" + ", ".join(repr(float(x)) for x in f.default) + "}"
+    if f.minimum is not None:
+        return f"{{{f.minimum}}}"
     return _SCALARS[f.kind][1]
 
 
 def reader(f: Field) -> str:
+    """The read_* function of a field's kind: read_array of its element's for an array, and
+    wrapped in read_at_least when the schema gives it a minimum."""
     if f.many:
-        return f"read_array<{reader(Field(f.name, f.kind, rows=f.rows))}>"
+        return f"read_array<{reader(dataclasses.replace(f, many=False))}>"
     if is_struct(f.kind):
-        return f"read_{snake(f.kind)}"
-    if f.kind == BIN:
-        return f"read_rows<{row_constant(f.rows)}>" if f.rows else "read_bin"
-    return _SCALARS[f.kind][2]
+        read = f"read_{snake(f.kind)}"
+    elif f.kind == BIN:
+        read = f"read_rows<{row_constant(f.rows)}>" if f.rows else "read_bin"
+    else:
+        read = _SCALARS[f.kind][2]
+    return read if f.minimum is None else f"read_at_least<{read}, {f.minimum}>"
 
 
 def uses_path(f: Field) -> bool:
@@ -268,17 +267,6 @@ def all_types() -> list[tuple[str, tuple[Field, ...]]]:
     for op, (request, reply) in BODIES.items():
         out += [(body_name(op, "Request"), request), (body_name(op, "Reply"), reply)]
     return out
-
-
-def check_envelopes() -> None:
-    for what, fields in (("request", REQUEST_ENVELOPE), ("reply", REPLY_ENVELOPE)):
-        names = tuple(f.name for f in fields)
-        if names != HAND_WRITTEN_ENVELOPES[what]:
-            raise SystemExit(
-                f"the {what} envelope in schema.py is {names}, but bridge_plugin/src/protocol/"
-                f"encode.cpp and decode.cpp write and read {HAND_WRITTEN_ENVELOPES[what]} by "
-                "hand: update them, then HAND_WRITTEN_ENVELOPES in cpp_codec.py"
-            )
 
 
 # --- headers --------------------------------------------------------------------------------
@@ -544,7 +532,7 @@ def bodies_hpp() -> str:
             "<string>",
             "<variant>",
             "<vector>",
-            *_own("ops", "params", "types"),
+            *own("ops", "params", "types"),
         ],
         body,
     )
@@ -564,12 +552,12 @@ def fields_hpp() -> str:
         "for_each_field(message, visit) calls visit(name, value) for each field of a structure "
         "or body, in wire order (optional fields as std::optional, present or not): for code "
         "that treats every message alike, such as the codec tests' JSON trees.",
-        _own("bodies", "types"),
+        own("bodies", "types"),
         body,
     )
 
 
-def _own(*names: str) -> list[str]:
+def own(*names: str) -> list[str]:
     return [f'"{INCLUDE}/{name}.hpp"' for name in names]
 
 
@@ -622,12 +610,12 @@ def body_codec_hpp() -> str:
     ]
     return cpp_file(
         "Encode and decode every structure and op body of the schema (the envelopes, "
-        "encode.cpp and decode.cpp, call these).",
+        "envelopes.cpp, call these).",
         [
             "<cstddef>",
             "<string>",
             "<vector>",
-            *_own("bodies", "types"),
+            *own("bodies", "types"),
             '"field_path.hpp"',
             '"reader.hpp"',
             '"writer.hpp"',
@@ -695,8 +683,9 @@ def _read_fn(name: str, fields: tuple[Field, ...]) -> list[str]:
     return out
 
 
-def _payload_term(f: Field) -> str | None:
-    value = f"value.{f.name}" if f.required else f"(*value.{f.name})"
+def payload_term(f: Field, of: str = "value") -> str | None:
+    """The bytes of ``of``'s field ``f`` that payload_size counts, or None (a fixed size)."""
+    value = f"{of}.{f.name}" if f.required else f"(*{of}.{f.name})"
     if is_struct(f.kind) or f.many:
         term = f"payload_size({value})"
     elif f.kind == BIN and f.rows:
@@ -705,11 +694,11 @@ def _payload_term(f: Field) -> str | None:
         term = f"{value}.size()"
     else:
         return None
-    return term if f.required else f"(value.{f.name} ? {term} : 0)"
+    return term if f.required else f"({of}.{f.name} ? {term} : 0)"
 
 
 def _payload_fn(name: str, fields: tuple[Field, ...]) -> list[str]:
-    terms = [t for t in (_payload_term(f) for f in fields) if t]
+    terms = [t for t in (payload_term(f) for f in fields) if t]
     if not terms:
         return [f"std::size_t payload_size(const {name} &) {{return 0;}}"]
     return [
@@ -777,7 +766,6 @@ def body_codec_cpp() -> str:
 
 def files() -> dict[str, str]:
     """Path (from the repository root) -> generated text, for every C++ file."""
-    check_envelopes()
     include = f"bridge_plugin/include/{INCLUDE}"
     return {
         f"{include}/constants.hpp": constants_hpp(),

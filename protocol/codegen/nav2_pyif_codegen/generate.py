@@ -18,7 +18,14 @@ import argparse
 import sys
 from pathlib import Path
 
-from nav2_pyif_codegen import cpp_codec, cpp_errors, cpp_params, spec_tables, zenoh_copy
+from nav2_pyif_codegen import (
+    cpp_codec,
+    cpp_envelopes,
+    cpp_errors,
+    cpp_params,
+    spec_tables,
+    zenoh_copy,
+)
 
 #: The repository this package lives in (protocol/codegen/nav2_pyif_codegen/ -> the repository).
 REPOSITORY = Path(__file__).resolve().parents[3]
@@ -30,7 +37,13 @@ def render(repository: Path = REPOSITORY) -> dict[str, str]:
     """Path (from the repository root) -> its generated text. PROTOCOL.md keeps its prose:
     only the part between its schema-table markers is generated; so does the bridge README,
     but for its parameter table."""
-    out = cpp_codec.files() | cpp_errors.files() | cpp_params.files() | zenoh_copy.files()
+    out = (
+        cpp_codec.files()
+        | cpp_envelopes.files()
+        | cpp_errors.files()
+        | cpp_params.files()
+        | zenoh_copy.files()
+    )
     out[PROTOCOL_MD] = spec_tables.splice((repository / PROTOCOL_MD).read_text())
     out[cpp_params.README] = cpp_params.splice_readme((repository / cpp_params.README).read_text())
     return out

@@ -31,6 +31,8 @@ def _table(fields: tuple[Field, ...]) -> list[str]:
         kind = f"[{f.kind}](#{f.kind.lower()})" if f.kind in STRUCTS else f"`{f.kind}`"
         if f.many:
             kind = f"array of {kind}"
+        if f.minimum is not None:
+            kind += f" >= {f.minimum}"
         rows.append(f"| {i} | `{f.name}` | {kind} | {'yes' if f.required else 'no'} | {f.doc} |")
     return [*rows, ""]
 
