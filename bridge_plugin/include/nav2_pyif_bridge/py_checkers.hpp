@@ -34,31 +34,29 @@ public:
   // Every new goal: the checker's reset, then its tolerances again (they are cached between:
   // a controller asks for them every cycle, and a parameter change shows from the next goal).
   void reset() override;
-#if NAV2_PYIF_LYRICAL_API
-  // The transformed plan is not forwarded: the Python checker has the poses (PROTOCOL.md
-  // section 14).
+  // Lyrical's checks also take the transformed plan (not forwarded: the Python checker has the
+  // poses, PROTOCOL.md section 14), and its tolerances the path length's: lowest() (Nav2's
+  // "not measured") when the host gives none.
   bool isGoalReached(
     const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-    const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &) override;
+    const geometry_msgs::msg::Twist & velocity
+#if NAV2_PYIF_LYRICAL_API
+    , const nav_msgs::msg::Path &
+#endif
+  ) override;
+  bool getTolerances(
+    geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance
+#if NAV2_PYIF_LYRICAL_API
+    , double & path_length_tolerance
+#endif
+  ) override;
+#if NAV2_PYIF_LYRICAL_API
   bool isGoalXYReached(
     const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
     const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &) override;
-  // path_length_tolerance: lowest() (Nav2's "not measured") when the host gives none.
-  bool getTolerances(
-    geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance,
-    double & path_length_tolerance) override;
-#else
-  bool isGoalReached(
-    const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-    const geometry_msgs::msg::Twist & velocity) override;
-  bool getTolerances(
-    geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance) override;
 #endif
 
 private:
-  bool goal_reached(
-    const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-    const geometry_msgs::msg::Twist & velocity);
   // The tolerances, asked once per goal.
   const protocol::GetTolerancesReply & cached_tolerances();
 

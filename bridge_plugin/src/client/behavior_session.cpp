@@ -21,8 +21,9 @@ BehaviorStep failed(const std::string & error)
 BehaviorStep BehaviorSession::step_of(
   const std::string & status, const std::string & failure, const char * what) const
 {
-  const auto s = behavior_status_from_name(status);
-  const auto f = behavior_failure_from_name(failure);
+  // "succeeded" / "failed" / "running" and the failure names, as the wire spells them
+  const auto s = proto::from_name<BehaviorStatus>(proto::kBehaviorStatusNames, status);
+  const auto f = proto::from_name<BehaviorFailure>(proto::kBehaviorFailureNames, failure);
   if (!s || !f) {
     return failed(
       std::string(what) + " reply from host " + current().last_host + " has status '" + status +

@@ -61,13 +61,6 @@ void ControllerSession::follow(const proto::Path & plan, const proto::PoseStampe
   }
 }
 
-proto::TwistStamped ControllerSession::compute_velocity_commands(
-  const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
-  const std::optional<proto::GoalChecker> & goal_checker)
-{
-  return compute_velocity_commands(pose, velocity, goal_checker, {}).cmd_vel;
-}
-
 CommandReplies ControllerSession::compute_velocity_commands(
   const proto::PoseStamped & pose, const std::array<double, 6> & velocity,
   const std::optional<proto::GoalChecker> & goal_checker, std::vector<proto::CarriedCall> carry)

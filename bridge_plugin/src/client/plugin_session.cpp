@@ -490,16 +490,11 @@ void PluginSession::pin_host()
   state_.pinned_host = smallest;
 }
 
-bool PluginSession::fail_over(const std::optional<std::string> & avoid)
+bool PluginSession::fail_over(const std::string & avoid)
 {
   HostWatcher::Hosts alive = transport_.hosts().alive();
-  if (!avoid && alive.count(state_.pinned_host) != 0) {
-    return false;
-  }
   alive.erase(state_.pinned_host);
-  if (avoid) {
-    alive.erase(*avoid);
-  }
+  alive.erase(avoid);
   if (alive.empty()) {
     return false;
   }

@@ -12,19 +12,6 @@ namespace nav2_pyif_bridge
 namespace
 {
 
-// Costmap2DROS::getRobotRadius() where this Nav2 has it, else 0 (the footprint is sent).
-template<class T>
-auto robot_radius(T & costmap_ros, int) -> decltype(costmap_ros.getRobotRadius())
-{
-  return costmap_ros.getRobotRadius();
-}
-
-template<class T>
-double robot_radius(T &, long)
-{
-  return 0.0;
-}
-
 // The first layer with both inflation parameters (Nav2's InflationLayer, whatever its name in
 // the YAML), read as the costmap node's parameters: the layer classes' getters differ between
 // Nav2 versions, the parameter names do not.
@@ -82,7 +69,7 @@ client::CostmapRead CostmapRosSource::read(std::optional<std::uint64_t> known)
   std::unique_lock<nav2_costmap_2d::Costmap2D::mutex_t> lock(*costmap->getMutex());
   client::CostmapView view = costmap_view(*costmap, frame);
   view.footprint = std::move(footprint);
-  view.robot_radius = robot_radius(*costmap_ros_, 0);
+  view.robot_radius = costmap_ros_->getRobotRadius();  // every Nav2 from Humble 1.1.0
   return client::read_costmap(view, version_, known);
 }
 

@@ -20,14 +20,6 @@ protocol::IsGoalReachedRequest goal_check(
     ros::pose_row(query_pose), ros::pose_row(goal_pose), ros::to_wire(velocity));
 }
 
-void fill_tolerances(
-  const protocol::GetTolerancesReply & tolerances, geometry_msgs::msg::Pose & pose_tolerance,
-  geometry_msgs::msg::Twist & vel_tolerance) noexcept
-{
-  pose_tolerance = ros::pose_of(tolerances.pose_tolerance.data());
-  vel_tolerance = ros::twist_of(tolerances.velocity_tolerance);
-}
-
 }  // namespace
 
 void PyGoalChecker::initialize(
@@ -54,62 +46,13 @@ void PyGoalChecker::reset()
     });
 }
 
+bool PyGoalChecker::isGoalReached(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity
 #if NAV2_PYIF_LYRICAL_API
-bool PyGoalChecker::isGoalReached(
-  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-  const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &)
-{
-  return goal_reached(query_pose, goal_pose, velocity);
-}
-
-bool PyGoalChecker::isGoalXYReached(
-  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-  const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &)
-{
-  return plugin_.bridge().forward(
-    [&]() {
-      protocol::IsGoalReachedRequest request = goal_check(query_pose, goal_pose, velocity);
-      request.xy_only = true;
-      return plugin_.session().call(request).reached;
-    });
-}
-
-bool PyGoalChecker::getTolerances(
-  geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance,
-  double & path_length_tolerance)
-{
-  return plugin_.bridge().forward(
-    [&]() {
-      const protocol::GetTolerancesReply & tolerances = cached_tolerances();
-      fill_tolerances(tolerances, pose_tolerance, vel_tolerance);
-      path_length_tolerance = tolerances.path_length_tolerance.value_or(
-        std::numeric_limits<double>::lowest());
-      return tolerances.available;
-    });
-}
-#else
-bool PyGoalChecker::isGoalReached(
-  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-  const geometry_msgs::msg::Twist & velocity)
-{
-  return goal_reached(query_pose, goal_pose, velocity);
-}
-
-bool PyGoalChecker::getTolerances(
-  geometry_msgs::msg::Pose & pose_tolerance, geometry_msgs::msg::Twist & vel_tolerance)
-{
-  return plugin_.bridge().forward(
-    [&]() {
-      const protocol::GetTolerancesReply & tolerances = cached_tolerances();
-      fill_tolerances(tolerances, pose_tolerance, vel_tolerance);
-      return tolerances.available;
-    });
-}
+  , const nav_msgs::msg::Path &
 #endif
-
-bool PyGoalChecker::goal_reached(
-  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
-  const geometry_msgs::msg::Twist & velocity)
+)
 {
   // controller_server's pose lookup once more: the same message (its stamp included) when
   // TF has not moved on, which the cycle's other calls then get (goal check first).
@@ -127,6 +70,41 @@ bool PyGoalChecker::goal_reached(
           looked_up ? std::make_optional(ros::to_wire(robot)) : std::nullopt, request, tolerances);
       }
       return plugin_.session().call(request).reached;
+    });
+}
+
+#if NAV2_PYIF_LYRICAL_API
+bool PyGoalChecker::isGoalXYReached(
+  const geometry_msgs::msg::Pose & query_pose, const geometry_msgs::msg::Pose & goal_pose,
+  const geometry_msgs::msg::Twist & velocity, const nav_msgs::msg::Path &)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      protocol::IsGoalReachedRequest request = goal_check(query_pose, goal_pose, velocity);
+      request.xy_only = true;
+      return plugin_.session().call(request).reached;
+    });
+}
+#endif
+
+bool PyGoalChecker::getTolerances(
+  geometry_msgs::msg::Pose & pose_tolerance,
+  geometry_msgs::msg::Twist & vel_tolerance
+#if NAV2_PYIF_LYRICAL_API
+  , double & path_length_tolerance
+#endif
+)
+{
+  return plugin_.bridge().forward(
+    [&]() {
+      const protocol::GetTolerancesReply & tolerances = cached_tolerances();
+      pose_tolerance = ros::pose_of(tolerances.pose_tolerance.data());
+      vel_tolerance = ros::twist_of(tolerances.velocity_tolerance);
+#if NAV2_PYIF_LYRICAL_API
+      path_length_tolerance = tolerances.path_length_tolerance.value_or(
+        std::numeric_limits<double>::lowest());
+#endif
+      return tolerances.available;
     });
 }
 

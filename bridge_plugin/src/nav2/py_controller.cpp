@@ -187,7 +187,7 @@ geometry_msgs::msg::TwistStamped PyController::command(
     client::CarriedCycle * cycle = session().cycle();
     const protocol::TwistStamped cmd = cycle ?
       cycle->compute_velocity_commands(session(), wire_pose, wire_velocity, wire_tolerances) :
-      session().compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances);
+      session().compute_velocity_commands(wire_pose, wire_velocity, wire_tolerances).cmd_vel;
     host_silent_ = false;
     publish_debug();
     return ros::to_ros(cmd, costmap_ros_->getBaseFrameID(), pose.header.stamp);

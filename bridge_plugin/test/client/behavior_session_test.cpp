@@ -139,10 +139,16 @@ TEST_F(BehaviorSessionTest, EveryFailureIsAFailedStepNeverAnException)
   EXPECT_FALSE(nan.cmd_vel.has_value());
   EXPECT_NE(nan.error.find("nan"), std::string::npos) << nan.error;
   // the wire's names; anything else is a bad reply (a FAILED step)
-  EXPECT_EQ(behavior_status_from_name("running"), BehaviorStatus::Running);
-  EXPECT_EQ(behavior_status_from_name("flying"), std::nullopt);
-  EXPECT_EQ(behavior_failure_from_name("collision_ahead"), BehaviorFailure::CollisionAhead);
-  EXPECT_EQ(behavior_failure_from_name("Collision_Ahead"), std::nullopt);
+  const auto status = [](const char * name) {
+      return protocol::from_name<BehaviorStatus>(protocol::kBehaviorStatusNames, name);
+    };
+  const auto failure = [](const char * name) {
+      return protocol::from_name<BehaviorFailure>(protocol::kBehaviorFailureNames, name);
+    };
+  EXPECT_EQ(status("running"), BehaviorStatus::Running);
+  EXPECT_EQ(status("flying"), std::nullopt);
+  EXPECT_EQ(failure("collision_ahead"), BehaviorFailure::CollisionAhead);
+  EXPECT_EQ(failure("Collision_Ahead"), std::nullopt);
   // no host at all: FAILED at once, nothing sent
   host.kill();
   const auto sent = host.received.size();

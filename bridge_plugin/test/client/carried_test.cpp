@@ -437,7 +437,7 @@ protected:
         [&] {return plain.goal->call(goal_check(robot.pose, goal, kVelocity)).reached;},
         progress ? std::function<bool()>{
           [&] {return plain.progress->call(progress_check(robot)).making_progress;}} : nullptr,
-        [&] {return alone.compute_velocity_commands(robot, kVelocity, kTolerances);});
+        [&] {return alone.compute_velocity_commands(robot, kVelocity, kTolerances).cmd_vel;});
       EXPECT_EQ(carried, uncarried) << "cycle " << step;
     }
     EXPECT_EQ(cycle->goal_last(), goal_last);

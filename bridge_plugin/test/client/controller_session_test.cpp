@@ -44,7 +44,7 @@ protected:
 
   proto::TwistStamped compute(const std::optional<proto::GoalChecker> & checker = std::nullopt)
   {
-    return session->compute_velocity_commands(pose_at(1.0, 1.0), {}, checker);
+    return session->compute_velocity_commands(pose_at(1.0, 1.0), {}, checker).cmd_vel;
   }
 
 

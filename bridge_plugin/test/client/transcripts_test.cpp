@@ -347,7 +347,7 @@ private:
       const auto tolerances = tolerances_of(args["goal_checker"]);
       const proto::TwistStamped cmd = cycle_ ?
         cycle_->compute_velocity_commands(controller, pose, velocity, tolerances) :
-        controller.compute_velocity_commands(pose, velocity, tolerances);
+        controller.compute_velocity_commands(pose, velocity, tolerances).cmd_vel;
       return cmd.twist;
     } else if (name == "is_goal_reached") {
       auto & checker = as<GoalCheckerSession>(id);

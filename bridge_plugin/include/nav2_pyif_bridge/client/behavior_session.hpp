@@ -6,7 +6,6 @@
 
 #include <optional>
 #include <string>
-#include <string_view>
 
 #include "nav2_pyif_bridge/client/plugin_session.hpp"
 
@@ -26,16 +25,6 @@ struct BehaviorStep
   protocol::Params feedback;
   std::string error;  // the failed call's log text (message and traceback), empty when none
 };
-
-// "succeeded" / "failed" / "running" and the failure names, as the wire spells them.
-inline std::optional<BehaviorStatus> behavior_status_from_name(std::string_view name) noexcept
-{
-  return protocol::from_name<BehaviorStatus>(protocol::kBehaviorStatusNames, name);
-}
-inline std::optional<BehaviorFailure> behavior_failure_from_name(std::string_view name) noexcept
-{
-  return protocol::from_name<BehaviorFailure>(protocol::kBehaviorFailureNames, name);
-}
 
 class BehaviorSession : public KindSession<PluginKind::Behavior>
 {

@@ -61,10 +61,12 @@ public:
   std::vector<protocol::DebugOutput> take_debug();
 
   // The command, every component finite (else NoValidControl). The costmap travels when it
-  // changed since the host last got it, and so do the inputs.
-  protocol::TwistStamped compute_velocity_commands(
+  // changed since the host last got it, and so do the inputs. The query carries `carry`, the
+  // calls that follow it in the cycle (the goal check, when controller_server calls it last).
+  CommandReplies compute_velocity_commands(
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
-    const std::optional<protocol::GoalChecker> & goal_checker);
+    const std::optional<protocol::GoalChecker> & goal_checker,
+    std::vector<protocol::CarriedCall> carry = {});
   // The same call prepared for another plugin's query to carry (PROTOCOL.md section 15);
   // std::nullopt when the session cannot prepare one now.
   std::optional<Carried> prepare_command(
@@ -77,13 +79,6 @@ public:
     Carried prepared, const std::optional<protocol::Bytes> & reply,
     const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
     const std::optional<protocol::GoalChecker> & goal_checker);
-  // compute_velocity_commands carrying the calls that follow it in the cycle (the goal
-  // check, when controller_server calls it last).
-  CommandReplies compute_velocity_commands(
-    const protocol::PoseStamped & pose, const std::array<double, 6> & velocity,
-    const std::optional<protocol::GoalChecker> & goal_checker,
-    std::vector<protocol::CarriedCall> carry);
-
   // Remembered after an ok reply, and also when the host failed the call (none alive, no
   // reply in time, Unavailable), so a host that comes back drives at the latest limit; one
   // the planner refused is not (as the reference client).

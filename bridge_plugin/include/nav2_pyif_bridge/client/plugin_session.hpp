@@ -214,7 +214,8 @@ private:
   void transition(bool active);
   void reestablish(const std::string & host);
   void pin_host();
-  bool fail_over(const std::optional<std::string> & avoid);
+  // Pins another alive replica than the pinned one and `avoid`; false when there is none.
+  bool fail_over(const std::string & avoid);
   std::optional<protocol::ReplyBody> take_body(
     Carried carried, const std::optional<protocol::Bytes> & reply, protocol::RequestBody body);
   // The body of the reply to a carried request, as call() would return it (take()).
