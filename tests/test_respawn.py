@@ -22,23 +22,34 @@ from tests.test_signals import Command
 
 pytestmark = pytest.mark.integration
 
-#: The keeper of nav2_pyif.server.respawn.keep, its timings (JSON) and the command it keeps.
+#: The keeper of nav2_pyif.server.respawn.keep: its timings (JSON), the parent it ends with
+#: (0: none) and the command it keeps.
 KEEPER = (
     "import json, logging, sys; from nav2_pyif.server.respawn import keep; "
     "logging.basicConfig(level='INFO', format='%(message)s'); "
-    "sys.exit(keep(sys.argv[2:], **json.loads(sys.argv[1])))"
+    "sys.exit(keep(sys.argv[3:], parent=int(sys.argv[2]) or None, **json.loads(sys.argv[1])))"
 )
 FAST = {"first_delay": 0.1, "max_delay": 0.4, "stable_after": 1.0, "grace": 0.5}
 
 
-def keeper_argv(script: str, **timings: float) -> list[str]:
-    """The command line of a keeper of ``sh -c script``, with FAST's timings or these."""
-    return [sys.executable, "-c", KEEPER, json.dumps({**FAST, **timings}), "sh", "-c", script]
+def keeper_argv(script: str, parent: str = "0", **timings: float) -> list[str]:
+    """The command line of a keeper of ``sh -c script``, with FAST's timings or these, ending
+    with ``parent`` (a pid, or "0")."""
+    return [
+        sys.executable,
+        "-c",
+        KEEPER,
+        json.dumps({**FAST, **timings}),
+        parent,
+        "sh",
+        "-c",
+        script,
+    ]
 
 
 def keeper(tmp_path: Path, script: str, **timings: float) -> Command:
     """A keeper of ``sh -c script`` run in ``tmp_path``."""
-    return Command(tmp_path, *keeper_argv(f"cd {tmp_path}; {script}", **timings))
+    return Command(tmp_path, *keeper_argv(f"cd {tmp_path}; {script}", "0", **timings))
 
 
 def delays(text: str) -> list[str]:
@@ -96,12 +107,11 @@ def test_a_killed_keeper_leaves_no_host(tmp_path: Path) -> None:
 
 
 def test_a_keeper_ends_with_the_plugin_that_started_it(tmp_path: Path) -> None:
-    """The Nav2 plugin names itself in NAV2_PYIF_PARENT_PID: a killed Nav2 (here a shell
+    """The Nav2 plugin names itself (planner-host --parent-pid): a killed Nav2 (here a shell
     killed with SIGKILL, which can clean nothing up) leaves neither keeper nor host."""
-    kept = keeper_argv("echo $$ > pid; exec sleep 60")
-    starter = Command(
-        tmp_path, "sh", "-c", f"cd {tmp_path}; NAV2_PYIF_PARENT_PID=$$ {shlex.join(kept)} & wait"
-    )
+    kept = keeper_argv("echo $$ > pid; exec sleep 60", parent="$$")
+    command = " ".join(arg if arg == "$$" else shlex.quote(arg) for arg in kept)
+    starter = Command(tmp_path, "sh", "-c", f"cd {tmp_path}; {command} & wait")
     try:
         host = host_pid(tmp_path, starter)
         tree = process_tree(starter.proc.pid)
@@ -121,9 +131,9 @@ def test_a_keeper_whose_plugin_is_gone_already_starts_nothing(tmp_path: Path) ->
     (tmp_path / "orphan").mkdir()
     orphan = Command(
         tmp_path / "orphan",
-        "env",
-        f"NAV2_PYIF_PARENT_PID={gone.pid}",  # not this keeper's parent: gone
-        *keeper_argv(f"cd {tmp_path / 'orphan'}; echo started > started; exec sleep 60"),
+        *keeper_argv(  # not this keeper's parent: gone
+            f"cd {tmp_path / 'orphan'}; echo started > started; exec sleep 60", str(gone.pid)
+        ),
     )
     assert orphan.proc.wait(10) == 1, orphan.text()
     assert not (tmp_path / "orphan" / "started").exists()
@@ -157,3 +167,20 @@ def test_planner_host_respawn_keeps_a_host_without_respawn(
     assert "exited with status 2; restarting in 1.0 s" in text
     started = re.findall(r"planner host started \(pid \d+\): (.*)", text)
     assert started and all("--res" not in line for line in started), started
+
+
+@pytest.mark.parametrize("how", ["--parent-pid", "NAV2_PYIF_PARENT_PID"])
+def test_planner_host_respawn_whose_parent_is_gone_starts_nothing(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, how: str
+) -> None:
+    """The real command binds its keeper to the process it is given (the Nav2 plugin passes
+    --parent-pid; the environment variable works too): that process gone, it exits at once."""
+    gone = subprocess.Popen(["true"])
+    gone.wait()
+    flags = [how, str(gone.pid)] if how.startswith("--") else []
+    if not flags:
+        monkeypatch.setenv(how, str(gone.pid))
+    command = [sys.executable, "-m", "nav2_pyif.server.cli", "--respawn", *flags]
+    kept = Command(tmp_path, *command, "--key", "nav2_pyif/t/k", "--planner", "no_such_m:C")
+    assert kept.proc.wait(30) == 1, kept.text()
+    assert "planner host started" not in kept.text()

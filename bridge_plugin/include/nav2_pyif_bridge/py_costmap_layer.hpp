@@ -31,8 +31,8 @@ public:
   void matchSize() override;
   void reset() override;
   bool isClearable() override {return false;}
-  void activate() override;
-  void deactivate() override;
+  void activate() override {plugin_.activate();}
+  void deactivate() override {plugin_.deactivate();}
 
 private:
   // Log a failure (once per streak; the traceback when the host sent one) and mark the layer

@@ -28,28 +28,19 @@ public:
   void activate() override {plugin_.activate();}
   void deactivate() override {plugin_.deactivate();}
 
+  // Lyrical's viapoints travel in the costmap's global frame, as start and goal do; Jazzy's
+  // cancel checker is polled while the plan is computed.
+  nav_msgs::msg::Path createPlan(
+    const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal
 #if NAV2_PYIF_LYRICAL_API
-  // The viapoints travel in the costmap's global frame, as start and goal do.
-  nav_msgs::msg::Path createPlan(
-    const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
-    const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
-    std::function<bool()> cancel_checker) override;
-#elif NAV2_PYIF_JAZZY_API
-  nav_msgs::msg::Path createPlan(
-    const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
-    std::function<bool()> cancel_checker) override;
-#else
-  nav_msgs::msg::Path createPlan(
-    const geometry_msgs::msg::PoseStamped & start,
-    const geometry_msgs::msg::PoseStamped & goal) override;
+    , const std::vector<geometry_msgs::msg::PoseStamped> & viapoints
 #endif
+#if NAV2_PYIF_JAZZY_API
+    , std::function<bool()> cancel_checker
+#endif
+  ) override;
 
 private:
-  nav_msgs::msg::Path plan(
-    const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
-    const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
-    const std::function<bool()> & cancel_checker);
-
   std::shared_ptr<TfBuffer> tf_;
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
   BridgedSession<client::PlannerSession> plugin_;

@@ -24,15 +24,14 @@ public:
     std::shared_ptr<TfBuffer> tf,
     std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> costmap_sub,
     std::shared_ptr<nav2_costmap_2d::FootprintSubscriber> footprint_sub) override;
-  void cleanup() override;
-  void activate() override;
-  void deactivate() override;
+  void cleanup() override {plugin_.stop();}
+  void activate() override {plugin_.activate();}
+  void deactivate() override {plugin_.deactivate();}
   // The smoothed path replaces `path`; false when the smoother stopped early. The reply is
   // awaited for max(max_time + 1 s, the plan_timeout parameter).
   bool smooth(nav_msgs::msg::Path & path, const rclcpp::Duration & max_time) override;
 
 private:
-  std::string name_;
   BridgedSession<client::SmootherSession> plugin_;
 };
 

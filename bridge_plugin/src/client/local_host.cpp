@@ -82,8 +82,12 @@ std::string local_host_key(std::string_view node, std::string_view plugin)
 std::vector<std::string> local_host_arguments(
   const BridgeParameters & spec, const std::string & key, const std::string & listen_endpoint)
 {
-  // --respawn: planner-host restarts the host itself whenever it exits
-  std::vector<std::string> argv{spec.planner_host_command, "--respawn", "--key", key};
+  // --respawn: planner-host restarts the host itself whenever it exits; --parent-pid: the
+  // keeper gets SIGTERM when this process dies, and starts nothing if it is gone already
+  // (PR_SET_PDEATHSIG), so a crashed Nav2 leaves no planner host behind.
+  std::vector<std::string> argv{
+    spec.planner_host_command, "--respawn", "--parent-pid", std::to_string(::getpid()), "--key",
+    key};
   auto add = [&argv](const char * flag, const std::string & value) {
       if (!value.empty()) {
         argv.insert(argv.end(), {flag, value});
@@ -108,19 +112,7 @@ LocalHost::LocalHost(
   logger_(std::move(logger)), stop_grace_(stop_grace)
 {
   std::vector<std::string> args = local_host_arguments(spec, key_, endpoint_);
-  // The keeper binds itself to this process (planner-host --respawn: PR_SET_PDEATHSIG, and no
-  // start if this process is gone already), so a crashed Nav2 leaves no planner host behind.
-  std::vector<std::string> environment{
-    "PYTHONUNBUFFERED=1", "NAV2_PYIF_PARENT_PID=" + std::to_string(::getpid())};
-  for (char ** entry = environ; entry && *entry; ++entry) {
-    if (std::strncmp(*entry, "PYTHONUNBUFFERED=", 17) != 0 &&
-      std::strncmp(*entry, "NAV2_PYIF_PARENT_PID=", 21) != 0)
-    {
-      environment.emplace_back(*entry);
-    }
-  }
   const std::vector<char *> argv = pointers(args);
-  const std::vector<char *> envp = pointers(environment);
   // A process group of its own (stop() signals the group: the host's workers too), and no
   // signal blocked by the thread that starts it.
   posix_spawnattr_t attributes;
@@ -132,7 +124,7 @@ LocalHost::LocalHost(
   ::posix_spawnattr_setsigmask(&attributes, &none);
   pid_t pid = 0;
   // $PATH searched as a shell does; glibc reports a failed exec here (ENOENT, EACCES, ...)
-  const int error = ::posix_spawnp(&pid, argv[0], nullptr, &attributes, argv.data(), envp.data());
+  const int error = ::posix_spawnp(&pid, argv[0], nullptr, &attributes, argv.data(), environ);
   ::posix_spawnattr_destroy(&attributes);
   if (error != 0) {
     throw std::runtime_error("cannot start '" + args.front() + "': " + std::strerror(error));

@@ -170,16 +170,6 @@ void PyCostmapLayer::reset()
   }
 }
 
-void PyCostmapLayer::activate()
-{
-  plugin_.activate();
-}
-
-void PyCostmapLayer::deactivate()
-{
-  plugin_.deactivate();
-}
-
 }  // namespace nav2_pyif_bridge
 
 PLUGINLIB_EXPORT_CLASS(nav2_pyif_bridge::PyCostmapLayer, nav2_costmap_2d::Layer)

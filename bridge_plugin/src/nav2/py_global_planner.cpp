@@ -18,34 +18,22 @@ void PyGlobalPlanner::configure(
   plugin_.start(parent, name, bind_costmap(costmap_ros_));
 }
 
+nav_msgs::msg::Path PyGlobalPlanner::createPlan(
+  const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal
 #if NAV2_PYIF_LYRICAL_API
-nav_msgs::msg::Path PyGlobalPlanner::createPlan(
-  const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
-  const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
-  std::function<bool()> cancel_checker)
-{
-  return plan(start, goal, viapoints, cancel_checker);
-}
-#elif NAV2_PYIF_JAZZY_API
-nav_msgs::msg::Path PyGlobalPlanner::createPlan(
-  const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
-  std::function<bool()> cancel_checker)
-{
-  return plan(start, goal, {}, cancel_checker);
-}
-#else
-nav_msgs::msg::Path PyGlobalPlanner::createPlan(
-  const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal)
-{
-  return plan(start, goal, {}, {});
-}
+  , const std::vector<geometry_msgs::msg::PoseStamped> & viapoints
 #endif
-
-nav_msgs::msg::Path PyGlobalPlanner::plan(
-  const geometry_msgs::msg::PoseStamped & start, const geometry_msgs::msg::PoseStamped & goal,
-  const std::vector<geometry_msgs::msg::PoseStamped> & viapoints,
-  const std::function<bool()> & cancel_checker)
+#if NAV2_PYIF_JAZZY_API
+  , std::function<bool()> cancel_checker
+#endif
+)
 {
+#if !NAV2_PYIF_LYRICAL_API
+  const std::vector<geometry_msgs::msg::PoseStamped> viapoints;  // before Lyrical: none
+#endif
+#if !NAV2_PYIF_JAZZY_API
+  const std::function<bool()> cancel_checker;  // Humble's planner server has none
+#endif
   return plugin_.bridge().forward(
     [&]() {
       const std::string frame = costmap_ros_->getGlobalFrameID();

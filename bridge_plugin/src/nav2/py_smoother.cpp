@@ -16,7 +16,6 @@ void PySmoother::configure(
   std::shared_ptr<nav2_costmap_2d::CostmapSubscriber> costmap_sub,
   std::shared_ptr<nav2_costmap_2d::FootprintSubscriber>)
 {
-  name_ = std::move(name);
   CostmapBinding costmap;
   // smoother_server's robot_base_frame; its costmap's frame is not known here (the
   // subscriber does not say it): paths are smoothed in their own frame.
@@ -24,22 +23,7 @@ void PySmoother::configure(
     costmap.robot_base_frame = node->get_parameter("robot_base_frame").as_string();
   }
   costmap.source = std::make_unique<CostmapSubscriberSource>(std::move(costmap_sub), "");
-  plugin_.start(parent, name_, std::move(costmap));
-}
-
-void PySmoother::cleanup()
-{
-  plugin_.stop();
-}
-
-void PySmoother::activate()
-{
-  plugin_.activate();
-}
-
-void PySmoother::deactivate()
-{
-  plugin_.deactivate();
+  plugin_.start(parent, name, std::move(costmap));
 }
 
 bool PySmoother::smooth(nav_msgs::msg::Path & path, const rclcpp::Duration & max_time)

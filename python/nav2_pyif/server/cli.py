@@ -211,6 +211,13 @@ def build_parser() -> argparse.ArgumentParser:
         "local host so",
     )
     parser.add_argument(
+        "--parent-pid",
+        type=int,
+        metavar="PID",
+        help="with --respawn: the process that starts the keeper (the Nav2 plugin); the keeper "
+        "gets SIGTERM when it dies, and starts nothing if it is gone already (Linux)",
+    )
+    parser.add_argument(
         "--log-level",
         default="INFO",
         choices=["DEBUG", "INFO", "WARNING", "ERROR"],
@@ -306,7 +313,8 @@ def main(argv: list[str] | None = None) -> int:
     )
     if args.respawn:
         os.environ.pop("NAV2_PYIF_RESPAWN", None)  # the child serves, it keeps nothing
-        return keep([sys.executable, "-m", "nav2_pyif.server.cli", *without_respawn(given)])
+        child = [sys.executable, "-m", "nav2_pyif.server.cli", *without_respawn(given)]
+        return keep(child, parent=args.parent_pid)
     # A planner served in this process (--isolation none) that segfaults leaves its stack.
     faulthandler.enable()
     log = logging.getLogger("nav2_pyif.server.host")

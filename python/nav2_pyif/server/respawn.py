@@ -5,7 +5,7 @@ The Nav2 plugin starts its local host so: the plugin only starts and stops one p
 restarts are here. The child stays in the keeper's process group (a signal to the group, as
 the plugin's clean-up sends, reaches both) and gets SIGTERM if the keeper dies (Linux), so a
 killed keeper leaves no host behind; the keeper gets SIGTERM when the plugin that started it
-dies ($NAV2_PYIF_PARENT_PID). SIGINT, SIGTERM or SIGHUP to the keeper: SIGTERM to the child,
+dies (``--parent-pid``). SIGINT, SIGTERM or SIGHUP to the keeper: SIGTERM to the child,
 SIGKILL after a grace, exit 128 + the signal's number.
 """
 
@@ -24,8 +24,6 @@ from nav2_pyif.common.signals import Interrupted, deferred, raise_on_signals
 
 log = logging.getLogger("nav2_pyif.server.respawn")
 PR_SET_PDEATHSIG = 1  # <sys/prctl.h>
-#: Set by the Nav2 plugin that starts a local host: its process id.
-PARENT_ENV = "NAV2_PYIF_PARENT_PID"
 
 
 def _die_with(parent: int) -> Callable[[], None]:
@@ -41,12 +39,11 @@ def _die_with(parent: int) -> Callable[[], None]:
     return preexec
 
 
-def _bind_to_starter() -> None:
-    """SIGTERM to this keeper when the process named by $NAV2_PYIF_PARENT_PID (the Nav2 plugin
-    that started it) dies, and an exit now if it is gone already (Linux)."""
-    parent = os.environ.pop(PARENT_ENV, "")
-    if parent.isdigit() and sys.platform == "linux":
-        _die_with(int(parent))()
+def _bind_to_starter(parent: int | None) -> None:
+    """SIGTERM to this keeper when ``parent`` (the Nav2 plugin that started it) dies, and an
+    exit now if it is gone already (Linux)."""
+    if parent is not None and sys.platform == "linux":
+        _die_with(parent)()
 
 
 def describe(returncode: int) -> str:
@@ -76,21 +73,25 @@ def stop(child: subprocess.Popen[bytes], grace: float) -> None:
 def keep(
     command: Sequence[str],
     *,
+    parent: int | None = None,
     first_delay: float = 1.0,
     max_delay: float = 30.0,
     stable_after: float = 10.0,
     grace: float = 5.0,
 ) -> int:
     """Run ``command`` until a terminating signal, restarting it whenever it exits; returns
-    the signal's exit code."""
+    the signal's exit code. ``parent``: the process this keeper ends with."""
     raise_on_signals()
-    _bind_to_starter()
+    _bind_to_starter(parent)
     preexec = _die_with(os.getpid()) if sys.platform == "linux" else None
     delay, child = first_delay, None
     try:
         while True:
             with deferred():  # a signal now waits until the child is recorded, to be stopped
-                child = subprocess.Popen(command, preexec_fn=preexec)
+                # unbuffered: the host's lines reach the plugin's log as they are written
+                child = subprocess.Popen(
+                    command, preexec_fn=preexec, env={**os.environ, "PYTHONUNBUFFERED": "1"}
+                )
             log.info("planner host started (pid %d): %s", child.pid, " ".join(command))
             started = time.monotonic()
             returncode = child.wait()

@@ -27,17 +27,15 @@ std::uint16_t pick_free_tcp_port();
 // a key chunk cannot hold replaced by '_'.
 std::string local_host_key(std::string_view node, std::string_view plugin);
 
-// planner-host's argument vector (with --respawn) for the plugin's python_* and
-// planner_host_* parameters, serving `key`, listening on `listen_endpoint`. The host
-// validates what they name.
+// planner-host's argument vector (with --respawn, and this process as the keeper's parent) for
+// the plugin's python_* and planner_host_* parameters, serving `key`, listening on
+// `listen_endpoint`. The host validates what they name.
 std::vector<std::string> local_host_arguments(
   const BridgeParameters & spec, const std::string & key, const std::string & listen_endpoint);
 
 // A planner host started for one plugin: picks a loopback port and runs
-// local_host_arguments() in a process group of its own, with PYTHONUNBUFFERED=1 and
-// NAV2_PYIF_PARENT_PID, by which the keeper gets SIGTERM when the thread that started it dies
-// (Linux), so a crashed Nav2 leaves no planner host behind. The plugin connects to endpoint()
-// and uses key().
+// local_host_arguments() in a process group of its own. The plugin connects to endpoint() and
+// uses key().
 class LocalHost
 {
 public:
