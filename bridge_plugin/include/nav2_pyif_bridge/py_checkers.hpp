@@ -65,7 +65,6 @@ private:
   // The robot's pose as controller_server looks it up (header included): what the carried
   // progress check and command are prepared with.
   std::shared_ptr<nav2_costmap_2d::Costmap2DROS> costmap_ros_;
-  std::shared_ptr<client::CarriedCycle> cycle_;
 };
 
 class PyProgressChecker : public nav2_core::ProgressChecker

@@ -54,11 +54,6 @@ std::string KeySpace::call(protocol::Op op) const
   return prefix_ + "/rpc/" + std::string(protocol::op_name(op));
 }
 
-std::string KeySpace::host_token(std::string_view host_id) const
-{
-  return prefix_ + "/host/" + std::string(host_id);
-}
-
 std::string_view KeySpace::host_id_of(std::string_view token_key) noexcept
 {
   const std::size_t slash = token_key.rfind('/');

@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/ros_conversions.hpp"
 
 namespace nav2_pyif_bridge
@@ -118,6 +119,16 @@ client::Logger PluginBridge::logger() const
 void PluginBridge::configure(client::PluginSession & session)
 {
   session_ = &session;
+  const client::PluginKind kind = config_.kind;
+  auto node = node_.lock();
+  if (node && (kind == client::PluginKind::Controller || kind == client::PluginKind::GoalChecker ||
+    kind == client::PluginKind::ProgressChecker))
+  {
+    // the controller_server's plugins share its carried cycle (through the node base
+    // interface: Humble's LifecycleNode has no get_fully_qualified_name)
+    session.join(
+      client::CarriedCycle::of(node->get_node_base_interface()->get_fully_qualified_name()));
+  }
   const auto wait = client::host_wait(settings_);
   if (!session.wait_for_host(wait)) {
     RCLCPP_WARN(
@@ -144,7 +155,6 @@ void PluginBridge::configure(client::PluginSession & session)
       session.defer_configure();
     }
   }
-  auto node = node_.lock();
   if (node) {
     parameter_callback_ = node->add_on_set_parameters_callback(
       [this](const std::vector<rclcpp::Parameter> & parameters) {

@@ -29,12 +29,6 @@ void PyGoalChecker::initialize(
   tolerances_.reset();
   costmap_ros_ = costmap_ros;
   plugin_.start(parent, plugin_name, bind_costmap(costmap_ros));
-  if (auto node = parent.lock()) {
-    // (through the node base interface: Humble's LifecycleNode has no get_fully_qualified_name)
-    cycle_ = client::CarriedCycle::of(
-      node->get_node_base_interface()->get_fully_qualified_name());
-    plugin_.session().join(cycle_);
-  }
 }
 
 void PyGoalChecker::reset()
@@ -56,16 +50,17 @@ bool PyGoalChecker::isGoalReached(
 {
   // controller_server's pose lookup once more: the same message (its stamp included) when
   // TF has not moved on, which the cycle's other calls then get (goal check first).
+  client::CarriedCycle * cycle = plugin_.session().cycle();
   geometry_msgs::msg::PoseStamped robot;
-  const bool looked_up = cycle_ && !cycle_->goal_last() && costmap_ros_ &&
+  const bool looked_up = cycle && !cycle->goal_last() && costmap_ros_ &&
     costmap_ros_->getRobotPose(robot) && robot.pose == query_pose;
   const std::optional<protocol::GoalChecker> tolerances =
     looked_up ? ros::tolerances(this) : std::nullopt;
   return plugin_.bridge().forward(
     [&]() {
       const protocol::IsGoalReachedRequest request = goal_check(query_pose, goal_pose, velocity);
-      if (cycle_) {
-        return cycle_->is_goal_reached(
+      if (cycle) {
+        return cycle->is_goal_reached(
           plugin_.session(),
           looked_up ? std::make_optional(ros::to_wire(robot)) : std::nullopt, request, tolerances);
       }
@@ -122,10 +117,7 @@ void PyProgressChecker::initialize(
   CostmapBinding none;  // Nav2 gives a progress checker no costmap
   none.source = std::make_unique<client::NoCostmap>();
   plugin_.start(parent, plugin_name, std::move(none));
-  if (auto node = parent.lock()) {
-    auto cycle = client::CarriedCycle::of(
-      node->get_node_base_interface()->get_fully_qualified_name());
-    plugin_.session().join(cycle);
+  if (client::CarriedCycle * cycle = plugin_.session().cycle()) {
     cycle->use_progress_checker(plugin_.session());
   }
 }

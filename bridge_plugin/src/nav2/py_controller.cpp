@@ -24,9 +24,6 @@ void PyController::configure(
   plugin_.start(parent, name_, bind_costmap(costmap_ros_));
   node_ = parent;
   auto node = parent.lock();
-  // (through the node base interface: Humble's LifecycleNode has no get_fully_qualified_name)
-  session().join(
-    client::CarriedCycle::of(node->get_node_base_interface()->get_fully_qualified_name()));
   for (const client::InputSpec & spec : bridge().inputs()) {
     // Best effort with a short queue (SensorDataQoS) matches reliable publishers too; only
     // the latest message matters.

@@ -26,7 +26,6 @@ public:
   std::string cancel() const {return prefix_ + "/cancel";}
   // What a plugin's liveliness subscriber watches: P/host/*.
   std::string hosts() const {return prefix_ + "/host/*";}
-  std::string host_token(std::string_view host_id) const;
   // The <host_id> of a token key P/host/<host_id>.
   static std::string_view host_id_of(std::string_view token_key) noexcept;
 

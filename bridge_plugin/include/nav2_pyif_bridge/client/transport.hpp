@@ -25,8 +25,6 @@ struct Target
 
   // The selector's parameters: "host=<id>", or "" for any host.
   std::string parameters() const {return host.empty() ? std::string() : "host=" + host;}
-  // key?host=<id>, as the reference client writes it (for messages).
-  std::string selector() const {return host.empty() ? key : key + "?" + parameters();}
 };
 
 // Work to do while a query waits for its reply (polling Nav2's cancel checker).
