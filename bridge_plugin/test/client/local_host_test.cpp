@@ -77,7 +77,7 @@ struct FakeHost
   std::string dir;
 };
 
-TEST(LocalHost, CommandLineForTheSeedStyle)
+TEST(LocalHost, CommandLineForAModuleWithDelegates)
 {
   BridgeParameters spec;
   spec.python_module = "nav2_pyif_planners.apf";

@@ -69,7 +69,7 @@ TEST(Settings, Defaults)
   EXPECT_TRUE(s.zenoh_connect.empty());
 }
 
-TEST(Settings, SeedPaperStyleStartsALocalHost)
+TEST(Settings, AModuleWithDelegatesStartsALocalHost)
 {
   proto::Params p;
   p.set("python_module", std::string("nav2_pyif_planners.apf"));
