@@ -19,7 +19,12 @@ from nav2_pyif_protocol.keys import validate_prefix
 
 from nav2_pyif._ros_types import check_serialization_rmw
 from nav2_pyif.common.env_defaults import apply_environment, document_environment
-from nav2_pyif.common.option_types import non_negative_float, non_negative_int, positive_float
+from nav2_pyif.common.option_types import (
+    non_negative_float,
+    non_negative_int,
+    positive_float,
+    positive_int,
+)
 from nav2_pyif.common.signals import TERMINATING, exit_code
 from nav2_pyif.common.zenoh_config import (
     add_zenoh_arguments,
@@ -212,7 +217,7 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument(
         "--parent-pid",
-        type=int,
+        type=positive_int,
         metavar="PID",
         help="with --respawn: the process that starts the keeper (the Nav2 plugin); the keeper "
         "gets SIGTERM when it dies, and starts nothing if it is gone already (Linux)",
