@@ -55,21 +55,6 @@ void CarriedCycle::forget(const PluginSession & session)
   }
 }
 
-namespace
-{
-
-// `body` carrying `carry`, when there is any.
-template<class Request>
-Request carrying(Request body, CarriedCalls carry)
-{
-  if (!carry.empty()) {
-    body.carry = std::move(carry);
-  }
-  return body;
-}
-
-}  // namespace
-
 std::optional<CarriedCycle::Pending> CarriedCycle::take_for(
   std::optional<Pending> & slot, const PluginSession & session)
 {

@@ -70,12 +70,8 @@ CommandReplies ControllerSession::compute_velocity_commands(
     send_plan();  // a host failure here fails this cycle, as the cycle's own would
   }
   Attached attached;
-  proto::ComputeVelocityCommandsRequest body =
-    command_body(pose, velocity, goal_checker, attached);
-  if (!carry.empty()) {
-    body.carry = std::move(carry);
-  }
-  auto reply = call(body);
+  auto reply =
+    call(carrying(command_body(pose, velocity, goal_checker, attached), std::move(carry)));
   std::vector<proto::CarriedCall> carried = std::move(reply.carried).value_or(
     std::vector<proto::CarriedCall>{});
   return {command_of(std::move(reply), attached), std::move(carried)};

@@ -394,8 +394,11 @@ std::optional<proto::ReplyBody> PluginSession::take_body(
     // attach the costmap the prepared request has, or none as it has none.
     move_costmap(carried.request.body, body);
   }
-  const proto::Request real{
-    proto::kProtocolVersion, sid_, state_.epoch, carried.request.seq, std::move(body)};
+  proto::Request real;
+  real.sid = sid_;
+  real.epoch = state_.epoch;
+  real.seq = carried.request.seq;
+  real.body = std::move(body);
   try {
     if (proto::encode_request(real) != carried.payload) {
       return std::nullopt;

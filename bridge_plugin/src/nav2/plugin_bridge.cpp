@@ -119,13 +119,9 @@ client::Logger PluginBridge::logger() const
 void PluginBridge::configure(client::PluginSession & session)
 {
   session_ = &session;
-  const client::PluginKind kind = config_.kind;
   auto node = node_.lock();
-  if (node && (kind == client::PluginKind::Controller || kind == client::PluginKind::GoalChecker ||
-    kind == client::PluginKind::ProgressChecker))
-  {
-    // the controller_server's plugins share its carried cycle (through the node base
-    // interface: Humble's LifecycleNode has no get_fully_qualified_name)
+  if (node && protocol::in_carried_cycle(config_.kind)) {
+    // (through the node base interface: Humble's LifecycleNode has no get_fully_qualified_name)
     session.join(
       client::CarriedCycle::of(node->get_node_base_interface()->get_fully_qualified_name()));
   }

@@ -463,5 +463,21 @@ INSTANTIATE_TEST_SUITE_P(
     return info.param ? "WithProgressChecker" : "GoalCheckerOnly";
   });
 
+TEST(CarriedCycleMembers, AreTheControllerServersPluginTypesOnly)
+{
+  // (schema.py CARRIES: the goal check, the progress check and the command carry each other)
+  for (const PluginKind kind :
+    {PluginKind::Controller, PluginKind::GoalChecker, PluginKind::ProgressChecker})
+  {
+    EXPECT_TRUE(proto::in_carried_cycle(kind)) << plugin_type_name(kind);
+  }
+  for (const PluginKind kind :
+    {PluginKind::GlobalPlanner, PluginKind::Smoother, PluginKind::CostmapLayer,
+      PluginKind::Behavior})
+  {
+    EXPECT_FALSE(proto::in_carried_cycle(kind)) << plugin_type_name(kind);
+  }
+}
+
 }  // namespace
 }  // namespace nav2_pyif_bridge::client::test

@@ -27,6 +27,7 @@ from nav2_pyif_protocol.schema import (
     BIN,
     BODIES,
     BOOL,
+    CARRIES,
     COSTMAP_SENT,
     FLOAT,
     FLOAT6,
@@ -272,6 +273,16 @@ def all_types() -> list[tuple[str, tuple[Field, ...]]]:
 # --- headers --------------------------------------------------------------------------------
 
 
+def _one_per_line(head: str, terms: list[str], joiner: str, end: str) -> list[str]:
+    """``head`` and ``terms`` joined by ``joiner``, one term per line, aligned under the first;
+    ``end`` after the last."""
+    indent = " " * len(head)
+    return [
+        (head if i == 0 else indent) + term + (joiner if i < len(terms) - 1 else end)
+        for i, term in enumerate(terms)
+    ]
+
+
 def _restored_count() -> int:
     return sum(len(ops) for ops in RESTORED.values())
 
@@ -361,6 +372,26 @@ def ops_hpp() -> str:
             for op in ops
         ),
         "}};",
+        "",
+        *comment(
+            "Whether a plugin type sends a call of the carried control cycle (schema.py "
+            "CARRIES; PROTOCOL.md section 15): the plugins of such types in one "
+            "controller_server share its carried cycle.",
+            "",
+        ),
+        "constexpr bool in_carried_cycle(PluginKind kind) noexcept",
+        "{",
+        *_one_per_line(
+            "  return ",
+            [
+                f"kind == PluginKind::{camel(p.value)}"
+                for p in PluginType
+                if any(op in CARRIES for op in OPS_BY_PLUGIN[p])
+            ],
+            " ||",
+            ";",
+        ),
+        "}",
         "",
         "// std::nullopt for a name this version of the protocol does not know.",
         "constexpr std::optional<Op> op_from_name(std::string_view name) noexcept",

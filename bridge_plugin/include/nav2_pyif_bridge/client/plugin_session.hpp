@@ -26,6 +26,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "nav2_pyif_bridge/client/bridge_parameters.hpp"
 #include "nav2_pyif_bridge/client/costmap_version.hpp"
@@ -69,6 +70,17 @@ struct Carried
   protocol::Bytes payload;  // the encoded request
   CostmapAttached costmap;  // the costmap it was prepared with
 };
+
+// `body` carrying `carry` (the encoded requests of the calls that follow it in the control
+// cycle), when there is any: an empty list is left out of the request.
+template<class Request>
+Request carrying(Request body, std::vector<protocol::CarriedCall> carry)
+{
+  if (!carry.empty()) {
+    body.carry = std::move(carry);
+  }
+  return body;
+}
 
 // What a session is now, for the plugins' logs and the tests.
 struct SessionState

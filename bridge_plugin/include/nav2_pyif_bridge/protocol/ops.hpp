@@ -169,6 +169,15 @@ inline constexpr std::array<std::pair<PluginKind, Op>, 3> kRestored = {{
   {PluginKind::Behavior, Op::OnRun},
 }};
 
+// Whether a plugin type sends a call of the carried control cycle (schema.py CARRIES; PROTOCOL.md
+// section 15): the plugins of such types in one controller_server share its carried cycle.
+constexpr bool in_carried_cycle(PluginKind kind) noexcept
+{
+  return kind == PluginKind::Controller ||
+         kind == PluginKind::GoalChecker ||
+         kind == PluginKind::ProgressChecker;
+}
+
 // std::nullopt for a name this version of the protocol does not know.
 constexpr std::optional<Op> op_from_name(std::string_view name) noexcept
 {
