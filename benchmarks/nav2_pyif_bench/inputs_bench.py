@@ -147,14 +147,14 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     ]  # fmt: skip
     node = ["-m", "nav2_pyif_bench.inputs_node"]
     samples: dict[str, dict[str, list[int]]] = {"protocol": {}, "rclpy": {}}
-    with peer_processes({"host": host, "node": node}, env):
+    with peer_processes({"host": host, "node": node}, env) as peers:
         session = connect_to([f"tcp/127.0.0.1:{port}"], "peer")
         client = ControllerClient(session, KEY, costmap(10), timeouts=TIMEOUTS)
         topics = TopicSide()
         try:
             progress("waiting for the planner host and the rclpy node")
             if not client.wait_for_host(30):
-                raise RuntimeError("planner host did not come up")
+                raise peers.not_up("the planner host")
             client.configure()
             client.activate()
             topics.wait_ready(cdr)

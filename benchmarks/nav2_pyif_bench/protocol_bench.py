@@ -162,7 +162,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
 
     os.environ.update(env)
     results: dict[str, Any] = {}
-    with peer_processes(commands, env):
+    with peer_processes(commands, env) as peers:
         session = open_session(
             [f"tcp/127.0.0.1:{port}" for port in (host_port, bare_port, inproc_port)]
         )
@@ -171,12 +171,12 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         try:
             progress("waiting for the planner host, the bare queryable and the rclpy node")
             if not client.wait_for_host(30):
-                raise RuntimeError("planner host did not come up")
+                raise peers.not_up("the planner host")
             client.configure()
             client.activate()
             inproc = ControllerClient(session, INPROC_KEY, costmap(10), timeouts=TIMEOUTS)
             if not inproc.wait_for_host(30):
-                raise RuntimeError("in-process planner host did not come up")
+                raise peers.not_up("the in-process planner host")
             inproc.configure()
             inproc.activate()
             deadline = time.monotonic() + 30
@@ -188,7 +188,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                     if time.monotonic() > deadline:
                         raise
             if not ros.wait_ready():
-                raise RuntimeError("rclpy node did not come up (DDS discovery)")
+                raise peers.not_up("the rclpy node (DDS discovery)")
 
             pose, velocity, odom = PoseStamped(), Twist(), Odometry()
             pose.header.frame_id = odom.header.frame_id = "odom"

@@ -28,7 +28,7 @@ from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient
 
 from nav2_pyif_bench.pki import CertificateAuthority
-from nav2_pyif_bench.processes import free_port, peer_processes
+from nav2_pyif_bench.processes import Peers, free_port, peer_processes
 from nav2_pyif_bench.protocol_bench import (
     TIMEOUTS,
     costmap,
@@ -146,11 +146,13 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                 *("--planner", "nav2_pyif_bench.planners:TrivialController"),
                 *("--log-level", "WARNING"),
             ]
-        with peer_processes(commands, {}):
-            return _measure(files, args)
+        with peer_processes(commands, {}) as peers:
+            return _measure(files, args, peers)
 
 
-def _measure(files: dict[str, dict[str, Path]], args: argparse.Namespace) -> dict[str, Any]:
+def _measure(
+    files: dict[str, dict[str, Path]], args: argparse.Namespace, peers: Peers
+) -> dict[str, Any]:
     sessions: list[zenoh.Session] = []
     clients: dict[str, ControllerClient] = {}
     try:
@@ -159,7 +161,7 @@ def _measure(files: dict[str, dict[str, Path]], args: argparse.Namespace) -> dic
             sessions.append(_open_when_listening(paths["client"]))
             client = ControllerClient(sessions[-1], KEY, costmap(10), timeouts=TIMEOUTS)
             if not client.wait_for_host(30):
-                raise RuntimeError(f"{variant}: the planner host did not come up")
+                raise peers.not_up(f"{variant}: the planner host")
             client.configure()
             client.activate()
             clients[variant] = client

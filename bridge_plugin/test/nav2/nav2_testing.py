@@ -126,9 +126,19 @@ def missing() -> list[str]:
 
 
 def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+    """A loopback TCP port free now, below the kernel's ephemeral range (as nav2_pyif's
+    free_port, which this Python may not import): a port the kernel hands out itself (Nav2's
+    and Zenoh's own sockets) could be taken before the child binds it."""
+    ephemeral = Path("/proc/sys/net/ipv4/ip_local_port_range")
+    high = int(ephemeral.read_text().split()[0]) - 1 if ephemeral.exists() else 32767
+    for _ in range(100):
+        with socket.socket() as s:
+            try:
+                s.bind(("127.0.0.1", random.randint(20000, high)))
+            except OSError:
+                continue
+            return int(s.getsockname()[1])
+    raise RuntimeError(f"no free TCP port on 127.0.0.1 in 20000..{high}")
 
 
 _PRCTL = ctypes.CDLL(None, use_errno=True).prctl  # looked up here, not in the forked child

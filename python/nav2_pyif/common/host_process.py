@@ -4,6 +4,7 @@ use): the same ``planner-host`` a robot runs, listening on a free loopback port.
 from __future__ import annotations
 
 import os
+import random
 import signal
 import socket
 import subprocess
@@ -18,10 +19,28 @@ import yaml
 from nav2_pyif.common.signals import deferred
 
 
+def _ephemeral_start() -> int:
+    try:
+        return int(Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return 32768  # Linux's default when the range cannot be read
+
+
 def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
+    """A loopback TCP port that is free now, drawn below the kernel's ephemeral range: a port
+    the kernel hands out itself (a Zenoh peer listening on port 0, any outgoing connection) could
+    be taken by another process between this choice and the child's bind, one below it only by
+    a process that names it."""
+    low, high = 20000, _ephemeral_start() - 1
+    for _ in range(100):
+        port = random.randint(low, high) if high > low else 0
+        with socket.socket() as s:
+            try:
+                s.bind(("127.0.0.1", port))
+            except OSError:
+                continue
+            return int(s.getsockname()[1])
+    raise RuntimeError(f"no free TCP port on 127.0.0.1 in {low}..{high}")
 
 
 class HostExited(RuntimeError):
