@@ -125,20 +125,29 @@ def missing() -> list[str]:
     return absent
 
 
+def _ephemeral_start() -> int:
+    try:
+        return int(Path("/proc/sys/net/ipv4/ip_local_port_range").read_text().split()[0])
+    except (OSError, ValueError, IndexError):
+        return 32768  # Linux's default when the range cannot be read
+
+
 def free_port() -> int:
-    """A loopback TCP port free now, below the kernel's ephemeral range (as nav2_pyif's
-    free_port, which this Python may not import): a port the kernel hands out itself (Nav2's
-    and Zenoh's own sockets) could be taken before the child binds it."""
-    ephemeral = Path("/proc/sys/net/ipv4/ip_local_port_range")
-    high = int(ephemeral.read_text().split()[0]) - 1 if ephemeral.exists() else 32767
+    """A loopback TCP port free now, below the kernel's ephemeral range: a copy of nav2_pyif's
+    free_port (nav2_pyif.common.host_process), which this ROS Python does not import. A port
+    the kernel hands out itself (Nav2's and Zenoh's own sockets) could be taken before the
+    child binds it."""
+    low, high = 20000, _ephemeral_start() - 1
     for _ in range(100):
+        # a kernel range starting at or below 20000 leaves none below it: any free port
+        port = random.randint(low, high) if high > low else 0
         with socket.socket() as s:
             try:
-                s.bind(("127.0.0.1", random.randint(20000, high)))
+                s.bind(("127.0.0.1", port))
             except OSError:
                 continue
             return int(s.getsockname()[1])
-    raise RuntimeError(f"no free TCP port on 127.0.0.1 in 20000..{high}")
+    raise RuntimeError(f"no free TCP port on 127.0.0.1 in {low}..{high}")
 
 
 _PRCTL = ctypes.CDLL(None, use_errno=True).prctl  # looked up here, not in the forked child

@@ -33,6 +33,7 @@ def free_port() -> int:
     a process that names it."""
     low, high = 20000, _ephemeral_start() - 1
     for _ in range(100):
+        # a kernel range starting at or below 20000 leaves none below it: any free port
         port = random.randint(low, high) if high > low else 0
         with socket.socket() as s:
             try:
