@@ -125,15 +125,17 @@ def read_recording(paths: list[Path]) -> Recording:
 
 
 def _with_restores(calls: list[Call], restores: list[tuple[int, list[Call]]]) -> list[Call]:
-    """Each file's restores just before its first call, kept only when no earlier call of
-    the recording (an earlier file read too) already built that session."""
+    """Each file's restores just before its first call, kept only when nothing earlier in
+    the recording (an earlier file read too: its calls or restores) built that session."""
     out: list[Call] = []
     pending = sorted(restores, key=lambda r: r[0])
     seen: set[bytes] = set()  # session ids the calls so far configured
     for call in [*calls, None]:
         while pending and (call is None or pending[0][0] <= call.sequence):
             _, restoring = pending.pop(0)
-            out += [r for r in restoring if _sid(r.request) not in seen]
+            fresh = [r for r in restoring if _sid(r.request) not in seen]
+            seen.update(_sid(r.request) for r in fresh)
+            out += fresh
         if call is not None:
             if call.op == "configure":
                 seen.add(_sid(call.request))

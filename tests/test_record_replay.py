@@ -1,0 +1,181 @@
+"""planner-host --record and nav2-pyif replay: a short run of the offline runner against a
+real host over Zenoh on loopback is recorded, then replayed against the same planners (every
+output identical, and identical between two replays) and against a changed controller (the
+differences reported); a recording rotated at a small size replays from its last file alone."""
+
+from __future__ import annotations
+
+import json
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+import pytest
+from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.recording.format import read_recording
+from nav2_pyif.recording.recorder import Recorder, RecordOptions, key_metadata
+
+pytestmark = pytest.mark.integration
+pytest.importorskip("mcap", reason="mcap is not installed (the record extra)")
+
+CONTROLLER = "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"
+PLANNER = "nav2_pyif_planners.astar:AStar"
+FOLLOW, GRID = "nav2_pyif/sim/FollowPath", "nav2_pyif/sim/GridBased"
+
+#: the same controller at "a new version": half the speed, so every command differs
+CHANGED = f"""
+from {CONTROLLER.split(":")[0]} import RegulatedPurePursuit
+
+
+class Slower(RegulatedPurePursuit):
+    def compute_velocity_commands(self, pose, velocity, goal_checker):
+        command = super().compute_velocity_commands(pose, velocity, goal_checker)
+        command.twist.linear.x *= 0.5
+        return command
+"""
+
+
+def nav2_pyif(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "nav2_pyif.tools.main", *args],
+        capture_output=True,
+        text=True,
+        timeout=180,
+        cwd=cwd,
+    )
+
+
+@pytest.fixture(scope="module")
+def recording(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
+    """A short sim run recorded by a real host, which a SIGTERM then stops."""
+    out = tmp_path_factory.mktemp("recorded")
+    path = out / "run.mcap"
+    host = PlannerHostProcess(
+        args=[
+            *("--serve", f"{FOLLOW}={CONTROLLER}", "--serve", f"{GRID}={PLANNER}"),
+            *("--record", str(path)),
+        ],
+        log_level="INFO",
+        log_path=out / "host.log",
+    )
+    with host:
+        sim = nav2_pyif(
+            *("sim", "--no-progress", "--connect", host.endpoint, "--wait", "60"),
+            *("--timeout", "3", "--out", str(out)),
+        )
+        assert sim.returncode in (0, 1), sim.stdout + sim.stderr  # 3 sim s: not there yet
+        assert host.stop() == 128 + signal.SIGTERM, host.log()
+    assert "recording: " in host.log() and path.is_file(), host.log()
+    yield path
+
+
+def replay(recording: Path, out: Path, *args: str) -> dict[str, Any]:
+    out.mkdir(exist_ok=True)
+    result = nav2_pyif("replay", str(recording), "--out", str(out), *args, cwd=out)
+    assert result.returncode == 0, result.stdout + result.stderr
+    assert (out / "run_replay.png").stat().st_size > 0
+    record: dict[str, Any] = json.loads((out / "run_replay.json").read_text())
+    return record
+
+
+def test_a_recording_holds_every_call_of_the_run(recording: Path) -> None:
+    recorded = read_recording([recording])
+    assert set(recorded.keys) == {FOLLOW, GRID}
+    assert recorded.keys[FOLLOW].plugin_type == "controller"
+    assert recorded.keys[GRID].planner["planner"] == PLANNER
+    ops = [c.op for c in recorded.calls]
+    assert ops.count("compute_velocity_commands") > 10
+    assert {"configure", "activate", "create_plan", "set_plan", "cleanup"} <= set(ops)
+    for call in recorded.calls:
+        assert call.reply is not None and call.answered_ns >= call.received_ns > 0
+    # the costmap went with the calls that changed it, and only with those
+    cycles = [c.request for c in recorded.calls if c.op == "compute_velocity_commands"]
+    assert 0 < sum(b"costmap" in r for r in cycles) < len(cycles)
+
+
+def test_replaying_the_same_planners_is_identical_and_deterministic(
+    recording: Path, tmp_path: Path
+) -> None:
+    first = replay(recording, tmp_path / "a")
+    second = replay(recording, tmp_path / "b", "--isolation", "none")
+    summary = first["summary"]
+    assert summary["calls"] == summary["identical"] > 10 and summary["errors"] == 0
+    cycles = summary["by_key"][FOLLOW]["compute_velocity_commands"]
+    assert cycles["max_abs_dv"] == cycles["max_abs_dw"] == 0.0
+    assert summary["by_key"][GRID]["create_plan"]["plan_max"] == 0.0
+    assert [c["output"] for c in first["calls"]] == [c["output"] for c in second["calls"]]
+
+
+def test_a_changed_controller_is_replayed_with_its_differences(
+    recording: Path, tmp_path: Path
+) -> None:
+    (tmp_path / "slower.py").write_text(CHANGED)
+    record = replay(recording, tmp_path, "--planner", "slower:Slower", "--isolation", "none")
+    summary = record["summary"]
+    assert set(summary["by_key"]) == {FOLLOW}  # --planner: the keys of its plugin type
+    assert summary["planners"][FOLLOW] == "slower:Slower"
+    cycles = summary["by_key"][FOLLOW]["compute_velocity_commands"]
+    assert cycles["errors"] == 0 and cycles["identical"] < cycles["calls"]
+    assert cycles["max_abs_dv"] > 0.01
+    moving = [c for c in record["calls"] if c["op"] == "compute_velocity_commands"]
+    assert all(c["dv"] <= 0 and c["compute_ms"] >= 0 for c in moving)
+
+
+def test_a_rotated_recording_replays_from_its_last_file_alone(
+    recording: Path, tmp_path: Path
+) -> None:
+    """Each rotated file starts with what restores the live sessions (configure with the
+    latest costmap, activate, the plan): its calls replay as they were answered."""
+    calls = read_recording([recording]).calls
+    first = tmp_path / "rotated.mcap"
+    metadata = {FOLLOW: key_metadata("controller", None)}
+    metadata[FOLLOW]["planner"] = json.dumps({"planner": CONTROLLER})
+    recorder = Recorder(RecordOptions(first, max_bytes=8000, max_files=3), metadata)
+    for call in calls:
+        if call.key == FOLLOW:
+            assert call.reply is not None
+            recorder.add(FOLLOW, call.op, call.request, call.reply, call.received_ns, 0)
+    recorder.close()
+    kept = recorder.paths
+    assert len(kept) == 3 and kept[-1] != first and not first.exists()  # the oldest went
+    assert all(p.stat().st_size < 8000 + 64_000 for p in kept)
+    last = read_recording([kept[-1]])
+    assert [c.op for c in last.calls if c.restore][:2] == ["configure", "activate"]
+    record = replay(kept[-1], tmp_path, "--name", "run_replay", "--isolation", "none")
+    assert record["summary"]["restored"] >= 3  # configure, activate, set_plan
+    assert record["summary"]["calls"] == record["summary"]["identical"] > 0
+    # all three files together: the same calls, restored only where no earlier file was
+    together = read_recording(kept[::-1])
+    assert [c.sequence for c in together.calls if not c.restore] == sorted(
+        c.sequence for c in together.calls if not c.restore
+    )
+    assert sum(c.restore for c in together.calls) == sum(
+        c.restore for c in read_recording([kept[0]]).calls
+    )
+
+
+def test_record_and_replay_options_fail_clearly(recording: Path, tmp_path: Path) -> None:
+    host = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "nav2_pyif.server.cli",
+            "--serve",
+            f"{FOLLOW}={CONTROLLER}",
+            "--record-key",
+            FOLLOW,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert host.returncode == 2 and "--record-key needs --record" in host.stderr
+    missing = nav2_pyif("replay", str(tmp_path / "none.mcap"))
+    assert missing.returncode == 2 and "none.mcap: no such file" in missing.stderr
+    other = nav2_pyif("replay", str(recording), "--serve", "nav2_pyif/x/FollowPath=m:C")
+    assert other.returncode == 2 and "--serve nav2_pyif/x/FollowPath: not recorded" in other.stderr
+    help_text = nav2_pyif("replay", "--help").stdout
+    assert "--planner" in help_text and "planner-host" in help_text
