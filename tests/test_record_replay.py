@@ -6,6 +6,7 @@ differences reported); a recording rotated at a small size replays from its last
 from __future__ import annotations
 
 import json
+import re
 import signal
 import subprocess
 import sys
@@ -179,3 +180,18 @@ def test_record_and_replay_options_fail_clearly(recording: Path, tmp_path: Path)
     assert other.returncode == 2 and "--serve nav2_pyif/x/FollowPath: not recorded" in other.stderr
     help_text = nav2_pyif("replay", "--help").stdout
     assert "--planner" in help_text and "planner-host" in help_text
+
+
+def test_the_record_benchmark_prints_off_and_on_side_by_side() -> None:
+    """Figures are not asserted (BENCHMARKS.md quotes a full run); the table is."""
+    result = subprocess.run(
+        [sys.executable, "-m", "nav2_pyif_bench.cli", "record", "--calls", "100", "--rate", "200"],
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
+    assert result.returncode == 0, result.stderr[-3000:]
+    for row in ("bare cycle, record off", "bare cycle, record on", "costmap every 4th, record on"):
+        assert row in result.stdout
+    assert re.search(r"bare cycle: on / off [0-9.]+x median, [0-9.]+x p99", result.stdout)
+    assert re.search(r"the recorder's CPU per call: [0-9.]+ µs", result.stdout), result.stdout
