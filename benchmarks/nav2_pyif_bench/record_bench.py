@@ -20,12 +20,13 @@ import time
 from pathlib import Path
 from typing import Any
 
-from geometry_msgs.msg import PoseStamped, Twist
+from geometry_msgs.msg import Twist
 from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.common.host_process import PlannerHostProcess
 from nav2_pyif.common.option_types import positive_float, positive_int
 from nav2_pyif.plan import Plan
 
+from nav2_pyif_bench.checkers_bench import moving_robot
 from nav2_pyif_bench.protocol_bench import costmap, open_session, progress
 from nav2_pyif_bench.stats import Summary, header_row, verdict
 
@@ -45,14 +46,6 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--rate", type=positive_float, default=50.0, help="cycles per second, > 0 (default 50)"
     )
     p.add_argument("--quick", action="store_true", help="500 cycles per variant")
-
-
-def _robot(i: int) -> Any:
-    msg = PoseStamped()
-    msg.header.frame_id = "odom"
-    msg.pose.position.x = 0.01 * i
-    msg.pose.orientation.w = 1.0
-    return msg
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
@@ -89,7 +82,7 @@ def _measure(session: Any, calls: int, rate: float) -> dict[str, list[int]]:
         client.activate()
         client.set_plan(Plan([[0.0, 0.0], [50.0, 0.0]], "odom"))
     still = Twist()
-    rows = {
+    rows: dict[str, list[int]] = {
         f"{what}, record {state}": []
         for what in ("bare cycle", f"costmap every {COSTMAP_EVERY}th")
         for state in ("off", "on")
@@ -100,7 +93,7 @@ def _measure(session: Any, calls: int, rate: float) -> dict[str, list[int]]:
     for i in range(calls + WARM_UP):
         next_ns += period_ns
         time.sleep(max(0, next_ns - time.perf_counter_ns()) / 1e9)
-        robot = _robot(i)
+        robot = moving_robot(i)
         for variant in (0, 1):
             # off first in one cycle, on first in the next: the first call after the sleep
             # pays the wake-up, which would otherwise fall on one side only
