@@ -20,6 +20,11 @@ from nav2_pyif.recording.format import read_recording
 from nav2_pyif.recording.recorder import Recorder, RecordOptions, key_metadata
 
 pytestmark = pytest.mark.integration
+
+ROOT = Path(__file__).resolve().parents[1]
+#: what bridge_plugin/test/nav2/test_record_replay.py recorded in a real Nav2, per variant
+#: (tests/test_nav2_launch.py runs it where a Nav2 test environment exists)
+NAV2_RECORDINGS = sorted((ROOT / "build").glob("nav2_ws_*/nav2_run.mcap"))
 pytest.importorskip("mcap", reason="mcap is not installed (the record extra)")
 
 CONTROLLER = "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"
@@ -75,7 +80,9 @@ def recording(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
 
 def replay(recording: Path, out: Path, *args: str) -> dict[str, Any]:
     out.mkdir(exist_ok=True)
-    result = nav2_pyif("replay", str(recording), "--out", str(out), *args, cwd=out)
+    result = nav2_pyif(
+        "replay", str(recording), "--out", str(out), "--name", "run_replay", *args, cwd=out
+    )
     assert result.returncode == 0, result.stdout + result.stderr
     assert (out / "run_replay.png").stat().st_size > 0
     record: dict[str, Any] = json.loads((out / "run_replay.json").read_text())
@@ -125,6 +132,21 @@ def test_a_changed_controller_is_replayed_with_its_differences(
     assert all(c["dv"] <= 0 and c["compute_ms"] >= 0 for c in moving)
 
 
+def test_a_recording_of_a_real_nav2_run_replays(tmp_path: Path) -> None:
+    if not NAV2_RECORDINGS:
+        pytest.skip(
+            "no recording of a Nav2 launch test here: tests/test_nav2_launch.py makes "
+            "build/nav2_ws_<distro>_<backend>/nav2_run.mcap where a Nav2 test environment exists"
+        )
+    (tmp_path / "slower.py").write_text(CHANGED)
+    for recording in NAV2_RECORDINGS:
+        same = replay(recording, tmp_path / recording.parent.name, "--isolation", "none")
+        assert same["summary"]["calls"] == same["summary"]["identical"] > 10, recording
+        changed = replay(recording, tmp_path, "--planner", "slower:Slower", "--isolation", "none")
+        (controller,) = changed["summary"]["by_key"].values()
+        assert controller["compute_velocity_commands"]["max_abs_dv"] > 0.01, recording
+
+
 def test_a_rotated_recording_replays_from_its_last_file_alone(
     recording: Path, tmp_path: Path
 ) -> None:
@@ -145,7 +167,7 @@ def test_a_rotated_recording_replays_from_its_last_file_alone(
     assert all(p.stat().st_size < 8000 + 64_000 for p in kept)
     last = read_recording([kept[-1]])
     assert [c.op for c in last.calls if c.restore][:2] == ["configure", "activate"]
-    record = replay(kept[-1], tmp_path, "--name", "run_replay", "--isolation", "none")
+    record = replay(kept[-1], tmp_path, "--isolation", "none")
     assert record["summary"]["restored"] >= 3  # configure, activate, set_plan
     assert record["summary"]["calls"] == record["summary"]["identical"] > 0
     # all three files together: the same calls, restored only where no earlier file was
