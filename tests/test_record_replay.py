@@ -16,8 +16,8 @@ from typing import Any
 
 import pytest
 from nav2_pyif.common.host_process import PlannerHostProcess
-from nav2_pyif.recording.format import read_recording
-from nav2_pyif.recording.recorder import Recorder, RecordOptions, key_metadata
+from nav2_pyif.server.recording.format import read_recording
+from nav2_pyif.server.recording.recorder import Recorder, RecordOptions, key_metadata
 
 pytestmark = pytest.mark.integration
 

@@ -33,17 +33,17 @@ from nav2_pyif.common.zenoh_config import (
     options_from_args,
 )
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.recording.options import (
-    add_record_arguments,
-    check_record_arguments,
-    start_recording,
-)
 from nav2_pyif.roles import KIND_ROLES, check_roles, parse_delegates
 from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_arguments, start_all
 from nav2_pyif.server.heap import settle_heap
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
+from nav2_pyif.server.recording.options import (
+    add_record_arguments,
+    check_record_arguments,
+    start_recording,
+)
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.respawn import keep
 from nav2_pyif.server.service import InProcessPlanner, PlannerService

@@ -8,8 +8,8 @@ from pathlib import Path
 from typing import Any
 
 from nav2_pyif.common.option_types import positive_int
-from nav2_pyif.recording.recorder import Recorder, RecordOptions, key_metadata
-from nav2_pyif.recording.service import recorded
+from nav2_pyif.server.recording.recorder import Recorder, RecordOptions, key_metadata
+from nav2_pyif.server.recording.service import recorded
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 

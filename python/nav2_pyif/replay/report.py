@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from nav2_pyif.recording.compare import CallDiff
-from nav2_pyif.recording.replay import ReplayResult
+from nav2_pyif.replay.compare import CallDiff
+from nav2_pyif.replay.engine import ReplayResult
 
 
 def _largest(values: list[float | None]) -> float | None:

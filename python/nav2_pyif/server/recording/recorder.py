@@ -19,9 +19,9 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from nav2_pyif.recording.format import RELOAD, RESTORE, reply_topic, request_topic
-from nav2_pyif.recording.writer import RotatingWriter
 from nav2_pyif.server.journal import Journal
+from nav2_pyif.server.recording.format import RELOAD, RESTORE, reply_topic, request_topic
+from nav2_pyif.server.recording.writer import RotatingWriter
 
 log = logging.getLogger("nav2_pyif.recording")
 

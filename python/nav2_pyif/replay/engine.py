@@ -9,13 +9,13 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from nav2_pyif.recording.compare import CallDiff, compare
-from nav2_pyif.recording.format import Recording
+from nav2_pyif.replay.compare import CallDiff, compare
+from nav2_pyif.server.recording.format import Recording
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 from nav2_pyif.server.supervisor import Deadlines, SupervisedPlanner
 
-log = logging.getLogger("nav2_pyif.recording")
+log = logging.getLogger("nav2_pyif.replay")
 HOST_ID = "replay"  # the host id the replayed planners see (their sessions are the recorded)
 
 

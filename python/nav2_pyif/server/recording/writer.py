@@ -14,7 +14,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
-from nav2_pyif.recording.format import ENCODING, LIBRARY, PROFILE, RELOAD, RESTORE
+from nav2_pyif.server.recording.format import ENCODING, LIBRARY, PROFILE, RELOAD, RESTORE
 
 log = logging.getLogger("nav2_pyif.recording")
 

@@ -8,9 +8,9 @@ from typing import Any
 
 from nav2_pyif_protocol.constants import PluginType
 
-from nav2_pyif.recording.recorder import Recorder
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.journal import Journal
+from nav2_pyif.server.recording.recorder import Recorder
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 

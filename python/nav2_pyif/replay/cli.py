@@ -10,7 +10,7 @@ from pathlib import Path
 
 from nav2_pyif.common.option_types import positive_float
 from nav2_pyif.exceptions import PlannerLoadError
-from nav2_pyif.recording.format import Recording, read_recording
+from nav2_pyif.server.recording.format import Recording, read_recording
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 
@@ -99,7 +99,7 @@ def choose_specs(
 ) -> dict[str, PlannerSpec]:
     """key -> the planner to replay it against. Raises ValueError saying which option is
     wrong, PlannerLoadError when --planner does not load."""
-    from nav2_pyif.recording.replay import recorded_spec
+    from nav2_pyif.replay.engine import recorded_spec
 
     chosen: dict[str, PlannerSpec] = {}
     for item in args.serve:
@@ -135,8 +135,8 @@ def _keys(recording: Recording) -> str:
 
 
 def run_replay(args: argparse.Namespace) -> int:
-    from nav2_pyif.recording import report
-    from nav2_pyif.recording.replay import replay, start
+    from nav2_pyif.replay import report
+    from nav2_pyif.replay.engine import replay, start
 
     for path in args.files:
         if not path.is_file():
