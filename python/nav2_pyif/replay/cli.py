@@ -8,7 +8,7 @@ import logging
 import sys
 from pathlib import Path
 
-from nav2_pyif.common.option_types import positive_float
+from nav2_pyif.common.option_types import add_path_argument, positive_float
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.recording.format import Recording, read_recording
 from nav2_pyif.server.service import PlannerService
@@ -63,14 +63,7 @@ def add_replay_parser(subparsers: argparse._SubParsersAction) -> None:  # type: 
         help="replay only this key, repeatable (default: the keys --planner / --serve name; "
         "without those, every recorded key against the planner recorded on it)",
     )
-    p.add_argument(
-        "--path",
-        action="append",
-        default=[],
-        metavar="DIR",
-        help="directory to import planners from, repeatable (the current directory is "
-        "always searched)",
-    )
+    add_path_argument(p)
     p.add_argument(
         "--isolation",
         choices=["process", "none"],
