@@ -10,6 +10,7 @@ import re
 import signal
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
@@ -217,3 +218,68 @@ def test_the_record_benchmark_prints_off_and_on_side_by_side() -> None:
         assert row in result.stdout
     assert re.search(r"bare cycle: on / off [0-9.]+x median, [0-9.]+x p99", result.stdout)
     assert re.search(r"the recorder's CPU per call: [0-9.]+ µs", result.stdout), result.stdout
+
+
+#: a controller slow enough for a signal to find the replay mid-way
+SLEEPY = f"""
+import time
+
+from {CONTROLLER.split(":")[0]} import RegulatedPurePursuit
+
+
+class Sleepy(RegulatedPurePursuit):
+    def compute_velocity_commands(self, pose, velocity, goal_checker):
+        time.sleep(0.2)
+        return super().compute_velocity_commands(pose, velocity, goal_checker)
+"""
+
+
+def _children(pid: int) -> set[int]:
+    found: set[int] = set()
+    for task in Path(f"/proc/{pid}/task").iterdir():
+        found |= {int(p) for p in (task / "children").read_text().split()}
+    return found
+
+
+@pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGTERM])
+def test_a_signal_ends_the_replay_and_its_workers(
+    recording: Path, tmp_path: Path, signum: int
+) -> None:
+    (tmp_path / "sleepy.py").write_text(SLEEPY)
+    replay = subprocess.Popen(
+        [
+            *(sys.executable, "-m", "nav2_pyif.tools.main", "replay", str(recording)),
+            *("--planner", "sleepy:Sleepy", "--out", str(tmp_path)),
+        ],
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        deadline = time.monotonic() + 60
+        while not _children(replay.pid) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        workers = _children(replay.pid)
+        assert workers, "the replay started no worker"
+        time.sleep(3.0)  # loaded, configured, replaying the slow cycles
+        replay.send_signal(signum)
+        _, err = replay.communicate(timeout=30)
+    finally:
+        if replay.poll() is None:
+            replay.kill()
+    assert replay.returncode == 128 + signum, err
+    assert f"stopped by {signal.Signals(signum).name}" in err
+    # a worker ends when its pipes to the replay close: at once, but not in the same instant
+    deadline = time.monotonic() + 10
+    while any(_running(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not [w for w in workers if _running(w)], "a worker outlived the replay"
+
+
+def _running(pid: int) -> bool:
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except FileNotFoundError:
+        return False
+    return "State:\tZ" not in status

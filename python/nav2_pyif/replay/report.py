@@ -132,6 +132,7 @@ def plot(result: ReplayResult, path: Path) -> None:
             points = [(c.t, v) for c, v in zip(calls, values, strict=True) if v is not None]
             if points:
                 compute.plot(*zip(*points, strict=True), ".", label=label, markersize=3)
+        compute.set_yscale("log")  # a configure's second beside cycles of a millisecond
         compute.set_title(f"{key}: planner compute per call [ms]")
         compute.set_xlabel("recording time [s]")
         for axis in row:
