@@ -23,7 +23,7 @@ from typing import Any
 from geometry_msgs.msg import Twist
 from nav2_pyif.client import ControllerClient, Timeouts
 from nav2_pyif.common.host_process import PlannerHostProcess
-from nav2_pyif.common.option_types import positive_float, positive_int
+from nav2_pyif.common.option_types import non_negative_float, positive_int
 from nav2_pyif.plan import Plan
 
 from nav2_pyif_bench.checkers_bench import moving_robot
@@ -43,7 +43,10 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
         "--calls", type=positive_int, default=3000, help="cycles per variant, >= 1 (default 3000)"
     )
     p.add_argument(
-        "--rate", type=positive_float, default=50.0, help="cycles per second, > 0 (default 50)"
+        "--rate",
+        type=non_negative_float,
+        default=50.0,
+        help="cycles per second, >= 0; 0: back to back, the recorder's worst case (default 50)",
     )
     p.add_argument("--quick", action="store_true", help="500 cycles per variant")
 
@@ -88,11 +91,12 @@ def _measure(session: Any, calls: int, rate: float) -> dict[str, list[int]]:
         for state in ("off", "on")
     }
     names = list(rows)
-    progress(f"{calls} cycles of each variant at {rate:g} Hz, interleaved, record off and on")
-    period_ns, next_ns = int(1e9 / rate), time.perf_counter_ns()
+    progress(f"{calls} cycles of each variant at {_rate(rate)}, interleaved, record off and on")
+    period_ns, next_ns = int(1e9 / rate) if rate else 0, time.perf_counter_ns()
     for i in range(calls + WARM_UP):
-        next_ns += period_ns
-        time.sleep(max(0, next_ns - time.perf_counter_ns()) / 1e9)
+        if period_ns:
+            next_ns += period_ns
+            time.sleep(max(0, next_ns - time.perf_counter_ns()) / 1e9)
         robot = moving_robot(i)
         for variant in (0, 1):
             # off first in one cycle, on first in the next: the first call after the sleep
@@ -108,10 +112,14 @@ def _measure(session: Any, calls: int, rate: float) -> dict[str, list[int]]:
     return rows
 
 
+def _rate(rate: float) -> str:
+    return f"at {rate:g} Hz" if rate else "back to back"
+
+
 def report(results: dict[str, Any]) -> str:
     rows = {row: Summary(**v) for row, v in results["rows"].items()}
     lines = [
-        f"the control cycle at {results['rate']:g} Hz with planner-host --record off and on, "
+        f"the control cycle {_rate(results['rate'])} with planner-host --record off and on, "
         "one run",
         header_row(36),
     ]
