@@ -283,3 +283,30 @@ def _running(pid: int) -> bool:
     except FileNotFoundError:
         return False
     return "State:\tZ" not in status
+
+
+def test_batched_cycles_are_recorded_per_robot(tmp_path: Path) -> None:
+    """planner-host --batch answers a fleet's cycles in one call of the planner: each robot's
+    cycle is recorded on its own key. Replayed one by one, BatchEcho says it served a batch
+    of one (angular z), which the replay reports as dw."""
+    from tests.conftest import FIXTURES
+    from tests.test_batched import ROBOTS, Fleet, key
+
+    path = tmp_path / "fleet.mcap"
+    fleet = Fleet(tmp_path, "batch_planners:BatchEcho", "--record", str(path))
+    try:
+        batched = fleet.batched_round()
+        assert [r.twist.angular.z for r in batched] == [ROBOTS] * ROBOTS
+        assert fleet.host.stop() == 128 + signal.SIGTERM, fleet.host.log()
+    finally:
+        fleet.close()
+    recorded = read_recording([path])
+    for i in range(ROBOTS):
+        cycles = [
+            c for c in recorded.calls if c.key == key(i) and c.op == "compute_velocity_commands"
+        ]
+        assert cycles and all(c.reply is not None for c in cycles), key(i)
+    record = replay(path, tmp_path / "out", "--path", str(FIXTURES), "--isolation", "none")
+    for i in range(ROBOTS):
+        cycles = record["summary"]["by_key"][key(i)]["compute_velocity_commands"]
+        assert cycles["errors"] == 0 and cycles["max_abs_dw"] == ROBOTS - 1, cycles
