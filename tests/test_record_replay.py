@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+from geometry_msgs.msg import Twist
 from nav2_pyif.common.host_process import PlannerHostProcess
 from nav2_pyif.server.recording.format import read_recording
 from nav2_pyif.server.recording.recorder import Recorder, RecordOptions, key_metadata
@@ -310,3 +311,32 @@ def test_batched_cycles_are_recorded_per_robot(tmp_path: Path) -> None:
     for i in range(ROBOTS):
         cycles = record["summary"]["by_key"][key(i)]["compute_velocity_commands"]
         assert cycles["errors"] == 0 and cycles["max_abs_dw"] == ROBOTS - 1, cycles
+
+
+def test_a_hot_swap_is_in_the_recording_and_the_replay_says_so(
+    start_host: Any, zsession_factory: Any, tmp_path: Path
+) -> None:
+    from tests.test_host_e2e import controller, pose
+
+    path = tmp_path / "swap.mcap"
+    host = start_host(
+        *("--key", FOLLOW, "--planner", "echo_planners:EchoController", "--record", str(path)),
+        *("--pid-file", str(tmp_path / "host.pid")),
+    )
+    client = controller(zsession_factory, host, key=FOLLOW)
+    client.configure()
+    client.activate()
+    client.compute_velocity_commands(pose(), Twist())
+    host.proc.send_signal(signal.SIGHUP)  # a fresh import of the same planner, sessions kept
+    deadline = time.monotonic() + 60
+    while "now serving" not in host.log() and time.monotonic() < deadline:
+        time.sleep(0.2)
+    client.compute_velocity_commands(pose(2.0, 2.0), Twist())
+    assert host.stop() == 128 + signal.SIGTERM, host.log()
+    (reload,) = read_recording([path]).reloads
+    assert reload[1:] == (FOLLOW, "echo_planners:EchoController")
+    from tests.conftest import FIXTURES
+
+    record = replay(path, tmp_path / "out", "--path", str(FIXTURES), "--isolation", "none")
+    assert [r["key"] for r in record["summary"]["reloads"]] == [FOLLOW]
+    assert record["summary"]["calls"] == record["summary"]["identical"] >= 4

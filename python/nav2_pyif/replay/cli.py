@@ -164,7 +164,11 @@ def run_replay(args: argparse.Namespace) -> int:
         except PlannerLoadError as exc:
             _say(f"error: {exc}")
             return 2
-        result = replay(recording, services, list(args.files))
+        try:
+            result = replay(recording, services, list(args.files))
+        except PlannerLoadError as exc:
+            _say(f"error: at a hot swap of the recording: {exc}")
+            return 1
     args.out.mkdir(parents=True, exist_ok=True)
     name = args.name or f"{args.files[0].stem}_replay"
     report.write_json(result, args.out / f"{name}.json")

@@ -26,6 +26,8 @@ class ReplayResult:
     recorded: dict[str, str]  # key -> the planner recorded on it
     calls: list[CallDiff] = field(default_factory=list)
     restored: int = 0  # restore requests given before a rotated file's calls
+    # hot swaps during the recording: (seconds since its first call, key, the new planner)
+    reloads: list[tuple[float, str, str]] = field(default_factory=list)
     wall_s: float = 0.0
 
 
@@ -58,7 +60,8 @@ def replay(
     files: list[Path],
     on_call: Callable[[int, int], None] | None = None,
 ) -> ReplayResult:
-    """Each call of the keys in ``services``, in the recorded order, to its service."""
+    """Each call of the keys in ``services``, in the recorded order, to its service. Raises
+    PlannerLoadError when a planner does not load again at a recorded hot swap."""
     result = ReplayResult(
         files,
         {key: service.label for key, service in services.items()},
@@ -66,8 +69,18 @@ def replay(
     )
     calls = [c for c in recording.calls if c.key in services]
     first = next((c.received_ns for c in calls if not c.restore), 0)
+    result.reloads = [
+        ((when - first) / 1e9, key, label)
+        for when, key, label in recording.reloads
+        if key in services
+    ]
+    # a recorded hot swap is one here too: a fresh import of the replayed planner, its sessions
+    # carried over, so what a swap resets (the planner's own state) is reset alike
+    swaps = sorted((when, key) for when, key, _ in recording.reloads if key in services)
     started = time.perf_counter()
     for n, call in enumerate(calls):
+        while swaps and not call.restore and swaps[0][0] <= call.received_ns:
+            services[swaps.pop(0)[1]].reload()
         reply = services[call.key].handle(call.request, key_op=call.op)
         if call.restore:
             result.restored += 1

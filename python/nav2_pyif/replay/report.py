@@ -52,6 +52,7 @@ def summary(result: ReplayResult) -> dict[str, Any]:
         "identical": sum(c.identical for c in result.calls),
         "errors": sum(bool(c.error) for c in result.calls),
         "restored": result.restored,
+        "reloads": [{"t": t, "key": key, "planner": label} for t, key, label in result.reloads],
         "wall_s": result.wall_s,
         "by_key": {
             key: {op: group_summary(calls) for op, calls in ops.items()}
@@ -90,6 +91,10 @@ def table(result: ReplayResult) -> str:
                 f"{_m(s['max_abs_dv']):>9} {_m(s['max_abs_dw']):>9} {_m(s['plan_max']):>10} "
                 f"{_ms(s['compute_ms']):>19} {_ms(s['recorded_compute_ms']):>15}"
             )
+    lines += [
+        f"hot swap at {t:.2f} s on {key} (recorded: {label}): the replayed planner reloaded"
+        for t, key, label in result.reloads
+    ]
     lines.append(
         f"{info['calls']} call(s) replayed in {info['wall_s']:.2f} s: {info['identical']} "
         f"identical to the recording, {info['errors']} error(s)"
