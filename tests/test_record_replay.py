@@ -80,11 +80,10 @@ def recording(tmp_path_factory: pytest.TempPathFactory) -> Iterator[Path]:
     yield path
 
 
-def replay(recording: Path, out: Path, *args: str) -> dict[str, Any]:
+def replay(recording: Path | list[Path], out: Path, *args: str) -> dict[str, Any]:
     out.mkdir(exist_ok=True)
-    result = nav2_pyif(
-        "replay", str(recording), "--out", str(out), "--name", "run_replay", *args, cwd=out
-    )
+    files = [str(p) for p in (recording if isinstance(recording, list) else [recording])]
+    result = nav2_pyif("replay", *files, "--out", str(out), "--name", "run_replay", *args, cwd=out)
     assert result.returncode == 0, result.stdout + result.stderr
     assert (out / "run_replay.png").stat().st_size > 0
     record: dict[str, Any] = json.loads((out / "run_replay.json").read_text())
@@ -340,3 +339,29 @@ def test_a_hot_swap_is_in_the_recording_and_the_replay_says_so(
     record = replay(path, tmp_path / "out", "--path", str(FIXTURES), "--isolation", "none")
     assert [r["key"] for r in record["summary"]["reloads"]] == [FOLLOW]
     assert record["summary"]["calls"] == record["summary"]["identical"] >= 4
+
+
+def test_a_host_started_again_on_its_file_goes_on_numbering(
+    start_host: Any, zsession_factory: Any, tmp_path: Path
+) -> None:
+    """--respawn starts the host again with the same --record FILE: the first run's calls
+    stay, and both runs replay in order."""
+    from tests.conftest import FIXTURES
+    from tests.test_host_e2e import controller, pose
+
+    path = tmp_path / "runs.mcap"
+    for x in (1.0, 2.0):
+        host = start_host("--key", FOLLOW, "--planner", "echo_planners:EchoController",
+                          "--record", str(path))  # fmt: skip
+        client = controller(zsession_factory, host, key=FOLLOW)
+        client.configure()
+        client.activate()
+        client.compute_velocity_commands(pose(x, x), Twist())
+        assert host.stop() == 128 + signal.SIGTERM, host.log()
+    files = [path, tmp_path / "runs.1.mcap"]
+    assert set(tmp_path.glob("runs*.mcap")) == set(files)
+    calls = read_recording(files[::-1]).calls
+    assert [c.op for c in calls] == ["configure", "activate", "compute_velocity_commands"] * 2
+    assert calls[0].received_ns < calls[3].received_ns
+    record = replay(files, tmp_path / "out", "--path", str(FIXTURES))
+    assert record["summary"]["calls"] == record["summary"]["identical"] == 6

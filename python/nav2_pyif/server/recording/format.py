@@ -17,7 +17,6 @@ new planner's label. Channel metadata names the key, its plugin type and the pla
 from __future__ import annotations
 
 import json
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -78,69 +77,68 @@ class Recording:
 
 
 def read_recording(paths: list[Path]) -> Recording:
-    """Every call of ``paths`` (the files of one recording, rotated ones included, any
-    order), ordered as the host took them; a file's restore requests before its calls. A
-    session restored in a later file that an earlier file (given too) already holds is not
-    restored twice: the calls the earlier file recorded lead to that state."""
+    """Every call of ``paths`` (the files of one recording, rotated ones included, or of
+    several runs of a host, in any order), ordered as the hosts took them: files by their
+    first message's time, calls by sequence, a file's restore requests before its calls. A
+    session restored in a file that an earlier file (given too) already built is not restored
+    twice: the calls the earlier file recorded lead to that state."""
+    files = sorted(_read_file(path) for path in paths)
+    keys: dict[str, KeyInfo] = {}
+    for file in files:
+        for key, info in file.keys.items():
+            known = keys.setdefault(key, info)
+            known.plugin_type = info.plugin_type or known.plugin_type
+            known.planner = info.planner or known.planner
+    out: list[Call] = []
+    seen: set[bytes] = set()  # sessions configured or restored so far
+    for file in files:
+        fresh = [r for r in file.restores if _sid(r.request) not in seen]
+        for call in fresh + sorted(file.calls.values(), key=lambda c: c.sequence):
+            if call.restore or call.op == "configure":
+                seen.add(_sid(call.request))
+            if call.request:
+                out.append(call)
+    reloads = sorted(r for file in files for r in file.reloads)
+    return Recording(out, keys, reloads)
+
+
+@dataclass(order=True)
+class _File:
+    start_ns: int  # its first message's log time: a later file of a run, or a later run
+    path: Path
+    calls: dict[int, Call] = field(compare=False)
+    restores: list[Call] = field(compare=False)
+    keys: dict[str, KeyInfo] = field(compare=False)
+    reloads: list[tuple[int, str, str]] = field(compare=False)
+
+
+def _read_file(path: Path) -> _File:
     from mcap.reader import make_reader
 
-    calls: dict[int, Call] = {}
-    restores: list[tuple[int, list[Call]]] = []  # (first sequence of the file, its restores)
-    keys: dict[str, KeyInfo] = {}
-    reloads: list[tuple[int, str, str]] = []
-    for path in paths:
-        first = None
-        restoring: list[Call] = []
-        with open(path, "rb") as stream:
-            for _schema, channel, message in make_reader(stream).iter_messages(
-                log_time_order=False
-            ):
-                meta = channel.metadata
-                key = meta.get("key", "")
-                info = keys.setdefault(key, KeyInfo(key))
-                info.plugin_type = meta.get("plugin_type", info.plugin_type)
-                if "planner" in meta:
-                    info.planner = json.loads(meta["planner"])
-                kind = meta.get("kind", "")
-                if kind == RESTORE:
-                    restoring.append(
-                        Call(key, op_of(message.data), message.sequence, message.data,
-                             message.log_time, restore=True)
-                    )  # fmt: skip
-                elif kind == RELOAD:
-                    reloads.append((message.log_time, key, message.data.decode()))
-                elif kind in ("request", "reply"):
-                    call = calls.setdefault(
-                        message.sequence, Call(key, meta["op"], message.sequence, b"", 0)
-                    )
-                    if kind == "request":
-                        call.request, call.received_ns = message.data, message.log_time
-                        first = message.sequence if first is None else min(first, message.sequence)
-                    else:
-                        call.reply, call.answered_ns = message.data, message.log_time
-        if restoring:
-            restores.append((first if first is not None else 2**63, restoring))
-    ordered = sorted((c for c in calls.values() if c.request), key=lambda c: c.sequence)
-    return Recording(_with_restores(ordered, restores), keys, sorted(reloads))
-
-
-def _with_restores(calls: list[Call], restores: list[tuple[int, list[Call]]]) -> list[Call]:
-    """Each file's restores just before its first call, kept only when nothing earlier in
-    the recording (an earlier file read too: its calls or restores) built that session."""
-    out: list[Call] = []
-    pending = sorted(restores, key=lambda r: r[0])
-    seen: set[bytes] = set()  # session ids the calls so far configured
-    for call in [*calls, None]:
-        while pending and (call is None or pending[0][0] <= call.sequence):
-            _, restoring = pending.pop(0)
-            fresh = [r for r in restoring if _sid(r.request) not in seen]
-            seen.update(_sid(r.request) for r in fresh)
-            out += fresh
-        if call is not None:
-            if call.op == "configure":
-                seen.add(_sid(call.request))
-            out.append(call)
-    return out
+    file = _File(2**63, path, {}, [], {}, [])
+    with open(path, "rb") as stream:
+        for _schema, channel, message in make_reader(stream).iter_messages(log_time_order=False):
+            file.start_ns = min(file.start_ns, message.log_time)
+            meta = channel.metadata
+            key = meta.get("key", "")
+            info = file.keys.setdefault(key, KeyInfo(key))
+            info.plugin_type = meta.get("plugin_type", info.plugin_type)
+            if "planner" in meta:
+                info.planner = json.loads(meta["planner"])
+            kind, data, seq = meta.get("kind", ""), message.data, message.sequence
+            if kind == RESTORE:
+                file.restores.append(
+                    Call(key, op_of(data), seq, data, message.log_time, restore=True)
+                )
+            elif kind == RELOAD:
+                file.reloads.append((message.log_time, key, data.decode()))
+            elif kind in ("request", "reply"):
+                call = file.calls.setdefault(seq, Call(key, meta["op"], seq, b"", 0))
+                if kind == "request":
+                    call.request, call.received_ns = data, message.log_time
+                else:
+                    call.reply, call.answered_ns = data, message.log_time
+    return file
 
 
 def _sid(payload: bytes) -> bytes:
@@ -149,7 +147,3 @@ def _sid(payload: bytes) -> bytes:
     except Exception:
         return b""
     return str(sid).encode()
-
-
-def iter_keys(recording: Recording) -> Iterator[str]:
-    yield from sorted(recording.keys)

@@ -3,7 +3,7 @@
 Runs on the recorder's thread only (not thread-safe). The first file is the path asked for;
 when one passes ``max_bytes`` the next is ``<stem>.1.mcap``, ``<stem>.2.mcap``, ..., and only the
 newest ``max_files`` are kept, so a recording never takes more than about
-``max_bytes * max_files`` of disk.
+``max_bytes * max_files`` of disk. A host started again on the same path goes on numbering.
 """
 
 from __future__ import annotations
@@ -23,6 +23,22 @@ def rotated_path(first: Path, index: int) -> Path:
     return first if index == 0 else first.with_name(f"{first.stem}.{index}{first.suffix}")
 
 
+def index_of(first: Path, path: Path) -> int:
+    """``path``'s place among ``first``'s rotated files (-1: not one of them)."""
+    if path == first:
+        return 0
+    middle = path.name.removeprefix(first.stem + ".").removesuffix(first.suffix)
+    return int(middle) if middle.isdigit() and path.name != middle else -1
+
+
+def existing_files(first: Path) -> list[Path]:
+    """The rotated files of ``first`` already on disk, oldest first."""
+    found = [
+        p for p in first.parent.glob(f"{first.stem}*{first.suffix}") if index_of(first, p) >= 0
+    ]
+    return sorted(found, key=lambda p: index_of(first, p))
+
+
 class RotatingWriter:
     def __init__(
         self,
@@ -34,8 +50,10 @@ class RotatingWriter:
         self.first = path
         self.max_bytes, self.max_files = max_bytes, max_files
         self.key_metadata = key_metadata  # the key's plugin type and planner, for channels
-        self.index = -1
-        self.paths: list[Path] = []  # the files kept, oldest first
+        # A host started again on the same FILE (--respawn, a restart) goes on after the files
+        # its last run left, which count towards max_files: nothing recorded is overwritten.
+        self.paths: list[Path] = existing_files(path)  # the files kept, oldest first
+        self.index = index_of(path, self.paths[-1]) if self.paths else -1
         self._stream: IO[bytes] | None = None
         self._writer: Any = None
         self._channels: dict[tuple[str, str], int] = {}
