@@ -171,6 +171,15 @@ def test_a_rotated_recording_replays_from_its_last_file_alone(
     record = replay(kept[-1], tmp_path, "--isolation", "none")
     assert record["summary"]["restored"] >= 3  # configure, activate, set_plan
     assert record["summary"]["calls"] == record["summary"]["identical"] > 0
+    # a host that did not end cleanly leaves a file without its index: its complete chunks
+    # still read, and the replay says where it stopped
+    cut = tmp_path / "cut.mcap"
+    cut.write_bytes(kept[0].read_bytes()[: kept[0].stat().st_size * 3 // 4])
+    whole, partial = read_recording([kept[0]]), read_recording([cut])
+    assert partial.cut_short == [cut] and not whole.cut_short
+    assert 0 < len(partial.calls) < len(whole.calls)
+    result = nav2_pyif("replay", str(cut), "--out", str(tmp_path), "--isolation", "none")
+    assert result.returncode == 0 and "ends before its index" in result.stderr, result.stderr
     # all three files together: the same calls, restored only where no earlier file was
     together = read_recording(kept[::-1])
     assert [c.sequence for c in together.calls if not c.restore] == sorted(

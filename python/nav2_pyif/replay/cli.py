@@ -87,9 +87,7 @@ def _say(message: str) -> None:
     print(f"nav2-pyif replay: {message}", file=sys.stderr, flush=True)
 
 
-def choose_specs(
-    args: argparse.Namespace, recording: Recording, parser: argparse.ArgumentParser | None
-) -> dict[str, PlannerSpec]:
+def choose_specs(args: argparse.Namespace, recording: Recording) -> dict[str, PlannerSpec]:
     """key -> the planner to replay it against. Raises ValueError saying which option is
     wrong, PlannerLoadError when --planner does not load."""
     from nav2_pyif.replay.engine import recorded_spec
@@ -146,8 +144,10 @@ def run_replay(args: argparse.Namespace) -> int:
     except Exception as exc:  # mcap raises its own errors for a file that is not MCAP
         _say(f"error: cannot read {', '.join(map(str, args.files))}: {exc}")
         return 1
+    for path in recording.cut_short:
+        _say(f"{path} ends before its index (its host did not end cleanly): read up to there")
     try:
-        specs = choose_specs(args, recording, None)
+        specs = choose_specs(args, recording)
     except ValueError as exc:
         _say(f"error: {exc}")
         return 2

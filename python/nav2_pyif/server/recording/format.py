@@ -74,6 +74,9 @@ class Recording:
     calls: list[Call]
     keys: dict[str, KeyInfo]
     reloads: list[tuple[int, str, str]]  # (unix ns, key, new planner label)
+    # files that end before their index: a host that did not end cleanly (SIGKILL, power
+    # lost); what their complete chunks hold was read
+    cut_short: list[Path] = field(default_factory=list)
 
 
 def read_recording(paths: list[Path]) -> Recording:
@@ -99,7 +102,7 @@ def read_recording(paths: list[Path]) -> Recording:
             if call.request:
                 out.append(call)
     reloads = sorted(r for file in files for r in file.reloads)
-    return Recording(out, keys, reloads)
+    return Recording(out, keys, reloads, [file.path for file in files if file.cut_short])
 
 
 @dataclass(order=True)
@@ -110,34 +113,60 @@ class _File:
     restores: list[Call] = field(compare=False)
     keys: dict[str, KeyInfo] = field(compare=False)
     reloads: list[tuple[int, str, str]] = field(compare=False)
+    cut_short: bool = field(default=False, compare=False)
+
+
+def _messages(path: Path) -> tuple[list[tuple[Any, Any]], bool]:
+    """(channel, message) of every message of ``path``, and whether the file was cut short:
+    then what its complete records hold, read one by one up to where it ends."""
+    from mcap.exceptions import InvalidMagic
+    from mcap.reader import make_reader
+    from mcap.records import Channel, Message
+    from mcap.stream_reader import StreamReader
+
+    with open(path, "rb") as stream:
+        try:
+            read = make_reader(stream).iter_messages(log_time_order=False)
+            return [(channel, message) for _schema, channel, message in read], False
+        except Exception:  # no index (no footer), or a record cut in two
+            stream.seek(0)
+        found: list[tuple[Any, Any]] = []
+        channels: dict[int, Any] = {}
+        try:
+            for record in StreamReader(stream).records:
+                if isinstance(record, Channel):
+                    channels[record.id] = record
+                elif isinstance(record, Message) and record.channel_id in channels:
+                    found.append((channels[record.channel_id], record))
+        except InvalidMagic:
+            raise  # not an MCAP file at all
+        except Exception:
+            pass  # where the file ends
+        return found, True
 
 
 def _read_file(path: Path) -> _File:
-    from mcap.reader import make_reader
-
-    file = _File(2**63, path, {}, [], {}, [])
-    with open(path, "rb") as stream:
-        for _schema, channel, message in make_reader(stream).iter_messages(log_time_order=False):
-            file.start_ns = min(file.start_ns, message.log_time)
-            meta = channel.metadata
-            key = meta.get("key", "")
-            info = file.keys.setdefault(key, KeyInfo(key))
-            info.plugin_type = meta.get("plugin_type", info.plugin_type)
-            if "planner" in meta:
-                info.planner = json.loads(meta["planner"])
-            kind, data, seq = meta.get("kind", ""), message.data, message.sequence
-            if kind == RESTORE:
-                file.restores.append(
-                    Call(key, op_of(data), seq, data, message.log_time, restore=True)
-                )
-            elif kind == RELOAD:
-                file.reloads.append((message.log_time, key, data.decode()))
-            elif kind in ("request", "reply"):
-                call = file.calls.setdefault(seq, Call(key, meta["op"], seq, b"", 0))
-                if kind == "request":
-                    call.request, call.received_ns = data, message.log_time
-                else:
-                    call.reply, call.answered_ns = data, message.log_time
+    messages, cut_short = _messages(path)
+    file = _File(2**63, path, {}, [], {}, [], cut_short)
+    for channel, message in messages:
+        file.start_ns = min(file.start_ns, message.log_time)
+        meta = channel.metadata
+        key = meta.get("key", "")
+        info = file.keys.setdefault(key, KeyInfo(key))
+        info.plugin_type = meta.get("plugin_type", info.plugin_type)
+        if "planner" in meta:
+            info.planner = json.loads(meta["planner"])
+        kind, data, seq = meta.get("kind", ""), message.data, message.sequence
+        if kind == RESTORE:
+            file.restores.append(Call(key, op_of(data), seq, data, message.log_time, restore=True))
+        elif kind == RELOAD:
+            file.reloads.append((message.log_time, key, data.decode()))
+        elif kind in ("request", "reply"):
+            call = file.calls.setdefault(seq, Call(key, meta["op"], seq, b"", 0))
+            if kind == "request":
+                call.request, call.received_ns = data, message.log_time
+            else:
+                call.reply, call.answered_ns = data, message.log_time
     return file
 
 
