@@ -12,6 +12,7 @@ import numpy as np
 
 from nav2_pyif.common.host_process import HostExited
 from nav2_pyif.common.option_types import (
+    add_path_argument,
     endpoint,
     finite_float,
     non_negative_float,
@@ -236,14 +237,7 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         metavar="SECONDS",
         help="the smoother's time budget (smoother_server's max_smoothing_duration)",
     )
-    p.add_argument(
-        "--path",
-        action="append",
-        default=[],
-        metavar="DIR",
-        help="directory to import planners from, repeatable (the current directory is "
-        "always searched)",
-    )
+    add_path_argument(p)
     p.add_argument(
         "--connect",
         type=endpoint,

@@ -39,6 +39,11 @@ from nav2_pyif.server.heap import settle_heap
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
+from nav2_pyif.server.recording.options import (
+    add_record_arguments,
+    check_record_arguments,
+    start_recording,
+)
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.respawn import keep
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
@@ -81,6 +86,10 @@ examples:
 
   # started again whenever it exits (as the Nav2 plugin runs the host it starts itself)
   planner-host --respawn --key nav2_pyif/robot1/FollowPath --module my_pkg.apf
+
+  # record every call to MCAP files (replay: nav2-pyif replay run.mcap --planner ...)
+  planner-host --key nav2_pyif/robot1/FollowPath --planner my_pkg.ctrl:MyController \\
+      --record out/run.mcap
 
   # every option also reads NAV2_PYIF_<OPTION> (containers); command-line flags win
   NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
@@ -184,6 +193,7 @@ def build_parser() -> argparse.ArgumentParser:
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
     )
     add_batch_arguments(parser)
+    add_record_arguments(parser)
     swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")
     swap.add_argument(
         "--allow-remote-reload",
@@ -352,6 +362,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"--pid-file {args.pid_file}: its directory is missing or not writable")
     try:
         specs = collect_specs(args, parser)
+        check_record_arguments(args, parser, [spec.key for spec in specs])
         services = start_services(specs, host_id, args)
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
@@ -368,9 +379,10 @@ def main(argv: list[str] | None = None) -> int:
     host = PlannerHost(
         session, host_id, ReloadPolicy(args.allow_remote_reload, tuple(args.reload_allow))
     )
+    served, recorder = start_recording(args, specs, services)
     try:
         if not stopped_by:
-            for spec, service in zip(specs, services, strict=True):
+            for spec, service in zip(specs, served, strict=True):
                 host.serve(spec.key, service)
             serving.set()
             settle_heap()  # what start-up built serves as long as the host
@@ -399,6 +411,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.pid_file:
             remove_pid_file(args.pid_file)
         host.close()
+        if recorder is not None:
+            recorder.close()  # after the host: every call answered is in the files
         for service in services:
             service.close()
         session.close()
