@@ -42,4 +42,7 @@ autodoc_typehints = "description"
 
 html_theme = "alabaster"
 html_title = f"nav2_pyif {release}"
-html_theme_options = {"description": "Python planners for Nav2, over Zenoh"}
+html_theme_options = {
+    "description": "Python planners for Nav2, over Zenoh",
+    "page_width": "1180px",  # code blocks of 100 columns fit without a scroll bar
+}
