@@ -33,8 +33,8 @@ from pathlib import Path
 RUNNABLE = {"bash", "sh", "python"}
 #: the site's deployment guide, whose certificates the TLS tests make as a user would
 DEPLOYMENT_GUIDE = "python/doc/howto/deployment.md"
-# A MyST directive's fence (```{toctree}) opens a block too: its closing fence is no opening.
-_FENCE = re.compile(r"^```(\w*|\{[\w:-]+\})\s*$")
+# A MyST directive's fence (```{include} FILE) opens a block too: its closing fence is no opening.
+_FENCE = re.compile(r"^```(\w*|\{[\w:-]+\}[^`]*?)\s*$")
 _MARKER = re.compile(r"^<!--\s*doc-test:(.*?)-->\s*$")
 _FILE_HEADER = re.compile(r"^# ([\w./-]+\.py)\s*$")
 

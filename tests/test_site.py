@@ -34,9 +34,7 @@ def site() -> Iterator[Path]:
     """The site, built once: sphinx-build -W (a warning fails the build), from scratch."""
     with tempfile.TemporaryDirectory(prefix="nav2_pyif_site_") as out:
         built = subprocess.run(
-            in_project_env(
-                f"python -m sphinx -W --keep-going -E -q -b html {SOURCE} {out}/html"
-            ),
+            in_project_env(f"python -m sphinx -W --keep-going -E -q -b html {SOURCE} {out}/html"),
             cwd=ROOT,
             capture_output=True,
             text=True,
@@ -121,7 +119,7 @@ def test_rendered_page_shows_its_text_code_and_images(
     for src in page.images:
         assert (site / name).parent.joinpath(src).resolve().is_file(), f"{name}: no {src}"
     # The screenshot: the body column has ink from top to bottom, not a blank page.
-    height, width, _ = pixels.shape
+    width = pixels.shape[1]
     body = pixels[:, width // 4 : width - 60]
     inked_rows = (np.abs(body - body[0, 0]).sum(axis=2) > 0.3).any(axis=1)
     bands = np.array_split(inked_rows, 7)
