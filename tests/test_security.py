@@ -1,4 +1,4 @@
-"""Closed to strangers: the secure fleet setup of docs/DEPLOYMENT.md section 6, run with its
+"""Closed to strangers: the deployment guide's secure fleet setup (section 6), run with its
 exact files (docs/zenoh/*-secure.json5, *-password.json5; only the directory they name,
 /etc/nav2_pyif/, and the endpoints are substituted). The router and its access control on
 this machine, the planner host on a remote machine (its own network namespace behind a veth
@@ -52,7 +52,7 @@ PLACEHOLDER = "/etc/nav2_pyif/"  # the guide's files name tls/*.pem and password
 PASSWORDS = {"robot1": "robot1-password-here", "planner-host": "host-password-here"}
 KEY = "nav2_pyif/robot1/FollowPath"
 #: Zenoh's warnings (refused TLS links), refused handshakes (wrong passwords) and access
-#: control's decisions (denied messages): what docs/DEPLOYMENT.md section 6 tells to log
+#: control's decisions (denied messages): what python/doc/howto/deployment.md section 6 tells to log
 ROUTER_LOG = {
     "RUST_LOG": "zenoh=warn,zenoh_transport::unicast::establishment::accept=debug,"
     "zenoh::net::routing::interceptor::access_control=trace"

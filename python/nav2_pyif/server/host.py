@@ -56,7 +56,7 @@ class ServedPlanner:
     queryable of the session, and at 120 keys four queryables each cost the host a fifth of
     its CPU (perf: 22 % of its time in key-expression intersection), but a
     router's access control lets a robot see only declarations on its calls, cancel and hosts
-    keys (docs/DEPLOYMENT.md), and zenoh-pico sends no query to a key it has seen no queryable
+    keys (the deployment guide), and zenoh-pico sends no query to a key it has seen no queryable
     for. One callback serves all three, on Zenoh's own thread, and only sorts the query: a call
     goes to this key's call thread (answered in order, so planners need not be thread-safe); a
     batched control cycle with nothing queued before it goes straight to its batch; a cancel or
