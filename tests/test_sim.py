@@ -276,7 +276,8 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
 
 
 def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
-    result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan")
+    # real time: lockstep would wait for the slow set_plan
+    result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan", "--realtime")
     assert result.returncode == 1, result.stderr  # not reached; no traceback of the runner
     assert "Traceback" not in result.stderr
     # as in Nav2: the plan the host failed is owed, and the cycle that sends it first fails

@@ -97,9 +97,10 @@ def simulator_facts() -> str:
         f"  controller's costmap: a {size} x {size} rolling window about the robot, updated "
         f"at {d.local_costmap_rate:g} Hz",
         "  control: --rate Hz; the controller's control_period is 1 / --rate (Nav2's",
-        "    controller_frequency); each cycle waits --call-timeout for the reply; failing",
-        f"    cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end the run "
-        "(failure_tolerance)",
+        "    controller_frequency); lockstep: each cycle waits for the reply, and the report",
+        "    counts those over --call-timeout; --realtime: a reply later fails the cycle;",
+        f"    failing cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end "
+        "the run (failure_tolerance)",
         f"  goal check (SimpleGoalChecker): within {g.xy_goal_tolerance:g} m of the goal AND "
         f"{g.yaw_goal_tolerance:g} rad of its heading:",
         "    a position-only controller must turn on the spot at the end (or use",
@@ -180,13 +181,28 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         metavar="SECONDS",
         help="simulated seconds before the run ends NOT REACHED, > 0",
     )
-    p.add_argument("--realtime", action="store_true", help="pace to wall-clock time")
+    p.add_argument(
+        "--realtime",
+        action="store_true",
+        help="real time instead of lockstep: a reply later than --call-timeout fails its "
+        "cycle, as on the robot, and the run keeps wall-clock pace. Without it (lockstep) "
+        "simulated time waits for every reply, so the verdict does not depend on the "
+        "machine's load; the report counts the calls Nav2 would have failed",
+    )
     p.add_argument(
         "--call-timeout",
         type=positive_float,
-        default=0.25,
+        default=SimConfig.call_timeout,
         metavar="SECONDS",
-        help="seconds to wait for each control cycle's reply (the plugin's timeout), > 0",
+        help="the plugin's timeout per control cycle call (its 'timeout' parameter): "
+        "enforced with --realtime, reported against in lockstep, > 0",
+    )
+    p.add_argument(
+        "--lockstep-limit",
+        type=positive_float,
+        default=SimConfig.lockstep_limit,
+        metavar="SECONDS",
+        help="in lockstep: a call taking this long is a hung planner and fails its cycle, > 0",
     )
     p.add_argument(
         "--param",
@@ -363,6 +379,7 @@ def run_command(args: argparse.Namespace) -> int:
             timeout=args.timeout,
             realtime=args.realtime,
             call_timeout=args.call_timeout,
+            lockstep_limit=args.lockstep_limit,
             controller_params=_params(args.param),  # type: ignore[arg-type]
             planner_params=_params(args.planner_param),  # type: ignore[arg-type]
             endpoint=args.connect,
