@@ -341,15 +341,20 @@ def sensing_config(args: argparse.Namespace) -> SensingConfig:
         raise SimError(f"--scan-*/--debug-every: {exc}") from exc
 
 
-def _params(items: list[str]) -> dict[str, object]:
+def _params(items: list[str], option: str) -> dict[str, object]:
+    """``option``'s NAME=VALUE items, each value read as YAML; bad ones are usage errors."""
     import yaml
 
     out: dict[str, object] = {}
     for item in items:
         name, sep, value = item.partition("=")
         if not sep:
-            raise SimError(f"parameter {item!r} is not NAME=VALUE")
-        parsed = yaml.safe_load(value)
+            raise SimError(f"{option} {item!r} is not NAME=VALUE")
+        try:
+            parsed = yaml.safe_load(value)
+        except yaml.YAMLError as exc:
+            reason = " ".join(str(getattr(exc, "problem", "") or exc).split())
+            raise SimError(f"{option} {item!r}: the value is not YAML ({reason})") from None
         # A parameter is a scalar or an array of scalars; nested lists (polygons, footprints)
         # are written as text, as Nav2's YAML writes footprints
         nested = isinstance(parsed, list) and any(isinstance(v, list | dict) for v in parsed)
@@ -380,8 +385,8 @@ def run_command(args: argparse.Namespace) -> int:
             realtime=args.realtime,
             call_timeout=args.call_timeout,
             lockstep_limit=args.lockstep_limit,
-            controller_params=_params(args.param),  # type: ignore[arg-type]
-            planner_params=_params(args.planner_param),  # type: ignore[arg-type]
+            controller_params=_params(args.param, "--param"),  # type: ignore[arg-type]
+            planner_params=_params(args.planner_param, "--planner-param"),  # type: ignore[arg-type]
             endpoint=args.connect,
             wait=args.wait,
             controller_key=args.controller_key,
@@ -389,7 +394,10 @@ def run_command(args: argparse.Namespace) -> int:
             path=args.path,
             progress=progress,
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
-            plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
+            plugin_params={  # type: ignore[misc]
+                r: _params(getattr(args, f"{r}_param"), f"--{r.replace('_', '-')}-param")
+                for r in PLUGIN_FLAGS
+            },
             smoother_max_time=args.smoother_max_time,
             max_recoveries=args.max_recoveries,
             plans=args.plans,
