@@ -280,7 +280,7 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
     assert 'user_faults.py", line 15, in configure' in tb[1]
     assert 'user_faults.py", line 18, in load_model' in tb[3]
     assert tb[-1] == "RuntimeError: my configure is broken"
-    host_code = [str(Path(m.__file__).parent) for m in (nav2_pyif, nav2_pyif_protocol)]
+    host_code = [str(Path(m.__file__ or "").parent) for m in (nav2_pyif, nav2_pyif_protocol)]
     assert str(own) in tb[1]
     assert not [line for line in tb if any(code in line for code in host_code)]
     assert report[len(tb) + 1].startswith(

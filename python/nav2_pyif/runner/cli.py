@@ -22,6 +22,7 @@ from nav2_pyif.common.option_types import (
 )
 from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.laser import LaserSpec
 from nav2_pyif.runner.maps import BUNDLED
@@ -341,11 +342,11 @@ def sensing_config(args: argparse.Namespace) -> SensingConfig:
         raise SimError(f"--scan-*/--debug-every: {exc}") from exc
 
 
-def _params(items: list[str], option: str) -> dict[str, object]:
+def _params(items: list[str], option: str) -> dict[str, ParamValue]:
     """``option``'s NAME=VALUE items, each value read as YAML; bad ones are usage errors."""
     import yaml
 
-    out: dict[str, object] = {}
+    out: dict[str, ParamValue] = {}
     for item in items:
         name, sep, value = item.partition("=")
         if not sep:
@@ -385,8 +386,8 @@ def run_command(args: argparse.Namespace) -> int:
             realtime=args.realtime,
             call_timeout=args.call_timeout,
             lockstep_limit=args.lockstep_limit,
-            controller_params=_params(args.param, "--param"),  # type: ignore[arg-type]
-            planner_params=_params(args.planner_param, "--planner-param"),  # type: ignore[arg-type]
+            controller_params=_params(args.param, "--param"),
+            planner_params=_params(args.planner_param, "--planner-param"),
             endpoint=args.connect,
             wait=args.wait,
             controller_key=args.controller_key,
@@ -394,7 +395,7 @@ def run_command(args: argparse.Namespace) -> int:
             path=args.path,
             progress=progress,
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
-            plugin_params={  # type: ignore[misc]
+            plugin_params={
                 r: _params(getattr(args, f"{r}_param"), f"--{r.replace('_', '-')}-param")
                 for r in PLUGIN_FLAGS
             },
