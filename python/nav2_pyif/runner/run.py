@@ -331,6 +331,7 @@ def run_sim(config: SimConfig) -> SimResult:
                     extra_path=import_path(config),
                     log_level="INFO",
                     args=host_deadlines(config),
+                    bound=True,  # a killed runner leaves no host behind
                 )
                 cleanup.callback(host.close)
                 host.start()
