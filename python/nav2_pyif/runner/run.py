@@ -39,6 +39,7 @@ from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
+from nav2_pyif.runner.goal_check import GoalCheck
 from nav2_pyif.runner.host_log import HostLogFollower
 from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
@@ -97,6 +98,7 @@ class SimConfig:
     goal_checker: GoalTolerances = field(
         default_factory=lambda: GoalTolerances(0.25, 0.25, 0.25, 0.25)
     )
+    stateful_goal_check: bool = True  # SimpleGoalChecker's stateful: the position latches
     failure_tolerance: float = 0.3  # [s] of consecutive controller failures before aborting
     controller_params: dict[str, ParamValue] = field(default_factory=dict)
     planner_params: dict[str, ParamValue] = field(default_factory=dict)
@@ -493,6 +495,12 @@ def _create_plans(config: SimConfig, result: SimResult, planner: GlobalPlannerCl
     return first
 
 
+def plan_end(plan: np.ndarray) -> Pose3:
+    """The plan's last pose (x, y, yaw): where Nav2's goal checker wants the robot."""
+    x, y, yaw = (float(v) for v in plan[-1])
+    return x, y, yaw
+
+
 def _keep_host_log(result: SimResult, host: PlannerHostProcess, follower: HostLogFollower) -> None:
     """The host stopped, its last lines shown, its whole log kept in the result."""
     host.stop()
@@ -644,11 +652,14 @@ def _control_loop(
     config: SimConfig, result: SimResult, calls: CycleCalls, local_version: int
 ) -> None:
     controller = calls.controller
-    goal_msg = pose_msg(*result.goal)
+    # Nav2's controller_server checks the goal on the plan's last pose, not the goal asked for
+    end = plan_end(result.plan)
+    goal_msg = pose_msg(*end)
+    check = GoalCheck(config.goal_checker, end, config.stateful_goal_check)
     calls.start()
     robot = DiffDrive(*result.start)
     checker = WorldChecker(result.world, np.array(config.footprint))
-    dt, goal = 1.0 / config.rate, result.goal
+    dt = 1.0 / config.rate
     local_every = max(1, round(config.rate / config.local_costmap_rate))
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
@@ -711,22 +722,27 @@ def _control_loop(
                         return
                     failing_since, failure_traceback = None, ""
                     calls.start()  # a new FollowPath goal: the checkers reset
+                    check.xy_reached = False
                     continue
             if not _advance(result, robot, checker, cmd_v, cmd_w, dt, began):
                 return
             cycle += 1
-            distance = math.hypot(goal[0] - robot.x, goal[1] - robot.y)
-            if calls.cycle is None and config.goal_checker.is_goal_reached(
-                robot.x, robot.y, robot.yaw, *goal
-            ):
+            distance = math.hypot(end[0] - robot.x, end[1] - robot.y)
+            if calls.cycle is None and check.reached(robot.x, robot.y, robot.yaw):
                 result.reached = True
-                result.outcome = "goal reached"
+                result.outcome = f"goal reached ({check.passed()})"
                 return
             bar.update(dt)
             if cycle % 10 == 0:
                 bar.set_postfix_str(f"{distance:.1f} m to goal")
             if config.realtime:
                 time.sleep(max(0.0, wall_start + result.sim_time - time.perf_counter()))
-        result.outcome = f"timeout after {config.timeout:.0f} s"
+        why = (
+            "the goal check never passed: "
+            + check.why_not(robot.x, robot.y, robot.yaw, result.goal)
+            if calls.cycle is None
+            else f"{result.name_of('goal_checker')} never said the goal was reached"
+        )
+        result.outcome = f"timeout after {config.timeout:.0f} s: {why}"
     finally:
         bar.close()
