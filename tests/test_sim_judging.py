@@ -4,6 +4,8 @@ Real hosts over Zenoh."""
 
 from __future__ import annotations
 
+from typing import Any
+
 import pytest
 from nav2_pyif.runner.report import format_report
 from nav2_pyif.testing import drive
@@ -13,7 +15,7 @@ from tests.conftest import FIXTURES
 pytestmark = pytest.mark.integration
 
 # about 8 simulated seconds on the office map
-TASK = {"start": (2.0, 2.5, 0.0), "goal": (3.2, 5.5, 1.57), "path": [str(FIXTURES)]}
+TASK: dict[str, Any] = {"start": (2.0, 2.5, 0.0), "goal": (3.2, 5.5, 1.57), "path": [str(FIXTURES)]}
 
 
 def test_a_plan_that_stops_short_reaches_its_goal_as_in_nav2() -> None:
