@@ -44,3 +44,12 @@ def test_a_run_that_times_out_says_which_check_it_failed() -> None:
         "m from the plan's last pose (xy_goal_tolerance 0.25 m); the plan ends 0.40 m from "
         "the goal asked for" in result.outcome
     )
+
+
+def test_a_start_up_that_outlasts_its_wait_names_the_slow_import() -> None:
+    with pytest.raises(TimeoutError) as timed_out:
+        drive("slow_import:SlowToImport", startup_wait=10.0, **TASK)
+    assert str(timed_out.value).startswith(
+        "the planner host was still importing slow_import:SlowToImport after 10 s: a slow "
+        "import (torch, jax, a model's weights) needs a longer start-up wait (--startup-wait"
+    ), timed_out.value

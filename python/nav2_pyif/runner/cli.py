@@ -206,6 +206,21 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         help="in lockstep: a call taking this long is a hung planner and fails its cycle, > 0",
     )
     p.add_argument(
+        "--startup-wait",
+        type=positive_float,
+        default=SimConfig.startup_wait,
+        metavar="SECONDS",
+        help="how long the planner host started here may take to import and serve the "
+        "planners (a slow import, such as torch's, needs more), > 0",
+    )
+    p.add_argument(
+        "--plan-wait",
+        type=positive_float,
+        default=SimConfig.plan_wait,
+        metavar="SECONDS",
+        help="how long each create_plan and smooth may take, > 0",
+    )
+    p.add_argument(
         "--param",
         action="append",
         default=[],
@@ -386,6 +401,8 @@ def run_command(args: argparse.Namespace) -> int:
             realtime=args.realtime,
             call_timeout=args.call_timeout,
             lockstep_limit=args.lockstep_limit,
+            startup_wait=args.startup_wait,
+            plan_wait=args.plan_wait,
             controller_params=_params(args.param, "--param"),
             planner_params=_params(args.planner_param, "--planner-param"),
             endpoint=args.connect,

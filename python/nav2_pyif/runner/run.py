@@ -104,6 +104,8 @@ class SimConfig:
     planner_params: dict[str, ParamValue] = field(default_factory=dict)
     call_timeout: float = Timeouts().call  # [s] the plugin's timeout (bridge_params.py)
     lockstep_limit: float = 60.0  # [s] lockstep: a call this long is a hung planner
+    startup_wait: float = 30.0  # [s] for the host of our own to import and serve the planners
+    plan_wait: float = 30.0  # [s] for each create_plan and smooth (the host's plan deadline)
     path: list[str] = field(default_factory=list)  # directories to import planners from
     endpoint: str | None = None  # connect to a running host instead of starting one
     wait: float = 10.0  # [s] with an endpoint: for its router, then for the hosts' tokens
@@ -360,9 +362,11 @@ def run_sim(config: SimConfig) -> SimResult:
 
 
 def host_deadlines(config: SimConfig) -> list[str]:
-    """The host's options for a run: in lockstep its call deadline is the lockstep limit, so
-    a slow reply is waited for rather than answered Unavailable after the host's 1 s."""
-    return [] if config.realtime else ["--deadline", f"{config.lockstep_limit:g}"]
+    """The host's deadlines for a run: create_plan's is the plan wait; in lockstep the call
+    deadline is the lockstep limit, so a slow reply is waited for rather than answered
+    Unavailable after the host's 1 s."""
+    plan = ["--plan-deadline", f"{config.plan_wait:g}"]
+    return plan if config.realtime else [*plan, "--deadline", f"{config.lockstep_limit:g}"]
 
 
 def _drive(
@@ -370,7 +374,7 @@ def _drive(
 ) -> None:
     start, costmap = result.start, result.global_costmap
     call = config.call_timeout if config.realtime else config.lockstep_limit
-    timeouts = Timeouts(call=call, lifecycle=10.0, configure=60.0, plan=60.0)
+    timeouts = Timeouts(call=call, lifecycle=10.0, configure=60.0, plan=config.plan_wait)
     planner = GlobalPlannerClient(
         session,
         config.planner_key,
@@ -519,9 +523,13 @@ def _start(
     host: PlannerHostProcess | None,
 ) -> None:
     """Each client: its host alive, then configure and activate, as Nav2's servers do."""
+    started_by = time.monotonic() + config.startup_wait  # for the host of our own
     for role, client in roles.items():
         if host is not None:
-            wait_alive(host, client.wait_for_host)
+            try:
+                wait_alive(host, client.wait_for_host, max(0.2, started_by - time.monotonic()))
+            except TimeoutError:
+                raise TimeoutError(_start_up_timeout(config, result, host)) from None
         elif not client.wait_for_host(config.wait):
             raise SimError(
                 f"no planner host on {client.keys.prefix} at {config.endpoint} within "
@@ -535,6 +543,32 @@ def _start(
             what = result.name_of(role)
             _ended_by(result, f"{what} could not start, so the run stopped", exc)
             raise _Ended from exc
+
+
+def _start_up_timeout(config: SimConfig, result: SimResult, host: PlannerHostProcess) -> str:
+    """Why the host of our own did not come up in time: still importing a planner (its
+    worker has not said "KEY: loaded"), or serving but not reached."""
+    log = host.log()
+    loading = [
+        result.name_of(role) for role, key in _keys(config).items() if f"{key}: loaded " not in log
+    ]
+    wait = f"{config.startup_wait:g} s"
+    if loading:
+        return (
+            f"the planner host was still importing {', '.join(loading)} after {wait}: a slow "
+            "import (torch, jax, a model's weights) needs a longer start-up wait "
+            f"(--startup-wait, or startup_wait in drive()); its log:\n{log}"
+        )
+    return f"the planner host serves, but was not reached over Zenoh within {wait}:\n{log}"
+
+
+def _keys(config: SimConfig) -> dict[str, str]:
+    """Role -> the key the run's host serves it on."""
+    return {
+        "controller": config.controller_key,
+        "planner": config.planner_key,
+        **{role: KEYS[role] for role in config.plugins},
+    }
 
 
 def _ended_by(result: SimResult, what: str, exc: Nav2Error, earlier_traceback: str = "") -> None:
