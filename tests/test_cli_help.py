@@ -172,8 +172,8 @@ def test_sim_help_shows_every_default_and_what_the_simulator_does() -> None:
     assert done.returncode == 0, done.stderr
     text = re.sub(r"\s+", " ", done.stdout)
     for option, default in [
-        ("--call-timeout SECONDS", "0.04"),
-        ("--rate RATE", "20.0"),
+        ("--call-timeout SECONDS", "the params file's timeout, else 0.04"),
+        ("--rate RATE", "the params file's, else 20"),
         ("--timeout SECONDS", "180.0"),
         ("--plans N", "1"),
         ("--map MAP", "office"),

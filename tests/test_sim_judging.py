@@ -4,9 +4,14 @@ Real hosts over Zenoh."""
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+from pathlib import Path
 from typing import Any
 
 import pytest
+import yaml
 from nav2_pyif.runner.report import format_report
 from nav2_pyif.testing import drive
 
@@ -53,3 +58,65 @@ def test_a_start_up_that_outlasts_its_wait_names_the_slow_import() -> None:
         "the planner host was still importing slow_import:SlowToImport after 10 s: a slow "
         "import (torch, jax, a model's weights) needs a longer start-up wait (--startup-wait"
     ), timed_out.value
+
+
+def sim(cwd: Path, *args: str) -> tuple[subprocess.CompletedProcess[str], dict[str, Any]]:
+    """``nav2-pyif sim`` run in ``cwd`` on the short task; its JSON record."""
+    start_goal = ("--start", "2", "2.5", "0", "--goal", "3.2", "5.5", "1.57")
+    done = subprocess.run(
+        [
+            *(sys.executable, "-m", "nav2_pyif.tools.main", "sim", "--no-progress"),
+            *("--path", str(FIXTURES), *start_goal, "--name", "run", *args),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=cwd,
+    )
+    record = cwd / "out" / "run.json"
+    return done, json.loads(record.read_text()) if record.exists() else {}
+
+
+def test_sim_judges_by_the_nav2_params_file_it_finds_here(tmp_path: Path) -> None:
+    params = {
+        "controller_server": {
+            "ros__parameters": {
+                "controller_frequency": 10.0,
+                "general_goal_checker": {
+                    "plugin": "nav2_controller::SimpleGoalChecker",
+                    "xy_goal_tolerance": 0.4,
+                },
+                "goal_checker_plugins": ["general_goal_checker"],
+                "FollowPath": {
+                    "plugin": "nav2_pyif_bridge::PyController",
+                    "python_planner": "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
+                    "timeout": 0.1,
+                    "desired_linear_vel": 0.25,
+                },
+            }
+        }
+    }
+    (tmp_path / "nav2_params.yaml").write_text(yaml.safe_dump(params))
+    done, record = sim(tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    summary = record["summary"]
+    assert summary["params_file"] == "nav2_params.yaml"
+    assert summary["controller"] == "pure_pursuit" and summary["control_rate_hz"] == 10.0
+    assert summary["timing"]["call_timeout_ms"] == 100.0
+    assert "xy_goal_tolerance 0.4 m" in summary["outcome"]
+    assert max(row[4] for row in record["trajectory"]) <= 0.25 + 1e-6  # its desired_linear_vel
+    assert "Nav2 params from nav2_params.yaml: controller_frequency 10 Hz" in done.stderr
+
+
+def test_sim_maps_a_module_of_functions_with_delegate(tmp_path: Path) -> None:
+    functions = ("--controller", "sim_functions", "--timeout", "2")
+    unmapped, _ = sim(tmp_path, *functions)
+    assert unmapped.returncode == 2, unmapped.stderr
+    assert "defines no function compute_velocity_commands" in unmapped.stderr
+    assert "map them with --delegate ROLE=FUNCTION" in unmapped.stderr  # as sim now does
+    mapped, record = sim(
+        tmp_path, *functions, "--delegate", "compute_velocity_commands=go_straight"
+    )
+    assert mapped.returncode == 1, mapped.stdout + mapped.stderr  # not reached: straight on
+    assert record["summary"]["controller"] == "sim_functions"
+    assert max(row[4] for row in record["trajectory"]) == pytest.approx(0.3)

@@ -37,6 +37,7 @@ from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.geometry import path_length
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import ParamValue
+from nav2_pyif.roles import LIFECYCLE_ROLES
 from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
 from nav2_pyif.runner.goal_check import GoalCheck
@@ -118,6 +119,10 @@ class SimConfig:
     plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
     smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
     max_recoveries: int = 3  # with a recovery behaviour: how many the run may make
+    # runner role ("controller", "planner") -> its module's role -> function map (the
+    # plugin's python_delegates), for a planner given as a module of functions
+    delegates: dict[str, dict[str, str]] = field(default_factory=dict)
+    params_file: Path | None = None  # the Nav2 params file the options came from, if any
     plans: int = 1  # create_plan calls before driving, each timed (the first plan is driven)
     # the simulated laser fed to the controller as input "scan", and the debug outputs kept
     sensing: SensingConfig = field(default_factory=SensingConfig)
@@ -220,7 +225,11 @@ MAIN_ROLE = {
 
 
 def planner_entry(
-    key: str, spec: str, role: str = "controller", search: list[str] | None = None
+    key: str,
+    spec: str,
+    role: str = "controller",
+    search: list[str] | None = None,
+    delegates: dict[str, str] | None = None,
 ) -> dict[str, Any]:
     """A host config entry for what serves ``role`` ("controller", "planner", ...): a
     reference alias, ``module:Class``, ``module:function`` (that function as the role's main
@@ -251,6 +260,14 @@ def planner_entry(
         entry["planner"] = resolved
     else:
         entry["module"] = resolved
+    kind_roles = set(delegates or {}) - LIFECYCLE_ROLES
+    if delegates and "module" in entry:
+        entry["delegates"] = dict(delegates)
+    elif kind_roles:  # the lifecycle ones go to whichever planners are modules
+        raise SimError(
+            f"delegates {', '.join(sorted(kind_roles))} map functions of a module, but the "
+            f"{role} is {spec!r}: give a module of functions (--{role} MODULE)"
+        )
     if role in MAIN_ROLE:
         entry["kind"] = MAIN_ROLE[role]
     return entry
@@ -320,8 +337,13 @@ def run_sim(config: SimConfig) -> SimResult:
     # where the host will look: --path, the current directory (its own sys.path[0]), ours
     search = [str(Path(d).resolve()) for d in config.path] + [str(Path.cwd())]
     entries = [
-        planner_entry(config.controller_key, config.spec("controller"), "controller", search),
-        planner_entry(config.planner_key, config.spec("planner"), "planner", search),
+        *(
+            planner_entry(key, config.spec(role), role, search, config.delegates.get(role))
+            for role, key in (
+                ("controller", config.controller_key),
+                ("planner", config.planner_key),
+            )
+        ),
         *(planner_entry(KEYS[role], spec, role, search) for role, spec in config.plugins.items()),
     ]
     started = time.perf_counter()
