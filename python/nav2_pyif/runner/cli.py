@@ -104,8 +104,9 @@ def simulator_facts() -> str:
         "    counts those over --call-timeout; --realtime: a reply later fails the cycle;",
         f"    failing cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end "
         "the run (failure_tolerance)",
-        f"  goal check (SimpleGoalChecker): within {g.xy_goal_tolerance:g} m of the goal AND "
-        f"{g.yaw_goal_tolerance:g} rad of its heading:",
+        "  goal check (SimpleGoalChecker, as controller_server makes it on the plan's last",
+        f"    pose): within {g.xy_goal_tolerance:g} m of it AND {g.yaw_goal_tolerance:g} rad of "
+        "its heading:",
         "    a position-only controller must turn on the spot at the end (or use",
         "    --goal-checker); controllers get these tolerances as goal_checker",
     ]
