@@ -24,11 +24,11 @@ CONVERT_UNDER_SIGNALS = textwrap.dedent(
     import os, random, signal, sys, threading
     from geometry_msgs.msg import Point
     from visualization_msgs.msg import Marker, MarkerArray
-    from nav2_pyif._ros_types import deserialize, serialize
+    from nav2_pyif.client.ros_messages import from_cdr, to_cdr
     from nav2_pyif.common.signals import Interrupted, deferred, raise_on_signals
 
     markers = MarkerArray(markers=[Marker(points=[Point(x=float(j)) for j in range(50)])] * 200)
-    cdr = serialize(markers)
+    cdr = to_cdr(markers)
     wrong = []
     for trial in range(int(sys.argv[1])):
         raise_on_signals()
@@ -39,9 +39,9 @@ CONVERT_UNDER_SIGNALS = textwrap.dedent(
                 timer.start()
             while True:
                 if convert:
-                    deserialize("visualization_msgs/msg/MarkerArray", cdr)
+                    from_cdr("visualization_msgs/msg/MarkerArray", cdr)
                 else:
-                    serialize(markers)
+                    to_cdr(markers)
         except Interrupted:
             pass
         except Exception as exc:
