@@ -4,13 +4,16 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from nav2_pyif_protocol.constants import PluginType
 
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.journal import Journal
 from nav2_pyif.server.recording.recorder import Recorder
+
+if TYPE_CHECKING:
+    from nav2_pyif.server.recording.live import LiveTap
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 
@@ -22,7 +25,7 @@ class RecordedService:
     the host treats it as it treats that service; a batched cycle (``submit_cycle``) is
     recorded when its batch answers it."""
 
-    def __init__(self, inner: PlannerService, key: str, recorder: Recorder) -> None:
+    def __init__(self, inner: PlannerService, key: str, recorder: Recorder | LiveTap) -> None:
         self.inner, self.key, self.recorder = inner, key, recorder
 
     @property
@@ -93,7 +96,9 @@ class RecordedService:
         return submit_recorded
 
 
-def recorded(services: list[PlannerService], keys: list[str], recorder: Recorder) -> list[Any]:
+def recorded(
+    services: list[PlannerService], keys: list[str], recorder: Recorder | LiveTap
+) -> list[Any]:
     """``services`` (one per key, in order), those of the recorder's keys wrapped."""
     return [
         RecordedService(service, key, recorder) if key in recorder.keys else service
