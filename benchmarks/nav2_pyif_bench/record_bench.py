@@ -127,7 +127,7 @@ def _measure(session: Any, calls: int, rate: float) -> dict[str, list[int]]:
         for state in STATES
     }
     names = list(rows)
-    progress(f"{calls} cycles of each variant at {_rate(rate)}, interleaved, record off and on")
+    progress(f"{calls} cycles of each variant {_rate(rate)}, interleaved: off, on, live")
     period_ns, next_ns = int(1e9 / rate) if rate else 0, time.perf_counter_ns()
     for i in range(calls + WARM_UP):
         if period_ns:

@@ -33,6 +33,8 @@ log = logging.getLogger("nav2_pyif.recording")
 MAX_LEASE_S = 30.0
 #: How long the publishing thread lets calls gather before it publishes them
 BATCH_S = 0.05
+#: What may wait to be streamed; past it (a recorder that cannot keep up) calls are dropped
+MAX_QUEUE_BYTES = 64 * 2**20
 
 OFF = (
     "live recording is off on this host (start planner-host with --allow-live-record; "
@@ -59,12 +61,22 @@ class LiveTap:
         self._streams: dict[str, list[_Stream]] = {}  # key -> its live streams
         self._lock = threading.Lock()
         self._queue: queue.SimpleQueue[Item | None] = queue.SimpleQueue()
+        self._queued_bytes = 0
+        self.dropped = 0
         self._thread = threading.Thread(target=self._run, name="live-record", daemon=True)
         self._thread.start()
 
     def add(self, key: str, op: str, request: bytes, reply: bytes, t0: int, t1: int) -> None:
-        if key in self._streams:  # read without the lock: at worst one call early or late
-            self._queue.put((key, op, request, reply, t0, t1))
+        if key not in self._streams:  # read without the lock: at worst one call early or late
+            return
+        size = len(request) + len(reply)
+        if self._queued_bytes + size > MAX_QUEUE_BYTES:
+            self.dropped += 1
+            if self.dropped == 1 or self.dropped % 1000 == 0:
+                log.warning("live recording: %d call(s) dropped, a recorder lags", self.dropped)
+            return
+        self._queued_bytes += size  # unlocked, as the recorder's: a bound, not an account
+        self._queue.put((key, op, request, reply, t0, t1))
 
     def reloaded(self, key: str, label: str) -> None:
         if key in self._streams:
@@ -76,9 +88,13 @@ class LiveTap:
         requests that rebuild the key's live sessions, sent with a start so the recording
         begins with the state the planner had; asked once the stream is on, so a call the
         host takes meanwhile is in the stream (maybe in both), never in neither."""
-        if not isinstance(request, dict) or not isinstance(request.get("stream"), str):
-            return {"ok": False, "message": "a record request needs {action, stream, lease_s}"}
-        action, stream_id = request.get("action"), request["stream"]
+        stream_id = request.get("stream") if isinstance(request, dict) else None
+        if not isinstance(stream_id, str) or not stream_id.isalnum():
+            return {
+                "ok": False,
+                "message": "a record request needs {action, stream (letters and digits), lease_s}",
+            }
+        action = request.get("action")
         lease = min(MAX_LEASE_S, max(0.5, float(request.get("lease_s") or 3.0)))
         with self._lock:
             found = [s for s in self._streams.get(key, []) if s.stream_id == stream_id]
@@ -95,7 +111,10 @@ class LiveTap:
             if not found:
                 topic = KeySpace(key).record_stream(stream_id)
                 publisher = self.session.declare_publisher(
-                    topic, reliability=zenoh.Reliability.RELIABLE
+                    topic,
+                    reliability=zenoh.Reliability.RELIABLE,
+                    # a slow recorder slows this thread, not the calls (the queue is bounded)
+                    congestion_control=zenoh.CongestionControl.BLOCK,
                 )
                 stream = _Stream(key, stream_id, publisher, time.monotonic() + lease)
                 self._streams.setdefault(key, []).append(stream)
@@ -137,6 +156,7 @@ class LiveTap:
     def _publish(self, batch: list[Item]) -> None:
         with self._lock:
             for key, op, request, reply, t0, t1 in batch:
+                self._queued_bytes -= len(request) + len(reply)
                 for stream in self._streams.get(key, []):
                     try:
                         stream.publisher.put(msgpack.packb([op, request, reply, t0, t1]))
