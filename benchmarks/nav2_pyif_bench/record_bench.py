@@ -79,6 +79,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                 session.close()
             on.stop()  # the recording's index is written as the host ends
             cpu = re.search(r"writing took ([0-9.]+) µs of CPU per call", on.log())
+            on_calls = re.search(r"recording: ([0-9]+) call\(s\) in", on.log())
             recorder.send_signal(signal.SIGINT)
             _out, said = recorder.communicate(timeout=60)
         live_calls = re.search(r"record: ([0-9]+) call\(s\)", said)
@@ -87,6 +88,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         "calls": calls,
         "rate": args.rate,
         "recorded_bytes": size,
+        "recorded_calls": int(on_calls.group(1)) if on_calls else None,
         "live_recorded_calls": int(live_calls.group(1)) if live_calls else None,
         "recorder_cpu_us_per_call": float(cpu.group(1)) if cpu else None,
         "rows": {row: vars(Summary.of_ns(s)) for row, s in samples.items()},
@@ -177,8 +179,11 @@ def report(results: dict[str, Any]) -> str:
     cpu = results["recorder_cpu_us_per_call"]
     lines.append(
         f"  recorded: {results['recorded_bytes'] / 2**20:.2f} MB for "
-        f"{2 * (results['calls'] + WARM_UP) + 4} calls; the recorder's CPU per call: "
+        f"{results['recorded_calls']} calls; the recorder's CPU per call: "
         + (f"{cpu:.1f} µs" if cpu is not None else "not in the host's log")
     )
-    lines.append(f"  live: nav2-pyif record wrote {results['live_recorded_calls']} calls")
+    lines.append(
+        f"  calls recorded: {results['recorded_calls']} by planner-host --record, "
+        f"{results['live_recorded_calls']} by nav2-pyif record (the same calls, streamed)"
+    )
     return "\n".join(lines)
