@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 from nav2_pyif.common.host_process import PlannerHostProcess
-from nav2_pyif.server.recording.format import read_recording
+from nav2_pyif.server.recording.format import Recording, read_recording
 
 from tests.test_record_replay import CONTROLLER, FOLLOW, GRID, PLANNER, nav2_pyif, replay
 
@@ -40,10 +40,20 @@ def wait_for_log(host: PlannerHostProcess, text: str, count: int, timeout: float
         time.sleep(0.1)
 
 
+def calls_of(recording: Recording, key: str) -> list[tuple[str, bytes, bytes | None, int, int]]:
+    return [
+        (c.op, c.request, c.reply, c.received_ns, c.answered_ns)
+        for c in recording.calls
+        if c.key == key
+    ]
+
+
 @pytest.fixture
 def live_host(tmp_path: Path) -> Iterator[PlannerHostProcess]:
     host = PlannerHostProcess(
-        args=[*SERVE, "--allow-live-record"], log_level="INFO", log_path=tmp_path / "host.log"
+        args=[*SERVE, "--allow-live-record", "--record", str(tmp_path / "host.mcap")],
+        log_level="INFO",
+        log_path=tmp_path / "host.log",
     )
     with host:
         yield host
@@ -78,6 +88,15 @@ def test_a_live_recording_of_a_sim_run_replays_identically(
     assert {"configure", "activate", "create_plan", "set_plan", "cleanup"} <= set(ops)
     for call in recorded.calls:
         assert call.reply is not None and call.answered_ns >= call.received_ns > 0
+    # the very calls the host recorded itself (--record), key by key: the same bytes, and
+    # times each wrapper took around the same call (the two differ by microseconds)
+    assert live_host.stop() == 128 + signal.SIGTERM, live_host.log()
+    by_host = read_recording([tmp_path / "host.mcap"])
+    for key in (FOLLOW, GRID):
+        live, own = calls_of(recorded, key), calls_of(by_host, key)
+        assert [c[:3] for c in live] == [c[:3] for c in own]
+        for (*_, r1, a1), (*_, r2, a2) in zip(live, own, strict=True):
+            assert abs(r1 - r2) < 20_000_000 and abs(a1 - a2) < 20_000_000
     record = replay(path, tmp_path / "replay")
     summary = record["summary"]
     assert summary["calls"] == summary["identical"] > 10 and summary["errors"] == 0
