@@ -137,3 +137,23 @@ def test_record_options_fail_clearly(tmp_path: Path) -> None:
     assert duration.returncode == 2 and "--duration" in duration.stderr
     help_text = nav2_pyif("record", "--help").stdout
     assert "--allow-live-record" in help_text and "nav2-pyif replay" in help_text
+
+
+def test_sigterm_and_duration_end_the_recorder_with_a_complete_file(
+    live_host: PlannerHostProcess, tmp_path: Path
+) -> None:
+    terminated = start_recorder(live_host, tmp_path / "terminated.mcap")
+    timed = start_recorder(live_host, tmp_path / "timed.mcap", "--duration", "2")
+    try:
+        wait_for_log(live_host, "streaming its calls to a live recorder", 4)
+        terminated.send_signal(signal.SIGTERM)
+        _out, err = terminated.communicate(timeout=30)
+        assert terminated.returncode == 128 + signal.SIGTERM, err
+        _out, err = timed.communicate(timeout=30)
+        assert timed.returncode == 0, err
+    finally:
+        terminated.kill()
+        timed.kill()
+    for name in ("terminated.mcap", "timed.mcap"):
+        assert not read_recording([tmp_path / name]).cut_short  # the index was written
+    wait_for_log(live_host, "stopped by its recorder", 4)
