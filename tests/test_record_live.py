@@ -88,15 +88,11 @@ def test_a_live_recording_of_a_sim_run_replays_identically(
     assert {"configure", "activate", "create_plan", "set_plan", "cleanup"} <= set(ops)
     for call in recorded.calls:
         assert call.reply is not None and call.answered_ns >= call.received_ns > 0
-    # the very calls the host recorded itself (--record), key by key: the same bytes, and
-    # times each wrapper took around the same call (the two differ by microseconds)
+    # the very calls the host recorded itself (--record), key by key: bytes and times
     assert live_host.stop() == 128 + signal.SIGTERM, live_host.log()
     by_host = read_recording([tmp_path / "host.mcap"])
     for key in (FOLLOW, GRID):
-        live, own = calls_of(recorded, key), calls_of(by_host, key)
-        assert [c[:3] for c in live] == [c[:3] for c in own]
-        for (*_, r1, a1), (*_, r2, a2) in zip(live, own, strict=True):
-            assert abs(r1 - r2) < 20_000_000 and abs(a1 - a2) < 20_000_000
+        assert calls_of(recorded, key) == calls_of(by_host, key)
     record = replay(path, tmp_path / "replay")
     summary = record["summary"]
     assert summary["calls"] == summary["identical"] > 10 and summary["errors"] == 0
