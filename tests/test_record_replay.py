@@ -225,7 +225,14 @@ def test_the_record_benchmark_prints_off_and_on_side_by_side() -> None:
     assert result.returncode == 0, result.stderr[-3000:]
     for row in ("bare cycle, record off", "bare cycle, record on", "costmap every 4th, record on"):
         assert row in result.stdout
+    assert "bare cycle, record live" in result.stdout  # nav2-pyif record beside a host
     assert re.search(r"bare cycle: on / off [0-9.]+x median, [0-9.]+x p99", result.stdout)
+    assert re.search(r"bare cycle: live / off [0-9.]+x median, [0-9.]+x p99", result.stdout)
+    # every call the host answered reached the live recorder too
+    counted = re.search(
+        r"calls recorded: ([0-9]+) by planner-host --record, ([0-9]+) by", result.stdout
+    )
+    assert counted and counted.group(1) == counted.group(2), result.stdout
     assert re.search(r"the recorder's CPU per call: [0-9.]+ µs", result.stdout), result.stdout
 
 

@@ -43,6 +43,7 @@ from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
 from nav2_pyif.server.recording.options import (
     add_record_arguments,
     check_record_arguments,
+    start_live_tap,
     start_recording,
 )
 from nav2_pyif.server.reload_policy import ReloadPolicy
@@ -394,10 +395,14 @@ def main(argv: list[str] | None = None) -> int:
             service.close()
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 3
-    host = PlannerHost(
-        session, host_id, ReloadPolicy(args.allow_remote_reload, tuple(args.reload_allow))
-    )
     served, recorder = start_recording(args, specs, services)
+    served, live = start_live_tap(args, session, specs, served)
+    host = PlannerHost(
+        session,
+        host_id,
+        ReloadPolicy(args.allow_remote_reload, tuple(args.reload_allow)),
+        live=live,
+    )
     try:
         if not stopped_by:
             for spec, service in zip(specs, served, strict=True):
@@ -429,6 +434,8 @@ def main(argv: list[str] | None = None) -> int:
         if args.pid_file:
             remove_pid_file(args.pid_file)
         host.close()
+        if live is not None:
+            live.close()  # its streams' publishers, before the session goes
         if recorder is not None:
             recorder.close()  # after the host: every call answered is in the files
         for service in services:

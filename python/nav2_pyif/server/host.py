@@ -24,6 +24,7 @@ from nav2_pyif_protocol.keys import KeySpace
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.carried import CARRIERS, Route, carry_on
+from nav2_pyif.server.recording.live import OFF, LiveTap
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
@@ -71,8 +72,10 @@ class ServedPlanner:
         started: float | None = None,
         reload_policy: ReloadPolicy | None = None,
         route: Route | None = None,
+        live: LiveTap | None = None,
     ) -> None:
         self.keys = keys
+        self.live = live  # None: this host refuses live recording (--allow-live-record)
         self.runtime = runtime
         self.route = route  # the host's other keys, for calls carried in a cycle's query
         # a batch group's member takes its cycles without blocking this key's thread
@@ -89,6 +92,7 @@ class ServedPlanner:
             keys.cancel: self._on_cancel,
             keys.admin_reload: self._on_reload,
             keys.admin_info: self._on_info,
+            keys.admin_record: self._on_record,
         }
         self._calls: queue.SimpleQueue[tuple[Any, str] | None] = queue.SimpleQueue()
         self._side: queue.SimpleQueue[tuple[Any, Callable[[Any], None]] | None]
@@ -193,6 +197,30 @@ class ServedPlanner:
             log.exception("%s: could not answer an info query", self.keys.prefix)
         finally:
             query.drop()
+
+    def _on_record(self, query: Any) -> None:
+        """``nav2-pyif record``: start, renew or stop streaming this key's calls."""
+        try:
+            request = msgpack.unpackb(_payload(query)) if query.payload is not None else {}
+            if self.live is None:
+                answer: dict[str, Any] = {"ok": False, "message": f"refused by the host: {OFF}"}
+                if isinstance(request, dict) and request.get("action") == "start":
+                    log.warning("%s: refused a live recording: %s", self.keys.prefix, OFF)
+            else:
+                answer = self.live.answer(self.keys.prefix, request, self._restore_requests)
+            query.reply(query.key_expr, msgpack.packb(answer))
+        except Exception:
+            log.exception("%s: could not answer a record request", self.keys.prefix)
+        finally:
+            query.drop()
+
+    def _restore_requests(self) -> list[bytes]:
+        """The requests that rebuild this key's live sessions (configure, the plan, ...)."""
+        return [
+            payload
+            for _sid, (_version, requests) in self.runtime.journal.snapshot().items()
+            for _op, payload in requests
+        ]
 
     def _on_reload(self, query: Any) -> None:
         """Hot swap request: {planner?, module?, delegates?} -> {ok, message}. Loading takes
@@ -337,8 +365,10 @@ class PlannerHost:
         session: zenoh.Session,
         host_id: str | None = None,
         reload_policy: ReloadPolicy | None = None,
+        live: LiveTap | None = None,
     ) -> None:
         self.session = session
+        self.live = live
         self.host_id = host_id or new_host_id()
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time()
@@ -356,6 +386,7 @@ class PlannerHost:
             self.started,
             self.reload_policy,
             route=self._route,
+            live=self.live,
         )
         self.served[key_prefix] = served
         log.info(

@@ -12,6 +12,7 @@ from nav2_pyif.common.zenoh_config import add_zenoh_arguments
 from nav2_pyif.replay.cli import add_replay_parser
 from nav2_pyif.runner.cli import add_sim_parser
 from nav2_pyif.tools.hosts import add_hosts_parser
+from nav2_pyif.tools.record import add_record_parser
 from nav2_pyif.tools.router import add_router_parser
 
 
@@ -147,6 +148,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.Argument
     add_reload_parser(subparsers)
     add_router_parser(subparsers)
     add_hosts_parser(subparsers)
+    add_record_parser(subparsers)
     add_replay_parser(subparsers)
     return parser, dict(subparsers.choices)
 

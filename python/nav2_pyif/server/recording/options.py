@@ -7,7 +7,10 @@ import os
 from pathlib import Path
 from typing import Any
 
+import zenoh
+
 from nav2_pyif.common.option_types import positive_int
+from nav2_pyif.server.recording.live import LiveTap
 from nav2_pyif.server.recording.recorder import Recorder, RecordOptions, key_metadata
 from nav2_pyif.server.recording.service import recorded
 from nav2_pyif.server.service import PlannerService
@@ -46,6 +49,13 @@ def add_record_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help="with --record: keep the newest N files, removing older ones, >= 1 (default 10)",
     )
+    group.add_argument(
+        "--allow-live-record",
+        action="store_true",
+        help="let nav2-pyif record stream a copy of each call of a key over Zenoh to an MCAP "
+        "file on its own machine, while it renews its lease (refused otherwise; the router's "
+        "access control decides who may ask: docs/record-replay.md)",
+    )
 
 
 def check_record_arguments(
@@ -68,6 +78,16 @@ def check_record_arguments(
         parser.error(MISSING_MCAP)
 
 
+def _metadata(
+    specs: list[PlannerSpec], services: list[PlannerService], wanted: set[str]
+) -> dict[str, dict[str, str]]:
+    return {
+        spec.key: key_metadata(service.plugin_type.value, spec)
+        for spec, service in zip(specs, services, strict=True)
+        if spec.key in wanted
+    }
+
+
 def start_recording(
     args: argparse.Namespace, specs: list[PlannerSpec], services: list[PlannerService]
 ) -> tuple[list[Any], Recorder | None]:
@@ -75,11 +95,19 @@ def start_recording(
     if args.record is None:
         return list(services), None
     wanted = set(args.record_key) or {spec.key for spec in specs}
-    metadata = {
-        spec.key: key_metadata(service.plugin_type.value, spec)
-        for spec, service in zip(specs, services, strict=True)
-        if spec.key in wanted
-    }
     options = RecordOptions(args.record, args.record_max_size * 2**20, args.record_max_files)
-    recorder = Recorder(options, metadata)
+    recorder = Recorder(options, _metadata(specs, services, wanted))
     return recorded(services, [spec.key for spec in specs], recorder), recorder
+
+
+def start_live_tap(
+    args: argparse.Namespace,
+    session: zenoh.Session,
+    specs: list[PlannerSpec],
+    services: list[PlannerService],
+) -> tuple[list[Any], LiveTap | None]:
+    """The services to serve (each key's tapped) and the tap, if --allow-live-record."""
+    if not args.allow_live_record:
+        return list(services), None
+    tap = LiveTap(session, _metadata(specs, services, {spec.key for spec in specs}))
+    return recorded(services, [spec.key for spec in specs], tap), tap

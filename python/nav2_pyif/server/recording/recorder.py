@@ -19,8 +19,10 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import msgpack
+
 from nav2_pyif.server.journal import Journal
-from nav2_pyif.server.recording.format import RELOAD, RESTORE, reply_topic, request_topic
+from nav2_pyif.server.recording.format import RELOAD, RESTORE, op_of, reply_topic, request_topic
 from nav2_pyif.server.recording.writer import RotatingWriter
 
 log = logging.getLogger("nav2_pyif.recording")
@@ -29,8 +31,24 @@ log = logging.getLogger("nav2_pyif.recording")
 AFTER_REPLY_NS = 1_000_000
 #: How long the recorder lets calls gather before it writes them
 BATCH_S = 0.1
-#: (key, op, request, reply, received unix ns, answered unix ns); a reload: op None, the label
+#: (key, op, request, reply, received unix ns, answered unix ns); a reload: op None, the label;
+#: a session's state restored at a file's head: op RESTORE_ITEM
 Item = tuple[str, str | None, bytes, bytes, int, int]
+RESTORE_ITEM = ":restore"  # not an op name: ops are single key chunks without ':'
+#: what a restore request is noted with in the shadow journal: the host accepted it
+_ACCEPTED = msgpack.packb({"ok": True, "body": {}})
+
+
+def take_batch(
+    waiting: queue.SimpleQueue[Item | None], batch: list[Item]
+) -> tuple[list[Item], bool]:
+    """``batch`` and every item queued after it; whether the end (None) was among them."""
+    while not waiting.empty():
+        item = waiting.get()
+        if item is None:
+            return batch, True
+        batch.append(item)
+    return batch, False
 
 
 @dataclass(frozen=True)
@@ -39,6 +57,8 @@ class RecordOptions:
     max_bytes: int = 100 * 2**20  # per file
     max_files: int = 10
     max_queue_bytes: int = 256 * 2**20
+    # 0 for calls of another process (nav2-pyif record): no host thread here to wait for
+    after_reply_ns: int = AFTER_REPLY_NS
 
 
 class Recorder:
@@ -90,6 +110,13 @@ class Recorder:
         now = time.time_ns()
         self._queue.put((key, None, label.encode(), b"", now, now))
 
+    def restore(self, key: str, requests: list[bytes]) -> None:
+        """Requests that rebuild the sessions a live host had before this recording began
+        (nav2-pyif record): written at the file's head, as a rotated file's are."""
+        now = time.time_ns()
+        for request in requests:
+            self._queue.put((key, RESTORE_ITEM, request, b"", now, now))
+
     def _run(self) -> None:
         cpu = time.thread_time_ns()
         stopping = False
@@ -100,13 +127,7 @@ class Recorder:
             # One wake-up per batch, not per call: a thread's wake-up costs more CPU than
             # writing a call (measured: 100 µs per call woken each, 25 µs in batches).
             time.sleep(BATCH_S)
-            batch = [first]
-            while not self._queue.empty():
-                item = self._queue.get()
-                if item is None:
-                    stopping = True
-                    break
-                batch.append(item)
+            batch, stopping = take_batch(self._queue, [first])
             for item in batch:
                 self._write(item)
                 time.sleep(0)  # lets a call thread that wants the GIL have it between two
@@ -116,13 +137,18 @@ class Recorder:
         key, op, request, reply, t0, t1 = item
         # Write once the host has sent the reply: this thread holds the GIL while it writes,
         # and the call thread, wanting it back to reply, would wait for it.
-        wait_ns = t1 + AFTER_REPLY_NS - time.time_ns()
-        if wait_ns > 0:
+        wait_ns = t1 + self.options.after_reply_ns - time.time_ns()
+        if wait_ns > 0 and self.options.after_reply_ns:
             time.sleep(wait_ns / 1e9)
         writer = self._writer
         try:
             if op is None:
                 writer.note(key, RELOAD, request, t0)
+                return
+            if op == RESTORE_ITEM:
+                writer.note(key, RESTORE, request, t0)
+                if key in self._journals:
+                    self._journals[key].note(op_of(request), request, _ACCEPTED)
                 return
             self._queued_bytes -= len(request) + len(reply)
             if writer.full:
