@@ -15,13 +15,15 @@ NAV2_PACKAGES=(
 # AMCL, velocity_smoother and collision_monitor between the controller and the robot,
 # waypoint_follower, docking), and Nav2's own simulator without Gazebo (nav2_loopback_sim).
 # Its loopback launch (tb3_loopback_simulation.launch.py) also reads the TurtleBot 3's URDF
-# (nav2_minimal_tb3_sim) and publishes its frames with robot_state_publisher.
+# (nav2_minimal_tb3_sim) and publishes its frames with robot_state_publisher. `ros2 lifecycle`
+# shuts a stack down as its users do.
 # Jazzy only so far: DISTRO.repos must bring what they need (yaml_cpp_vendor, cv_bridge,
 # image_transport, robot_localization, urdf, kdl_parser).
 BRINGUP_PACKAGES=(
   nav2_bringup nav2_common nav2_map_server nav2_amcl nav2_velocity_smoother
   nav2_collision_monitor nav2_waypoint_follower opennav_docking opennav_docking_bt
   nav2_loopback_sim nav2_simple_commander nav2_minimal_tb3_sim robot_state_publisher
+  ros2lifecycle
 )
 # What the stock stack needs from Debian: GraphicsMagick++ (map_server's image maps),
 # OpenCV and Boost.Python (cv_bridge, for waypoint_follower's photo plugin), GeographicLib
