@@ -93,12 +93,14 @@ IGNORE_COMMON=(launch_testing launch_testing_ros launch_testing_ament_cmake)
 # takes them as external), for their build time or their heavy dependencies: RViz and Qt
 # (nav2_rviz_plugins), xtensor (MPPI: the mppi step builds it alone), OMPL (Smac), Ceres
 # (constrained smoother), and the DWB, Theta*, rotation-shim controllers and planners.
-# (nav2_bringup's exec-only dependencies on Gazebo, slam_toolbox, the TurtleBot simulations
-# and ros2_control are not in the sources: colcon takes them as external too.)
+# nav2_bringup's exec-only dependencies on Gazebo, slam_toolbox and ros2_control are not in the
+# sources (colcon takes them as external too); the TurtleBot 4 simulation is, beside the
+# TurtleBot 3's, but only Gazebo and xacro (not built) use it: ignored.
 BRINGUP_IGNORE=(
   nav2_rviz_plugins nav2_mppi_controller nav2_smac_planner nav2_theta_star_planner
   nav2_constrained_smoother nav2_rotation_shim_controller nav2_dwb_controller dwb_core
   dwb_critics dwb_plugins dwb_msgs costmap_queue nav2_system_tests
+  nav2_minimal_tb4_sim nav2_minimal_tb4_description
 )
 
 distro_settings() {
