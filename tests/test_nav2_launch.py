@@ -106,13 +106,24 @@ SIDE_BY_SIDE = "test_mppi_side_by_side.py"
 # The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
 # needs the gallery's extras in the project's environment.
 GALLERY = "test_gallery.py"
+# nav2_bringup's own launch and params with the Python plugins, beside the native stack: a case
+# of its own, which needs nav2_bringup's stack in the environment (testenv/build.sh builds it
+# for Jazzy, and Nav2's MPPI with its mppi step).
+BRINGUP = "test_bringup.py"
+BRINGUP_NEEDS = {
+    "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
+    "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
+    "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
+    "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/package.xml",
+    "nav2_mppi_controller (testenv/build.sh DISTRO mppi)": "share/nav2_mppi_controller/package.xml",
+}
 
 
 @pytest.mark.timeout(1800)
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY]
+    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP]
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
     _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
 
@@ -128,6 +139,16 @@ def test_gallery_ompl_planner_and_dwa_controller_in_a_real_nav2(distro: str, bac
         )
     selection = f"bridge_plugin/test/nav2/{GALLERY}"
     _launch_tests(distro, backend, selection, timeout=900, recovery_figures=False)
+
+
+@pytest.mark.timeout(3600)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_nav2_bringup_stock_launch_with_python_plugins(distro: str, backend: str) -> None:
+    selection = f"-s bridge_plugin/test/nav2/{BRINGUP}"
+    _launch_tests(
+        distro, backend, selection, timeout=3000, recovery_figures=False, needs=BRINGUP_NEEDS
+    )
 
 
 @pytest.mark.timeout(4 * 3600)
@@ -164,13 +185,19 @@ def test_mppi_side_by_side_with_nav2s_own(distro: str, backend: str) -> None:
 
 
 def _launch_tests(
-    distro: str, backend: str, selection: str, timeout: float, recovery_figures: bool = True
+    distro: str,
+    backend: str,
+    selection: str,
+    timeout: float,
+    recovery_figures: bool = True,
+    needs: dict[str, str] | None = None,
 ) -> None:
     """Build nav2_pyif_bridge for ``distro`` and ``backend`` with colcon and run the launch
     tests ``selection`` names (pytest arguments) in that environment; skips, saying what is
     missing, where it is absent. ``recovery_figures``: the selection holds
     test_host_recovery.py, which must have written its figures (others print theirs when
-    they wrote some)."""
+    they wrote some). ``needs``: what else the selection needs, by name, each a path under
+    one of the environment's prefixes."""
     setup = _setup_script(distro, backend)
     variable = _own_variable(distro, backend)
     if setup is None:
@@ -180,14 +207,25 @@ def _launch_tests(
         )
     workspace = ROOT / "build" / f"nav2_ws_{distro}_{backend}"
     source = f"set -e; source {shlex.quote(setup)} >/dev/null"
+    required = {
+        exe: f"lib/{exe}"
+        for exe in (
+            "nav2_controller/controller_server",
+            "nav2_planner/planner_server",
+            "nav2_lifecycle_manager/lifecycle_manager",
+        )
+    }
+    required.update({name.replace("DISTRO", distro): path for name, path in (needs or {}).items()})
+    look_for = "".join(
+        f"found=; for p in ${{AMENT_PREFIX_PATH//:/ }}; do [ -e $p/{path} ] && found=1; done; "
+        f'[ -n "$found" ] || echo missing: {shlex.quote(name)}; '
+        for name, path in required.items()
+    )
     probe = _bash(
         f"{source}; echo distro: ${{ROS_DISTRO:-unset}}; "
         "command -v colcon >/dev/null || echo missing: colcon; "
         "python -c 'import nav2_msgs.action, rclpy' 2>/dev/null || echo missing: nav2_msgs; "
-        "for exe in nav2_controller/controller_server nav2_planner/planner_server "
-        "nav2_lifecycle_manager/lifecycle_manager; do found=; "
-        "for p in ${AMENT_PREFIX_PATH//:/ }; do [ -x $p/lib/$exe ] && found=1; done; "
-        '[ -n "$found" ] || echo missing: $exe; done',
+        + look_for,
         timeout=60,
     )
     lines = probe.stdout.splitlines()

@@ -53,16 +53,32 @@ def _bare_mirror(mirrors: Path, name: str, tags: list[str], scratch: Path) -> No
     )
 
 
-def _repos_file(path: Path, entries: list[tuple[str, str]]) -> None:
+def _repos_file(
+    path: Path, entries: list[tuple[str, str]], urls: dict[str, str] | None = None
+) -> None:
+    """A .repos file of ``entries`` (name, version), each at ``urls[name]`` or a URL of no
+    known host."""
     lines = ["repositories:"]
     for name, version in entries:
-        lines += [
-            f"  {name}:",
-            "    type: git",
-            f"    url: https://example.invalid/{name}.git",
-            f"    version: {version}",
-        ]
+        url = (urls or {}).get(name, f"https://example.invalid/{name}.git")
+        lines += [f"  {name}:", "    type: git", f"    url: {url}", f"    version: {version}"]
     path.write_text("\n".join(lines) + "\n")
+
+
+def _sources(tmp_path: Path, mirrors: Path, repos: Path) -> subprocess.CompletedProcess[str]:
+    """build.sh's sources step, from ``mirrors``, into tmp_path/src."""
+    return subprocess.run(
+        [
+            "bash",
+            str(BUILD),
+            *("--prefix", str(tmp_path / "prefix"), "--sources", str(tmp_path / "src")),
+            *("--mirrors", str(mirrors), "--repos", str(repos)),
+            *("humble", "sources"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
 
 
 def test_sources_names_every_missing_version_and_lays_out_the_rest(tmp_path: Path) -> None:
@@ -86,25 +102,7 @@ def test_sources_names_every_missing_version_and_lays_out_the_rest(tmp_path: Pat
         ],
     )
     sources = tmp_path / "src"
-    result = subprocess.run(
-        [
-            "bash",
-            str(BUILD),
-            "--prefix",
-            str(tmp_path / "prefix"),
-            "--sources",
-            str(sources),
-            "--mirrors",
-            str(mirrors),
-            "--repos",
-            str(repos),
-            "humble",
-            "sources",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
+    result = _sources(tmp_path, mirrors, repos)
     assert result.returncode == 1, result.stderr
     assert (
         "org/old_one: " in result.stderr
@@ -117,3 +115,30 @@ def test_sources_names_every_missing_version_and_lays_out_the_rest(tmp_path: Pat
     assert (sources / "org/present/VERSION").read_text() == "2.0.0\n"
     assert (sources / "org/cloned/VERSION").read_text() == "4.0.0\n"
     assert not (sources / "org/old_one/VERSION").exists()
+
+
+def test_a_github_entry_is_found_by_its_url(tmp_path: Path) -> None:
+    """An entry whose github.com URL names another repository than its name (a bloom release
+    repository, or a second version of one repository) is laid out from that repository's
+    mirror under the entry's name."""
+    mirrors, scratch = tmp_path / "mirrors", tmp_path / "scratch"
+    mirrors.mkdir()
+    scratch.mkdir()
+    _bare_mirror(mirrors, "org-gbp/thing-release", ["upstream/1.0.0"], scratch)
+    _bare_mirror(mirrors, "org/lib", ["1.8.0", "1.9.0"], scratch)
+    repos = tmp_path / "test.repos"
+    _repos_file(
+        repos,
+        [("org/thing", "upstream/1.0.0"), ("org/lib", "1.9.0"), ("org/lib-1.8", "1.8.0")],
+        urls={
+            "org/thing": "https://github.com/org-gbp/thing-release.git",
+            "org/lib": "https://github.com/org/lib.git",
+            "org/lib-1.8": "https://github.com/org/lib.git",
+        },
+    )
+    result = _sources(tmp_path, mirrors, repos)
+    assert result.returncode == 0, result.stderr
+    sources = tmp_path / "src"
+    assert (sources / "org/thing/VERSION").read_text() == "upstream/1.0.0\n"
+    assert (sources / "org/lib/VERSION").read_text() == "1.9.0\n"
+    assert (sources / "org/lib-1.8/VERSION").read_text() == "1.8.0\n"

@@ -224,6 +224,53 @@ class Processes:
             self.kill(name, signal.SIGINT)
 
 
+def descendants(pid: int) -> set[int]:
+    """Every process below ``pid``, from /proc."""
+    children: dict[int, list[int]] = {}
+    for entry in Path("/proc").iterdir():
+        if entry.name.isdigit():
+            try:
+                ppid = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
+            except (OSError, IndexError, ValueError):
+                continue
+            children.setdefault(ppid, []).append(int(entry.name))
+    found, stack = set(), [pid]
+    while stack:
+        for child in children.get(stack.pop(), []):
+            found.add(child)
+            stack.append(child)
+    return found
+
+
+def running(pid: int) -> bool:
+    """Whether ``pid`` runs (exists and is no zombie)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except OSError:
+        return False
+    return state != "Z"
+
+
+def comm(pid: int) -> str:
+    """The process's name (its first 15 characters), "" once it is gone."""
+    try:
+        return Path(f"/proc/{pid}/comm").read_text().strip()
+    except OSError:
+        return ""
+
+
+def ctrl_c(launch: subprocess.Popen[bytes], grace: float = 10.0) -> tuple[int, dict[int, str]]:
+    """SIGINT to the launch's process group, as a terminal's Ctrl-C: the launch's exit code
+    and what of every process below it still runs ``grace`` seconds after it exited."""
+    started = descendants(launch.pid)
+    os.killpg(launch.pid, signal.SIGINT)
+    code = launch.wait(60)
+    deadline = time.monotonic() + grace
+    while time.monotonic() < deadline and any(running(p) for p in started):
+        time.sleep(0.2)
+    return code, {p: comm(p) for p in started if running(p)}
+
+
 SUCCEEDED, CANCELED, ABORTED = 4, 5, 6  # action_msgs/GoalStatus
 
 
@@ -280,6 +327,29 @@ def shared_router() -> str | None:
     return os.environ.get("NAV2_PYIF_SHARED_ROUTER") or None
 
 
+def plugin_zenoh(logs: Path, endpoint: str) -> str:
+    """The params line that points a plugin at ``endpoint``: on zenoh-c
+    ($NAV2_PYIF_ZENOH_BACKEND, set by tests/test_nav2_launch.py) ``zenoh_config``, the
+    deployment guide's JSON5 file (docs/zenoh/plugin-client.json5, its endpoint replaced, written
+    into ``logs``), as a ROS install would read it; on zenoh-pico ``zenoh_connect``."""
+    if os.environ.get("NAV2_PYIF_ZENOH_BACKEND") != "zenoh-c":
+        return f'zenoh_connect: ["{endpoint}"]'
+    guide = HERE.parents[2] / "docs" / "zenoh" / "plugin-client.json5"
+    config = logs / "plugin-client.json5"
+    config.write_text(guide.read_text().replace("tcp/127.0.0.1:7447", endpoint))
+    return f'zenoh_config: "{config}"'
+
+
+def processes_in_own_domain(logs: Path, domain: int | None = None) -> Processes:
+    """A process set in a ROS domain of its own: a random one this process's rclpy joins too,
+    or ``domain``, for the processes only (the caller's own rclpy context joins it)."""
+    if domain is None:  # this process's rclpy (its default context) joins the processes'
+        os.environ["ROS_DOMAIN_ID"] = str(random.randint(100, 200))
+        return Processes(logs, dict(os.environ, PYTHONUNBUFFERED="1"))
+    # the caller's own rclpy context joins them (a second robot's stack)
+    return Processes(logs, dict(os.environ, PYTHONUNBUFFERED="1", ROS_DOMAIN_ID=str(domain)))
+
+
 def prepare(
     logs: Path, endpoint: str | None = None, domain: int | None = None
 ) -> tuple[str, Path, Processes]:
@@ -292,19 +362,10 @@ def prepare(
     install would; zenoh-pico takes `zenoh_connect`."""
     endpoint = endpoint or f"tcp/127.0.0.1:{free_port()}"
     text = (HERE / "nav2_params.yaml").read_text()
-    if os.environ.get("NAV2_PYIF_ZENOH_BACKEND") == "zenoh-c":
-        guide = HERE.parents[2] / "docs" / "zenoh" / "plugin-client.json5"
-        config = logs / "plugin-client.json5"
-        config.write_text(guide.read_text().replace("tcp/127.0.0.1:7447", endpoint))
-        text = text.replace('zenoh_connect: ["@ENDPOINT@"]', f'zenoh_config: "{config}"')
+    text = text.replace('zenoh_connect: ["@ENDPOINT@"]', plugin_zenoh(logs, endpoint))
     params = logs / "nav2_params.yaml"
     params.write_text(text.replace("@ENDPOINT@", endpoint))
-    if domain is None:  # this process's rclpy (its default context) joins the processes'
-        os.environ["ROS_DOMAIN_ID"] = str(random.randint(100, 200))
-        env = dict(os.environ, PYTHONUNBUFFERED="1")
-    else:  # the caller's own rclpy context joins them (a second robot's stack)
-        env = dict(os.environ, PYTHONUNBUFFERED="1", ROS_DOMAIN_ID=str(domain))
-    return endpoint, params, Processes(logs, env)
+    return endpoint, params, processes_in_own_domain(logs, domain)
 
 
 REFERENCE_PLANNERS = (

@@ -12,8 +12,6 @@ from __future__ import annotations
 import math
 import os
 import shutil
-import signal
-import time
 from pathlib import Path
 
 import nav2_testing
@@ -42,37 +40,11 @@ def _launch_missing() -> list[str]:
     return absent
 
 
-def _descendants(pid: int) -> set[int]:
-    """Every process below ``pid``, from /proc."""
-    children: dict[int, list[int]] = {}
-    for entry in Path("/proc").iterdir():
-        if entry.name.isdigit():
-            try:
-                ppid = int((entry / "stat").read_text().rsplit(")", 1)[1].split()[1])
-            except (OSError, IndexError, ValueError):
-                continue
-            children.setdefault(ppid, []).append(int(entry.name))
-    found, stack = set(), [pid]
-    while stack:
-        for child in children.get(stack.pop(), []):
-            found.add(child)
-            stack.append(child)
-    return found
-
-
 def _cmdline(pid: int) -> str:
     try:
         return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode()
     except OSError:
         return ""
-
-
-def _running(pid: int) -> bool:
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except OSError:
-        return False
-    return state != "Z"
 
 
 def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Path) -> None:
@@ -113,18 +85,13 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
         x, y = client.pose
         assert math.hypot(x - GOAL[0], y - GOAL[1]) < 0.35, f"robot at {(x, y)}, goal {GOAL}"
 
-        started = _descendants(launch.pid)
-        names = {Path(f"/proc/{p}/comm").read_text().strip() for p in started if _running(p)}
+        started = nav2_testing.descendants(launch.pid)
+        names = {nav2_testing.comm(p) for p in started if nav2_testing.running(p)}
         assert {"controller_serv", "planner_server"} <= names, names  # comm: 15 characters
         if installed is not None:  # a workspace's: the host runs from its install space
-            commands = [_cmdline(p) for p in started if _running(p)]
+            commands = [_cmdline(p) for p in started if nav2_testing.running(p)]
             assert any(str(installed) in c for c in commands), commands
-        os.killpg(launch.pid, signal.SIGINT)  # Ctrl-C in the launch's terminal
-        code = launch.wait(60)
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline and any(_running(p) for p in started):
-            time.sleep(0.2)
-        left = {p: Path(f"/proc/{p}/comm").read_text().strip() for p in started if _running(p)}
+        code, left = nav2_testing.ctrl_c(launch)  # Ctrl-C in the launch's terminal
         assert not left, f"still running after Ctrl-C: {left}\n{procs.log('launch')}"
         assert code == 0, f"ros2 launch exited {code}\n{procs.log('launch')}"
     finally:
