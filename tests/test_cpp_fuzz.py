@@ -1,0 +1,119 @@
+"""The C++ decoders under libFuzzer (bridge_plugin/fuzz, fuzz/README.md): each harness, built
+with clang, AddressSanitizer and UndefinedBehaviorSanitizer, fuzzes for a short fixed time from
+the shared vectors, and must end without a crash, a sanitizer report or a broken property; each
+input kept under bridge_plugin/fuzz/regressions (a crash found once) must run clean.
+
+Runs through scripts/fuzz_campaign.sh, the command of the long campaigns (RELIABILITY.md), so
+its figures are the ones checked here. Skipped, naming what is missing, without clang or
+Debian's libclang-rt-14-dev (scripts/test.sh installs both) or the codec's msgpack-c.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from tests.test_cpp_codec import _include_dirs
+
+pytestmark = pytest.mark.cpp
+
+ROOT = Path(__file__).resolve().parents[1]
+CAMPAIGN = ROOT / "scripts" / "fuzz_campaign.sh"
+BUILD = ROOT / "build" / "cpp_fuzz"
+REGRESSIONS = ROOT / "bridge_plugin" / "fuzz" / "regressions"
+HARNESSES = ["request", "reply", "structure", "utf8", "params", "keys"]
+SECONDS = 10
+
+
+def _clang() -> str | None:
+    for name in (os.environ.get("NAV2_PYIF_FUZZ_CXX", ""), "clang++-14", "clang++"):
+        if name and shutil.which(name):
+            return name
+    return None
+
+
+def _missing() -> list[str]:
+    missing = [] if shutil.which("cmake") else ["cmake"]
+    clang = _clang()
+    if clang is None:
+        missing.append("clang++ (apt: clang-14)")
+    else:
+        runtime = subprocess.run(
+            [clang, "-print-file-name=libclang_rt.fuzzer-x86_64.a"],
+            capture_output=True, text=True, check=False,
+        ).stdout.strip()
+        if not Path(runtime).is_file():
+            # clang 14 prints the bare name when the runtime is not where it looks
+            resource = subprocess.run(
+                [clang, "-print-runtime-dir"], capture_output=True, text=True, check=False
+            ).stdout.strip()
+            if not list(Path(resource or "/nonexistent").glob("libclang_rt.fuzzer*.a")):
+                missing.append("libFuzzer (apt: libclang-rt-14-dev)")
+    if not any((d / "msgpack.h").is_file() for d in _include_dirs()):
+        missing.append("msgpack-c (apt: libmsgpack-dev)")
+    return missing
+
+
+@pytest.fixture(scope="module")
+def fuzz_env() -> dict[str, str]:
+    missing = _missing()
+    if missing:
+        pytest.skip("C++ fuzzing needs: " + ", ".join(missing))
+    env = dict(os.environ)
+    env["NAV2_PYIF_FUZZ_CXX"] = _clang() or ""
+    return env
+
+
+def _campaign(
+    env: dict[str, str], harness: str, tmp: Path
+) -> tuple[subprocess.CompletedProcess[str], dict[str, object]]:
+    stats = tmp / "stats.json"
+    result = subprocess.run(
+        [str(CAMPAIGN), "--corpus", str(tmp / "corpus"), "--crashes", str(tmp / "crashes"),
+         "--stats", str(stats), harness, str(SECONDS)],
+        cwd=ROOT, env=env, capture_output=True, text=True, timeout=900, check=False,
+    )
+    figures = json.loads(stats.read_text()) if stats.is_file() else {}
+    return result, figures
+
+
+@pytest.mark.timeout(900)  # the first harness builds the codec with ASan on 2 cores
+@pytest.mark.parametrize("harness", HARNESSES)
+def test_fuzzing_finds_no_crash(fuzz_env: dict[str, str], harness: str, tmp_path: Path) -> None:
+    result, figures = _campaign(fuzz_env, harness, tmp_path)
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, f"fuzz_{harness} failed:\n{output[-6000:]}"
+    assert figures["result"] == "clean" and figures["crashes"] == 0, figures
+    # It really fuzzed: thousands of inputs, coverage from the instrumented codec, and the
+    # seeds (protocol/vectors) loaded.
+    assert int(str(figures["executions"])) > 1000, figures
+    assert int(str(figures["cov"])) > 20, figures
+    assert int(str(figures["corpus_units"])) > 0, figures
+
+
+@pytest.mark.timeout(900)
+@pytest.mark.parametrize("harness", HARNESSES)
+def test_each_regression_input_runs_clean(fuzz_env: dict[str, str], harness: str) -> None:
+    inputs = sorted(p for p in (REGRESSIONS / harness).glob("*") if p.is_file())
+    if not inputs:
+        pytest.skip(f"no regression inputs for fuzz_{harness} (no crash found yet)")
+    built = subprocess.run(
+        [str(CAMPAIGN), "--build-only", harness], cwd=ROOT, env=fuzz_env, capture_output=True,
+        text=True, timeout=900, check=False,
+    )
+    assert built.returncode == 0, built.stderr[-6000:]
+    binary = Path(built.stdout.strip())
+    # libFuzzer given files runs each once and exits: a crash, a report or a broken property
+    # makes it fail.
+    result = subprocess.run(
+        [str(binary), *map(str, inputs)], capture_output=True, text=True, timeout=300,
+        check=False,
+    )
+    output = result.stdout + result.stderr
+    assert result.returncode == 0, output[-6000:]
+    assert output.count("Executed ") == len(inputs), output[-3000:]
