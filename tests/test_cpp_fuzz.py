@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.test_cpp_codec import _include_dirs
+from tests.test_cpp_codec import _include_dirs, _run
 
 pytestmark = pytest.mark.cpp
 
@@ -45,7 +45,9 @@ def _missing() -> list[str]:
     else:
         runtime = subprocess.run(
             [clang, "-print-file-name=libclang_rt.fuzzer-x86_64.a"],
-            capture_output=True, text=True, check=False,
+            capture_output=True,
+            text=True,
+            check=False,
         ).stdout.strip()
         if not Path(runtime).is_file():
             # clang 14 prints the bare name when the runtime is not where it looks
@@ -73,11 +75,9 @@ def _campaign(
     env: dict[str, str], harness: str, tmp: Path
 ) -> tuple[subprocess.CompletedProcess[str], dict[str, object]]:
     stats = tmp / "stats.json"
-    result = subprocess.run(
-        [str(CAMPAIGN), "--corpus", str(tmp / "corpus"), "--crashes", str(tmp / "crashes"),
-         "--stats", str(stats), harness, str(SECONDS)],
-        cwd=ROOT, env=env, capture_output=True, text=True, timeout=900, check=False,
-    )
+    paths = ["--corpus", str(tmp / "corpus"), "--crashes", str(tmp / "crashes")]
+    command = [str(CAMPAIGN), *paths, "--stats", str(stats), harness, str(SECONDS)]
+    result = _run(command, timeout=900, env=env)
     figures = json.loads(stats.read_text()) if stats.is_file() else {}
     return result, figures
 
@@ -102,18 +102,12 @@ def test_each_regression_input_runs_clean(fuzz_env: dict[str, str], harness: str
     inputs = sorted(p for p in (REGRESSIONS / harness).glob("*") if p.is_file())
     if not inputs:
         pytest.skip(f"no regression inputs for fuzz_{harness} (no crash found yet)")
-    built = subprocess.run(
-        [str(CAMPAIGN), "--build-only", harness], cwd=ROOT, env=fuzz_env, capture_output=True,
-        text=True, timeout=900, check=False,
-    )
+    built = _run([str(CAMPAIGN), "--build-only", harness], timeout=900, env=fuzz_env)
     assert built.returncode == 0, built.stderr[-6000:]
     binary = Path(built.stdout.strip())
     # libFuzzer given files runs each once and exits: a crash, a report or a broken property
     # makes it fail.
-    result = subprocess.run(
-        [str(binary), *map(str, inputs)], capture_output=True, text=True, timeout=300,
-        check=False,
-    )
+    result = _run([str(binary), *map(str, inputs)], timeout=300)
     output = result.stdout + result.stderr
     assert result.returncode == 0, output[-6000:]
     assert output.count("Executed ") == len(inputs), output[-3000:]

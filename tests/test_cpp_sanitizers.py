@@ -12,7 +12,6 @@ compiler's sanitizer runtime (Debian: libasan8, libubsan1, libtsan2, installed w
 
 from __future__ import annotations
 
-import fcntl
 import os
 import re
 import subprocess
@@ -22,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.test_cpp_codec import _missing, _run, _tail
+from tests.test_cpp_codec import _missing, _run, built_tree
 
 pytestmark = pytest.mark.cpp
 
@@ -37,8 +36,10 @@ RUNTIME_OPTIONS = {
     "UBSAN_OPTIONS": f"halt_on_error=1:print_stacktrace=1:exitcode={REPORT_EXIT}",
     "TSAN_OPTIONS": f"halt_on_error=1:second_deadlock_stack=1:exitcode={REPORT_EXIT}",
 }
-REPORT = re.compile(r"ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:|"
-                    r"WARNING: ThreadSanitizer")
+REPORT = re.compile(
+    r"ERROR: AddressSanitizer|ERROR: LeakSanitizer|runtime error:|"
+    r"WARNING: ThreadSanitizer"
+)
 
 
 @dataclass(frozen=True)
@@ -63,7 +64,9 @@ def _sanitizer_missing(checks: str) -> str | None:
         source.write_text("int main() { return 0; }\n")
         probe = subprocess.run(
             [compiler, f"-fsanitize={checks}", str(source), "-o", str(Path(tmp) / "probe")],
-            capture_output=True, text=True, check=False,
+            capture_output=True,
+            text=True,
+            check=False,
         )
     if probe.returncode == 0:
         return None
@@ -79,27 +82,13 @@ def test_cpp_unit_tests_are_sanitizer_clean(build: SanitizedBuild) -> None:
     no_runtime = _sanitizer_missing(build.checks)
     if no_runtime:
         pytest.skip(no_runtime)
+    options = [f"-DNAV2_PYIF_SANITIZE={build.checks}", "-DCMAKE_BUILD_TYPE=RelWithDebInfo"]
     tree = ROOT / "build" / f"cpp_{build.name}"
-    tree.mkdir(parents=True, exist_ok=True)
-    with open(tree / ".pytest.lock", "w") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        configure = _run(
-            ["cmake", "-S", str(SOURCE), "-B", str(tree), "-DNAV2_PYIF_CODEC_ONLY=ON",
-             "-DNAV2_PYIF_WARNINGS_AS_ERRORS=ON", f"-DNAV2_PYIF_SANITIZE={build.checks}",
-             "-DCMAKE_BUILD_TYPE=RelWithDebInfo", f"-DNAV2_PYIF_VECTORS_DIR={VECTORS}"],
-            timeout=120,
-        )
-        assert configure.returncode == 0, "cmake configure failed:\n" + _tail(configure)
-        compiled = _run(
-            ["cmake", "--build", str(tree), "-j2", "--target", *build.targets], timeout=1000
-        )
-        assert compiled.returncode == 0, "sanitizer build failed:\n" + _tail(compiled)
-    label = ["-L", build.label] if build.label else []
-    env = {**os.environ, **RUNTIME_OPTIONS}
-    result = subprocess.run(
-        ["ctest", "--test-dir", str(tree), *label, "--output-on-failure", "-j2"],
-        cwd=ROOT, env=env, capture_output=True, text=True, timeout=600, check=False,
-    )
+    with built_tree(tree, options, build.targets, timeout=1000):
+        label = ["-L", build.label] if build.label else []
+        env = {**os.environ, **RUNTIME_OPTIONS}
+        command = ["ctest", "--test-dir", str(tree), *label, "--output-on-failure", "-j2"]
+        result = _run(command, timeout=600, env=env)
     output = result.stdout + result.stderr
     assert result.returncode == 0, f"-fsanitize={build.checks}:\n" + output[-8000:]
     assert not REPORT.search(output), output[-8000:]
