@@ -51,13 +51,36 @@ done
 harness="${positional[0]}" seconds="${positional[1]}"
 [[ "$seconds" =~ ^[1-9][0-9]*$ ]] || die_usage "SECONDS must be a positive integer, got '$seconds'"
 [[ "$max_len" =~ ^[1-9][0-9]*$ ]] || die_usage "--max-len must be a positive integer"
+# Each step (the build, the fuzzer, one harness of `all`) runs as a job of its own process
+# group, so that a signal here ends it whole: the fuzzer is asked with SIGINT (it then prints
+# its figures), the build with SIGTERM.
+set -m
+child="" signal=""
+on_signal() {
+  signal=$1
+  if [ -n "$child" ]; then kill "-$2" -- "-$child" 2>/dev/null || true; fi
+}
+trap 'on_signal 130 INT' INT
+trap 'on_signal 143 TERM' TERM
+# Runs "$@" as that job and waits for its end, through any signal that arrives meanwhile.
+step() {
+  "$@" &
+  child=$!
+  local rc=0
+  wait "$child" || rc=$?
+  while kill -0 "$child" 2>/dev/null; do wait "$child" || rc=$?; done
+  child=""
+  return "$rc"
+}
+
 if [ "$harness" = all ]; then
   [ -z "$corpus$crashes$stats" ] || die_usage "--corpus, --crashes and --stats name one harness's"
   status=0
   for one in "${HARNESSES[@]}"; do
     args=(--max-len "$max_len")
     [ "$build_only" = 1 ] && args+=(--build-only)
-    "$0" "${args[@]}" "$one" "$seconds" || status=$?
+    step "$0" "${args[@]}" "$one" "$seconds" || status=$?
+    [ -z "$signal" ] || exit "$signal"
     [ "$status" -ge 2 ] && exit "$status"
   done
   exit "$status"
@@ -81,25 +104,28 @@ if [ -z "$cxx" ]; then
 fi
 mkdir -p "$BUILD" "$corpus" "$crashes" "$(dirname "$stats")"
 log="$(mktemp)"
-child=""
-finish() {  # on any exit: the fuzzer and the log go with us
-  if [ -n "$child" ]; then kill "$child" 2>/dev/null || true; fi
+finish() {  # on any exit: the step running and the log go with us
+  if [ -n "$child" ]; then kill -TERM -- "-$child" 2>/dev/null || true; fi
   rm -f "$log" "$log.start"
 }
 trap finish EXIT
-{
-  # One build at a time in the shared folder (two campaigns, a campaign and the suite).
-  flock 9
+build() {
   CXX="$cxx" cmake -S "$ROOT/bridge_plugin" -B "$BUILD" -DNAV2_PYIF_CODEC_ONLY=ON \
     -DNAV2_PYIF_FUZZ=ON -DBUILD_TESTING=OFF -DNAV2_PYIF_WARNINGS_AS_ERRORS=ON \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DNAV2_PYIF_VECTORS_DIR=$ROOT/protocol/vectors" \
     >"$log" 2>&1 && cmake --build "$BUILD" -j2 --target "fuzz_$harness" >>"$log" 2>&1
-} 9>"$BUILD/.fuzz_build.lock" || {
+}
+# One build at a time in the shared folder (two campaigns, a campaign and the suite).
+exec 9>"$BUILD/.fuzz_build.lock"
+flock 9
+step build || {
+  [ -z "$signal" ] || exit "$signal"
   tail -40 "$log" >&2
   echo "fuzz_campaign: building fuzz_$harness with $cxx failed (libFuzzer is Debian's" \
     "libclang-rt-14-dev)" >&2
   exit 3
 }
+flock -u 9
 
 [ "$build_only" = 1 ] && { echo "$BUILD/fuzz_$harness"; exit 0; }
 
@@ -111,18 +137,15 @@ started="$(date +%s)"
 touch "$log.start"  # what is newer than this in the crashes folder, this run found
 # A decoder given n bytes has no business allocating 256 MiB: libFuzzer reports it as a crash.
 # The first folder is the one the corpus grows in.
-nice -n 10 "$BUILD/fuzz_$harness" -max_total_time="$seconds" -max_len="$max_len" -timeout=10 \
-  -rss_limit_mb=2048 -malloc_limit_mb=256 -print_final_stats=1 -artifact_prefix="$crashes/" \
-  "$corpus" "${seeds[@]}" >"$log" 2>&1 &
-child=$!
-signal=""
-trap 'signal=130; kill -INT "$child" 2>/dev/null' INT
-trap 'signal=143; kill -TERM "$child" 2>/dev/null' TERM
+fuzz() {
+  exec nice -n 10 "$BUILD/fuzz_$harness" -max_total_time="$seconds" -max_len="$max_len" \
+    -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=256 -print_final_stats=1 \
+    -artifact_prefix="$crashes/" "$corpus" "${seeds[@]}" >"$log" 2>&1
+}
+# The fuzzer is asked to stop with SIGINT, which makes it print its figures first.
+trap 'on_signal 143 INT' TERM
 rc=0
-wait "$child" || rc=$?
-# A trapped signal ends `wait` early: wait again for the fuzzer's own end (and its figures).
-[ -n "$signal" ] && { wait "$child" 2>/dev/null || true; }
-child=""
+step fuzz || rc=$?
 if [ -n "$signal" ]; then result=interrupted; elif [ "$rc" = 0 ]; then result=clean; else
   result=crash; fi
 elapsed=$(( $(date +%s) - started ))

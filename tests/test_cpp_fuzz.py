@@ -10,15 +10,19 @@ Debian's libclang-rt-14-dev (scripts/test.sh installs both) or the codec's msgpa
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import shutil
+import signal
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
 
 from tests.test_cpp_codec import _include_dirs, _run
+from tests.test_early_interrupt import _as_from_a_terminal
 
 pytestmark = pytest.mark.cpp
 
@@ -111,3 +115,52 @@ def test_each_regression_input_runs_clean(fuzz_env: dict[str, str], harness: str
     output = result.stdout + result.stderr
     assert result.returncode == 0, output[-6000:]
     assert output.count("Executed ") == len(inputs), output[-3000:]
+
+
+def _child_running(parent: int, name: str) -> int | None:
+    """The pid of `parent`'s child process whose command line names `name`, or None."""
+    children = Path(f"/proc/{parent}/task/{parent}/children")
+    for pid in children.read_text().split() if children.is_file() else []:
+        with contextlib.suppress(OSError):
+            if name in Path(f"/proc/{pid}/cmdline").read_text():
+                return int(pid)
+    return None
+
+
+@pytest.mark.timeout(900)
+@pytest.mark.parametrize(("sig", "code"), [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_an_interrupted_campaign_ends_its_fuzzer_and_keeps_its_figures(
+    fuzz_env: dict[str, str], sig: signal.Signals, code: int, tmp_path: Path
+) -> None:
+    built = _run([str(CAMPAIGN), "--build-only", "utf8"], timeout=900, env=fuzz_env)
+    assert built.returncode == 0, built.stderr[-6000:]
+    stats = tmp_path / "stats.json"
+    paths = ["--corpus", str(tmp_path / "corpus"), "--crashes", str(tmp_path / "crashes")]
+    campaign = subprocess.Popen(
+        [str(CAMPAIGN), *paths, "--stats", str(stats), "utf8", "600"],
+        cwd=ROOT,
+        env=fuzz_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=_as_from_a_terminal,  # SIGINT as a terminal's Ctrl-C delivers it
+    )
+    try:
+        deadline = time.monotonic() + 120
+        fuzzer = None
+        corpus = tmp_path / "corpus"
+        # Fuzzing: the fuzzer runs and has added its first inputs to the corpus.
+        while time.monotonic() < deadline and not (fuzzer and any(corpus.iterdir())):
+            time.sleep(0.2)
+            fuzzer = _child_running(campaign.pid, "cpp_fuzz/fuzz_utf8")
+        assert fuzzer is not None, "the campaign never started fuzz_utf8"
+        campaign.send_signal(sig)
+        _, err = campaign.communicate(timeout=60)
+    finally:
+        campaign.kill()
+        campaign.wait()
+    assert campaign.returncode == code, err
+    assert not Path(f"/proc/{fuzzer}").exists(), "the fuzzer outlived its campaign"
+    figures = json.loads(stats.read_text())
+    assert figures["result"] == "interrupted", figures
+    assert int(str(figures["executions"])) > 0, figures
