@@ -93,28 +93,31 @@ def test_fuzzing_finds_no_crash(fuzz_env: dict[str, str], harness: str, tmp_path
     output = result.stdout + result.stderr
     assert result.returncode == 0, f"fuzz_{harness} failed:\n{output[-6000:]}"
     assert figures["result"] == "clean" and figures["crashes"] == 0, figures
-    # It really fuzzed: thousands of inputs, coverage from the instrumented codec, and the
-    # seeds (protocol/vectors) loaded.
-    assert int(str(figures["executions"])) > 1000, figures
+    # It really fuzzed: past the ~170 seeds (protocol/vectors) into mutations (thousands of
+    # inputs on an idle machine, hundreds on a busy one, niced), with coverage from the
+    # instrumented codec.
+    seeds = sum(1 for p in (ROOT / "protocol" / "vectors").rglob("*") if p.is_file())
+    assert int(str(figures["executions"])) > seeds + 100, figures
     assert int(str(figures["cov"])) > 20, figures
     assert int(str(figures["corpus_units"])) > 0, figures
 
 
 @pytest.mark.timeout(900)
-@pytest.mark.parametrize("harness", HARNESSES)
-def test_each_regression_input_runs_clean(fuzz_env: dict[str, str], harness: str) -> None:
-    inputs = sorted(p for p in (REGRESSIONS / harness).glob("*") if p.is_file())
-    if not inputs:
-        pytest.skip(f"no regression inputs for fuzz_{harness} (no crash found yet)")
-    built = _run([str(CAMPAIGN), "--build-only", harness], timeout=900, env=fuzz_env)
-    assert built.returncode == 0, built.stderr[-6000:]
-    binary = Path(built.stdout.strip())
-    # libFuzzer given files runs each once and exits: a crash, a report or a broken property
-    # makes it fail.
-    result = _run([str(binary), *map(str, inputs)], timeout=300)
-    output = result.stdout + result.stderr
-    assert result.returncode == 0, output[-6000:]
-    assert output.count("Executed ") == len(inputs), output[-3000:]
+def test_each_regression_input_runs_clean(fuzz_env: dict[str, str]) -> None:
+    kept = {h: sorted(p for p in (REGRESSIONS / h).glob("*") if p.is_file()) for h in HARNESSES}
+    if not any(kept.values()):
+        pytest.skip(f"no inputs under {REGRESSIONS.relative_to(ROOT)} (no crash found yet)")
+    for harness, inputs in kept.items():
+        if not inputs:
+            continue
+        built = _run([str(CAMPAIGN), "--build-only", harness], timeout=900, env=fuzz_env)
+        assert built.returncode == 0, built.stderr[-6000:]
+        # libFuzzer given files runs each once and exits: a crash, a report or a broken
+        # property makes it fail.
+        result = _run([built.stdout.strip(), *map(str, inputs)], timeout=300)
+        output = result.stdout + result.stderr
+        assert result.returncode == 0, f"fuzz_{harness}:\n{output[-6000:]}"
+        assert output.count("Executed ") == len(inputs), output[-3000:]
 
 
 def _child_running(parent: int, name: str) -> int | None:
