@@ -10,6 +10,8 @@ if [ "${1:-}" = "--fast" ]; then FAST=1; shift; fi
 if [ "$FAST" = 0 ]; then
   "$ROOT/scripts/system_deps.sh" "C++ codec tests" \
     cmake g++ make libmsgpack-dev libgtest-dev nlohmann-json3-dev zlib1g-dev
+  # clang's libFuzzer for tests/test_cpp_fuzz.py (g++ brings the sanitizer runtimes)
+  "$ROOT/scripts/system_deps.sh" "C++ fuzz tests" clang-14 libclang-rt-14-dev
   # podman (runc, CNI with dnsname for compose) and debootstrap for the local base image
   "$ROOT/scripts/system_deps.sh" "container tests" podman runc debootstrap uidmap iptables \
     catatonit containernetworking-plugins golang-github-containernetworking-plugin-dnsname

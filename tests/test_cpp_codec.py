@@ -14,7 +14,8 @@ import os
 import re
 import shutil
 import subprocess
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -57,9 +58,11 @@ def _missing() -> list[str]:
     return missing
 
 
-def _run(args: list[str], timeout: float) -> subprocess.CompletedProcess[str]:
+def _run(
+    args: list[str], timeout: float, env: dict[str, str] | None = None
+) -> subprocess.CompletedProcess[str]:
     return subprocess.run(
-        args, cwd=ROOT, capture_output=True, text=True, timeout=timeout, check=False
+        args, cwd=ROOT, env=env, capture_output=True, text=True, timeout=timeout, check=False
     )
 
 
@@ -68,14 +71,16 @@ def _tail(result: subprocess.CompletedProcess[str], lines: int = 60) -> str:
     return "\n".join(text[-lines:])
 
 
-@pytest.fixture(scope="module")
-def build_dir() -> Iterator[Path]:
-    missing = _missing()
-    if missing:
-        pytest.skip("C++ codec tests need: " + ", ".join(missing))
-    BUILD.mkdir(parents=True, exist_ok=True)
-    # One build at a time in the shared directory (parallel pytest runs, two checkouts' CI).
-    with open(BUILD / ".pytest.lock", "w") as lock:
+@contextmanager
+def built_tree(
+    tree: Path, options: list[str], targets: Sequence[str] = (), timeout: float = 540
+) -> Iterator[Path]:
+    """Configures the codec-only CMake tree `tree` (warnings as errors, the shared vectors)
+    with `options` and builds `targets` (all when none), failing the test on an error; the
+    tree is the caller's alone until the block ends."""
+    tree.mkdir(parents=True, exist_ok=True)
+    # One build at a time in a shared tree (parallel pytest runs, two checkouts' CI).
+    with open(tree / ".pytest.lock", "w") as lock:
         fcntl.flock(lock, fcntl.LOCK_EX)
         configure = _run(
             [
@@ -83,17 +88,28 @@ def build_dir() -> Iterator[Path]:
                 "-S",
                 str(SOURCE),
                 "-B",
-                str(BUILD),
+                str(tree),
                 "-DNAV2_PYIF_CODEC_ONLY=ON",
                 "-DNAV2_PYIF_WARNINGS_AS_ERRORS=ON",
                 f"-DNAV2_PYIF_VECTORS_DIR={VECTORS}",
+                *options,
             ],
             timeout=120,
         )
         assert configure.returncode == 0, "cmake configure failed:\n" + _tail(configure)
-        build = _run(["cmake", "--build", str(BUILD), "-j2"], timeout=540)
-        assert build.returncode == 0, "C++ codec build failed:\n" + _tail(build)
-        yield BUILD
+        target_args = ["--target", *targets] if targets else []
+        build = _run(["cmake", "--build", str(tree), "-j2", *target_args], timeout=timeout)
+        assert build.returncode == 0, f"C++ build in {tree} failed:\n" + _tail(build)
+        yield tree
+
+
+@pytest.fixture(scope="module")
+def build_dir() -> Iterator[Path]:
+    missing = _missing()
+    if missing:
+        pytest.skip("C++ codec tests need: " + ", ".join(missing))
+    with built_tree(BUILD, []) as tree:
+        yield tree
 
 
 @pytest.mark.timeout(600)  # the first build compiles GoogleTest-heavy sources on 2 cores
