@@ -172,7 +172,7 @@ def test_sim_help_shows_every_default_and_what_the_simulator_does() -> None:
     assert done.returncode == 0, done.stderr
     text = re.sub(r"\s+", " ", done.stdout)
     for option, default in [
-        ("--call-timeout SECONDS", "0.25"),
+        ("--call-timeout SECONDS", "0.04"),
         ("--rate RATE", "20.0"),
         ("--timeout SECONDS", "180.0"),
         ("--plans N", "1"),

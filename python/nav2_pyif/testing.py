@@ -8,7 +8,10 @@
 
 ``drive`` takes the runner's options (``start``, ``goal``, ``rate``, ``timeout``,
 ``controller_params``, ...; see ``nav2_pyif.runner.run.SimConfig``) and returns a SimResult
-with the outcome, the trajectory, the plan and every call's timing.
+with the outcome, the trajectory, the plan and every call's timing. It runs in lockstep:
+simulated time waits for every reply, so a loaded machine does not change the verdict;
+``result.timing`` counts the calls over the control period and the plugin's timeout
+(``realtime=True`` fails those cycles instead, as on the robot).
 """
 
 from __future__ import annotations

@@ -22,6 +22,7 @@ from nav2_pyif.common.option_types import (
 )
 from nav2_pyif.costmap import Costmap, Inflation
 from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.params import ParamValue
 from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.laser import LaserSpec
 from nav2_pyif.runner.maps import BUNDLED
@@ -97,9 +98,10 @@ def simulator_facts() -> str:
         f"  controller's costmap: a {size} x {size} rolling window about the robot, updated "
         f"at {d.local_costmap_rate:g} Hz",
         "  control: --rate Hz; the controller's control_period is 1 / --rate (Nav2's",
-        "    controller_frequency); each cycle waits --call-timeout for the reply; failing",
-        f"    cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end the run "
-        "(failure_tolerance)",
+        "    controller_frequency); lockstep: each cycle waits for the reply, and the report",
+        "    counts those over --call-timeout; --realtime: a reply later fails the cycle;",
+        f"    failing cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end "
+        "the run (failure_tolerance)",
         f"  goal check (SimpleGoalChecker): within {g.xy_goal_tolerance:g} m of the goal AND "
         f"{g.yaw_goal_tolerance:g} rad of its heading:",
         "    a position-only controller must turn on the spot at the end (or use",
@@ -180,13 +182,28 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         metavar="SECONDS",
         help="simulated seconds before the run ends NOT REACHED, > 0",
     )
-    p.add_argument("--realtime", action="store_true", help="pace to wall-clock time")
+    p.add_argument(
+        "--realtime",
+        action="store_true",
+        help="real time instead of lockstep: a reply later than --call-timeout fails its "
+        "cycle, as on the robot, and the run keeps wall-clock pace. Without it (lockstep) "
+        "simulated time waits for every reply, so the verdict does not depend on the "
+        "machine's load; the report counts the calls Nav2 would have failed",
+    )
     p.add_argument(
         "--call-timeout",
         type=positive_float,
-        default=0.25,
+        default=SimConfig.call_timeout,
         metavar="SECONDS",
-        help="seconds to wait for each control cycle's reply (the plugin's timeout), > 0",
+        help="the plugin's timeout per control cycle call (its 'timeout' parameter): "
+        "enforced with --realtime, reported against in lockstep, > 0",
+    )
+    p.add_argument(
+        "--lockstep-limit",
+        type=positive_float,
+        default=SimConfig.lockstep_limit,
+        metavar="SECONDS",
+        help="in lockstep: a call taking this long is a hung planner and fails its cycle, > 0",
     )
     p.add_argument(
         "--param",
@@ -325,15 +342,20 @@ def sensing_config(args: argparse.Namespace) -> SensingConfig:
         raise SimError(f"--scan-*/--debug-every: {exc}") from exc
 
 
-def _params(items: list[str]) -> dict[str, object]:
+def _params(items: list[str], option: str) -> dict[str, ParamValue]:
+    """``option``'s NAME=VALUE items, each value read as YAML; bad ones are usage errors."""
     import yaml
 
-    out: dict[str, object] = {}
+    out: dict[str, ParamValue] = {}
     for item in items:
         name, sep, value = item.partition("=")
         if not sep:
-            raise SimError(f"parameter {item!r} is not NAME=VALUE")
-        parsed = yaml.safe_load(value)
+            raise SimError(f"{option} {item!r} is not NAME=VALUE")
+        try:
+            parsed = yaml.safe_load(value)
+        except yaml.YAMLError as exc:
+            reason = " ".join(str(getattr(exc, "problem", "") or exc).split())
+            raise SimError(f"{option} {item!r}: the value is not YAML ({reason})") from None
         # A parameter is a scalar or an array of scalars; nested lists (polygons, footprints)
         # are written as text, as Nav2's YAML writes footprints
         nested = isinstance(parsed, list) and any(isinstance(v, list | dict) for v in parsed)
@@ -363,8 +385,9 @@ def run_command(args: argparse.Namespace) -> int:
             timeout=args.timeout,
             realtime=args.realtime,
             call_timeout=args.call_timeout,
-            controller_params=_params(args.param),  # type: ignore[arg-type]
-            planner_params=_params(args.planner_param),  # type: ignore[arg-type]
+            lockstep_limit=args.lockstep_limit,
+            controller_params=_params(args.param, "--param"),
+            planner_params=_params(args.planner_param, "--planner-param"),
             endpoint=args.connect,
             wait=args.wait,
             controller_key=args.controller_key,
@@ -372,7 +395,10 @@ def run_command(args: argparse.Namespace) -> int:
             path=args.path,
             progress=progress,
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
-            plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
+            plugin_params={
+                r: _params(getattr(args, f"{r}_param"), f"--{r.replace('_', '-')}-param")
+                for r in PLUGIN_FLAGS
+            },
             smoother_max_time=args.smoother_max_time,
             max_recoveries=args.max_recoveries,
             plans=args.plans,

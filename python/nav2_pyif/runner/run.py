@@ -47,6 +47,7 @@ from nav2_pyif.runner.recovery import Recovery, back_up
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.runner.sensing import DebugLines, Sensing, SensingConfig, lines_of
 from nav2_pyif.runner.swaps import Swap, swaps_during
+from nav2_pyif.runner.timing import CycleTiming, cycle_timing
 
 log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
@@ -83,7 +84,11 @@ class SimConfig:
     goal: Pose3 | None = None
     rate: float = 20.0  # [Hz] control rate (simulated time)
     timeout: float = 180.0  # [s] simulated time
-    realtime: bool = False  # pace the loop to wall-clock time
+    # False (lockstep): simulated time advances only once the planner has answered, so the
+    # verdict does not depend on the machine's load; each call's time is judged against the
+    # control period and call_timeout instead (timing.py). True (real time): a reply later
+    # than call_timeout fails its cycle, as on the robot, and the loop keeps wall-clock pace.
+    realtime: bool = False
     footprint: tuple[tuple[float, float], ...] = DEFAULT_FOOTPRINT
     inflation_radius: float = 0.55
     cost_scaling_factor: float = 3.0
@@ -95,7 +100,8 @@ class SimConfig:
     failure_tolerance: float = 0.3  # [s] of consecutive controller failures before aborting
     controller_params: dict[str, ParamValue] = field(default_factory=dict)
     planner_params: dict[str, ParamValue] = field(default_factory=dict)
-    call_timeout: float = 0.25  # [s] per control cycle
+    call_timeout: float = Timeouts().call  # [s] the plugin's timeout (bridge_params.py)
+    lockstep_limit: float = 60.0  # [s] lockstep: a call this long is a hung planner
     path: list[str] = field(default_factory=list)  # directories to import planners from
     endpoint: str | None = None  # connect to a running host instead of starting one
     wait: float = 10.0  # [s] with an endpoint: for its router, then for the hosts' tokens
@@ -160,6 +166,12 @@ class SimResult:
     @property
     def cycles(self) -> int:
         return len(self.trajectory)
+
+    @property
+    def timing(self) -> CycleTiming:
+        """The controller's time per cycle against the control period and the timeout."""
+        c = self.config
+        return cycle_timing(self.records, c.rate, c.call_timeout, lockstep=not c.realtime)
 
     def served_over_time(self, role: str) -> list[tuple[float, float, str]]:
         """(from, to [s], short name) of each planner that served ``role``: one span unless
@@ -314,7 +326,12 @@ def run_sim(config: SimConfig) -> SimResult:
             host = None
             if not config.endpoint:
                 # INFO: the planners' self.logger.info lines, shown as they come
-                host = PlannerHostProcess(entries, extra_path=import_path(config), log_level="INFO")
+                host = PlannerHostProcess(
+                    entries,
+                    extra_path=import_path(config),
+                    log_level="INFO",
+                    args=host_deadlines(config),
+                )
                 cleanup.callback(host.close)
                 host.start()
                 follower = HostLogFollower(host.log_path, [e["key"] for e in entries]).start()
@@ -339,11 +356,18 @@ def run_sim(config: SimConfig) -> SimResult:
     return result
 
 
+def host_deadlines(config: SimConfig) -> list[str]:
+    """The host's options for a run: in lockstep its call deadline is the lockstep limit, so
+    a slow reply is waited for rather than answered Unavailable after the host's 1 s."""
+    return [] if config.realtime else ["--deadline", f"{config.lockstep_limit:g}"]
+
+
 def _drive(
     config: SimConfig, result: SimResult, session: zenoh.Session, host: PlannerHostProcess | None
 ) -> None:
     start, costmap = result.start, result.global_costmap
-    timeouts = Timeouts(call=config.call_timeout, lifecycle=10.0, configure=60.0, plan=60.0)
+    call = config.call_timeout if config.realtime else config.lockstep_limit
+    timeouts = Timeouts(call=call, lifecycle=10.0, configure=60.0, plan=60.0)
     planner = GlobalPlannerClient(
         session,
         config.planner_key,
