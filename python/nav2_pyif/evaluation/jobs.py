@@ -1,11 +1,10 @@
 """One run of ``nav2-pyif eval`` (a planner pair on a scenario), and many in parallel
 processes, each run with a planner host of its own, with a progress bar.
 
-Lockstep by default: the runner's simulated time advances one control period per cycle and
-each cycle waits for the planner's reply (up to LOCKSTEP_CALL_TIMEOUT, far above any planner
-that works), so what the robot does does not depend on how loaded the machine is. With
-``realtime`` the loop keeps wall-clock pace and each reply must come within the plugin's
-call timeout, as on a robot.
+Lockstep by default (the runner's, SimConfig.realtime False): simulated time advances one
+control period per cycle only once the planner has answered, so what the robot does does not
+depend on how loaded the machine is. With ``realtime`` the loop keeps wall-clock pace and
+each reply must come within the plugin's call timeout, as on a robot.
 """
 
 from __future__ import annotations
@@ -24,11 +23,6 @@ from typing import Any
 from nav2_pyif.common.signals import Interrupted, raise_on_signals
 from nav2_pyif.evaluation.metrics import run_metrics
 from nav2_pyif.evaluation.scenarios import Scenario
-
-#: Lockstep: how long a cycle waits for its reply [s]. The host's own --deadline (1 s)
-#: answers a call that runs longer "unavailable", a verdict of the planner's, not the load's.
-LOCKSTEP_CALL_TIMEOUT = 30.0
-REALTIME_CALL_TIMEOUT = 0.25  # nav2-pyif sim's default: the plugin's
 
 
 @dataclass(frozen=True)
@@ -72,7 +66,6 @@ def run_job(job: Job) -> dict[str, Any]:
         rate=s.rate,
         timeout=s.timeout,
         realtime=s.realtime,
-        call_timeout=REALTIME_CALL_TIMEOUT if s.realtime else LOCKSTEP_CALL_TIMEOUT,
         path=list(s.path),
     )
     row: dict[str, Any] = {"scenario": job.scenario.name, "planner": job.entrant.label}
