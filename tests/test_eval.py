@@ -77,7 +77,7 @@ def test_the_outputs_are_written_and_the_table_printed(tmp_path: Path) -> None:
     assert done.stdout.splitlines()[2].split()[:2] == ["pure_pursuit", "1"]
     csv_lines = (tmp_path / "eval.csv").read_text().splitlines()
     assert csv_lines[0].startswith("planner,runs,successes,success_rate") and len(csv_lines) == 2
-    for png in ("eval.png", "runs/gen_s0_d10_000/pure_pursuit.png"):
+    for png in ("eval.png", "scenarios/gen_s0_d10_000.png", "runs/gen_s0_d10_000/pure_pursuit.png"):
         assert (tmp_path / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", png
     assert (tmp_path / "maps" / "gen_s0_d10_000.yaml").is_file()
 

@@ -15,7 +15,7 @@ from nav2_pyif.common.option_types import (
     positive_float,
     positive_int,
 )
-from nav2_pyif.evaluation.jobs import Entrant, Job, Settings
+from nav2_pyif.evaluation.jobs import PATH_KEY, Entrant, Job, Settings
 from nav2_pyif.evaluation.metrics import BARN_MAX_SPEED
 from nav2_pyif.evaluation.scenarios import Scenario, ScenarioError, from_map, generated
 from nav2_pyif.runner.maps import BUNDLED
@@ -34,8 +34,9 @@ examples:
   nav2-pyif eval --controller pure_pursuit --realtime --jobs 1   # wall-clock pace, as a robot
 
 writes (under --out): eval.json (settings, scenarios, the summary and every run), eval.csv
-(the summary), eval.png (the summary plotted), runs/SCENARIO/PLANNER.png (each run drawn),
-maps/ (the generated maps, map_server YAML + PGM).
+(the summary), eval.png (the summary plotted), scenarios/SCENARIO.png (every planner's path
+on the scenario's map), runs/SCENARIO/PLANNER.png (each run drawn by the runner), maps/ (the
+generated maps, map_server YAML + PGM).
 
 lockstep (default): simulated time advances only once the planner has answered, so the
 verdicts do not depend on the machine's load; compute per call is measured and reported
@@ -151,7 +152,7 @@ def add_eval_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ig
     p.add_argument(
         "--out", type=Path, default=Path("out/eval"), help="output directory (default out/eval)"
     )
-    p.add_argument("--no-plots", action="store_true", help="no PNG per run")
+    p.add_argument("--no-plots", action="store_true", help="no PNG per scenario and per run")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run_command)
 
@@ -225,6 +226,9 @@ def run_command(args: argparse.Namespace) -> int:
         rows = run_jobs(jobs, workers, lambda row: bar.update(1))
     finally:
         bar.close()
+    paths = [row.pop(PATH_KEY, []) for row in rows]
+    if not args.no_plots:
+        _draw_scenarios(chosen, rows, paths, args.out / "scenarios")
     labels = [e.label for e in compared]
     summary = summarize(rows, labels)
     report = {
@@ -243,9 +247,23 @@ def run_command(args: argparse.Namespace) -> int:
     write_csv(summary, args.out / "eval.csv")
     draw_summary(summary, len(chosen), args.out / "eval.png")
     print(format_table(summary))
-    written = ["eval.json", "eval.csv", "eval.png"] + ([] if args.no_plots else ["runs/"])
+    written = ["eval.json", "eval.csv", "eval.png"]
+    written += [] if args.no_plots else ["scenarios/", "runs/"]
     print(f"\nwrote {', '.join(str(args.out / w) for w in written)}")
     return 0
+
+
+def _draw_scenarios(
+    chosen: list[Scenario], rows: list[dict[str, Any]], paths: list[Any], folder: Path
+) -> None:
+    """A PNG per scenario: every planner's driven path on its map."""
+    from nav2_pyif.evaluation.plot import draw_scenario
+
+    folder.mkdir(parents=True, exist_ok=True)
+    for scenario in chosen:
+        mine = [i for i, row in enumerate(rows) if row["scenario"] == scenario.name]
+        driven = {rows[i]["planner"]: paths[i] for i in mine}
+        draw_scenario(scenario, [rows[i] for i in mine], driven, folder / f"{scenario.name}.png")
 
 
 def _scenario_record(s: Scenario) -> dict[str, Any]:

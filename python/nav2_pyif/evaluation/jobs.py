@@ -24,6 +24,9 @@ from nav2_pyif.common.signals import Interrupted, raise_on_signals
 from nav2_pyif.evaluation.metrics import run_metrics
 from nav2_pyif.evaluation.scenarios import Scenario
 
+#: A row's driven path (x, y), which the scenario's picture takes and the report leaves out.
+PATH_KEY = "_path"
+
 
 @dataclass(frozen=True)
 class Entrant:
@@ -74,6 +77,8 @@ def run_job(job: Job) -> dict[str, Any]:
     except (SimError, RuntimeError, TimeoutError, ConnectionError, Nav2Error) as exc:
         return {**row, "success": False, "outcome": f"error: {exc}"}
     row.update(run_metrics(result, job.scenario.optimal_length, s.barn_max_speed))
+    # the driven path, for the scenario's picture (taken out of the row before the report)
+    row[PATH_KEY] = [(round(t[1], 3), round(t[2], 3)) for t in result.trajectory]
     if s.draw_to is not None:
         from nav2_pyif.runner.plot import draw
 
