@@ -20,7 +20,8 @@ MAY_IMPORT = {
     "server": {"api", "common"},
     "client": {"api", "common"},
     "runner": {"api", "client", "common"},
-    "tools": {"api", "client", "common", "runner"},
+    "evaluation": {"api", "common", "runner"},
+    "tools": {"api", "client", "common", "runner", "evaluation"},
 }
 #: nav2_pyif.testing helps authors test their planners with the runner: it sits at the top for
 #: them to import, and is nobody's dependency.
