@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import json
 import os
+import signal
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -17,7 +18,7 @@ from typing import Any
 import pytest
 from nav2_pyif.evaluation.report import without_compute
 
-from tests.conftest import nav2_pyif_tool
+from tests.conftest import nav2_pyif_tool, process_tree, survivors, wait_until
 
 pytestmark = pytest.mark.integration
 
@@ -36,6 +37,11 @@ def cpu_seconds(pid: int) -> float:
     """User + system CPU time of ``pid`` so far, from /proc."""
     fields = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def hosts_under(pid: int) -> int:
+    """How many planner hosts run under ``pid`` now (one per run in progress)."""
+    return sum("nav2_pyif.server.cli" in cmd for _, cmd in process_tree(pid).values())
 
 
 @contextmanager
@@ -95,3 +101,26 @@ def test_bad_input_is_a_usage_error(tmp_path: Path, args: tuple[str, ...], said:
     done = nav2_pyif_tool("eval", "--out", str(tmp_path), *args, timeout=60)
     assert done.returncode == 2, done.stderr
     assert said in done.stderr
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT], ids=["SIGTERM", "SIGINT"])
+def test_a_signal_stops_every_run_and_host(tmp_path: Path, signum: int) -> None:
+    """Stopped mid-evaluation, eval ends its worker processes and their planner hosts and
+    exits 128 + signum. The signal goes to eval alone, as from a process supervisor."""
+    eval_ = subprocess.Popen(
+        [sys.executable, "-m", "nav2_pyif.tools.main", "eval", *SMALL_EVAL, "--no-plots",
+         "--out", str(tmp_path)],
+        stderr=subprocess.PIPE,
+        text=True,
+    )  # fmt: skip
+    try:
+        assert wait_until(lambda: hosts_under(eval_.pid) == 2, 120), process_tree(eval_.pid)
+        tree = process_tree(eval_.pid)
+        eval_.send_signal(signum)
+        _, err = eval_.communicate(timeout=60)
+    finally:
+        if eval_.poll() is None:
+            eval_.kill()
+            eval_.wait()
+    assert eval_.returncode == 128 + signum, err
+    assert wait_until(lambda: not survivors(tree), 10), survivors(tree)

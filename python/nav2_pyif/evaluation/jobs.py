@@ -88,6 +88,15 @@ def run_job(job: Job) -> dict[str, Any]:
     return row
 
 
+def _run_in_worker(job: Job) -> dict[str, Any]:
+    """``run_job`` in a pool process. Stopped by the parent (SIGTERM), the run has stopped its
+    host on the way out; the process then ends at once rather than take the next job."""
+    try:
+        return run_job(job)
+    except Interrupted as exc:
+        os._exit(exc.exit_code)
+
+
 def _worker_start() -> None:
     """A pool process: quiet (the bar is the parent's), and a SIGTERM from the parent stops
     its run and that run's planner host (Interrupted through run_sim's clean-up)."""
@@ -112,13 +121,13 @@ def run_jobs(
         max_workers=workers, mp_context=context, initializer=_worker_start
     )
     try:
-        futures = {pool.submit(run_job, job): i for i, job in enumerate(jobs)}
+        futures = {pool.submit(_run_in_worker, job): i for i, job in enumerate(jobs)}
         rows: list[dict[str, Any] | None] = [None] * len(jobs)
         for future in concurrent.futures.as_completed(futures):
             rows[futures[future]] = future.result()
             on_done(future.result())
         return [r for r in rows if r is not None]
-    except (Interrupted, KeyboardInterrupt):
+    except Interrupted:
         _stop_workers(pool)
         raise
     finally:
