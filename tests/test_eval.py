@@ -86,6 +86,8 @@ def test_the_outputs_are_written_and_the_table_printed(tmp_path: Path) -> None:
     for png in ("eval.png", "scenarios/gen_s0_d10_000.png", "runs/gen_s0_d10_000/pure_pursuit.png"):
         assert (tmp_path / png).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n", png
     assert (tmp_path / "maps" / "gen_s0_d10_000.yaml").is_file()
+    host_log = (tmp_path / "runs" / "gen_s0_d10_000" / "pure_pursuit.host.log").read_text()
+    assert "now serving" in host_log or "serving nav2_pyif_planners" in host_log, host_log
 
 
 @pytest.mark.parametrize(

@@ -35,8 +35,8 @@ examples:
 
 writes (under --out): eval.json (settings, scenarios, the summary and every run), eval.csv
 (the summary), eval.png (the summary plotted), scenarios/SCENARIO.png (every planner's path
-on the scenario's map), runs/SCENARIO/PLANNER.png (each run drawn by the runner), maps/ (the
-generated maps, map_server YAML + PGM).
+on the scenario's map), runs/SCENARIO/PLANNER.png and .host.log (each run drawn by the
+runner, and its planner host's log), maps/ (the generated maps, map_server YAML + PGM).
 
 lockstep (default): simulated time advances only once the planner has answered, so the
 verdicts do not depend on the machine's load; compute per call is measured and reported

@@ -84,7 +84,10 @@ def run_job(job: Job) -> dict[str, Any]:
 
         folder = s.draw_to / job.scenario.name
         folder.mkdir(parents=True, exist_ok=True)
-        draw(result, folder / f"{job.entrant.label.replace(':', '.')}.png")
+        stem = folder / job.entrant.label.replace(":", ".")
+        draw(result, stem.with_suffix(".png"))
+        if result.host_log:  # the host's own account of a planner that crashed or hung
+            stem.with_suffix(".host.log").write_text(result.host_log)
     return row
 
 
