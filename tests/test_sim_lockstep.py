@@ -37,5 +37,6 @@ def test_lockstep_drives_a_slow_controller_exactly_as_a_fast_one() -> None:
 def test_realtime_fails_the_cycles_whose_reply_came_late() -> None:
     slow = drive(SLOW, path=[str(FIXTURES)], realtime=True, call_timeout=0.25, **TASK)
     late = [e for e in slow.controller_errors if "got no reply" in e and "within 250 ms" in e]
-    assert len(late) == 3, slow.controller_errors
+    # its three slow cycles at least (a loaded machine may make more late: real time)
+    assert len(late) >= 3, slow.controller_errors
     assert summary(slow)["timing"]["mode"] == "real time"

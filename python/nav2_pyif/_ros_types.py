@@ -13,8 +13,6 @@ import sys
 from functools import cache
 from typing import Any
 
-from nav2_pyif.common.signals import deferred
-
 log = logging.getLogger("nav2_pyif._ros_types")
 
 
@@ -89,26 +87,18 @@ def check_serialization_rmw() -> None:
         os.environ[RMW_CHECKED] = wanted  # the workers, started after this, inherit it
 
 
-# rclpy's C conversions call message constructors: a signal handler raising there (a command's
-# Interrupted) comes out as "TypeError: Unable to convert function return value", so a
-# terminating signal waits until the conversion is done (deferred), then is raised.
-
-
 def deserialize(type_name: str, cdr: bytes) -> Any:
     check_serialization_rmw()
     from rclpy.serialization import deserialize_message
 
-    cls = message_class(type_name)
-    with deferred():
-        return deserialize_message(cdr, cls)
+    return deserialize_message(cdr, message_class(type_name))
 
 
 def serialize(msg: Any) -> bytes:
     check_serialization_rmw()
     from rclpy.serialization import serialize_message
 
-    with deferred():
-        return serialize_message(msg)  # type: ignore[no-any-return]
+    return serialize_message(msg)  # type: ignore[no-any-return]
 
 
 @cache

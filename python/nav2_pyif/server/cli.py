@@ -39,6 +39,7 @@ from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_argum
 from nav2_pyif.server.heap import settle_heap
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
+from nav2_pyif.server.parent import bind_to_parent, remove_when_orphaned
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.respawn import keep
@@ -228,8 +229,16 @@ def build_parser() -> argparse.ArgumentParser:
         "--parent-pid",
         type=positive_int,
         metavar="PID",
-        help="with --respawn: the process that starts the keeper (the Nav2 plugin); the keeper "
-        "gets SIGTERM when it dies, and starts nothing if it is gone already (Linux)",
+        help="the process that starts this host (the Nav2 plugin, nav2-pyif sim): the host "
+        "gets SIGTERM when it dies, even by SIGKILL, and starts nothing if it is gone already "
+        "(Linux); with --respawn, the keeper does",
+    )
+    parser.add_argument(
+        "--parent-tmpdir",
+        type=Path,
+        metavar="DIR",
+        help="with --parent-pid: the parent's temporary directory (this host's config and log), "
+        "removed when the host ends after its parent died",
     )
     parser.add_argument(
         "--log-level",
@@ -325,10 +334,19 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
     )
+    if args.parent_tmpdir is not None and args.parent_pid is None:
+        parser.error("--parent-tmpdir needs --parent-pid")
     if args.respawn:
         os.environ.pop("NAV2_PYIF_RESPAWN", None)  # the child serves, it keeps nothing
+        os.environ.pop("NAV2_PYIF_PARENT_PID", None)  # the child's parent is this keeper
         child = [sys.executable, "-m", "nav2_pyif.server.cli", *without_respawn(given)]
-        return keep(child, parent=args.parent_pid)
+        return keep([*child, "--parent-pid", str(os.getpid())], parent=args.parent_pid)
+    if args.parent_pid is not None:
+        if args.parent_tmpdir is not None:
+            remove_when_orphaned(args.parent_pid, args.parent_tmpdir)
+        if not bind_to_parent(args.parent_pid):
+            print(f"planner-host: parent {args.parent_pid} is gone; not starting", file=sys.stderr)
+            return 1
     # A planner served in this process (--isolation none) that segfaults leaves its stack.
     faulthandler.enable()
     log = logging.getLogger("nav2_pyif.server.host")
