@@ -22,7 +22,8 @@ MAY_IMPORT = {
     "client": {"api", "common"},
     "runner": {"api", "client", "common"},
     "replay": {"api", "common", "server"},
-    "tools": {"api", "client", "common", "runner", "replay"},
+    "evaluation": {"api", "common", "runner"},
+    "tools": {"api", "client", "common", "runner", "replay", "evaluation"},
 }
 #: nav2_pyif.testing helps authors test their planners with the runner: it sits at the top for
 #: them to import, and is nobody's dependency.

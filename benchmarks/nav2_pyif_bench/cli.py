@@ -14,6 +14,7 @@ nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 40
 nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
 nav2-pyif-bench obstacles [--quick]             Costmap.obstacle_points() vs every lethal cell
 nav2-pyif-bench record [--quick]                the control cycle with planner-host --record off/on
+nav2-pyif-bench watch [--edits 20]              planner-host --watch: edit saved -> served
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from nav2_pyif_bench import (
     record_bench,
     reliability_bench,
     tls_bench,
+    watch_bench,
 )
 from nav2_pyif_bench.stats import machine_description
 
@@ -217,6 +219,10 @@ def build_parser() -> argparse.ArgumentParser:
         "inputs", help="a scan, a cloud, an image with each cycle, beside an rclpy topic"
     )
     inputs_bench.add_arguments(inputs)
+    watch = sub.add_parser(
+        "watch", help="planner-host --watch: from saving a planner's file to its first reply"
+    )
+    watch_bench.add_arguments(watch)
     for p in sub.choices.values():
         p.add_argument("--json", metavar="PATH", help="also write the figures as JSON")
     return parser
@@ -266,6 +272,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "obstacles":
         results = obstacles_bench.run(args)
         text = obstacles_bench.report(results)
+    elif args.bench == "watch":
+        results = watch_bench.run(args)
+        text = watch_bench.report(results)
     elif args.bench == "tls":
         results = tls_bench.run(protocol_bench.apply_quick_rounds(args))
         text = tls_bench.report(results)

@@ -9,6 +9,7 @@ import os
 import signal
 import sys
 import threading
+from collections.abc import Callable
 from pathlib import Path
 from types import FrameType
 from typing import Any
@@ -51,6 +52,7 @@ from nav2_pyif.server.respawn import keep
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 from nav2_pyif.server.supervisor import Deadlines, SupervisedPlanner
+from nav2_pyif.server.watch import SourceWatcher, source_roots, watchfiles_missing
 
 EPILOG = """\
 examples:
@@ -211,6 +213,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="another planner a reload may load: fnmatch pattern on MODULE:CLASS or MODULE, "
         "e.g. 'my_planners.*', repeatable",
     )
+    parser.add_argument(
+        "--watch",
+        action="store_true",
+        help="reload a planner when its source files change (its top-level package, or its "
+        "module file), as a hot swap: a version that fails to import or configure is refused "
+        "and the old one keeps serving (needs the watchfiles library: the 'watch' extra)",
+    )
     add_zenoh_arguments(parser)
     parser.add_argument(
         "--pid-file",
@@ -363,6 +372,14 @@ def main(argv: list[str] | None = None) -> int:
     # reloads every planner once serving; before that it stops the host like the others.
     stop, serving, reload_requested = threading.Event(), threading.Event(), threading.Event()
     stopped_by: list[int] = []
+    edited: set[str] = set()  # --watch: the keys whose sources changed, reloaded in the loop
+    edited_lock = threading.Lock()
+
+    def on_edit(keys: set[str], files: list[Path]) -> None:
+        log.info("--watch: %s changed: reloading %s", ", ".join(map(str, files)), ", ".join(keys))
+        with edited_lock:
+            edited.update(keys)
+        stop.set()
 
     def on_signal(signum: int, _frame: FrameType | None) -> None:
         if signum == signal.SIGHUP and serving.is_set():
@@ -377,6 +394,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.reload_allow and not args.allow_remote_reload:
         parser.error("--reload-allow needs --allow-remote-reload")
     check_batch_arguments(args, parser)
+    if args.watch and watchfiles_missing():
+        parser.error(str(watchfiles_missing()))
     if args.pid_file and not os.access(args.pid_file.parent, os.W_OK):
         parser.error(f"--pid-file {args.pid_file}: its directory is missing or not writable")
     try:
@@ -397,6 +416,7 @@ def main(argv: list[str] | None = None) -> int:
         return 3
     served, recorder = start_recording(args, specs, services)
     served, live = start_live_tap(args, session, specs, served)
+    cleanup_watch: list[Callable[[], None]] = []
     host = PlannerHost(
         session,
         host_id,
@@ -419,11 +439,19 @@ def main(argv: list[str] | None = None) -> int:
             if args.pid_file:
                 write_pid_file(args.pid_file)
         reach = ReachWatch(session, *configured_endpoints(options))
+        if args.watch and not stopped_by:
+            watcher = SourceWatcher({s.key: source_roots(s) for s in specs}, on_edit).start()
+            cleanup_watch.append(watcher.stop)
         while not stopped_by:
             if not stop.wait(1.0):
                 reach.check()
                 continue
             stop.clear()
+            with edited_lock:
+                keys, edited_now = set(edited), bool(edited)
+                edited.clear()
+            if edited_now and not stopped_by:
+                host.reload_all(keys)
             if reload_requested.is_set() and not stopped_by:
                 reload_requested.clear()
                 log.info("SIGHUP: reloading every planner")
@@ -431,6 +459,8 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         # Close explicitly on every path: an open session keeps the process alive. Services
         # not yet served (a signal during start-up) are closed too: no worker outlives us.
+        for stop_watching in cleanup_watch:
+            stop_watching()
         if args.pid_file:
             remove_pid_file(args.pid_file)
         host.close()

@@ -14,7 +14,7 @@ import socket
 import threading
 import time
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Collection
 from typing import Any
 
 import msgpack
@@ -403,11 +403,14 @@ class PlannerHost:
         served = self.served.get(key_prefix)
         return None if served is None else served.runtime.handle(payload, key_op=op)
 
-    def reload_all(self) -> None:
+    def reload_all(self, keys: Collection[str] | None = None) -> None:
         """SIGHUP: re-import every planner (fresh worker processes) without dropping a key;
-        a planner the keys of a batch group share, once."""
+        a planner the keys of a batch group share, once. ``keys``: only the planners of
+        these keys (--watch: those whose source files changed)."""
         reloaded: set[int] = set()
-        for served in self.served.values():
+        for key, served in self.served.items():
+            if keys is not None and key not in keys:
+                continue
             owner = id(getattr(served.runtime, "owner", served.runtime))
             if owner in reloaded:
                 continue

@@ -9,6 +9,7 @@ import sys
 from nav2_pyif.common.option_types import positive_float
 from nav2_pyif.common.signals import Interrupted, raise_on_signals
 from nav2_pyif.common.zenoh_config import add_zenoh_arguments
+from nav2_pyif.evaluation.cli import add_eval_parser
 from nav2_pyif.replay.cli import add_replay_parser
 from nav2_pyif.runner.cli import add_sim_parser
 from nav2_pyif.tools.hosts import add_hosts_parser
@@ -144,6 +145,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.Argument
     parser = argparse.ArgumentParser(prog="nav2-pyif", description="nav2_pyif tools")
     subparsers = parser.add_subparsers(required=True, metavar="COMMAND", dest="command_name")
     add_sim_parser(subparsers)
+    add_eval_parser(subparsers)
     add_planners_commands(subparsers)
     add_reload_parser(subparsers)
     add_router_parser(subparsers)

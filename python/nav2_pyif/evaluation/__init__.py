@@ -1,0 +1,1 @@
+"""nav2-pyif eval: planners compared across many scenarios (scenarios, metrics, jobs, report)."""
