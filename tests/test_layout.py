@@ -23,7 +23,9 @@ MAY_IMPORT = {
     "runner": {"api", "client", "common"},
     "replay": {"api", "common", "server"},
     "evaluation": {"api", "common", "runner"},
-    "tools": {"api", "client", "common", "runner", "replay", "evaluation"},
+    # tools: `nav2-pyif record` writes with the host's own recorder (server.recording), so a
+    # live recording and a host's --record file are the same files, replayed the same way.
+    "tools": {"api", "client", "common", "runner", "replay", "evaluation", "server"},
 }
 #: nav2_pyif.testing helps authors test their planners with the runner: it sits at the top for
 #: them to import, and is nobody's dependency.

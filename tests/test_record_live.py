@@ -18,6 +18,8 @@ from tests.test_record_replay import CONTROLLER, FOLLOW, GRID, PLANNER, nav2_pyi
 
 pytest.importorskip("mcap", reason="mcap is not installed (the record extra)")
 
+pytestmark = pytest.mark.integration
+
 SERVE = ("--serve", f"{FOLLOW}={CONTROLLER}", "--serve", f"{GRID}={PLANNER}")
 
 
