@@ -19,16 +19,23 @@ from typing import Any
 
 import msgpack
 import zenoh
+from nav2_pyif_protocol.bounded import unpack_bounded
+from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.carried import CARRIERS, Route, carry_on
 from nav2_pyif.server.reload_policy import ReloadPolicy
+from nav2_pyif.server.runtime import error_reply, peek_seq
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 
 log = logging.getLogger("nav2_pyif.server.host")
+
+#: The ops a call key may name (``P/rpc/<op>``); cancel_plan has its own key. Any other name
+#: is refused here: the worker pipe reads op names as commands (its batch op among them).
+CALL_OPS: frozenset[str] = frozenset(op.value for op in Op if op is not Op.CANCEL_PLAN)
 
 
 def new_host_id() -> str:
@@ -81,6 +88,10 @@ class ServedPlanner:
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
         self.queries = 0  # calls that came on this key's own queries (not carried in another)
+        # queries dropped unanswered: another replica's, or on no key of this planner's
+        # (a wildcard, an unknown admin verb); every other query gets a reply
+        self.dropped = 0
+        self.refused_ops = 0  # calls on P/rpc/<op> for no op: answered BadRequest
         # (unix time, label) of each planner this key served, a hot swap's too: who served when
         self.history: deque[tuple[float, str]] = deque([(time.time(), runtime.label)], maxlen=32)
         self._rpc = f"{keys.prefix}/rpc/"
@@ -112,18 +123,29 @@ class ServedPlanner:
         """On Zenoh's thread: sort the query, answer nothing here (nothing here may block)."""
         key = str(query.key_expr)
         if self._addressed_elsewhere(query):
-            query.drop()  # a replica's query: its pinned host answers
-        elif key.startswith(self._rpc) and "/" not in (op := key[len(self._rpc) :]):
-            with self._order:  # a cycle may not overtake this key's calls still queued
-                self.queries += 1
-                if self._queued == 0 and self._hand_over(query, op):
-                    return
-                self._queued += 1
-            self._calls.put((query, op))
+            self._drop(query)  # a replica's query: its pinned host answers
+        elif key.startswith(self._rpc):
+            op = key[len(self._rpc) :]
+            if op in CALL_OPS:
+                with self._order:  # a cycle may not overtake this key's calls still queued
+                    self.queries += 1
+                    if self._queued == 0 and self._hand_over(query, op):
+                        return
+                    self._queued += 1
+                self._calls.put((query, op))
+            elif any(c in op for c in "/*$?#"):
+                self._drop(query)  # a wildcard: no key to answer on
+            else:
+                self._side.put((query, self._on_unknown_op))
         elif (side := self._side_ops.get(key)) is not None:
             self._side.put((query, side))
         else:
-            query.drop()  # not a query of this key's (a wildcard, another admin verb)
+            self._drop(query)  # not a query of this key's (a wildcard, another admin verb)
+
+    def _drop(self, query: Any) -> None:
+        with self._order:
+            self.dropped += 1
+        query.drop()
 
     def _serve(self) -> None:
         while (item := self._calls.get()) is not None:
@@ -162,6 +184,20 @@ class ServedPlanner:
         host = query.parameters.get("host")
         return host is not None and host != self.host_id
 
+    def _on_unknown_op(self, query: Any) -> None:
+        self.refused_ops += 1
+        op = str(query.key_expr)[len(self._rpc) :]
+        try:
+            payload = _payload(query)
+            known = ", ".join(sorted(CALL_OPS))
+            message = f"{self.keys.prefix}: no operation {op!r}; known: {known}"
+            reply = error_reply(peek_seq(payload), self.host_id, ErrorType.BAD_REQUEST, message)
+            query.reply(query.key_expr, reply)
+        except Exception:
+            log.exception("%s: could not refuse a query", self.keys.prefix)
+        finally:
+            query.drop()
+
     def _on_cancel(self, query: Any) -> None:
         try:
             query.reply(query.key_expr, self.runtime.handle_cancel(_payload(query)))
@@ -181,6 +217,8 @@ class ServedPlanner:
             "sessions": len(self.runtime.journal),
             "history": [list(entry) for entry in self.history],
             "queries": self.queries,
+            "dropped": self.dropped,
+            "refused_ops": self.refused_ops,
             "started": self.started,
             "pid": os.getpid(),
             "hostname": socket.gethostname(),
@@ -203,7 +241,7 @@ class ServedPlanner:
     def _reload(self, query: Any) -> None:
         what = "?"
         try:
-            request = msgpack.unpackb(_payload(query)) if query.payload is not None else {}
+            request = unpack_bounded(_payload(query)) if query.payload is not None else {}
             current = getattr(self.runtime, "spec", None)
             spec = None
             if isinstance(current, PlannerSpec) and isinstance(request, dict):
