@@ -11,6 +11,7 @@ from typing import Any
 
 import msgpack
 from hypothesis import strategies as st
+from nav2_pyif_bench.mutations import mutate
 from nav2_pyif_protocol.codec import ErrorInfo, Reply, Request
 from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.schema import (
@@ -134,26 +135,11 @@ def replies(draw: st.DrawFn, op: Op) -> Reply:
 # --- hostile bytes ------------------------------------------------------------------------
 
 
-@st.composite
-def mutated_vectors(draw: st.DrawFn) -> bytes:
-    """A shared vector with a few bytes flipped, inserted, deleted, or cut short: what a
-    corrupted or hostile peer sends that still looks like the protocol."""
-    data = bytearray(SEEDS[draw(st.sampled_from(sorted(SEEDS)))])
-    for _ in range(draw(st.integers(1, 4))):
-        where = draw(st.integers(0, len(data)))
-        action = draw(st.sampled_from(["flip", "insert", "delete", "cut", "interesting"]))
-        if action == "cut":
-            del data[where:]
-        elif action == "insert":
-            data[where:where] = draw(st.binary(min_size=1, max_size=8))
-        elif where < len(data):
-            if action == "flip":
-                data[where] ^= 1 << draw(st.integers(0, 7))
-            elif action == "delete":
-                del data[where]
-            else:  # a msgpack head byte that claims a big length or count
-                data[where] = draw(st.sampled_from([0xC6, 0xC9, 0xDB, 0xDD, 0xDF, 0xDC, 0xDE]))
-    return bytes(data)
+#: a shared vector with a few bytes flipped, inserted, deleted, cut short or made to claim a
+#: big length: what a corrupted or hostile peer sends that still looks like the protocol
+mutated_vectors = st.builds(
+    mutate, st.randoms(use_true_random=False), st.sampled_from([SEEDS[n] for n in sorted(SEEDS)])
+)
 
 
 MSGPACK_VALUES = st.recursive(
@@ -218,7 +204,7 @@ def _packed(value: Any) -> bytes:
 #: shape, an envelope with wrong fields, forged counts.
 HOSTILE_BYTES = st.one_of(
     st.binary(max_size=256),
-    mutated_vectors(),
+    mutated_vectors,
     MSGPACK_VALUES.map(_packed),
     envelopes_of_anything().map(_packed),
     forged_counts(),

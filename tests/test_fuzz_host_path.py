@@ -11,14 +11,15 @@ from __future__ import annotations
 
 import dataclasses
 import sys
+from pathlib import Path
 
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
-from nav2_pyif_protocol.codec import Request, encode_request
+from nav2_pyif_protocol.codec import Request, decode_request, encode_request
 from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, Op, PluginType
 
-from tests.host_path import CALL_OPS, REFERENCE, HostPath, seed_inputs
+from tests.host_path import CALL_OPS, REFERENCE, REQUEST_SEEDS, HostPath, seed_inputs
 from tests.schema_strategies import HOSTILE_BYTES, requests
 from tests.test_fuzz_codec import BOUNDED
 
@@ -80,3 +81,23 @@ def test_an_import_during_a_request_breaks_the_contract(host_path: HostPath) -> 
             host_path.check_imports(imported)
     finally:
         del sys.modules["nav2_pyif_fuzz_probe"]
+
+
+def test_a_message_type_from_the_network_imports_no_module(
+    host_path: HostPath, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Regression (found by the hostile peer): an input's type ``P/msg/T`` made the host
+    import package P, whatever it was (``this/msg/X`` printed the Zen of Python), to look
+    for its messages. Now only a message an installed ROS package generated is imported."""
+    canary = tmp_path / "nav2_pyif_canary"
+    canary.mkdir()
+    (canary / "__init__.py").write_text("raise SystemExit('imported by a request')\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    request = decode_request(REQUEST_SEEDS["compute_velocity_commands_inputs"][1])
+    inputs = [dict(item, type="nav2_pyif_canary/msg/Scan") for item in request.body["inputs"]]
+    hostile = dataclasses.replace(request, body=dict(request.body, inputs=inputs))
+    reply = host_path.feed(
+        PluginType.CONTROLLER, encode_request(hostile), Op.COMPUTE_VELOCITY_COMMANDS.value
+    )
+    assert reply.error is not None and "nav2_pyif_canary/msg/Scan" in reply.error.message
+    assert "nav2_pyif_canary" not in sys.modules

@@ -26,6 +26,7 @@ from nav2_pyif_protocol.keys import KeySpace
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.carried import CARRIERS, Route, carry_on
+from nav2_pyif.server.log_throttle import ThrottledWarning
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.runtime import error_reply, peek_seq
 from nav2_pyif.server.service import PlannerService
@@ -46,6 +47,26 @@ def new_host_id() -> str:
 
 def _payload(query: Any) -> bytes:
     return query.payload.to_bytes() if query.payload is not None else b""
+
+
+def _reload_request(payload: bytes) -> dict[str, Any] | str:
+    """A reload request's map ({} for none: a fresh import), or what is wrong with it."""
+    if not payload:
+        return {}
+    try:
+        request = unpack_bounded(payload)
+    except Exception as exc:
+        return f"the request is not valid msgpack ({exc or type(exc).__name__})"
+    if not isinstance(request, dict):
+        return f"the request is a msgpack {type(request).__name__}, not a map"
+    wrong = [
+        name
+        for name in ("planner", "module")
+        if request.get(name) is not None and not isinstance(request[name], str)
+    ]
+    if request.get("delegates") is not None and not isinstance(request["delegates"], dict):
+        wrong.append("delegates")
+    return f"its {', '.join(wrong)} has the wrong type" if wrong else request
 
 
 def _answer(query: Any, reply: bytes) -> None:
@@ -92,6 +113,7 @@ class ServedPlanner:
         # (a wildcard, an unknown admin verb); every other query gets a reply
         self.dropped = 0
         self.refused_ops = 0  # calls on P/rpc/<op> for no op: answered BadRequest
+        self._refused_reload = ThrottledWarning(log)  # any peer may ask, as often as it likes
         # (unix time, label) of each planner this key served, a hot swap's too: who served when
         self.history: deque[tuple[float, str]] = deque([(time.time(), runtime.label)], maxlen=32)
         self._rpc = f"{keys.prefix}/rpc/"
@@ -239,34 +261,13 @@ class ServedPlanner:
         threading.Thread(target=self._reload, args=(query,), daemon=True).start()
 
     def _reload(self, query: Any) -> None:
-        what = "?"
         try:
-            request = unpack_bounded(_payload(query)) if query.payload is not None else {}
-            current = getattr(self.runtime, "spec", None)
-            spec = None
-            if isinstance(current, PlannerSpec) and isinstance(request, dict):
-                spec = current.with_planner(
-                    request.get("planner"), request.get("module"), request.get("delegates")
-                )
-            requested = spec if spec != current else None  # None: a fresh import
-            wanted = requested or current
-            what = ("" if requested else "a fresh import of ") + (
-                wanted.describe() if isinstance(wanted, PlannerSpec) else "?"
-            )
-            refusal = self.reload_policy.refusal(requested)
-            if refusal:
-                log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, refusal)
-                answer = {"ok": False, "message": f"reload refused by the host: {refusal}"}
+            request = _reload_request(_payload(query))
+            if isinstance(request, str):  # malformed: refused as the allow-list refuses
+                self._refused_reload(f"{self.keys.prefix}: refused a remote reload: {request}")
+                answer = {"ok": False, "message": f"reload refused by the host: {request}"}
             else:
-                allow = isinstance(request, dict) and request.get("allow_type_change") is True
-                message = self.reload(spec, allow_type_change=allow)
-                log.info("%s", message)
-                answer = {"ok": True, "message": message}
-        except PlannerLoadError as exc:
-            # A planner that does not load (a SyntaxError, an import error, another plugin
-            # type) is refused as the allow-list refuses: said here too, not only to the caller.
-            log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, exc)
-            answer = {"ok": False, "message": str(exc)}
+                answer = self._reload_as(request)
         except Exception as exc:
             log.exception("%s: reload failed", self.keys.prefix)
             answer = {"ok": False, "message": f"reload failed: {exc}"}
@@ -274,6 +275,35 @@ class ServedPlanner:
             query.reply(query.key_expr, msgpack.packb(answer))
         finally:
             query.drop()
+
+    def _reload_as(self, request: dict[str, Any]) -> dict[str, Any]:
+        """The answer to a well-formed reload request."""
+        current = getattr(self.runtime, "spec", None)
+        spec = None
+        if isinstance(current, PlannerSpec):
+            spec = current.with_planner(
+                request.get("planner"), request.get("module"), request.get("delegates")
+            )
+        requested = spec if spec != current else None  # None: a fresh import
+        wanted = requested or current
+        what = ("" if requested else "a fresh import of ") + (
+            wanted.describe() if isinstance(wanted, PlannerSpec) else "?"
+        )
+        refusal = self.reload_policy.refusal(requested)
+        if refusal:
+            self._refused_reload(
+                "%s: refused a remote reload (%s): %s", self.keys.prefix, what, refusal
+            )
+            return {"ok": False, "message": f"reload refused by the host: {refusal}"}
+        try:
+            message = self.reload(spec, allow_type_change=request.get("allow_type_change") is True)
+        except PlannerLoadError as exc:
+            # A planner that does not load (a SyntaxError, an import error, another plugin
+            # type) is refused as the allow-list refuses: said here too, not only to the caller.
+            log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, exc)
+            return {"ok": False, "message": str(exc)}
+        log.info("%s", message)
+        return {"ok": True, "message": message}
 
     def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         """A hot swap (PlannerService.reload), noted in the key's history."""
