@@ -10,12 +10,15 @@ coverage-guided run of the same path is tests/fuzz_host_path.py (atheris)."""
 from __future__ import annotations
 
 import dataclasses
+import gc
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
+from nav2_pyif.server.heap import REGROW, settle_heap
 from nav2_pyif_protocol.codec import Request, decode_request, encode_request
 from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, Op, PluginType
 
@@ -101,3 +104,22 @@ def test_a_message_type_from_the_network_imports_no_module(
     )
     assert reply.error is not None and "nav2_pyif_canary/msg/Scan" in reply.error.message
     assert "nav2_pyif_canary" not in sys.modules
+
+
+def test_a_configure_flood_keeps_the_frozen_heap_bounded() -> None:
+    """Regression (found by the hostile peer, its worker's RSS growing ~1 MiB/min): every
+    configure froze, for ever, what the session it replaced left in reference cycles. Here
+    each round replaces a "session" of 1000 objects in cycles, as a configure does; the
+    frozen objects now stay within heap.REGROW of what is live."""
+    session: list[Any] = []
+    settle_heap()
+    live = gc.get_freeze_count()
+    counts = []
+    for _ in range(300):
+        session = [[] for _ in range(1000)]
+        for item in session:
+            item.append(item)  # a reference cycle: only the collector frees it
+        settle_heap()
+        counts.append(gc.get_freeze_count())
+    assert len(session) == 1000
+    assert max(counts) <= REGROW * (live + 1000) + 2000, (live, max(counts))

@@ -13,6 +13,7 @@ nav2-pyif-bench hops [--quick]                  one more hop: pipe, Zenoh thread
 nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
 nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
 nav2-pyif-bench obstacles [--quick]             Costmap.obstacle_points() vs every lethal cell
+nav2-pyif-bench hostile [--seconds 300]         a fuzzing peer beside a 20 Hz client
 """
 
 from __future__ import annotations
@@ -31,6 +32,7 @@ from nav2_pyif_bench import (
     fleet_bench,
     hop_bench,
     host_bench,
+    hostile_bench,
     inputs_bench,
     layer_bench,
     mppi_bench,
@@ -189,6 +191,15 @@ def build_parser() -> argparse.ArgumentParser:
         default=100,
         help="configure/activate/deactivate/cleanup cycles, >= 1 (default 100)",
     )
+    hostile = sub.add_parser(
+        "hostile", help="a fuzzing peer on every key of a live host, beside a 20 Hz client"
+    )
+    hostile.add_argument(
+        "--seconds", type=positive_float, default=300.0, help="how long it fuzzes (default 300)"
+    )
+    hostile.add_argument(
+        "--seed", type=positive_int, default=1, help="of the mutations, >= 1 (default 1)"
+    )
     tls = sub.add_parser("tls", help="TLS's cost: the control cycle over TCP and mutual TLS")
     protocol_bench.add_round_arguments(tls)
     host = sub.add_parser(
@@ -256,6 +267,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "layer":
         results = layer_bench.run(args)
         text = layer_bench.report(results)
+    elif args.bench == "hostile":
+        results = hostile_bench.run(args.seconds, args.seed)
+        text = hostile_bench.report(results)
     elif args.bench == "obstacles":
         results = obstacles_bench.run(args)
         text = obstacles_bench.report(results)

@@ -147,8 +147,16 @@ def _imports_since(log: Path, offset: int) -> list[str]:
     ]
 
 
+def _peer(host: PlannerHostProcess, *args: str, report: Path) -> subprocess.Popen[bytes]:
+    return subprocess.Popen(
+        [sys.executable, "-m", "nav2_pyif_bench.hostile_fuzzer", "--connect", host.endpoint,
+         "--key", KEY, "--report", str(report), *args]
+    )  # fmt: skip
+
+
 def run(seconds: float, seed: int = 1) -> dict[str, Any]:
     """The client alone for a moment, then with the hostile peer for ``seconds``."""
+    peers: list[subprocess.Popen[bytes]] = []  # stopped on every way out, a signal's too
     with tempfile.TemporaryDirectory(prefix="nav2_pyif_hostile_") as tmp:
         log = Path(tmp) / "host.log"
         report = Path(tmp) / "peer.json"
@@ -164,27 +172,27 @@ def run(seconds: float, seed: int = 1) -> dict[str, Any]:
             try:
                 client = _client(session, host)
                 _drive(client, time.monotonic() + 2.0)  # warm: first cycles, allocator pools
+                peers.append(_peer(host, "--seeds-only", report=Path(tmp) / "seeds.json"))
+                if peers[-1].wait(timeout=120) != 0:
+                    raise RuntimeError(f"the peer's seeds pass failed:\n{host.log()[-3000:]}")
                 before = _host_info(session)
                 mark = log.stat().st_size
                 memory = MemoryWatch(host.proc.pid)
                 memory.start()
-                peer = subprocess.Popen(
-                    [sys.executable, "-m", "nav2_pyif_bench.hostile_fuzzer",
-                     "--connect", host.endpoint, "--key", KEY, "--seconds", str(seconds),
-                     "--seed", str(seed), "--report", str(report)],
-                )  # fmt: skip
-                try:
-                    latencies, errors = _drive(client, time.monotonic() + seconds)
-                    peer_code = peer.wait(timeout=60)
-                finally:
-                    if peer.poll() is None:
-                        peer.kill()
-                        peer.wait()
+                peers.append(
+                    _peer(host, "--seconds", str(seconds), "--seed", str(seed), report=report)
+                )
+                latencies, errors = _drive(client, time.monotonic() + seconds)
+                peer_code = peers[-1].wait(timeout=60)
                 memory.stop()
                 after = _host_info(session)
                 imported = _imports_since(log, mark)
                 client.close()
             finally:
+                for peer in peers:
+                    if peer.poll() is None:
+                        peer.kill()
+                        peer.wait()
                 session.close()
             host.check_alive()
         peer_report = json.loads(report.read_text()) if report.exists() else {}
@@ -234,7 +242,7 @@ def _figures(
         "imported": imported,
         "host_dropped": after.get("dropped", 0) - before.get("dropped", 0),
         "host_refused_ops": after.get("refused_ops", 0) - before.get("refused_ops", 0),
-        "worker_restarts_seen": after.get("sessions") is None,
+        "sessions": [before.get("sessions", 0), after.get("sessions", 0)],
         "peer": peer,
     }
 

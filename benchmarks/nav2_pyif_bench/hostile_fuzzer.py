@@ -121,23 +121,41 @@ def _op_of(key: str) -> Op:
         return Op.ACTIVATE
 
 
-def run(connect: str, prefix: str, seconds: float, seed: int) -> dict[str, Any]:
+def _ask(session: Any, key: str, payload: bytes) -> list[bytes]:
+    replies = session.get(key, payload=payload, timeout=REPLY_TIMEOUT)
+    return [r.ok.payload.to_bytes() for r in replies if r.ok is not None]
+
+
+def run(connect: str, prefix: str, seconds: float, seed: int, only: str = "") -> dict[str, Any]:
     rng = random.Random(seed)
     seeds = [data for _, data in load_seeds("request").values()]
-    keys = targets(prefix)
+    keys = [target for target in targets(prefix) if only in target[1]]
+    if not keys:
+        raise ValueError(f"no key of {prefix} contains {only!r}")
     tally = Tally()
     session = connect_to([connect], "client")
     started = time.monotonic()
     try:
         while time.monotonic() - started < seconds:
             kind, key = rng.choice(keys)
-            payload = mutate(rng, rng.choice(seeds))
-            replies = [
-                r.ok.payload.to_bytes()
-                for r in session.get(key, payload=payload, timeout=REPLY_TIMEOUT)
-                if r.ok is not None
-            ]
-            tally.sort(kind, key, replies)
+            tally.sort(kind, key, _ask(session, key, mutate(rng, rng.choice(seeds))))
+    finally:
+        session.close()
+    return tally.report(time.monotonic() - started)
+
+
+def send_seeds(connect: str, prefix: str) -> dict[str, Any]:
+    """Every vector once, unchanged, on its op's key: the traffic a host is made for, which
+    imports what serving it needs (a message type's module) before the hostile part."""
+    tally = Tally()
+    session = connect_to([connect], "client")
+    started = time.monotonic()
+    try:
+        # cleanup last: it ends the vectors' session, which the others' calls need
+        for op, data in sorted(load_seeds("request").values(), key=lambda s: s[0] == "cleanup"):
+            kind = "cancel" if op == Op.CANCEL_PLAN.value else "call"
+            key = f"{prefix}/cancel" if kind == "cancel" else f"{prefix}/rpc/{op}"
+            tally.sort(kind, key, _ask(session, key, data))
     finally:
         session.close()
     return tally.report(time.monotonic() - started)
@@ -153,6 +171,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seconds", type=float, default=60.0, help="how long (default 60)")
     parser.add_argument("--seed", type=int, default=1, help="of the mutations (default 1)")
     parser.add_argument("--report", type=Path, help="write the counts here as JSON")
+    parser.add_argument(
+        "--only", default="", metavar="TEXT", help="send only to the keys that contain TEXT"
+    )
+    parser.add_argument(
+        "--seeds-only", action="store_true", help="send every vector once, unchanged, and stop"
+    )
     args = parser.parse_args(argv)
     if not args.seconds > 0:
         parser.error(f"argument --seconds: {args.seconds} is not > 0")
@@ -162,7 +186,10 @@ def main(argv: list[str] | None = None) -> int:
 
     signal.signal(signal.SIGTERM, interrupted)
     try:
-        report = run(args.connect, args.key, args.seconds, args.seed)
+        if args.seeds_only:
+            report = send_seeds(args.connect, args.key)
+        else:
+            report = run(args.connect, args.key, args.seconds, args.seed, args.only)
     except KeyboardInterrupt:
         return 130
     text = json.dumps(report, indent=1)
