@@ -18,10 +18,10 @@ from nav2_pyif_bench import hostile_bench
 
 pytestmark = pytest.mark.integration
 
-SECONDS = 40.0
-#: RSS growth a fit may show over a short run without a leak: allocator pools and Zenoh's
-#: buffers still settling after the first fifth (a leak of one object per query, 100 bytes,
-#: at the peer's ~700 queries/s would be 4 MiB/min).
+SECONDS = 50.0
+#: RSS growth a fit over a short run may show without a leak, after the bench's warm-up:
+#: allocator pools and Zenoh's buffers still settling (a leak of one 100-byte object per
+#: query, at the peer's ~700 queries/s, would be 4 MiB/min).
 FLAT_KIB_PER_MIN = 4096
 
 
@@ -45,8 +45,10 @@ def test_every_query_got_a_typed_reply_or_was_dropped_and_counted(run: dict[str,
 
 
 def test_the_client_misses_no_period(run: dict[str, Any]) -> None:
+    """No reply later than the period, but while the test machine itself stalled (the
+    bench's StallProbe: this process not scheduled for over 25 ms, as the host was not)."""
     assert run["cycles"] >= 0.95 * SECONDS / hostile_bench.PERIOD
-    assert run["missed"] == 0, hostile_bench.report(run)
+    assert run["missed"] - run["missed_in_machine_stalls"] == 0, hostile_bench.report(run)
     assert run["client_errors"] == 0, run["client_error_examples"]
 
 

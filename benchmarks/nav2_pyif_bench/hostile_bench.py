@@ -39,6 +39,8 @@ PERIOD = 0.05  # 20 Hz, as controller_server's default
 #: the latency histogram's upper bounds [ms]
 BUCKETS_MS = (2, 5, 10, 20, 50)
 IMPORT_LINE = "import time:"
+WARM_S = 20.0
+STALL_S = 0.025
 
 
 def _rss_kib(pid: int) -> int:
@@ -78,8 +80,11 @@ class MemoryWatch(threading.Thread):
         self.join()
 
     def slope_kib_per_min(self, column: int) -> float:
-        """The line fit of a column over the run, its first fifth (warm-up) left out."""
-        warm = self.samples[len(self.samples) // 5 :]
+        """The line fit of a column over the run after its warm-up: the first fifth, and at
+        least WARM_S (the host's RSS grows ~10 MiB in its first half minute under the peer,
+        then stays: Zenoh's buffers and the allocator's arenas filling)."""
+        end = self.samples[-1][0] if self.samples else 0.0
+        warm = [s for s in self.samples if s[0] >= max(WARM_S, end / 5)]
         if len(warm) < 3:
             return 0.0
         x = np.array([s[0] for s in warm])
@@ -117,11 +122,38 @@ def _host_info(session: Any) -> dict[str, Any]:
     return {}
 
 
-def _drive(client: ControllerClient, until: float) -> tuple[list[float], list[str]]:
-    """Control cycles at 20 Hz until ``until`` (monotonic): each reply's latency [s], and
-    the errors (a typed error reply is an answer in time all the same)."""
+class StallProbe(threading.Thread):
+    """When this process could not run for a while: a thread that sleeps 5 ms at a time
+    notes each sleep that lasted over STALL_S. A client's late reply during such a stall was
+    the machine's doing (this project's test machine runs two cores for many jobs), not
+    necessarily the host's; the figures say how many missed periods fall in one."""
+
+    def __init__(self) -> None:
+        super().__init__(daemon=True)
+        self.stalls: list[tuple[float, float]] = []  # (from, to), monotonic
+        self._done = threading.Event()
+
+    def run(self) -> None:
+        while not self._done.is_set():
+            before = time.monotonic()
+            time.sleep(0.005)
+            after = time.monotonic()
+            if after - before > STALL_S:
+                self.stalls.append((before, after))
+
+    def stop(self) -> None:
+        self._done.set()
+        self.join()
+
+    def during(self, start: float, end: float) -> bool:
+        return any(a < end and b > start for a, b in self.stalls)
+
+
+def _drive(client: ControllerClient, until: float) -> tuple[list[tuple[float, float]], list[str]]:
+    """Control cycles at 20 Hz until ``until`` (monotonic): each one's (start, latency) [s],
+    and the errors (a typed error reply is an answer in time all the same)."""
     pose, velocity = _pose(), Twist()
-    latencies: list[float] = []
+    latencies: list[tuple[float, float]] = []
     errors: list[str] = []
     next_cycle = time.monotonic()
     while next_cycle < until:
@@ -130,7 +162,7 @@ def _drive(client: ControllerClient, until: float) -> tuple[list[float], list[st
             client.compute_velocity_commands(pose, velocity)
         except Nav2Error as exc:
             errors.append(f"{type(exc).__name__}: {exc}"[:200])
-        latencies.append(time.monotonic() - started)
+        latencies.append((started, time.monotonic() - started))
         next_cycle += PERIOD
         time.sleep(max(0.0, next_cycle - time.monotonic()))
     return latencies, errors
@@ -182,7 +214,10 @@ def run(seconds: float, seed: int = 1) -> dict[str, Any]:
                 peers.append(
                     _peer(host, "--seconds", str(seconds), "--seed", str(seed), report=report)
                 )
-                latencies, errors = _drive(client, time.monotonic() + seconds)
+                probe = StallProbe()
+                probe.start()
+                cycles, errors = _drive(client, time.monotonic() + seconds)
+                probe.stop()
                 peer_code = peers[-1].wait(timeout=60)
                 memory.stop()
                 after = _host_info(session)
@@ -196,9 +231,14 @@ def run(seconds: float, seed: int = 1) -> dict[str, Any]:
                 session.close()
             host.check_alive()
         peer_report = json.loads(report.read_text()) if report.exists() else {}
-    return _figures(seconds, latencies, errors, memory, imported, before, after, peer_report) | {
-        "peer_exit_code": peer_code
-    }
+    missed = [(t, d) for t, d in cycles if d > PERIOD]
+    return _figures(seconds, [d for _, d in cycles], errors, memory, imported, before, after,
+                    peer_report) | {
+        "peer_exit_code": peer_code,
+        "missed_in_machine_stalls": sum(1 for t, d in missed if probe.during(t, t + d)),
+        "machine_stalls": len(probe.stalls),
+        "longest_machine_stall_ms": 1000 * max((b - a for a, b in probe.stalls), default=0.0),
+    }  # fmt: skip
 
 
 def _figures(
@@ -238,6 +278,7 @@ def _figures(
             "host_slope_per_min": memory.slope_kib_per_min(1),
             "worker_slope_per_min": memory.slope_kib_per_min(2),
             "samples": len(memory.samples),
+            "series": [list(s) for s in memory.samples[:: max(1, len(memory.samples) // 40)]],
         },
         "imported": imported,
         "host_dropped": after.get("dropped", 0) - before.get("dropped", 0),
@@ -265,6 +306,10 @@ def report(r: dict[str, Any]) -> str:
         "|---|---:|",
         f"| cycles | {r['cycles']} |",
         f"| missed periods (reply later than 50 ms) | {r['missed']} |",
+        f"| of which while this machine stalled every process (> 25 ms) | "
+        f"{r['missed_in_machine_stalls']} |",
+        f"| machine stalls, longest [ms] | {r['machine_stalls']}, "
+        f"{r['longest_machine_stall_ms']:.0f} |",
         f"| latency median / p99 / max [ms] | {lat['median']:.2f} / {lat['p99']:.2f} / "
         f"{lat['max']:.2f} |",
         *(f"| latency {bucket} | {n} |" for bucket, n in r["latency_histogram"].items()),
@@ -280,5 +325,6 @@ def report(r: dict[str, Any]) -> str:
         f"modules imported while the peer ran: {len(r['imported'])} "
         f"{r['imported'][:10] if r['imported'] else ''}",
         f"contract broken: {outcomes.get('contract broken', 0)} {peer.get('broken', [])[:5]}",
+        "the peer's slowest queries: " + "; ".join(peer.get("slowest", [])),
     ]
     return "\n".join(lines)

@@ -60,6 +60,11 @@ class Tally:
         self.error_types: Counter[str] = Counter()
         self.broken: list[str] = []
         self.sent = 0
+        self.slowest: list[tuple[float, str, str]] = []  # (ms, key, the vector mutated)
+
+    def timed(self, ms: float, key: str, seed: str) -> None:
+        """Keep the five slowest queries: what a hostile peer can make the host spend."""
+        self.slowest = sorted([*self.slowest, (ms, key, seed)], reverse=True)[:5]
 
     def sort(self, kind: str, key: str, replies: list[bytes]) -> None:
         self.sent += 1
@@ -108,6 +113,7 @@ class Tally:
             "outcomes": dict(self.outcomes),
             "error_types": dict(self.error_types),
             "broken": self.broken,
+            "slowest": [f"{ms:.0f} ms: {key} <- {seed} mutated" for ms, key, seed in self.slowest],
         }
 
 
@@ -128,7 +134,7 @@ def _ask(session: Any, key: str, payload: bytes) -> list[bytes]:
 
 def run(connect: str, prefix: str, seconds: float, seed: int, only: str = "") -> dict[str, Any]:
     rng = random.Random(seed)
-    seeds = [data for _, data in load_seeds("request").values()]
+    seeds = [(name, data) for name, (_, data) in load_seeds("request").items()]
     keys = [target for target in targets(prefix) if only in target[1]]
     if not keys:
         raise ValueError(f"no key of {prefix} contains {only!r}")
@@ -138,7 +144,11 @@ def run(connect: str, prefix: str, seconds: float, seed: int, only: str = "") ->
     try:
         while time.monotonic() - started < seconds:
             kind, key = rng.choice(keys)
-            tally.sort(kind, key, _ask(session, key, mutate(rng, rng.choice(seeds))))
+            name, data = rng.choice(seeds)
+            asked = time.monotonic()
+            replies = _ask(session, key, mutate(rng, data))
+            tally.timed(1000 * (time.monotonic() - asked), key, name)
+            tally.sort(kind, key, replies)
     finally:
         session.close()
     return tally.report(time.monotonic() - started)
