@@ -23,18 +23,10 @@ import sys
 import tempfile
 from pathlib import Path
 
+from nav2_pyif.common.option_types import positive_int
+
 #: the code the fuzzer measures coverage of: the host, the protocol, the reference planners
 INSTRUMENTED = ["nav2_pyif", "nav2_pyif_protocol", "nav2_pyif_planners"]
-
-
-def _positive(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a positive whole number")
-    return value
 
 
 def parse(argv: list[str]) -> argparse.Namespace:
@@ -43,8 +35,8 @@ def parse(argv: list[str]) -> argparse.Namespace:
         description="Fuzz the planner host's request path with atheris (coverage-guided).",
     )
     budget = parser.add_mutually_exclusive_group()
-    budget.add_argument("--seconds", type=_positive, help="stop after this long (default 600)")
-    budget.add_argument("--runs", type=_positive, help="stop after this many inputs")
+    budget.add_argument("--seconds", type=positive_int, help="stop after this long (default 600)")
+    budget.add_argument("--runs", type=positive_int, help="stop after this many inputs")
     parser.add_argument(
         "--artifacts",
         type=Path,

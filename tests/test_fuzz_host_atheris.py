@@ -50,4 +50,4 @@ def test_the_fuzzer_refuses_a_bad_option() -> None:
         timeout=60,
     )
     assert done.returncode == 2
-    assert "argument --seconds: '-3' is not a positive whole number" in done.stderr
+    assert "argument --seconds:" in done.stderr and "'-3'" in done.stderr

@@ -24,7 +24,7 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
-from nav2_pyif.common.option_types import endpoint
+from nav2_pyif.common.option_types import endpoint, positive_float, positive_int
 from nav2_pyif.common.zenoh_config import connect_to
 from nav2_pyif.server.batch_runtime import BATCH_OP
 from nav2_pyif_protocol.bounded import unpack_bounded
@@ -178,8 +178,10 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--connect", type=endpoint, required=True, help="the host's endpoint")
     parser.add_argument("--key", required=True, help="the key prefix the host serves")
-    parser.add_argument("--seconds", type=float, default=60.0, help="how long (default 60)")
-    parser.add_argument("--seed", type=int, default=1, help="of the mutations (default 1)")
+    parser.add_argument(
+        "--seconds", type=positive_float, default=60.0, help="how long (default 60)"
+    )
+    parser.add_argument("--seed", type=positive_int, default=1, help="of the mutations (default 1)")
     parser.add_argument("--report", type=Path, help="write the counts here as JSON")
     parser.add_argument(
         "--only", default="", metavar="TEXT", help="send only to the keys that contain TEXT"
@@ -188,8 +190,6 @@ def main(argv: list[str] | None = None) -> int:
         "--seeds-only", action="store_true", help="send every vector once, unchanged, and stop"
     )
     args = parser.parse_args(argv)
-    if not args.seconds > 0:
-        parser.error(f"argument --seconds: {args.seconds} is not > 0")
 
     def interrupted(signum: int, frame: object) -> None:
         raise SystemExit(128 + signum)  # the session is closed on the way out
