@@ -15,6 +15,11 @@ from typing import Any
 
 import pytest
 from nav2_pyif_bench import hostile_bench
+from nav2_pyif_protocol.bounded import unpack_bounded
+from nav2_pyif_protocol.codec import decode_reply
+from nav2_pyif_protocol.constants import Op
+
+from tests.conftest import wait_until
 
 pytestmark = pytest.mark.integration
 
@@ -61,3 +66,33 @@ def test_host_and_worker_memory_stay_flat(run: dict[str, Any]) -> None:
     assert rss["samples"] >= SECONDS  # two a second
     assert rss["host_slope_per_min"] < FLAT_KIB_PER_MIN, hostile_bench.report(run)
     assert rss["worker_slope_per_min"] < FLAT_KIB_PER_MIN, hostile_bench.report(run)
+
+
+def test_a_call_key_naming_no_op_is_refused_and_the_worker_lives(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """Regression: nine bytes on ``<key>/rpc/compute_velocity_commands_batch`` crashed the
+    planner worker (the worker pipe took the key's last chunk as a command: its batch op),
+    and a stream of them kept the key unavailable. Now any op the key does not name is
+    answered BadRequest by the host, and counted."""
+    key = "nav2_pyif/hostile/FollowPath"
+    host = start_host("--key", key, "--planner", "echo_planners:EchoController")
+    session = zsession_factory(host.endpoint)
+
+    def info() -> list[Any]:
+        answers = session.get(f"{key}/admin/info", timeout=1.0)
+        return [unpack_bounded(r.ok.payload.to_bytes()) for r in answers if r.ok is not None]
+
+    assert wait_until(info, 30), host.log()
+    for op in ("compute_velocity_commands_batch", "no_such_op"):
+        replies = [
+            r.ok.payload.to_bytes()
+            for r in session.get(f"{key}/rpc/{op}", payload=b"\xc1garbage", timeout=15.0)
+            if r.ok is not None
+        ]
+        assert len(replies) == 1, host.log()
+        error = decode_reply(replies[0], Op.ACTIVATE).error
+        assert error is not None and error.type == "BadRequest", error
+        assert f"no operation {op!r}" in error.message
+    assert info()[0]["refused_ops"] == 2
+    assert "restarting" not in host.log(), host.log()
