@@ -38,7 +38,8 @@ def test_a_short_fuzzing_run_finds_no_crash(tmp_path: Path) -> None:
     assert f"Done {RUNS} runs" in output, output[-4000:]
     assert not list(tmp_path.iterdir()), "libFuzzer saved a crashing input"
     coverage = re.findall(r"cov: (\d+)", output)
-    assert coverage and int(coverage[-1]) > 100, "the fuzzer measured no coverage"
+    # the host's modules instrumented (about 500 edges from the seeds alone), not only a few
+    assert coverage and int(coverage[-1]) > 400, f"coverage: {coverage[-1:]}"
 
 
 def test_the_fuzzer_refuses_a_bad_option() -> None:
