@@ -3,8 +3,11 @@ round trip byte for byte; any bytes at all decode to a message or raise Protocol
 another exception; and decoding never reserves memory far beyond the bytes it was given.
 
 Each test has a fixed example count, derandomized, so the suite's run is bounded and
-repeatable (a few seconds each); ``NAV2_PYIF_FUZZ_EXAMPLES`` raises the count for a longer
-campaign (see tests/fuzz_campaign.py)."""
+repeatable (a few seconds each). A longer, random campaign raises the count:
+
+    NAV2_PYIF_FUZZ_EXAMPLES=20000 python -m pytest tests/test_fuzz_codec.py \
+        tests/test_fuzz_host_path.py
+"""
 
 from __future__ import annotations
 
