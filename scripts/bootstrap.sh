@@ -108,7 +108,11 @@ if [ "$EDITABLE" = 1 ]; then
 fi
 # In one pip command, so that the siblings' requirement of the core is met by this checkout.
 log "installing nav2_pyif${EXTRAS:+[$EXTRAS]}${WITH:+ with $WITH} ($HOW) and its dependencies"
-_ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "${PIP[@]}" install "${INSTALL[@]}" 2>&1 \
+# setuptools tells of every editable install in a BuildBackendWarning block ("Editable
+# installation. Please be careful with folders ... with the same name as your package"): by
+# design here, and noise that hides a real warning, so the build backends ignore that one.
+QUIET="ignore:Editable installation.:UserWarning${PYTHONWARNINGS:+,$PYTHONWARNINGS}"
+_ROS_WHEELS_BOOTSTRAP_COMPLETE=1 PYTHONWARNINGS="$QUIET" "${PIP[@]}" install "${INSTALL[@]}" 2>&1 \
   | grep -v "^WARNING: Location" || true
 _ROS_WHEELS_BOOTSTRAP_COMPLETE=1 "$VENV/bin/python" -c 'import nav2_pyif, zenoh, msgpack' \
   || { log "install failed: see the pip output above"; exit 1; }

@@ -13,6 +13,8 @@ if [ "$FAST" = 0 ]; then
   # podman (runc, CNI with dnsname for compose) and debootstrap for the local base image
   "$ROOT/scripts/system_deps.sh" "container tests" podman runc debootstrap uidmap iptables \
     catatonit containernetworking-plugins golang-github-containernetworking-plugin-dnsname
+  # headless Chromium renders the documentation site's pages (tests/test_site.py)
+  "$ROOT/scripts/system_deps.sh" "site rendering tests" chromium fonts-dejavu-core
 fi
 # shellcheck disable=SC1091
 source "${NAV2_PYIF_VENV:-$ROOT/.venv}/nav2_pyif_env.sh"

@@ -11,6 +11,9 @@ than "run it in the user's directory and expect exit code 0":
                                                       SIGINT it: it must end by itself
     <!-- doc-test: expect="now serving" -->          its output must match the regex
     <!-- doc-test: file=docs/zenoh/x.json5 -->       the block is that file of the repository
+    <!-- doc-test: uses=python/doc/tutorials/a.md -->  the files a user writes in that document
+                                                      (and in those it uses) are there first:
+                                                      a tutorial goes on from the one before
 
 Python blocks whose first line is ``# some/path.py`` are files a user writes (they go into the
 user's directory); a Python block with ``def test_`` runs under pytest there; any other Python
@@ -28,7 +31,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 RUNNABLE = {"bash", "sh", "python"}
-_FENCE = re.compile(r"^```(\w*)\s*$")
+#: the site's deployment guide, whose certificates the TLS tests make as a user would
+DEPLOYMENT_GUIDE = "python/doc/howto/deployment.md"
+# A MyST directive's fence (```{include} FILE) opens a block too: its closing fence is no opening.
+_FENCE = re.compile(r"^```(\w*|\{[\w:-]+\}[^`]*?)\s*$")
 _MARKER = re.compile(r"^<!--\s*doc-test:(.*?)-->\s*$")
 _FILE_HEADER = re.compile(r"^# ([\w./-]+\.py)\s*$")
 
@@ -36,7 +42,7 @@ _FILE_HEADER = re.compile(r"^# ([\w./-]+\.py)\s*$")
 @dataclass(frozen=True)
 class Block:
     doc: Path
-    label: str  # the document as the tests name it, e.g. docs/DEPLOYMENT.md
+    label: str  # the document as the tests name it, e.g. python/doc/howto/deployment.md
     line: int  # of the opening fence, 1-based
     lang: str
     text: str
@@ -88,12 +94,23 @@ def blocks(doc: Path, root: Path) -> list[Block]:
     return out
 
 
+def used_files(doc: Path, root: Path, seen: frozenset[Path] = frozenset()) -> dict[str, str]:
+    """The user files (path -> text) that ``doc``'s ``uses=`` documents write, and theirs."""
+    files: dict[str, str] = {}
+    for block in blocks(doc, root):
+        used = block.options.get("uses")
+        if used and root / used not in seen:
+            files.update(used_files(root / used, root, seen | {doc}))
+            files.update({b.user_file: b.text for b in blocks(root / used, root) if b.user_file})
+    return files
+
+
 def guide_certificates(directory: Path, router_address: str) -> Path:
-    """Run docs/DEPLOYMENT.md's openssl commands in ``directory`` (they make ``tls/``), the
+    """Run the deployment guide's openssl commands in ``directory`` (they make ``tls/``), the
     router's address in place of the guide's example address; the ``tls/`` directory made.
     (The Nav2 launch tests use it too: standard library only here.)"""
     root = Path(__file__).resolve().parents[1]
-    (block,) = [b for b in blocks(root / "docs" / "DEPLOYMENT.md", root) if "openssl req" in b.text]
+    (block,) = [b for b in blocks(root / DEPLOYMENT_GUIDE, root) if "openssl req" in b.text]
     script = block.text.replace("IP:192.168.1.20", f"IP:{router_address}")
     done = subprocess.run(
         ["bash", "-c", f"set -eo pipefail\n{script}"],

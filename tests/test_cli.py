@@ -50,7 +50,7 @@ def test_help_examples_are_valid_commands_that_fit_the_terminal() -> None:
         for block in examples
         if block.lstrip().startswith("# ")
     ]
-    assert len(commands) == 10
+    assert len(commands) == 11
     for command in commands:
         words = shlex.split(command)
         assert "\\" not in command and all(w for w in words), command

@@ -172,8 +172,8 @@ def test_sim_help_shows_every_default_and_what_the_simulator_does() -> None:
     assert done.returncode == 0, done.stderr
     text = re.sub(r"\s+", " ", done.stdout)
     for option, default in [
-        ("--call-timeout SECONDS", "0.25"),
-        ("--rate RATE", "20.0"),
+        ("--call-timeout SECONDS", "the params file's timeout, else 0.04"),
+        ("--rate RATE", "the params file's, else 20"),
         ("--timeout SECONDS", "180.0"),
         ("--plans N", "1"),
         ("--map MAP", "office"),
@@ -183,7 +183,7 @@ def test_sim_help_shows_every_default_and_what_the_simulator_does() -> None:
         shown = re.search(rf"{re.escape(option)} .*?\(default: ([^)]+)\)", text)
         assert shown and shown.group(1) == default, (option, text)
     for fact in (
-        "0.25 m of the goal AND 0.25 rad of its heading",
+        "on the plan's last pose): within 0.25 m of it AND 0.25 rad of its heading",
         "a 5 m x 5 m rolling window about the robot, updated at 5 Hz",
         "control_period is 1 / --rate",
         "cost_scaling_factor 3",

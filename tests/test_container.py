@@ -71,8 +71,8 @@ def test_one_image_is_left_whatever_the_checkout(image: tuple[str, str]) -> None
     assert image[0] == IMAGE and image[0].endswith(":test")
     assert str(ROOT) not in IMAGE and ROOT.name not in IMAGE
     assert not stale_images()
-    readme = (ROOT / "README.md").read_text()
-    assert IMAGE in readme and LOCAL_BASE.split(":")[0] in readme  # says what is left
+    guide = (ROOT / "python" / "doc" / "howto" / "contributing.md").read_text()
+    assert IMAGE in guide and LOCAL_BASE.split(":")[0] in guide  # says what is left
 
 
 def _logs(name: str) -> str:

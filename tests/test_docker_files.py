@@ -67,7 +67,7 @@ def test_compose_planner_files_name_existing_planners() -> None:
     "path", sorted((DOCKER.parent / "docs/zenoh").glob("*.json5")), ids=lambda p: p.name
 )
 def test_deployment_guide_zenoh_configs_load(path: Path) -> None:
-    """docs/DEPLOYMENT.md's configurations are valid for eclipse-zenoh as written."""
+    """python/doc/howto/deployment.md's configurations are valid for eclipse-zenoh as written."""
     import zenoh
 
     config = zenoh.Config.from_file(str(path))

@@ -1,4 +1,4 @@
-"""Every shell and Python block of README.md, docs/DEPLOYMENT.md, docs/mppi.md,
+"""Every shell and Python block of README.md, the site's pages (python/doc/),
 bridge_plugin/README.md, protocol/PROTOCOL.md and each examples/*/README.md, extracted from the
 Markdown and run as a user would (tests/docs_blocks.py says how a block is marked). Blocks that
 need Docker, Nav2 or a GPU are marked and skipped, saying so.
@@ -23,15 +23,17 @@ from pathlib import Path
 import pytest
 
 from tests.conftest import ROOT, in_project_env
-from tests.docs_blocks import Block, blocks
+from tests.docs_blocks import Block, blocks, used_files
 from tests.private_network import ZENOH_DEFAULT_PORT, PrivateNetwork, port_is_free
 
 pytestmark = pytest.mark.integration
 
+SITE = ROOT / "python" / "doc"
+
 DOCS = [
     ROOT / "README.md",
-    ROOT / "docs" / "DEPLOYMENT.md",
-    ROOT / "docs" / "mppi.md",
+    # the site (tests/test_site.py builds it), not what its build generates
+    *sorted(p for p in SITE.rglob("*.md") if not p.relative_to(SITE).parts[0].startswith("_")),
     ROOT / "bridge_plugin" / "README.md",
     ROOT / "protocol" / "PROTOCOL.md",
     *sorted(ROOT.glob("examples/*/README.md")),  # the gallery's (tests/test_examples.py too)
@@ -47,6 +49,9 @@ class DocRun:
         self.doc = doc
         self._tmp = tempfile.TemporaryDirectory(prefix=f"nav2_pyif_docs_{doc.stem}_")
         self.user_dir = Path(self._tmp.name)
+        for name, text in used_files(doc, ROOT).items():  # a tutorial's earlier files
+            (self.user_dir / name).parent.mkdir(parents=True, exist_ok=True)
+            (self.user_dir / name).write_text(text)
         self.done: set[int] = set()
         self.background: list[tuple[Block, subprocess.Popen[bytes], Path]] = []
         self.network: PrivateNetwork | None = PrivateNetwork()
@@ -186,5 +191,7 @@ def test_doc_block_runs_as_written(block: Block, doc_runs: dict[Path, DocRun]) -
 
 def test_every_document_has_blocks_that_run() -> None:
     for doc in DOCS:
+        if doc.is_relative_to(SITE) and not blocks(doc, ROOT):
+            continue  # a page without commands: the reference's, the explanation's
         runnable = [b for b in blocks(doc, ROOT) if "skip" not in b.options]
         assert runnable, f"{doc} has no block the tests run"

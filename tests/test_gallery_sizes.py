@@ -1,4 +1,4 @@
-"""README's adapter sizes of the examples/ gallery are what examples/adapter_size.py counts
+"""The gallery how-to's adapter sizes of examples/ are what examples/adapter_size.py counts
 today, and the count is of code: docstrings, comments and blank lines are left out."""
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ def test_readme_shows_the_sizes_counted_today(capsys: pytest.CaptureFixture[str]
     assert counter().main() == 0
     table = capsys.readouterr().out
     assert table.count("\n") == 6  # the header, its rule, four examples
-    readme = (ROOT / "README.md").read_text()
+    readme = (ROOT / "python" / "doc" / "howto" / "library_planner.md").read_text()
     assert table in readme
     for row in table.splitlines()[2:]:  # and the sentence that quotes them
         now, before = (cell.strip() for cell in row.split("|")[3:5])

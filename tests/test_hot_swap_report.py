@@ -32,6 +32,7 @@ def test_a_hot_swap_during_a_run_is_on_its_report_and_picture(
         [
             *(sys.executable, "-m", "nav2_pyif.tools.main", "sim", "--no-progress"),
             *("--connect", host.endpoint, "--realtime", "--out", str(tmp_path)),
+            *("--call-timeout", "1"),  # a loaded machine must not end the run before the swap
             *("--start", "2", "2.5", "0", "--goal", "3.2", "5.5", "1.57"),  # about 8 s
         ],
         stdout=subprocess.PIPE,

@@ -412,6 +412,25 @@ def test_refuses_what_nav2_refuses() -> None:
         )
 
 
+def test_its_own_defaults_agree_with_the_costmaps_robot(caplog: pytest.LogCaptureFixture) -> None:
+    """consider_footprint defaults to what the costmap's robot is (a footprint polygon, or a
+    robot_radius), so the defaults draw no "Inconsistent configuration" warning (Nav2's own
+    default, false, suits only a round robot)."""
+    from nav2_pyif import Parameters
+
+    for footprint in (True, False):
+        s = read_settings(Parameters({}), 20.0, LOG, footprint=footprint)
+        cost_critic = s.critic("CostCritic")
+        assert cost_critic is not None and cost_critic["consider_footprint"] is footprint
+    explicit = read_settings(
+        Parameters({"CostCritic.consider_footprint": False}), 20.0, LOG, footprint=True
+    )
+    assert explicit.critic("CostCritic")["consider_footprint"] is False  # type: ignore[index]
+    with caplog.at_level(logging.WARNING):
+        controller()  # a footprint polygon's costmap
+    assert "Inconsistent configuration" not in caplog.text
+
+
 def test_ackermann_turns_no_tighter_than_min_turning_r() -> None:
     s = settings(motion_model="Ackermann", **{"AckermannConstraints.min_turning_r": 0.4})
     limits = jnp.asarray([0.5, -0.35, 0.5, 1.9], jnp.float32)

@@ -95,6 +95,9 @@ def _tail(result: subprocess.CompletedProcess[str], lines: int = 80) -> str:
     return "\n".join((result.stdout + result.stderr).splitlines()[-lines:])
 
 
+# What test_record_replay.py there recorded of a Nav2 run, which tests/test_record_replay.py
+# replays (build/nav2_ws_<distro>_<backend>/nav2_run.mcap)
+RECORDING = "nav2_run.mcap"
 # The full-stack fault suite: 20 NavigateToPose runs per fault (about an hour per backend),
 # run when NAV2_PYIF_FULL_STACK_RUNS says how many.
 FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
@@ -228,6 +231,7 @@ def _launch_tests(
     host.chmod(0o755)
     figures = workspace / "recovery_figures.json"
     figures.unlink(missing_ok=True)
+    (workspace / RECORDING).unlink(missing_ok=True)  # a new one, or none: not the last run's
     # The Nav2 processes' logs, kept here until the next run: pytest's default base keeps
     # only its last three runs, and other runs on the machine would remove these.
     logs = workspace / "logs"
@@ -236,7 +240,8 @@ def _launch_tests(
         f"{source}; source {shlex.quote(str(workspace / 'install' / 'local_setup.bash'))}; "
         f"{router}NAV2_PYIF_ZENOH_BACKEND={zenoh_cpp} NAV2_PYIF_RUN={shlex.quote(str(wrapper))} "
         f"NAV2_PYIF_PLANNER_HOST={shlex.quote(str(host))} "
-        f"NAV2_PYIF_FIGURES={shlex.quote(str(figures))} python -m pytest "
+        f"NAV2_PYIF_FIGURES={shlex.quote(str(figures))} "
+        f"NAV2_PYIF_RECORDING_OUT={shlex.quote(str(workspace / RECORDING))} python -m pytest "
         f"-p no:cacheprovider -q -rs --basetemp={shlex.quote(str(logs))} {selection}",
         timeout=timeout,
     )

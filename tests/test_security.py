@@ -1,4 +1,4 @@
-"""Closed to strangers: the secure fleet setup of docs/DEPLOYMENT.md section 6, run with its
+"""Closed to strangers: the deployment guide's secure fleet setup (section 6), run with its
 exact files (docs/zenoh/*-secure.json5, *-password.json5; only the directory they name,
 /etc/nav2_pyif/, and the endpoints are substituted). The router and its access control on
 this machine, the planner host on a remote machine (its own network namespace behind a veth
@@ -19,11 +19,13 @@ import re
 import shutil
 import subprocess
 import sys
+import threading
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import msgpack
 import numpy as np
 import pytest
 import zenoh
@@ -31,6 +33,7 @@ from geometry_msgs.msg import Twist
 from nav2_pyif import Plan
 from nav2_pyif.client import ControllerClient
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.server.recording.format import read_recording
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.spec import PlannerSpec
 from nav2_pyif.tools.admin import NoPlannerHost, request_reload
@@ -52,7 +55,7 @@ PLACEHOLDER = "/etc/nav2_pyif/"  # the guide's files name tls/*.pem and password
 PASSWORDS = {"robot1": "robot1-password-here", "planner-host": "host-password-here"}
 KEY = "nav2_pyif/robot1/FollowPath"
 #: Zenoh's warnings (refused TLS links), refused handshakes (wrong passwords) and access
-#: control's decisions (denied messages): what docs/DEPLOYMENT.md section 6 tells to log
+#: control's decisions (denied messages): what python/doc/howto/deployment.md section 6 tells to log
 ROUTER_LOG = {
     "RUST_LOG": "zenoh=warn,zenoh_transport::unicast::establishment::accept=debug,"
     "zenoh::net::routing::interceptor::access_control=trace"
@@ -193,6 +196,7 @@ def fleet(tmp_path: Path, request: pytest.FixtureRequest) -> Iterator[Fleet]:
             *("--zenoh-config", str(fleet.config(f"host-{variant}.json5")), "--connect", endpoint),
             *("--key", KEY, "--planner", "echo_planners:EchoController", "--isolation", "none"),
             *("--allow-remote-reload", "--reload-allow", "echo_planners:Echo*"),
+            "--allow-live-record",
         )
         try:
             assert wait_until(lambda: "ready" in fleet.host_log.read_text(), 30)
@@ -277,6 +281,19 @@ def test_strangers_are_refused_and_robot1_is_served(fleet: Fleet) -> None:
         assert refused.returncode == 1
         assert "not in this host's reload allow-list" in refused.stderr
         assert "refused a remote reload (echo_planners:LinePlanner)" in fleet.host_log.read_text()
+
+        # the operator may record robot1's calls live, to a file on its own machine
+        out, said = fleet.tmp / "operator.mcap", []
+        record = ("record", "--key", KEY, "-o", str(out), "--duration", "5")
+        recording = threading.Thread(target=lambda: said.append(fleet.tool(*record)))
+        recording.start()
+        assert wait_until(lambda: "live recorder" in fleet.host_log.read_text(), 30)
+        for _ in range(5):
+            client.compute_velocity_commands(pose(), Twist())
+        recording.join(timeout=60)
+        assert said and said[0].returncode == 0, said and said[0].stderr
+        ops = [c.op for c in read_recording([out]).calls]
+        assert ops.count("compute_velocity_commands") == 5, ops
         assert client.compute_velocity_commands(pose(), Twist()).twist.linear.x == 17
     finally:
         client.close()
@@ -308,6 +325,15 @@ def test_passwords_the_lighter_option(fleet: Fleet) -> None:
         assert fleet.router_says(
             r"Username\(robot1\).*unauthorized to Query \(ingress\) on " + f"{KEY}/admin/reload"
         )
+        # nor record its calls, though its host allows live recording: the router decides who
+        start = msgpack.packb({"action": "start", "stream": "robot1", "lease_s": 3.0})
+        assert [
+            r for r in robot1.get(f"{KEY}/admin/record", payload=start, timeout=3) if r.ok
+        ] == []
+        assert fleet.router_says(
+            r"Username\(robot1\).*unauthorized to Query \(ingress\) on " + f"{KEY}/admin/record"
+        )
+        assert "live recorder" not in fleet.host_log.read_text()  # never reached the host
     finally:
         client.close()
         robot1.close()

@@ -94,13 +94,13 @@ def test_shipped_config_carries_the_built_in_defaults(path: Path) -> None:
 
 
 def test_the_built_in_lease_is_the_documented_one() -> None:
-    """The numbers README and docs/DEPLOYMENT.md state: a 1 s lease, keep-alives every
+    """The numbers README and python/doc/howto/deployment.md state: a 1 s lease, keep-alives every
     250 ms, reconnect within 0.5 s."""
     built_in = build_config(ZenohOptions(use_environment=False))
     assert effective(built_in, "transport/link/tx/lease") == 1000
     assert effective(built_in, "transport/link/tx/keep_alive") == 4
     retry = effective(built_in, "connect/retry")
     assert isinstance(retry, dict) and retry["period_max_ms"] == 500
-    guide = (ROOT / "docs" / "DEPLOYMENT.md").read_text()
+    guide = (ROOT / "python" / "doc" / "howto" / "deployment.md").read_text()
     assert "1 s lease with keep-alives every 250 ms" in guide
     assert "re-joined within 0.5 s" in guide

@@ -114,7 +114,10 @@ def test_sim_stops_its_host_and_writes_the_run_so_far(
         if via != "nav2-pyif"
         else python("nav2_pyif.tools.main", "sim")
     )
-    sim = Command(tmp_path, *prefix, "--realtime", "--no-progress", "--out", str(out))
+    # real time, so that it still drives when the signal comes; a generous call timeout, so
+    # that a loaded machine does not end the run first
+    realtime = ("--realtime", "--call-timeout", "1")
+    sim = Command(tmp_path, *prefix, *realtime, "--no-progress", "--out", str(out))
     # the host, a worker per planner and the resource tracker; then let it drive a while
     sim.wait_for(children={"nav2_pyif.server.cli": 1, WORKER: 2, TRACKER: 1}, words="driving with")
     time.sleep(1.0)

@@ -7,6 +7,7 @@ import json
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 from importlib.util import find_spec
@@ -14,6 +15,8 @@ from pathlib import Path
 from typing import Any
 
 import matplotlib.pyplot as plt
+import nav2_pyif
+import nav2_pyif_protocol
 import numpy as np
 import pytest
 from nav2_pyif.runner.aliases import planner_aliases
@@ -186,12 +189,16 @@ def test_the_picture_has_a_cost_scale_a_heading_legend_and_wrapped_titles() -> N
             "No module named 'no_such_pkg'",
         ),
         (["--controller", "nonsense"], "unknown planner 'nonsense'"),
+        (["--param", "lookahead=[1,"], "--param 'lookahead=[1,': the value is not YAML"),
+        (["--layer-param", "polygons=[[1,"], "--layer-param 'polygons=[[1,': the value is not"),
+        (["--planner-param", "tolerance"], "--planner-param 'tolerance' is not NAME=VALUE"),
     ],
 )
 def test_bad_input_gets_a_clear_error_and_exit_2(args: list[str], words: str) -> None:
     result = run_cli(*args)
     assert result.returncode == 2, result.stdout + result.stderr
     assert words in result.stderr
+    assert "Traceback" not in result.stderr
 
 
 def test_an_unreadable_pgm_is_a_clear_error(tmp_path: Path) -> None:
@@ -249,16 +256,23 @@ def test_bundled_maps_have_their_tasks() -> None:
         assert world.start is not None and world.goal is not None
 
 
-def run_sim_command(out: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    """``nav2-pyif sim`` on the office map, planners from the test fixtures, output in ``out``."""
+def run_sim_command(
+    out: Path, *args: str, planners: Path = FIXTURES
+) -> subprocess.CompletedProcess[str]:
+    """``nav2-pyif sim`` on the office map, planners from ``planners`` (the test fixtures),
+    output in ``out``."""
     sim = [sys.executable, "-m", "nav2_pyif.tools.main", "sim", "--no-progress", "--out", str(out)]
     return subprocess.run(
-        [*sim, "--path", str(FIXTURES), *args], capture_output=True, text=True, timeout=120
+        [*sim, "--path", str(planners), *args], capture_output=True, text=True, timeout=120
     )
 
 
 def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: Path) -> None:
-    result = run_sim_command(tmp_path, "--controller", "user_faults:BrokenConfigure")
+    # the planner's folder has "nav2_pyif" in its path, as in a clone of that name
+    own = tmp_path / "nav2_pyif" / "my_planners"
+    own.mkdir(parents=True)
+    shutil.copy(FIXTURES / "user_faults.py", own)
+    result = run_sim_command(tmp_path, "--controller", "user_faults:BrokenConfigure", planners=own)
     assert result.returncode == 1
     report = result.stdout.splitlines()
     assert report[0] == "Traceback (most recent call last):", result.stdout
@@ -266,7 +280,9 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
     assert 'user_faults.py", line 15, in configure' in tb[1]
     assert 'user_faults.py", line 18, in load_model' in tb[3]
     assert tb[-1] == "RuntimeError: my configure is broken"
-    assert not [line for line in tb if "nav2_pyif" in line]  # none of the host's frames
+    host_code = [str(Path(m.__file__ or "").parent) for m in (nav2_pyif, nav2_pyif_protocol)]
+    assert str(own) in tb[1]
+    assert not [line for line in tb if any(code in line for code in host_code)]
     assert report[len(tb) + 1].startswith(
         "NOT REACHED: user_faults:BrokenConfigure could not start, so the run stopped: "
         "InvalidController"
@@ -276,7 +292,8 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
 
 
 def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
-    result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan")
+    # real time: lockstep would wait for the slow set_plan
+    result = run_sim_command(tmp_path, "--controller", "user_faults:SlowSetPlan", "--realtime")
     assert result.returncode == 1, result.stderr  # not reached; no traceback of the runner
     assert "Traceback" not in result.stderr
     # as in Nav2: the plan the host failed is owed, and the cycle that sends it first fails

@@ -1,4 +1,4 @@
-"""Every documented topology with every tool, over real processes (docs/DEPLOYMENT.md, "Which
+"""Every documented topology with every tool, over real processes (the deployment guide, "Which
 tool works where"). One planner host per deployment, shared by the topology's tests, serving
 the keys ``nav2-pyif sim --connect`` drives (pure pursuit, A*), remote reloads allowed.
 

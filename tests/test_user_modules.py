@@ -1,5 +1,5 @@
-"""A user's planner module, in the user's own directory (README's my_planners/go_to.py, taken
-from the README itself), is found wherever a planner is named: ``scripts/sim.sh`` and
+"""A user's planner module, in the user's own directory (the first tutorial's my_planners/go_to.py,
+taken from the tutorial itself), is found wherever a planner is named: ``scripts/sim.sh`` and
 ``nav2-pyif sim`` run from that directory or given ``--path``, and the pytest helper run from
 another directory."""
 
@@ -19,12 +19,13 @@ pytestmark = pytest.mark.integration
 
 SPEC = "my_planners.go_to:GoTo"
 USER_FILE = "my_planners/go_to.py"
+TUTORIAL = ROOT / "python" / "doc" / "tutorials" / "first_controller.md"
 
 
 @pytest.fixture
 def user_dir(tmp_path: Path) -> Path:
-    """A directory holding README's my_planners/go_to.py, outside the repository."""
-    (block,) = [b for b in blocks(ROOT / "README.md", ROOT) if b.user_file == USER_FILE]
+    """A directory holding the first tutorial's my_planners/go_to.py, outside the repository."""
+    (block,) = [b for b in blocks(TUTORIAL, ROOT) if b.user_file == USER_FILE]
     target = tmp_path / "project" / USER_FILE
     target.parent.mkdir(parents=True)
     target.write_text(block.text)

@@ -13,6 +13,7 @@ nav2-pyif-bench hops [--quick]                  one more hop: pipe, Zenoh thread
 nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
 nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
 nav2-pyif-bench obstacles [--quick]             Costmap.obstacle_points() vs every lethal cell
+nav2-pyif-bench record [--quick]                the control cycle with planner-host --record off/on
 nav2-pyif-bench hostile [--seconds 300]         a fuzzing peer beside a 20 Hz client
 """
 
@@ -39,6 +40,7 @@ from nav2_pyif_bench import (
     mppi_profile,
     obstacles_bench,
     protocol_bench,
+    record_bench,
     reliability_bench,
     tls_bench,
 )
@@ -206,6 +208,8 @@ def build_parser() -> argparse.ArgumentParser:
         "host", help="the control cycle against a planner host already running (--connect)"
     )
     host_bench.add_arguments(host)
+    record = sub.add_parser("record", help="the control cycle with planner-host --record off/on")
+    record_bench.add_arguments(record)
     checkers = sub.add_parser(
         "checkers", help="the control cycle with Python goal and progress checkers"
     )
@@ -258,6 +262,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "host":
         results = host_bench.run(args)
         text = host_bench.report(results)
+    elif args.bench == "record":
+        results = record_bench.run(args)
+        text = record_bench.report(results)
     elif args.bench == "checkers":
         results = checkers_bench.run(args)
         text = checkers_bench.report(results)

@@ -1,5 +1,5 @@
 """Throwaway certificates for the TLS tests and benchmark: a certificate authority and the
-certificates it signs (EC P-256, PKCS#8 keys, as docs/DEPLOYMENT.md makes them with openssl).
+certificates it signs (EC P-256, PKCS#8 keys, as the deployment guide makes them with openssl).
 Written into a directory the caller owns (a test's tmp_path); none is ever committed.
 
 Needs the ``cryptography`` package (the ``dev`` extra).

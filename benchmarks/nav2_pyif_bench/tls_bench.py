@@ -1,6 +1,6 @@
 """What TLS costs: the control cycle (and a 1000-pose plan) through a Zenoh router on
 loopback, over plain TCP, over TLS with client certificates (mutual TLS, as
-docs/DEPLOYMENT.md's secure fleet setup) and over mutual TLS with the router's access
+python/doc/howto/deployment.md's secure fleet setup) and over mutual TLS with the router's access
 control on, side by side in one run with interleaved rounds (so drift hits all alike).
 
     nav2-pyif-bench tls            # about a minute

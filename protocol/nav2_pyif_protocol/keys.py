@@ -75,5 +75,14 @@ class KeySpace:
         return f"{self.prefix}/admin/info"
 
     @property
+    def admin_record(self) -> str:
+        """What ``nav2-pyif record`` asks to start, renew and stop a live recording stream."""
+        return f"{self.prefix}/admin/record"
+
+    def record_stream(self, stream_id: str) -> str:
+        """Where the host publishes a copy of each call to the live recorder ``stream_id``."""
+        return f"{self.prefix}/record/{stream_id}"
+
+    @property
     def hosts(self) -> str:
         return f"{self.prefix}/host/*"

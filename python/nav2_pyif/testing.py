@@ -8,7 +8,10 @@
 
 ``drive`` takes the runner's options (``start``, ``goal``, ``rate``, ``timeout``,
 ``controller_params``, ...; see ``nav2_pyif.runner.run.SimConfig``) and returns a SimResult
-with the outcome, the trajectory, the plan and every call's timing.
+with the outcome, the trajectory, the plan and every call's timing. It runs in lockstep:
+simulated time waits for every reply, so a loaded machine does not change the verdict;
+``result.timing`` counts the calls over the control period and the plugin's timeout
+(``realtime=True`` fails those cycles instead, as on the robot).
 """
 
 from __future__ import annotations
@@ -17,17 +20,26 @@ from pathlib import Path
 from typing import Any
 
 from nav2_pyif.runner.maps import map_path
+from nav2_pyif.runner.nav2_params import AUTO, sim_config
 from nav2_pyif.runner.report import format_report
-from nav2_pyif.runner.run import SimConfig, SimResult, run_sim
+from nav2_pyif.runner.run import SimResult, run_sim
 
 
 def drive(
-    controller: str, planner: str = "astar", map: str | Path = "office", **options: Any
+    controller: str | None,
+    planner: str | None = None,
+    map: str | Path = "office",
+    params_file: str | Path | None = AUTO,
+    **options: Any,
 ) -> SimResult:
-    """One navigation task on a bundled map (by name) or a map_server YAML."""
-    return run_sim(
-        SimConfig(map=map_path(str(map)), controller=controller, planner=planner, **options)
+    """One navigation task on a bundled map (by name) or a map_server YAML. ``params_file``:
+    a Nav2 params file whose controller_frequency, goal checker, nav2_pyif plugins (planner,
+    parameters, timeouts) the run takes where not given here (default: ./nav2_params.yaml when
+    present; None: none). A planner left None is the file's, else the runner's default."""
+    config = sim_config(
+        map_path(str(map)), params_file, controller=controller, planner=planner, **options
     )
+    return run_sim(config)
 
 
 def assert_reaches_goal(

@@ -60,7 +60,7 @@ def _params(text: str, rollouts: int, native: bool) -> str:
             for line in block.group(0).splitlines()[1:]
             if line.split(":")[0].strip() in ("plugin", "key", "zenoh_connect", "zenoh_config")
         ]
-        # configure compiles the step (seconds here: docs/mppi.md)
+        # configure compiles the step (seconds here: python/doc/howto/mppi.md)
         settings = ("timeout: 0.5", "wait_for_host: 60.0", "configure_timeout: 30.0")
         plugin = "\n".join([*kept, *(f"      {line}" for line in settings)])
     lines = [

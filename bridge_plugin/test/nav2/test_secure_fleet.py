@@ -1,4 +1,4 @@
-"""The secure fleet of docs/DEPLOYMENT.md section 6 in the real Nav2: certificates made by the
+"""The deployment guide's secure fleet (section 6) in the real Nav2: certificates made by the
 guide's openssl commands, the fleet router (`router-secure.json5`: TLS only, client
 certificates, access control by certificate name), the planner host (`host-secure.json5`),
 and robot1's plugins: on zenoh-c with `plugin-secure.json5` through `zenoh_config`, on

@@ -1,6 +1,6 @@
 """Nav2's MPPI controller (nav2_mppi_controller, Jazzy) in JAX, as ``Nav2MPPI``: the same
 critics, parameters (Nav2's names and defaults), motion models, acceleration limits,
-Savitzky-Golay smoothing and warm start, one jit-compiled step per cycle. See docs/mppi.md.
+Savitzky-Golay smoothing and warm start, one jit-compiled step per cycle. See the MPPI guide.
 
 Files, one job each: params.py (Nav2's parameter table), models.py (motion models), costs.py
 (costmap look-ups), critics.py, smoothing.py, optimizer.py (the compiled step), path.py (the

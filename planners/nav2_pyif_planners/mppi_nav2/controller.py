@@ -39,7 +39,10 @@ class Nav2MPPI(Controller):
         frequency = self._context.nav2_params.get("controller_frequency")
         try:
             self.settings = read_settings(
-                p, float(frequency) if isinstance(frequency, int | float) else None, self.logger
+                p,
+                float(frequency) if isinstance(frequency, int | float) else None,
+                self.logger,
+                footprint=len(self.costmap.footprint) >= 3,  # as _check_footprint tells them
             )
         except ValueError as exc:
             raise InvalidController(str(exc)) from exc

@@ -166,10 +166,16 @@ def nav2_jazzy_params(**overrides: Any) -> dict[str, Any]:
 
 
 def read_settings(
-    p: Parameters, controller_frequency: float | None, logger: logging.Logger
+    p: Parameters,
+    controller_frequency: float | None,
+    logger: logging.Logger,
+    footprint: bool = False,
 ) -> Settings:
     """The controller's settings from its parameters (Nav2's names and defaults), with
     Nav2's corrections (ax_max made positive, ax_min and ay_min negative) and its checks.
+    ``footprint``: the costmap has a footprint polygon (not a robot_radius); the critics'
+    ``consider_footprint`` then defaults to true, the setting Nav2 finds consistent with it
+    (Nav2's default false suits its bringup's round robot, and warns for any other).
     Raises ValueError for what Nav2 refuses at configure (an unknown motion model or critic
     mode, a control period longer than model_dt)."""
     dt = p.declare("model_dt", 0.05, "[s] per step of the horizon")
@@ -221,7 +227,7 @@ def read_settings(
          "PathFollowCritic", "PathAngleCritic", "PreferForwardCritic"],
         "critic plugins, Nav2's names (mppi::critics:: may be left out)",
     )  # fmt: skip
-    values["critics"] = tuple(_critic(p, name, logger) for name in names)
+    values["critics"] = tuple(_critic(p, name, logger, footprint) for name in names)
     _warn_unhonoured(p, logger)
     return Settings(**values)
 
@@ -241,7 +247,7 @@ def _shift(dt: float, controller_frequency: float | None, logger: logging.Logger
     raise ValueError("Controller period more then model dt, set it equal to model dt")
 
 
-def _critic(p: Parameters, name: str, logger: logging.Logger) -> Critic:
+def _critic(p: Parameters, name: str, logger: logging.Logger, footprint: bool) -> Critic:
     short = name.removeprefix("mppi::critics::")
     if short not in CRITIC_PARAMS:
         logger.warning(
@@ -250,9 +256,10 @@ def _critic(p: Parameters, name: str, logger: logging.Logger) -> Critic:
         )  # fmt: skip
         return Critic(short, False, ())
     enabled = p.declare(f"{short}.enabled", True, f"score with {short}")
-    values = tuple(
-        (key, p.declare(f"{short}.{key}", default)) for key, default in CRITIC_PARAMS[short].items()
-    )
+    defaults = dict(CRITIC_PARAMS[short])
+    if "consider_footprint" in defaults:
+        defaults["consider_footprint"] = footprint
+    values = tuple((key, p.declare(f"{short}.{key}", default)) for key, default in defaults.items())
     critic = Critic(short, enabled, values)
     if short == "PathAngleCritic" and critic["mode"] not in (0, 1, 2):
         raise ValueError(f"PathAngleCritic.mode {critic['mode']}: Invalid path angle mode!")

@@ -8,8 +8,9 @@ from typing import Any
 from nav2_pyif_protocol.constants import Op, PluginType
 
 from nav2_pyif._messages import pose_to_wire, twist_stamped_from_wire, twist_to_list
-from nav2_pyif._ros_types import deserialize, serialize, type_name_of
+from nav2_pyif._ros_types import type_name_of
 from nav2_pyif.client.plugin_client import Carried, PluginClient, log
+from nav2_pyif.client.ros_messages import from_cdr, to_cdr
 from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.plan import Plan
@@ -134,7 +135,7 @@ class ControllerClient(PluginClient):
             body["goal_checker"] = goal_checker.to_wire()
         if inputs:
             body["inputs"] = [
-                {"name": name, "type": type_name_of(msg), "stamp_ns": ns, "cdr": serialize(msg)}
+                {"name": name, "type": type_name_of(msg), "stamp_ns": ns, "cdr": to_cdr(msg)}
                 for name, (msg, ns) in inputs.items()
             ]
         wanted = list(debug_wanted)
@@ -145,7 +146,7 @@ class ControllerClient(PluginClient):
     def command_of(self, reply: dict[str, Any]) -> Any:
         """A compute_velocity_commands reply body -> its TwistStamped; its debug outputs into
         ``self.debug``."""
-        self.debug = {d["name"]: deserialize(d["type"], d["cdr"]) for d in reply.get("debug", [])}
+        self.debug = {d["name"]: from_cdr(d["type"], d["cdr"]) for d in reply.get("debug", [])}
         return twist_stamped_from_wire(reply["cmd_vel"])
 
     def set_speed_limit(self, speed_limit: float, percentage: bool) -> None:

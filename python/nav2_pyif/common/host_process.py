@@ -58,7 +58,10 @@ class PlannerHostProcess:
 
     ``planners``: a list of {key, planner} or {key, module, delegates} entries (written to a
     YAML file for ``--config``); ``args``: further command-line arguments (e.g. ``--serve``);
-    ``env``: variables added to this process's environment."""
+    ``env``: variables added to this process's environment; ``bound``: the host ends with this
+    process (``--parent-pid``), and removes the temporary directory if this process cannot.
+    Start a bound host from a thread that outlives it: Linux signals the host when the thread
+    that started it ends."""
 
     def __init__(
         self,
@@ -70,8 +73,10 @@ class PlannerHostProcess:
         extra_path: list[str] | None = None,
         log_path: Path | None = None,
         env: dict[str, str] | None = None,
+        bound: bool = False,
     ) -> None:
         self.planners = planners or []
+        self.bound = bound
         self.port = port or free_port()
         self.log_level = log_level
         self.extra_path = extra_path or []
@@ -94,6 +99,8 @@ class PlannerHostProcess:
         command += ["--log-level", self.log_level]
         for directory in self.extra_path:
             command += ["--path", directory]
+        if self.bound:  # killed outright, this process leaves no host nor directory behind
+            command += ["--parent-pid", str(os.getpid()), "--parent-tmpdir", self._dir.name]
         command += self.args
         # A signal between the fork and the assignment would leave a host no one stops.
         with open(self.log_path, "ab") as log, deferred():

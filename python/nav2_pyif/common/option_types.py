@@ -112,3 +112,15 @@ def zenoh_config_file(text: str) -> str:
         reason = re.sub(r" at /\S+:\d+\.?", "", str(exc)).strip()
         raise argparse.ArgumentTypeError(f"{given}Zenoh cannot read {text!r}: {reason}") from None
     return str(text)
+
+
+def add_path_argument(parser: argparse.ArgumentParser) -> None:
+    """``--path DIR``: where the tools that load planners (sim, replay) import them from."""
+    parser.add_argument(
+        "--path",
+        action="append",
+        default=[],
+        metavar="DIR",
+        help="directory to import planners from, repeatable (the current directory is "
+        "always searched)",
+    )

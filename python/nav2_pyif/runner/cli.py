@@ -12,6 +12,7 @@ import numpy as np
 
 from nav2_pyif.common.host_process import HostExited
 from nav2_pyif.common.option_types import (
+    add_path_argument,
     endpoint,
     finite_float,
     non_negative_float,
@@ -21,10 +22,13 @@ from nav2_pyif.common.option_types import (
     positive_int,
 )
 from nav2_pyif.costmap import Costmap, Inflation
-from nav2_pyif.exceptions import Nav2Error
+from nav2_pyif.exceptions import Nav2Error, PlannerLoadError
+from nav2_pyif.params import ParamValue
+from nav2_pyif.roles import CONTROLLER_ROLES, LIFECYCLE_ROLES, PLANNER_ROLES, parse_delegates
 from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.laser import LaserSpec
 from nav2_pyif.runner.maps import BUNDLED
+from nav2_pyif.runner.nav2_params import AUTO, DEFAULT_FILE, sim_config
 from nav2_pyif.runner.run import (
     CONTROLLER_KEY,
     DEFAULTS,
@@ -97,11 +101,13 @@ def simulator_facts() -> str:
         f"  controller's costmap: a {size} x {size} rolling window about the robot, updated "
         f"at {d.local_costmap_rate:g} Hz",
         "  control: --rate Hz; the controller's control_period is 1 / --rate (Nav2's",
-        "    controller_frequency); each cycle waits --call-timeout for the reply; failing",
-        f"    cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end the run "
-        "(failure_tolerance)",
-        f"  goal check (SimpleGoalChecker): within {g.xy_goal_tolerance:g} m of the goal AND "
-        f"{g.yaw_goal_tolerance:g} rad of its heading:",
+        "    controller_frequency); lockstep: each cycle waits for the reply, and the report",
+        "    counts those over --call-timeout; --realtime: a reply later fails the cycle;",
+        f"    failing cycles stop the robot, and {d.failure_tolerance:g} s of them in a row end "
+        "the run (failure_tolerance)",
+        "  goal check (SimpleGoalChecker, as controller_server makes it on the plan's last",
+        f"    pose): within {g.xy_goal_tolerance:g} m of it AND {g.yaw_goal_tolerance:g} rad of "
+        "its heading:",
         "    a position-only controller must turn on the spot at the end (or use",
         "    --goal-checker); controllers get these tolerances as goal_checker",
     ]
@@ -118,6 +124,23 @@ class _HelpFormatter(argparse.RawDescriptionHelpFormatter, argparse.ArgumentDefa
             return text
         return text + " (default: %(default)s)"
 
+
+#: The runner's options in seconds: SimConfig field -> (the params file's parameter that sets
+#: it, if one does; what it is).
+SECONDS_OPTIONS = {
+    "call_timeout": (
+        "timeout",
+        "the plugin's timeout per control cycle call: enforced with --realtime, reported "
+        "against in lockstep",
+    ),
+    "lockstep_limit": ("", "in lockstep: a call taking this long is a hung planner"),
+    "startup_wait": (
+        "",
+        "how long the planner host started here may take to import and serve the planners "
+        "(a slow import, such as torch's, needs more)",
+    ),
+    "plan_wait": ("plan_timeout", "how long each create_plan and smooth may take"),
+}
 
 #: The runner's flags for Nav2's other plugins (extras.KEYS' roles), what each does.
 PLUGIN_FLAGS = {
@@ -170,8 +193,8 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
     p.add_argument(
         "--rate",
         type=positive_float,
-        default=20.0,
-        help="control rate [Hz] (controller_frequency), > 0",
+        help="control rate [Hz] (controller_frequency), > 0 (default: the params file's, "
+        f"else {SimConfig.rate:g})",
     )
     p.add_argument(
         "--timeout",
@@ -180,13 +203,46 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         metavar="SECONDS",
         help="simulated seconds before the run ends NOT REACHED, > 0",
     )
-    p.add_argument("--realtime", action="store_true", help="pace to wall-clock time")
     p.add_argument(
-        "--call-timeout",
-        type=positive_float,
-        default=0.25,
-        metavar="SECONDS",
-        help="seconds to wait for each control cycle's reply (the plugin's timeout), > 0",
+        "--realtime",
+        action="store_true",
+        help="real time instead of lockstep: a reply later than --call-timeout fails its "
+        "cycle, as on the robot, and the run keeps wall-clock pace. Without it (lockstep) "
+        "simulated time waits for every reply, so the verdict does not depend on the "
+        "machine's load; the report counts the calls Nav2 would have failed",
+    )
+    for name, (from_file, what) in SECONDS_OPTIONS.items():
+        default = getattr(SimConfig, name)
+        p.add_argument(
+            f"--{name.replace('_', '-')}",
+            type=positive_float,
+            default=None if from_file else default,
+            metavar="SECONDS",
+            help=f"{what}, > 0"
+            + (f" (default: the params file's {from_file}, else {default:g})" if from_file else ""),
+        )
+    p.add_argument(
+        "--params-file",
+        type=Path,
+        metavar="FILE",
+        help="the Nav2 params file to judge by, as Nav2 reads it: controller_server's "
+        "controller_frequency, failure_tolerance and first goal checker's tolerances, its "
+        "nav2_pyif controller and planner_server's nav2_pyif planner (python_planner or "
+        "python_module, python_delegates, their parameters, timeout and plan_timeout). "
+        f"Options given here win (default: ./{DEFAULT_FILE} when present)",
+    )
+    p.add_argument(
+        "--no-params-file",
+        action="store_true",
+        help=f"read no params file, not even ./{DEFAULT_FILE}",
+    )
+    p.add_argument(
+        "--delegate",
+        action="append",
+        default=[],
+        metavar="ROLE=FUNCTION",
+        help="for a --controller or --planner given as a module of functions: which function "
+        "plays ROLE (the plugin's python_delegates), repeatable or comma-separated",
     )
     p.add_argument(
         "--param",
@@ -236,14 +292,7 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         metavar="SECONDS",
         help="the smoother's time budget (smoother_server's max_smoothing_duration)",
     )
-    p.add_argument(
-        "--path",
-        action="append",
-        default=[],
-        metavar="DIR",
-        help="directory to import planners from, repeatable (the current directory is "
-        "always searched)",
-    )
+    add_path_argument(p)
     p.add_argument(
         "--connect",
         type=endpoint,
@@ -325,20 +374,48 @@ def sensing_config(args: argparse.Namespace) -> SensingConfig:
         raise SimError(f"--scan-*/--debug-every: {exc}") from exc
 
 
-def _params(items: list[str]) -> dict[str, object]:
+def _params(items: list[str], option: str) -> dict[str, ParamValue]:
+    """``option``'s NAME=VALUE items, each value read as YAML; bad ones are usage errors."""
     import yaml
 
-    out: dict[str, object] = {}
+    out: dict[str, ParamValue] = {}
     for item in items:
         name, sep, value = item.partition("=")
         if not sep:
-            raise SimError(f"parameter {item!r} is not NAME=VALUE")
-        parsed = yaml.safe_load(value)
+            raise SimError(f"{option} {item!r} is not NAME=VALUE")
+        try:
+            parsed = yaml.safe_load(value)
+        except yaml.YAMLError as exc:
+            reason = " ".join(str(getattr(exc, "problem", "") or exc).split())
+            raise SimError(f"{option} {item!r}: the value is not YAML ({reason})") from None
         # A parameter is a scalar or an array of scalars; nested lists (polygons, footprints)
         # are written as text, as Nav2's YAML writes footprints
         nested = isinstance(parsed, list) and any(isinstance(v, list | dict) for v in parsed)
         out[name] = value.strip() if nested or isinstance(parsed, dict) else parsed
     return out
+
+
+def _delegates(items: list[str]) -> dict[str, dict[str, str]] | None:
+    """--delegate's ROLE=FUNCTION items, as the controller's and the planner's (their
+    lifecycle roles to both: a planner that is no module of functions ignores them)."""
+    if not items:
+        return None
+    try:
+        delegates = parse_delegates(items)
+    except PlannerLoadError as exc:
+        raise SimError(f"--delegate: {exc}") from None
+    mine = {
+        "controller": CONTROLLER_ROLES | LIFECYCLE_ROLES,
+        "planner": PLANNER_ROLES | LIFECYCLE_ROLES,
+    }
+    out = {role: {r: f for r, f in delegates.items() if r in roles} for role, roles in mine.items()}
+    others = set(delegates) - CONTROLLER_ROLES - PLANNER_ROLES - LIFECYCLE_ROLES
+    if others:
+        raise SimError(
+            f"--delegate {', '.join(sorted(others))}: sim maps the controller's and the planner's "
+            "roles; the other plugins are given as module:Class or module:function"
+        )
+    return {role: roles for role, roles in out.items() if roles}
 
 
 def run_command(args: argparse.Namespace) -> int:
@@ -353,26 +430,34 @@ def run_command(args: argparse.Namespace) -> int:
         print(f"nav2-pyif sim: needs {' and '.join(absent)}: {INSTALL_HINT}", file=sys.stderr)
         return 1
     try:
-        config = SimConfig(
-            map=map_path(args.map),
+        config = sim_config(
+            map_path(args.map),
+            None if args.no_params_file else args.params_file or AUTO,
             controller=args.controller,
             planner=args.planner,
-            start=tuple(args.start) if args.start else None,  # type: ignore[arg-type]
-            goal=tuple(args.goal) if args.goal else None,  # type: ignore[arg-type]
+            start=tuple(args.start) if args.start else None,
+            goal=tuple(args.goal) if args.goal else None,
             rate=args.rate,
             timeout=args.timeout,
             realtime=args.realtime,
             call_timeout=args.call_timeout,
-            controller_params=_params(args.param),  # type: ignore[arg-type]
-            planner_params=_params(args.planner_param),  # type: ignore[arg-type]
+            lockstep_limit=args.lockstep_limit,
+            startup_wait=args.startup_wait,
+            plan_wait=args.plan_wait,
+            controller_params=_params(args.param, "--param") or None,
+            planner_params=_params(args.planner_param, "--planner-param") or None,
+            delegates=_delegates(args.delegate),
             endpoint=args.connect,
             wait=args.wait,
             controller_key=args.controller_key,
             planner_key=args.planner_key,
-            path=args.path,
+            path=args.path or None,
             progress=progress,
             plugins={r: getattr(args, r) for r in PLUGIN_FLAGS if getattr(args, r)},
-            plugin_params={r: _params(getattr(args, f"{r}_param")) for r in PLUGIN_FLAGS},  # type: ignore[misc]
+            plugin_params={
+                r: _params(getattr(args, f"{r}_param"), f"--{r.replace('_', '-')}-param")
+                for r in PLUGIN_FLAGS
+            },
             smoother_max_time=args.smoother_max_time,
             max_recoveries=args.max_recoveries,
             plans=args.plans,

@@ -73,6 +73,8 @@ def summary(result: SimResult) -> dict[str, Any]:
         "wall_time_s": round(result.wall_time, 3),
         "cycles": result.cycles,
         "control_rate_hz": c.rate,
+        "params_file": str(c.params_file) if c.params_file else None,
+        "timing": result.timing.as_dict(),
         "plan_length_m": round(result.path_length, 3),
         "plans": c.plans,
         "failed_plans": result.failed_plans,
@@ -197,6 +199,8 @@ def format_report(result: SimResult) -> str:
         f"  plan {s['plan_length_m']:.2f} m, driven {s['driven_distance_m']:.2f} m, "
         f"minimum clearance {clearance_text(s['min_clearance_m'])}, "
         f"collisions {s['collisions']}, controller errors {_errors_text(s)}",
+        result.timing.line(),
+        *([f"  Nav2 params file: {s['params_file']}"] if s["params_file"] else []),
         *_plugins_line(s),
         *_sensing_line(result, s),
         *_recoveries_line(result, s),

@@ -37,8 +37,10 @@ from nav2_pyif.exceptions import Nav2Error
 from nav2_pyif.geometry import path_length
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import ParamValue
+from nav2_pyif.roles import LIFECYCLE_ROLES
 from nav2_pyif.runner.aliases import INSTALL_HINT, planner_aliases
 from nav2_pyif.runner.extras import KEYS, CycleCalls, LayerEffect, apply_layer, extra_clients
+from nav2_pyif.runner.goal_check import GoalCheck
 from nav2_pyif.runner.host_log import HostLogFollower
 from nav2_pyif.runner.inflation import inflation_layer, static_layer, window
 from nav2_pyif.runner.mapfile import MapError, OccupancyMap, load_map
@@ -47,6 +49,7 @@ from nav2_pyif.runner.recovery import Recovery, back_up
 from nav2_pyif.runner.robot import DEFAULT_FOOTPRINT, DiffDrive, WorldChecker
 from nav2_pyif.runner.sensing import DebugLines, Sensing, SensingConfig, lines_of
 from nav2_pyif.runner.swaps import Swap, swaps_during
+from nav2_pyif.runner.timing import CycleTiming, cycle_timing
 
 log = logging.getLogger("nav2_pyif.runner")
 CONTROLLER_KEY = "nav2_pyif/sim/FollowPath"
@@ -83,7 +86,11 @@ class SimConfig:
     goal: Pose3 | None = None
     rate: float = 20.0  # [Hz] control rate (simulated time)
     timeout: float = 180.0  # [s] simulated time
-    realtime: bool = False  # pace the loop to wall-clock time
+    # False (lockstep): simulated time advances only once the planner has answered, so the
+    # verdict does not depend on the machine's load; each call's time is judged against the
+    # control period and call_timeout instead (timing.py). True (real time): a reply later
+    # than call_timeout fails its cycle, as on the robot, and the loop keeps wall-clock pace.
+    realtime: bool = False
     footprint: tuple[tuple[float, float], ...] = DEFAULT_FOOTPRINT
     inflation_radius: float = 0.55
     cost_scaling_factor: float = 3.0
@@ -92,10 +99,14 @@ class SimConfig:
     goal_checker: GoalTolerances = field(
         default_factory=lambda: GoalTolerances(0.25, 0.25, 0.25, 0.25)
     )
+    stateful_goal_check: bool = True  # SimpleGoalChecker's stateful: the position latches
     failure_tolerance: float = 0.3  # [s] of consecutive controller failures before aborting
     controller_params: dict[str, ParamValue] = field(default_factory=dict)
     planner_params: dict[str, ParamValue] = field(default_factory=dict)
-    call_timeout: float = 0.25  # [s] per control cycle
+    call_timeout: float = Timeouts().call  # [s] the plugin's timeout (bridge_params.py)
+    lockstep_limit: float = 60.0  # [s] lockstep: a call this long is a hung planner
+    startup_wait: float = 30.0  # [s] for the host of our own to import and serve the planners
+    plan_wait: float = 30.0  # [s] for each create_plan and smooth (the host's plan deadline)
     path: list[str] = field(default_factory=list)  # directories to import planners from
     endpoint: str | None = None  # connect to a running host instead of starting one
     wait: float = 10.0  # [s] with an endpoint: for its router, then for the hosts' tokens
@@ -108,6 +119,10 @@ class SimConfig:
     plugin_params: dict[str, dict[str, ParamValue]] = field(default_factory=dict)
     smoother_max_time: float = 1.0  # [s] smoother_server's max_smoothing_duration
     max_recoveries: int = 3  # with a recovery behaviour: how many the run may make
+    # runner role ("controller", "planner") -> its module's role -> function map (the
+    # plugin's python_delegates), for a planner given as a module of functions
+    delegates: dict[str, dict[str, str]] = field(default_factory=dict)
+    params_file: Path | None = None  # the Nav2 params file the options came from, if any
     plans: int = 1  # create_plan calls before driving, each timed (the first plan is driven)
     # the simulated laser fed to the controller as input "scan", and the debug outputs kept
     sensing: SensingConfig = field(default_factory=SensingConfig)
@@ -161,6 +176,12 @@ class SimResult:
     def cycles(self) -> int:
         return len(self.trajectory)
 
+    @property
+    def timing(self) -> CycleTiming:
+        """The controller's time per cycle against the control period and the timeout."""
+        c = self.config
+        return cycle_timing(self.records, c.rate, c.call_timeout, lockstep=not c.realtime)
+
     def served_over_time(self, role: str) -> list[tuple[float, float, str]]:
         """(from, to [s], short name) of each planner that served ``role``: one span unless
         it was hot-swapped during the run."""
@@ -204,7 +225,11 @@ MAIN_ROLE = {
 
 
 def planner_entry(
-    key: str, spec: str, role: str = "controller", search: list[str] | None = None
+    key: str,
+    spec: str,
+    role: str = "controller",
+    search: list[str] | None = None,
+    delegates: dict[str, str] | None = None,
 ) -> dict[str, Any]:
     """A host config entry for what serves ``role`` ("controller", "planner", ...): a
     reference alias, ``module:Class``, ``module:function`` (that function as the role's main
@@ -235,6 +260,14 @@ def planner_entry(
         entry["planner"] = resolved
     else:
         entry["module"] = resolved
+    kind_roles = set(delegates or {}) - LIFECYCLE_ROLES
+    if delegates and "module" in entry:
+        entry["delegates"] = dict(delegates)
+    elif kind_roles:  # the lifecycle ones go to whichever planners are modules
+        raise SimError(
+            f"delegates {', '.join(sorted(kind_roles))} map functions of a module, but the "
+            f"{role} is {spec!r}: give a module of functions (--{role} MODULE)"
+        )
     if role in MAIN_ROLE:
         entry["kind"] = MAIN_ROLE[role]
     return entry
@@ -304,8 +337,13 @@ def run_sim(config: SimConfig) -> SimResult:
     # where the host will look: --path, the current directory (its own sys.path[0]), ours
     search = [str(Path(d).resolve()) for d in config.path] + [str(Path.cwd())]
     entries = [
-        planner_entry(config.controller_key, config.spec("controller"), "controller", search),
-        planner_entry(config.planner_key, config.spec("planner"), "planner", search),
+        *(
+            planner_entry(key, config.spec(role), role, search, config.delegates.get(role))
+            for role, key in (
+                ("controller", config.controller_key),
+                ("planner", config.planner_key),
+            )
+        ),
         *(planner_entry(KEYS[role], spec, role, search) for role, spec in config.plugins.items()),
     ]
     started = time.perf_counter()
@@ -314,7 +352,13 @@ def run_sim(config: SimConfig) -> SimResult:
             host = None
             if not config.endpoint:
                 # INFO: the planners' self.logger.info lines, shown as they come
-                host = PlannerHostProcess(entries, extra_path=import_path(config), log_level="INFO")
+                host = PlannerHostProcess(
+                    entries,
+                    extra_path=import_path(config),
+                    log_level="INFO",
+                    args=host_deadlines(config),
+                    bound=True,  # a killed runner leaves no host behind
+                )
                 cleanup.callback(host.close)
                 host.start()
                 follower = HostLogFollower(host.log_path, [e["key"] for e in entries]).start()
@@ -339,11 +383,20 @@ def run_sim(config: SimConfig) -> SimResult:
     return result
 
 
+def host_deadlines(config: SimConfig) -> list[str]:
+    """The host's deadlines for a run: create_plan's is the plan wait; in lockstep the call
+    deadline is the lockstep limit, so a slow reply is waited for rather than answered
+    Unavailable after the host's 1 s."""
+    plan = ["--plan-deadline", f"{config.plan_wait:g}"]
+    return plan if config.realtime else [*plan, "--deadline", f"{config.lockstep_limit:g}"]
+
+
 def _drive(
     config: SimConfig, result: SimResult, session: zenoh.Session, host: PlannerHostProcess | None
 ) -> None:
     start, costmap = result.start, result.global_costmap
-    timeouts = Timeouts(call=config.call_timeout, lifecycle=10.0, configure=60.0, plan=60.0)
+    call = config.call_timeout if config.realtime else config.lockstep_limit
+    timeouts = Timeouts(call=call, lifecycle=10.0, configure=60.0, plan=config.plan_wait)
     planner = GlobalPlannerClient(
         session,
         config.planner_key,
@@ -468,6 +521,12 @@ def _create_plans(config: SimConfig, result: SimResult, planner: GlobalPlannerCl
     return first
 
 
+def plan_end(plan: np.ndarray) -> Pose3:
+    """The plan's last pose (x, y, yaw): where Nav2's goal checker wants the robot."""
+    x, y, yaw = (float(v) for v in plan[-1])
+    return x, y, yaw
+
+
 def _keep_host_log(result: SimResult, host: PlannerHostProcess, follower: HostLogFollower) -> None:
     """The host stopped, its last lines shown, its whole log kept in the result."""
     host.stop()
@@ -486,9 +545,13 @@ def _start(
     host: PlannerHostProcess | None,
 ) -> None:
     """Each client: its host alive, then configure and activate, as Nav2's servers do."""
+    started_by = time.monotonic() + config.startup_wait  # for the host of our own
     for role, client in roles.items():
         if host is not None:
-            wait_alive(host, client.wait_for_host)
+            try:
+                wait_alive(host, client.wait_for_host, max(0.2, started_by - time.monotonic()))
+            except TimeoutError:
+                raise TimeoutError(_start_up_timeout(config, result, host)) from None
         elif not client.wait_for_host(config.wait):
             raise SimError(
                 f"no planner host on {client.keys.prefix} at {config.endpoint} within "
@@ -502,6 +565,32 @@ def _start(
             what = result.name_of(role)
             _ended_by(result, f"{what} could not start, so the run stopped", exc)
             raise _Ended from exc
+
+
+def _start_up_timeout(config: SimConfig, result: SimResult, host: PlannerHostProcess) -> str:
+    """Why the host of our own did not come up in time: still importing a planner (its
+    worker has not said "KEY: loaded"), or serving but not reached."""
+    log = host.log()
+    loading = [
+        result.name_of(role) for role, key in _keys(config).items() if f"{key}: loaded " not in log
+    ]
+    wait = f"{config.startup_wait:g} s"
+    if loading:
+        return (
+            f"the planner host was still importing {', '.join(loading)} after {wait}: a slow "
+            "import (torch, jax, a model's weights) needs a longer start-up wait "
+            f"(--startup-wait, or startup_wait in drive()); its log:\n{log}"
+        )
+    return f"the planner host serves, but was not reached over Zenoh within {wait}:\n{log}"
+
+
+def _keys(config: SimConfig) -> dict[str, str]:
+    """Role -> the key the run's host serves it on."""
+    return {
+        "controller": config.controller_key,
+        "planner": config.planner_key,
+        **{role: KEYS[role] for role in config.plugins},
+    }
 
 
 def _ended_by(result: SimResult, what: str, exc: Nav2Error, earlier_traceback: str = "") -> None:
@@ -619,11 +708,14 @@ def _control_loop(
     config: SimConfig, result: SimResult, calls: CycleCalls, local_version: int
 ) -> None:
     controller = calls.controller
-    goal_msg = pose_msg(*result.goal)
+    # Nav2's controller_server checks the goal on the plan's last pose, not the goal asked for
+    end = plan_end(result.plan)
+    goal_msg = pose_msg(*end)
+    check = GoalCheck(config.goal_checker, end, config.stateful_goal_check)
     calls.start()
     robot = DiffDrive(*result.start)
     checker = WorldChecker(result.world, np.array(config.footprint))
-    dt, goal = 1.0 / config.rate, result.goal
+    dt = 1.0 / config.rate
     local_every = max(1, round(config.rate / config.local_costmap_rate))
     sensing = Sensing(config.sensing, result.world, config.rate)
     failing_since: float | None = None
@@ -686,22 +778,27 @@ def _control_loop(
                         return
                     failing_since, failure_traceback = None, ""
                     calls.start()  # a new FollowPath goal: the checkers reset
+                    check.xy_reached = False
                     continue
             if not _advance(result, robot, checker, cmd_v, cmd_w, dt, began):
                 return
             cycle += 1
-            distance = math.hypot(goal[0] - robot.x, goal[1] - robot.y)
-            if calls.cycle is None and config.goal_checker.is_goal_reached(
-                robot.x, robot.y, robot.yaw, *goal
-            ):
+            distance = math.hypot(end[0] - robot.x, end[1] - robot.y)
+            if calls.cycle is None and check.reached(robot.x, robot.y, robot.yaw):
                 result.reached = True
-                result.outcome = "goal reached"
+                result.outcome = f"goal reached ({check.passed()})"
                 return
             bar.update(dt)
             if cycle % 10 == 0:
                 bar.set_postfix_str(f"{distance:.1f} m to goal")
             if config.realtime:
                 time.sleep(max(0.0, wall_start + result.sim_time - time.perf_counter()))
-        result.outcome = f"timeout after {config.timeout:.0f} s"
+        why = (
+            "the goal check never passed: "
+            + check.why_not(robot.x, robot.y, robot.yaw, result.goal)
+            if calls.cycle is None
+            else f"{result.name_of('goal_checker')} never said the goal was reached"
+        )
+        result.outcome = f"timeout after {config.timeout:.0f} s: {why}"
     finally:
         bar.close()

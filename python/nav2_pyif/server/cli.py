@@ -38,7 +38,14 @@ from nav2_pyif.server.batch_groups import add_batch_arguments, check_batch_argum
 from nav2_pyif.server.heap import settle_heap
 from nav2_pyif.server.host import PlannerHost, ReachWatch, new_host_id
 from nav2_pyif.server.loader import PLUGIN_BASES_TEXT
+from nav2_pyif.server.parent import bind_to_parent, remove_when_orphaned
 from nav2_pyif.server.pid_file import remove_pid_file, write_pid_file
+from nav2_pyif.server.recording.options import (
+    add_record_arguments,
+    check_record_arguments,
+    start_live_tap,
+    start_recording,
+)
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.respawn import keep
 from nav2_pyif.server.service import InProcessPlanner, PlannerService
@@ -81,6 +88,10 @@ examples:
 
   # started again whenever it exits (as the Nav2 plugin runs the host it starts itself)
   planner-host --respawn --key nav2_pyif/robot1/FollowPath --module my_pkg.apf
+
+  # record every call to MCAP files (replay: nav2-pyif replay run.mcap --planner ...)
+  planner-host --key nav2_pyif/robot1/FollowPath --planner my_pkg.ctrl:MyController \\
+      --record out/run.mcap
 
   # every option also reads NAV2_PYIF_<OPTION> (containers); command-line flags win
   NAV2_PYIF_KEY=nav2_pyif/robot1/FollowPath NAV2_PYIF_PLANNER=my_pkg.ctrl:MyController \\
@@ -184,6 +195,7 @@ def build_parser() -> argparse.ArgumentParser:
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
     )
     add_batch_arguments(parser)
+    add_record_arguments(parser)
     swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")
     swap.add_argument(
         "--allow-remote-reload",
@@ -219,8 +231,16 @@ def build_parser() -> argparse.ArgumentParser:
         "--parent-pid",
         type=positive_int,
         metavar="PID",
-        help="with --respawn: the process that starts the keeper (the Nav2 plugin); the keeper "
-        "gets SIGTERM when it dies, and starts nothing if it is gone already (Linux)",
+        help="the process that starts this host (the Nav2 plugin, nav2-pyif sim): the host "
+        "gets SIGTERM when it dies, even by SIGKILL, and starts nothing if it is gone already "
+        "(Linux); with --respawn, the keeper does",
+    )
+    parser.add_argument(
+        "--parent-tmpdir",
+        type=Path,
+        metavar="DIR",
+        help="with --parent-pid: the parent's temporary directory (this host's config and log), "
+        "removed when the host ends after its parent died",
     )
     parser.add_argument(
         "--log-level",
@@ -316,10 +336,19 @@ def main(argv: list[str] | None = None) -> int:
     logging.basicConfig(
         level=args.log_level, format="[%(asctime)s] [%(levelname)s] [%(name)s] %(message)s"
     )
+    if args.parent_tmpdir is not None and args.parent_pid is None:
+        parser.error("--parent-tmpdir needs --parent-pid")
     if args.respawn:
         os.environ.pop("NAV2_PYIF_RESPAWN", None)  # the child serves, it keeps nothing
+        os.environ.pop("NAV2_PYIF_PARENT_PID", None)  # the child's parent is this keeper
         child = [sys.executable, "-m", "nav2_pyif.server.cli", *without_respawn(given)]
-        return keep(child, parent=args.parent_pid)
+        return keep([*child, "--parent-pid", str(os.getpid())], parent=args.parent_pid)
+    if args.parent_pid is not None:
+        if args.parent_tmpdir is not None:
+            remove_when_orphaned(args.parent_pid, args.parent_tmpdir)
+        if not bind_to_parent(args.parent_pid):
+            print(f"planner-host: parent {args.parent_pid} is gone; not starting", file=sys.stderr)
+            return 1
     # A planner served in this process (--isolation none) that segfaults leaves its stack.
     faulthandler.enable()
     log = logging.getLogger("nav2_pyif.server.host")
@@ -352,6 +381,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"--pid-file {args.pid_file}: its directory is missing or not writable")
     try:
         specs = collect_specs(args, parser)
+        check_record_arguments(args, parser, [spec.key for spec in specs])
         services = start_services(specs, host_id, args)
     except PlannerLoadError as exc:
         print(f"planner-host: error: {exc}", file=sys.stderr)
@@ -365,12 +395,17 @@ def main(argv: list[str] | None = None) -> int:
             service.close()
         print(f"planner-host: error: {exc}", file=sys.stderr)
         return 3
+    served, recorder = start_recording(args, specs, services)
+    served, live = start_live_tap(args, session, specs, served)
     host = PlannerHost(
-        session, host_id, ReloadPolicy(args.allow_remote_reload, tuple(args.reload_allow))
+        session,
+        host_id,
+        ReloadPolicy(args.allow_remote_reload, tuple(args.reload_allow)),
+        live=live,
     )
     try:
         if not stopped_by:
-            for spec, service in zip(specs, services, strict=True):
+            for spec, service in zip(specs, served, strict=True):
                 host.serve(spec.key, service)
             serving.set()
             settle_heap()  # what start-up built serves as long as the host
@@ -399,6 +434,10 @@ def main(argv: list[str] | None = None) -> int:
         if args.pid_file:
             remove_pid_file(args.pid_file)
         host.close()
+        if live is not None:
+            live.close()  # its streams' publishers, before the session goes
+        if recorder is not None:
+            recorder.close()  # after the host: every call answered is in the files
         for service in services:
             service.close()
         session.close()

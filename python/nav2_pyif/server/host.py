@@ -27,6 +27,7 @@ from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.carried import CARRIERS, Route, carry_on
 from nav2_pyif.server.log_throttle import ThrottledWarning
+from nav2_pyif.server.recording.live import OFF, LiveTap
 from nav2_pyif.server.reload_policy import ReloadPolicy
 from nav2_pyif.server.runtime import error_reply, peek_seq
 from nav2_pyif.server.service import PlannerService
@@ -84,7 +85,7 @@ class ServedPlanner:
     queryable of the session, and at 120 keys four queryables each cost the host a fifth of
     its CPU (perf: 22 % of its time in key-expression intersection), but a
     router's access control lets a robot see only declarations on its calls, cancel and hosts
-    keys (docs/DEPLOYMENT.md), and zenoh-pico sends no query to a key it has seen no queryable
+    keys (the deployment guide), and zenoh-pico sends no query to a key it has seen no queryable
     for. One callback serves all three, on Zenoh's own thread, and only sorts the query: a call
     goes to this key's call thread (answered in order, so planners need not be thread-safe); a
     batched control cycle with nothing queued before it goes straight to its batch; a cancel or
@@ -99,8 +100,10 @@ class ServedPlanner:
         started: float | None = None,
         reload_policy: ReloadPolicy | None = None,
         route: Route | None = None,
+        live: LiveTap | None = None,
     ) -> None:
         self.keys = keys
+        self.live = live  # None: this host refuses live recording (--allow-live-record)
         self.runtime = runtime
         self.route = route  # the host's other keys, for calls carried in a cycle's query
         # a batch group's member takes its cycles without blocking this key's thread
@@ -122,6 +125,7 @@ class ServedPlanner:
             keys.cancel: self._on_cancel,
             keys.admin_reload: self._on_reload,
             keys.admin_info: self._on_info,
+            keys.admin_record: self._on_record,
         }
         self._calls: queue.SimpleQueue[tuple[Any, str] | None] = queue.SimpleQueue()
         self._side: queue.SimpleQueue[tuple[Any, Callable[[Any], None]] | None]
@@ -253,6 +257,30 @@ class ServedPlanner:
             log.exception("%s: could not answer an info query", self.keys.prefix)
         finally:
             query.drop()
+
+    def _on_record(self, query: Any) -> None:
+        """``nav2-pyif record``: start, renew or stop streaming this key's calls."""
+        try:
+            request = msgpack.unpackb(_payload(query)) if query.payload is not None else {}
+            if self.live is None:
+                answer: dict[str, Any] = {"ok": False, "message": f"refused by the host: {OFF}"}
+                if isinstance(request, dict) and request.get("action") == "start":
+                    log.warning("%s: refused a live recording: %s", self.keys.prefix, OFF)
+            else:
+                answer = self.live.answer(self.keys.prefix, request, self._restore_requests)
+            query.reply(query.key_expr, msgpack.packb(answer))
+        except Exception:
+            log.exception("%s: could not answer a record request", self.keys.prefix)
+        finally:
+            query.drop()
+
+    def _restore_requests(self) -> list[bytes]:
+        """The requests that rebuild this key's live sessions (configure, the plan, ...)."""
+        return [
+            payload
+            for _sid, (_version, requests) in self.runtime.journal.snapshot().items()
+            for _op, payload in requests
+        ]
 
     def _on_reload(self, query: Any) -> None:
         """Hot swap request: {planner?, module?, delegates?} -> {ok, message}. Loading takes
@@ -405,8 +433,10 @@ class PlannerHost:
         session: zenoh.Session,
         host_id: str | None = None,
         reload_policy: ReloadPolicy | None = None,
+        live: LiveTap | None = None,
     ) -> None:
         self.session = session
+        self.live = live
         self.host_id = host_id or new_host_id()
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time()
@@ -424,6 +454,7 @@ class PlannerHost:
             self.started,
             self.reload_policy,
             route=self._route,
+            live=self.live,
         )
         self.served[key_prefix] = served
         log.info(

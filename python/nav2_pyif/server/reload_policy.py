@@ -5,7 +5,7 @@ run any importable module. By default a host refuses them all; ``--allow-remote-
 accepts a fresh import of the planner it serves, and ``--reload-allow PATTERN`` (repeatable,
 shell-style as fnmatch) the other planners it may load: a pattern matches ``module:Class``
 or the module alone (``my_planners.*``, ``my_pkg.ctrl:Fast*``). SIGHUP is local and always
-reloads. Zenoh's access control decides *who* may send a reload (docs/DEPLOYMENT.md); this
+reloads. Zenoh's access control decides *who* may send a reload (the deployment guide); this
 decides *what* a reload may load, whoever sent it.
 """
 

@@ -285,7 +285,9 @@ class SupervisedPlanner:
         self._set_reason("")
         self._monitor.start()
         # Not "serving" yet: a signal may stop the host before it serves; the host says when.
-        log.debug("%s: worker %s loaded %s", self.spec.key, worker.pid, self.label)
+        # Said for each, as planners load in parallel: a start-up that takes too long shows
+        # which planner is still importing (the runner names it).
+        log.info("%s: loaded %s (worker %s)", self.spec.key, self.label, worker.pid)
         return self
 
     @property

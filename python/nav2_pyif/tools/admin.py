@@ -21,6 +21,46 @@ class NoPlannerHost(LookupError):
     """No planner host serves the key (none has declared its liveliness token there)."""
 
 
+def wait_for_host(
+    session: zenoh.Session,
+    keys: KeySpace,
+    wait: float = DISCOVERY,
+    on_waiting: Callable[[str], None] | None = None,
+) -> frozenset[str]:
+    """The ids of the hosts serving ``keys`` once one's liveliness token is seen (a host
+    declares it after its queryables: a query sent before would find nothing to answer it),
+    waiting up to ``wait`` s; NoPlannerHost naming what is visible when none comes."""
+    watcher = HostWatcher(session, keys)
+    try:
+        return _wait_for(watcher, session, keys, wait, on_waiting)
+    finally:
+        watcher.close()
+
+
+def _wait_for(
+    watcher: HostWatcher,
+    session: zenoh.Session,
+    keys: KeySpace,
+    wait: float,
+    on_waiting: Callable[[str], None] | None,
+) -> frozenset[str]:
+    looking = time.monotonic()
+    if not watcher.wait(min(wait, DISCOVERY)) and wait > DISCOVERY:
+        if on_waiting is not None:
+            on_waiting(
+                f"no planner host on {keys.prefix} yet, waiting up to {wait:g} s; "
+                f"{visible_hosts(session)}"
+            )
+        watcher.wait(max(0.0, wait - (time.monotonic() - looking)))
+    if not watcher.alive:
+        raise NoPlannerHost(
+            f"no planner host serves {keys.prefix} (no liveliness token under "
+            f"{keys.hosts} after {time.monotonic() - looking:.1f} s); "
+            f"{visible_hosts(session)}"
+        )
+    return watcher.alive
+
+
 def request_reload(
     session: zenoh.Session,
     key_prefix: str,
@@ -46,20 +86,7 @@ def request_reload(
     keys = KeySpace(key_prefix)
     watcher = HostWatcher(session, keys)
     try:
-        looking = time.monotonic()
-        if not watcher.wait(min(wait, DISCOVERY)) and wait > DISCOVERY:
-            if on_waiting is not None:
-                on_waiting(
-                    f"no planner host on {key_prefix} yet, waiting up to {wait:g} s; "
-                    f"{visible_hosts(session)}"
-                )
-            watcher.wait(max(0.0, wait - (time.monotonic() - looking)))
-        if not watcher.alive:
-            raise NoPlannerHost(
-                f"no planner host serves {key_prefix} (no liveliness token under "
-                f"{keys.hosts} after {time.monotonic() - looking:.1f} s); "
-                f"{visible_hosts(session)}"
-            )
+        _wait_for(watcher, session, keys, wait, on_waiting)
         started = time.monotonic()
         request = {
             "planner": planner,

@@ -9,8 +9,10 @@ import sys
 from nav2_pyif.common.option_types import positive_float
 from nav2_pyif.common.signals import Interrupted, raise_on_signals
 from nav2_pyif.common.zenoh_config import add_zenoh_arguments
+from nav2_pyif.replay.cli import add_replay_parser
 from nav2_pyif.runner.cli import add_sim_parser
 from nav2_pyif.tools.hosts import add_hosts_parser
+from nav2_pyif.tools.record import add_record_parser
 from nav2_pyif.tools.router import add_router_parser
 
 
@@ -146,6 +148,8 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.Argument
     add_reload_parser(subparsers)
     add_router_parser(subparsers)
     add_hosts_parser(subparsers)
+    add_record_parser(subparsers)
+    add_replay_parser(subparsers)
     return parser, dict(subparsers.choices)
 
 
