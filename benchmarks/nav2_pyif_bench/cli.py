@@ -15,6 +15,7 @@ nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: proto
 nav2-pyif-bench obstacles [--quick]             Costmap.obstacle_points() vs every lethal cell
 nav2-pyif-bench record [--quick]                the control cycle with planner-host --record off/on
 nav2-pyif-bench watch [--edits 20]              planner-host --watch: edit saved -> served
+nav2-pyif-bench hostile [--seconds 300]         a fuzzing peer beside a 20 Hz client
 """
 
 from __future__ import annotations
@@ -33,6 +34,7 @@ from nav2_pyif_bench import (
     fleet_bench,
     hop_bench,
     host_bench,
+    hostile_bench,
     inputs_bench,
     layer_bench,
     mppi_bench,
@@ -193,6 +195,15 @@ def build_parser() -> argparse.ArgumentParser:
         default=100,
         help="configure/activate/deactivate/cleanup cycles, >= 1 (default 100)",
     )
+    hostile = sub.add_parser(
+        "hostile", help="a fuzzing peer on every key of a live host, beside a 20 Hz client"
+    )
+    hostile.add_argument(
+        "--seconds", type=positive_float, default=300.0, help="how long it fuzzes (default 300)"
+    )
+    hostile.add_argument(
+        "--seed", type=positive_int, default=1, help="of the mutations, >= 1 (default 1)"
+    )
     tls = sub.add_parser("tls", help="TLS's cost: the control cycle over TCP and mutual TLS")
     protocol_bench.add_round_arguments(tls)
     host = sub.add_parser(
@@ -269,6 +280,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "layer":
         results = layer_bench.run(args)
         text = layer_bench.report(results)
+    elif args.bench == "hostile":
+        results = hostile_bench.run(args.seconds, args.seed)
+        text = hostile_bench.report(results)
     elif args.bench == "obstacles":
         results = obstacles_bench.run(args)
         text = obstacles_bench.report(results)

@@ -14,6 +14,7 @@ from typing import Any
 
 import msgpack
 
+from nav2_pyif_protocol.bounded import unpack_bounded
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, ErrorType, Op
 from nav2_pyif_protocol.schema import (
     BIN,
@@ -361,9 +362,10 @@ def _pack(message: dict[str, Any]) -> bytes:
 
 def _unpack(data: bytes, what: str) -> Any:
     try:
-        return msgpack.unpackb(data, raw=False, strict_map_key=False)
-    except Exception as exc:
-        raise _bad(f"{what} is not valid msgpack: {exc}") from exc
+        return unpack_bounded(data)
+    except Exception as exc:  # msgpack's own errors, MemoryError, an unhashable map key...
+        # msgpack's FormatError says nothing: its name then
+        raise _bad(f"{what} is not valid msgpack: {exc or type(exc).__name__}") from exc
 
 
 def decode_request(data: bytes) -> Request:

@@ -6,11 +6,14 @@ travel between the C++ plugin, which handles them as bytes of a named type only
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import logging
 import os
+import re
 import subprocess
 import sys
 from functools import cache
+from pathlib import Path
 from typing import Any
 
 log = logging.getLogger("nav2_pyif._ros_types")
@@ -20,14 +23,47 @@ class MessageTypeError(ValueError):
     """A type name that is not ``package/msg/Type`` or names no importable message."""
 
 
+#: rosidl's rules for a package's and a message's name
+_PACKAGE_NAME = re.compile(r"[a-z][a-z0-9_]*\Z")
+_MESSAGE_NAME = re.compile(r"[A-Z][A-Za-z0-9]*\Z")
+
+
+def _module_name(message: str) -> str:
+    """rosidl's module of a message: LaserScan -> _laser_scan, PointCloud2 -> _point_cloud2."""
+    name = re.sub(r"(.)([A-Z][a-z]+)", r"\1_\2", message)
+    return "_" + re.sub(r"([a-z0-9])([A-Z])", r"\1_\2", name).lower()
+
+
+def _is_message(package: str, message: str) -> bool:
+    """Whether an installed ROS package generated this message (rosidl's layout:
+    <package>/msg/_<message in snake case>.py), found without importing anything: a type name
+    comes from the network, and importing a package runs its code."""
+    module = sys.modules.get(package)
+    try:
+        spec = module.__spec__ if module is not None else importlib.util.find_spec(package)
+    except (ImportError, ValueError):
+        return False
+    places = (spec.submodule_search_locations or []) if spec is not None else []
+    return any((Path(place) / "msg" / f"{_module_name(message)}.py").is_file() for place in places)
+
+
 @cache
 def message_class(type_name: str) -> type:
     """``"sensor_msgs/msg/LaserScan"`` -> the rclpy message class (imported by its name, as
-    rosidl_runtime_py.utilities.get_message does, without needing that package)."""
+    rosidl_runtime_py.utilities.get_message does, without needing that package). Only a
+    message an installed ROS package generated is imported."""
     parts = type_name.split("/")
     if len(parts) != 3 or parts[1] != "msg" or not all(parts):
         raise MessageTypeError(f"{type_name!r} is not a message type name (package/msg/Type)")
     package, _, name = parts
+    if not (_PACKAGE_NAME.match(package) and _MESSAGE_NAME.match(name)):
+        raise MessageTypeError(f"{type_name!r} is not a ROS message type name")
+    if not _is_message(package, name):
+        raise MessageTypeError(
+            f"message type {type_name} is not available on this host (no installed package "
+            f"{package} generated it); install its package (e.g. pip install "
+            f"ros-jazzy-{package.replace('_', '-')})"
+        )
     try:
         cls = getattr(importlib.import_module(f"{package}.msg"), name)
     except (ImportError, AttributeError) as exc:

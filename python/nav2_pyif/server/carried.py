@@ -15,6 +15,7 @@ from collections.abc import Callable
 from typing import Any
 
 import msgpack
+from nav2_pyif_protocol.bounded import unpack_bounded
 from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.schema import CARRIES, GOES_ON
 
@@ -29,7 +30,7 @@ CARRIERS: frozenset[str] = frozenset(op.value for op in CARRIES)
 
 def _unpack(data: bytes) -> dict[str, Any]:
     try:
-        tree = msgpack.unpackb(data, raw=False)
+        tree = unpack_bounded(data)
     except Exception:
         return {}
     return tree if isinstance(tree, dict) else {}

@@ -19,17 +19,25 @@ from typing import Any
 
 import msgpack
 import zenoh
+from nav2_pyif_protocol.bounded import unpack_bounded
+from nav2_pyif_protocol.constants import ErrorType, Op
 from nav2_pyif_protocol.keys import KeySpace
 
 from nav2_pyif.exceptions import PlannerLoadError
 from nav2_pyif.server.batch_runtime import CYCLE_OP
 from nav2_pyif.server.carried import CARRIERS, Route, carry_on
+from nav2_pyif.server.log_throttle import ThrottledWarning
 from nav2_pyif.server.recording.live import OFF, LiveTap
 from nav2_pyif.server.reload_policy import ReloadPolicy
+from nav2_pyif.server.runtime import error_reply, peek_seq
 from nav2_pyif.server.service import PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 
 log = logging.getLogger("nav2_pyif.server.host")
+
+#: The ops a call key may name (``P/rpc/<op>``); cancel_plan has its own key. Any other name
+#: is refused here: the worker pipe reads op names as commands (its batch op among them).
+CALL_OPS: frozenset[str] = frozenset(op.value for op in Op if op is not Op.CANCEL_PLAN)
 
 
 def new_host_id() -> str:
@@ -40,6 +48,26 @@ def new_host_id() -> str:
 
 def _payload(query: Any) -> bytes:
     return query.payload.to_bytes() if query.payload is not None else b""
+
+
+def _reload_request(payload: bytes) -> dict[str, Any] | str:
+    """A reload request's map ({} for none: a fresh import), or what is wrong with it."""
+    if not payload:
+        return {}
+    try:
+        request = unpack_bounded(payload)
+    except Exception as exc:
+        return f"the request is not valid msgpack ({exc or type(exc).__name__})"
+    if not isinstance(request, dict):
+        return f"the request is a msgpack {type(request).__name__}, not a map"
+    wrong = [
+        name
+        for name in ("planner", "module")
+        if request.get(name) is not None and not isinstance(request[name], str)
+    ]
+    if request.get("delegates") is not None and not isinstance(request["delegates"], dict):
+        wrong.append("delegates")
+    return f"its {', '.join(wrong)} has the wrong type" if wrong else request
 
 
 def _answer(query: Any, reply: bytes) -> None:
@@ -84,6 +112,11 @@ class ServedPlanner:
         self.reload_policy = reload_policy or ReloadPolicy()
         self.started = time.time() if started is None else started  # unix time
         self.queries = 0  # calls that came on this key's own queries (not carried in another)
+        # queries dropped unanswered: another replica's, or on no key of this planner's
+        # (a wildcard, an unknown admin verb); every other query gets a reply
+        self.dropped = 0
+        self.refused_ops = 0  # calls on P/rpc/<op> for no op: answered BadRequest
+        self._refused_reload = ThrottledWarning(log)  # any peer may ask, as often as it likes
         # (unix time, label) of each planner this key served, a hot swap's too: who served when
         self.history: deque[tuple[float, str]] = deque([(time.time(), runtime.label)], maxlen=32)
         self._rpc = f"{keys.prefix}/rpc/"
@@ -116,18 +149,29 @@ class ServedPlanner:
         """On Zenoh's thread: sort the query, answer nothing here (nothing here may block)."""
         key = str(query.key_expr)
         if self._addressed_elsewhere(query):
-            query.drop()  # a replica's query: its pinned host answers
-        elif key.startswith(self._rpc) and "/" not in (op := key[len(self._rpc) :]):
-            with self._order:  # a cycle may not overtake this key's calls still queued
-                self.queries += 1
-                if self._queued == 0 and self._hand_over(query, op):
-                    return
-                self._queued += 1
-            self._calls.put((query, op))
+            self._drop(query)  # a replica's query: its pinned host answers
+        elif key.startswith(self._rpc):
+            op = key[len(self._rpc) :]
+            if op in CALL_OPS:
+                with self._order:  # a cycle may not overtake this key's calls still queued
+                    self.queries += 1
+                    if self._queued == 0 and self._hand_over(query, op):
+                        return
+                    self._queued += 1
+                self._calls.put((query, op))
+            elif any(c in op for c in "/*$?#"):
+                self._drop(query)  # a wildcard: no key to answer on
+            else:
+                self._side.put((query, self._on_unknown_op))
         elif (side := self._side_ops.get(key)) is not None:
             self._side.put((query, side))
         else:
-            query.drop()  # not a query of this key's (a wildcard, another admin verb)
+            self._drop(query)  # not a query of this key's (a wildcard, another admin verb)
+
+    def _drop(self, query: Any) -> None:
+        with self._order:
+            self.dropped += 1
+        query.drop()
 
     def _serve(self) -> None:
         while (item := self._calls.get()) is not None:
@@ -166,6 +210,20 @@ class ServedPlanner:
         host = query.parameters.get("host")
         return host is not None and host != self.host_id
 
+    def _on_unknown_op(self, query: Any) -> None:
+        self.refused_ops += 1
+        op = str(query.key_expr)[len(self._rpc) :]
+        try:
+            payload = _payload(query)
+            known = ", ".join(sorted(CALL_OPS))
+            message = f"{self.keys.prefix}: no operation {op!r}; known: {known}"
+            reply = error_reply(peek_seq(payload), self.host_id, ErrorType.BAD_REQUEST, message)
+            query.reply(query.key_expr, reply)
+        except Exception:
+            log.exception("%s: could not refuse a query", self.keys.prefix)
+        finally:
+            query.drop()
+
     def _on_cancel(self, query: Any) -> None:
         try:
             query.reply(query.key_expr, self.runtime.handle_cancel(_payload(query)))
@@ -185,6 +243,8 @@ class ServedPlanner:
             "sessions": len(self.runtime.journal),
             "history": [list(entry) for entry in self.history],
             "queries": self.queries,
+            "dropped": self.dropped,
+            "refused_ops": self.refused_ops,
             "started": self.started,
             "pid": os.getpid(),
             "hostname": socket.gethostname(),
@@ -229,34 +289,13 @@ class ServedPlanner:
         threading.Thread(target=self._reload, args=(query,), daemon=True).start()
 
     def _reload(self, query: Any) -> None:
-        what = "?"
         try:
-            request = msgpack.unpackb(_payload(query)) if query.payload is not None else {}
-            current = getattr(self.runtime, "spec", None)
-            spec = None
-            if isinstance(current, PlannerSpec) and isinstance(request, dict):
-                spec = current.with_planner(
-                    request.get("planner"), request.get("module"), request.get("delegates")
-                )
-            requested = spec if spec != current else None  # None: a fresh import
-            wanted = requested or current
-            what = ("" if requested else "a fresh import of ") + (
-                wanted.describe() if isinstance(wanted, PlannerSpec) else "?"
-            )
-            refusal = self.reload_policy.refusal(requested)
-            if refusal:
-                log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, refusal)
-                answer = {"ok": False, "message": f"reload refused by the host: {refusal}"}
+            request = _reload_request(_payload(query))
+            if isinstance(request, str):  # malformed: refused as the allow-list refuses
+                self._refused_reload(f"{self.keys.prefix}: refused a remote reload: {request}")
+                answer = {"ok": False, "message": f"reload refused by the host: {request}"}
             else:
-                allow = isinstance(request, dict) and request.get("allow_type_change") is True
-                message = self.reload(spec, allow_type_change=allow)
-                log.info("%s", message)
-                answer = {"ok": True, "message": message}
-        except PlannerLoadError as exc:
-            # A planner that does not load (a SyntaxError, an import error, another plugin
-            # type) is refused as the allow-list refuses: said here too, not only to the caller.
-            log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, exc)
-            answer = {"ok": False, "message": str(exc)}
+                answer = self._reload_as(request)
         except Exception as exc:
             log.exception("%s: reload failed", self.keys.prefix)
             answer = {"ok": False, "message": f"reload failed: {exc}"}
@@ -264,6 +303,35 @@ class ServedPlanner:
             query.reply(query.key_expr, msgpack.packb(answer))
         finally:
             query.drop()
+
+    def _reload_as(self, request: dict[str, Any]) -> dict[str, Any]:
+        """The answer to a well-formed reload request."""
+        current = getattr(self.runtime, "spec", None)
+        spec = None
+        if isinstance(current, PlannerSpec):
+            spec = current.with_planner(
+                request.get("planner"), request.get("module"), request.get("delegates")
+            )
+        requested = spec if spec != current else None  # None: a fresh import
+        wanted = requested or current
+        what = ("" if requested else "a fresh import of ") + (
+            wanted.describe() if isinstance(wanted, PlannerSpec) else "?"
+        )
+        refusal = self.reload_policy.refusal(requested)
+        if refusal:
+            self._refused_reload(
+                "%s: refused a remote reload (%s): %s", self.keys.prefix, what, refusal
+            )
+            return {"ok": False, "message": f"reload refused by the host: {refusal}"}
+        try:
+            message = self.reload(spec, allow_type_change=request.get("allow_type_change") is True)
+        except PlannerLoadError as exc:
+            # A planner that does not load (a SyntaxError, an import error, another plugin
+            # type) is refused as the allow-list refuses: said here too, not only to the caller.
+            log.warning("%s: refused a remote reload (%s): %s", self.keys.prefix, what, exc)
+            return {"ok": False, "message": str(exc)}
+        log.info("%s", message)
+        return {"ok": True, "message": message}
 
     def reload(self, spec: PlannerSpec | None = None, allow_type_change: bool = False) -> str:
         """A hot swap (PlannerService.reload), noted in the key's history."""

@@ -17,8 +17,8 @@ from pathlib import Path
 from types import TracebackType
 from typing import Any
 
-import msgpack
 import numpy as np
+from nav2_pyif_protocol.bounded import unpack_bounded
 from nav2_pyif_protocol.codec import (
     ErrorInfo,
     ProtocolError,
@@ -622,7 +622,7 @@ def error_reply(
 def peek_seq(payload: bytes) -> int:
     """Best-effort seq of an undecodable request, so the client can match the error."""
     try:
-        raw = msgpack.unpackb(payload, raw=False, strict_map_key=False)
+        raw = unpack_bounded(payload)
         seq = raw.get("seq", 0) if isinstance(raw, dict) else 0
         return seq if isinstance(seq, int) and not isinstance(seq, bool) and seq >= 0 else 0
     except Exception:

@@ -30,6 +30,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import msgpack
+from nav2_pyif_protocol.bounded import unpack_bounded
 from nav2_pyif_protocol.constants import ErrorType, PluginType
 from nav2_pyif_protocol.schema import OP_TIMEOUT, SMOOTH_GRACE_S
 
@@ -74,7 +75,7 @@ class Deadlines:
 def _smooth_max_time(payload: bytes) -> float:
     """A smooth request's max_time, or 0 where it has none a worker would accept."""
     try:
-        max_time = msgpack.unpackb(payload, raw=False)["body"]["max_time"]
+        max_time = unpack_bounded(payload)["body"]["max_time"]
     except Exception:
         return 0.0
     ok = isinstance(max_time, (int, float)) and not isinstance(max_time, bool)
@@ -311,6 +312,8 @@ class SupervisedPlanner:
     # --- calls -------------------------------------------------------------------------
     def handle(self, payload: bytes, key_op: str | None = None) -> bytes:
         op = key_op or ""
+        if op not in _DEADLINE_OF:  # the worker pipe reads op names as commands (BATCH_OP)
+            return self._error(payload, ErrorType.BAD_REQUEST, f"no operation {op!r}")
         return self._exchange(
             op,
             payload,
