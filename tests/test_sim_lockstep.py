@@ -18,6 +18,7 @@ pytestmark = pytest.mark.integration
 # about 8 simulated seconds on the office map
 TASK: dict[str, Any] = {"start": (2.0, 2.5, 0.0), "goal": (3.2, 5.5, 1.57)}
 SLOW = "user_faults:SlowAtTimes"  # three cycles of 0.3 s
+STALLS = "user_faults:HostStalls"  # its host stopped for 2.5 s: its 1 s lease lapses
 
 
 def test_lockstep_drives_a_slow_controller_exactly_as_a_fast_one() -> None:
@@ -32,6 +33,15 @@ def test_lockstep_drives_a_slow_controller_exactly_as_a_fast_one() -> None:
     assert timing["calls"] == slow.cycles  # one call per cycle driven
     assert "lockstep (simulated time waited for every reply)" in format_report(slow)
     assert "over the timeout (Nav2 would fail those cycles)" in format_report(slow)
+
+
+def test_lockstep_waits_out_a_host_whose_lease_lapsed_on_a_starved_machine() -> None:
+    fast = drive("pure_pursuit", **TASK)
+    stalled = drive(STALLS, path=[str(FIXTURES)], **TASK)
+    assert stalled.reached and not stalled.controller_errors, format_report(stalled)
+    assert stalled.trajectory == fast.trajectory  # the stall changed nothing driven
+    lapsed = [r for r in stalled.records if r.op == "compute_velocity_commands" and not r.ok]
+    assert lapsed, "the host's lease never lapsed: the test stalled nothing"
 
 
 def test_realtime_fails_the_cycles_whose_reply_came_late() -> None:

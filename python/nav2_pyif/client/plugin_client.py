@@ -70,6 +70,11 @@ class Timeouts:
     lifecycle: float = timeout_default(Timeout.LIFECYCLE)
     configure: float = timeout_default(Timeout.CONFIGURE)
     plan: float = timeout_default(Timeout.PLAN)
+    # How long any call waits for a host that has gone (its liveliness token lost) before it
+    # fails, as create_plan always does. 0, the plugin's rule: the control cycle fails at once.
+    # The offline runner's lockstep mode sets it: a host whose Zenoh lease lapsed while the
+    # machine was overloaded is a fact about the machine, not a verdict on the planner.
+    host_wait: float = 0.0
 
 
 def error_from_reply(error: ErrorInfo, plugin_type: PluginType) -> Nav2Error:
@@ -284,6 +289,16 @@ class PluginClient:
         self.failovers += 1
         return True
 
+    def _host_came_back(self) -> bool:
+        """With ``host_wait``: no reply because the link to the pinned host dropped (its lease
+        lapsed; its token goes with it, a moment after the query ended), and a host is back
+        within ``host_wait``. The call is then retried once."""
+        if self.timeouts.host_wait <= 0:
+            return False
+        if not self.hosts.wait_for(lambda alive: self.host not in alive, 2.0):
+            return False  # alive and silent: a hung host is not waited for again
+        return self.hosts.wait_for(bool, self.timeouts.host_wait)
+
     def selector(self, key: str) -> str:
         """``key?host=<pinned id>``: replicas other than the pinned host drop the query."""
         return selector(key, self.host)
@@ -377,11 +392,13 @@ class PluginClient:
             )
         wait = self._timeout(op) if timeout is None else timeout
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
-        if not alive and OP_TIMEOUT[op] is Timeout.PLAN:
+        if not alive and (OP_TIMEOUT[op] is Timeout.PLAN or self.timeouts.host_wait > 0):
             # create_plan and smooth run in their server's own thread while the robot follows
             # its last path: they wait, up to their timeout, for a host to come back, as for a
-            # slow planner, so that a host restart costs no recovery. The others fail at once.
-            self.hosts.wait_for(bool, wait)
+            # slow planner, so that a host restart costs no recovery. The others fail at once,
+            # unless host_wait says otherwise.
+            plan_wait = wait if OP_TIMEOUT[op] is Timeout.PLAN else 0.0
+            self.hosts.wait_for(bool, max(plan_wait, self.timeouts.host_wait))
             alive = self.hosts.alive
         if not alive:
             raise host_failure_error(self.plugin_type)(
@@ -412,6 +429,8 @@ class PluginClient:
             # No reply in time (or a bad one): the pinned replica died (its token may not be
             # gone yet) or hangs. Another alive replica gets the call instead.
             if allow_failover and self._fail_over(avoid=self.host):
+                return retry()
+            if allow_failover and self._host_came_back():
                 return retry()
             raise
         if (

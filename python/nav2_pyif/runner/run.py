@@ -396,7 +396,10 @@ def _drive(
 ) -> None:
     start, costmap = result.start, result.global_costmap
     call = config.call_timeout if config.realtime else config.lockstep_limit
-    timeouts = Timeouts(call=call, lifecycle=10.0, configure=60.0, plan=config.plan_wait)
+    host_wait = 0.0 if config.realtime else config.lockstep_limit  # a lapsed lease is waited out
+    timeouts = Timeouts(
+        call=call, lifecycle=10.0, configure=60.0, plan=config.plan_wait, host_wait=host_wait
+    )
     planner = GlobalPlannerClient(
         session,
         config.planner_key,
