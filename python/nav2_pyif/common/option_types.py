@@ -124,3 +124,16 @@ def add_path_argument(parser: argparse.ArgumentParser) -> None:
         help="directory to import planners from, repeatable (the current directory is "
         "always searched)",
     )
+
+
+def add_pose_arguments(parser: argparse.ArgumentParser, when: str) -> None:
+    """``--start X Y YAW`` and ``--goal X Y YAW`` of the tools that drive a robot (sim, eval);
+    ``when`` says when they apply."""
+    for name in ("start", "goal"):
+        parser.add_argument(
+            f"--{name}",
+            nargs=3,
+            type=finite_float,
+            metavar=("X", "Y", "YAW"),
+            help=f"{name} pose [m, m, rad] ({when})",
+        )

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from nav2_pyif.common.option_types import (
+    add_pose_arguments,
     finite_float,
     non_negative_int,
     positive_float,
@@ -78,20 +79,7 @@ def add_eval_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ig
         metavar="MAP",
         help="bundled map names or map_server YAML paths",
     )
-    p.add_argument(
-        "--start",
-        nargs=3,
-        type=finite_float,
-        metavar=("X", "Y", "YAW"),
-        help="start pose for --map maps that have no task [m, m, rad]",
-    )
-    p.add_argument(
-        "--goal",
-        nargs=3,
-        type=finite_float,
-        metavar=("X", "Y", "YAW"),
-        help="goal pose for --map maps that have no task [m, m, rad]",
-    )
+    add_pose_arguments(p, "for --map maps that have no task")
     p.add_argument(
         "--generated",
         type=non_negative_int,

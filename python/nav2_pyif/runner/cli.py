@@ -13,8 +13,8 @@ import numpy as np
 from nav2_pyif.common.host_process import HostExited
 from nav2_pyif.common.option_types import (
     add_path_argument,
+    add_pose_arguments,
     endpoint,
-    finite_float,
     non_negative_float,
     non_negative_int,
     number,
@@ -176,20 +176,7 @@ def add_sim_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ign
         "--planner",
         help=f"{DEFAULTS['planner']} when not given; with --connect, what the host serves",
     )
-    p.add_argument(
-        "--start",
-        nargs=3,
-        type=finite_float,
-        metavar=("X", "Y", "YAW"),
-        help="start pose [m, m, rad] (default: the map's task)",
-    )
-    p.add_argument(
-        "--goal",
-        nargs=3,
-        type=finite_float,
-        metavar=("X", "Y", "YAW"),
-        help="goal pose [m, m, rad] (default: the map's task)",
-    )
+    add_pose_arguments(p, "default: the map's task")
     p.add_argument(
         "--rate",
         type=positive_float,
