@@ -86,7 +86,7 @@ def test_the_strategies_reach_every_op_and_field() -> None:
     reply, with every optional field both present and absent, within the suite's examples."""
     seen_ops: set[Op] = set()
 
-    @settings(BOUNDED, max_examples=400, derandomize=True)  # a loaded machine: no health check
+    @settings(BOUNDED, max_examples=1500, derandomize=True)  # a loaded machine: no health check
     @given(requests())
     def collect(request: Request) -> None:
         seen_ops.add(request.op)
