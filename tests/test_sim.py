@@ -277,8 +277,13 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
     report = result.stdout.splitlines()
     assert report[0] == "Traceback (most recent call last):", result.stdout
     tb = report[: report.index("")]
-    assert 'user_faults.py", line 15, in configure' in tb[1]
-    assert 'user_faults.py", line 18, in load_model' in tb[3]
+    source = (FIXTURES / "user_faults.py").read_text().splitlines()
+    calls, raises = (
+        next(n for n, line in enumerate(source, 1) if text in line)
+        for text in ("self.load_model()", 'raise RuntimeError("my configure is broken")')
+    )
+    assert f'user_faults.py", line {calls}, in configure' in tb[1]
+    assert f'user_faults.py", line {raises}, in load_model' in tb[3]
     assert tb[-1] == "RuntimeError: my configure is broken"
     host_code = [str(Path(m.__file__ or "").parent) for m in (nav2_pyif, nav2_pyif_protocol)]
     assert str(own) in tb[1]
@@ -288,7 +293,7 @@ def test_a_planner_failing_to_configure_shows_its_own_traceback_first(tmp_path: 
         "InvalidController"
     )
     record = json.loads((tmp_path / "office_user_faults.BrokenConfigure.json").read_text())
-    assert "line 18, in load_model" in record["traceback"]
+    assert f"line {raises}, in load_model" in record["traceback"]
 
 
 def test_a_timeout_is_a_result_not_a_crash(tmp_path: Path) -> None:
