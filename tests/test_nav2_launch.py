@@ -110,6 +110,9 @@ GALLERY = "test_gallery.py"
 # of its own, which needs nav2_bringup's stack in the environment (testenv/build.sh builds it
 # for Jazzy, and Nav2's MPPI with its mppi step).
 BRINGUP = "test_bringup.py"
+# The plugin side soaked: 100 000 control cycles and 100 lifecycle cycles of a controller_server
+# under LeakSanitizer (about 30 min), run when NAV2_PYIF_SOAK_CYCLES says how many cycles.
+SOAK = "test_plugin_soak.py"
 BRINGUP_NEEDS = {
     "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
     "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
@@ -123,7 +126,7 @@ BRINGUP_NEEDS = {
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP]
+    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP, SOAK]
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
     _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
 
@@ -168,6 +171,24 @@ def test_full_stack_navigations_survive_every_fault(distro: str, backend: str) -
     chosen = f"-k {shlex.quote(select)} " if select else ""
     # -x: a failed navigation leaves the robot where the next test does not expect it
     _launch_tests(distro, backend, f"-s -x {chosen}{files}", timeout=4 * 3600 - 600)
+
+
+@pytest.mark.timeout(3 * 3600)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_plugin_soaked_in_controller_server(distro: str, backend: str) -> None:
+    cycles = os.environ.get("NAV2_PYIF_SOAK_CYCLES")
+    if not cycles:
+        pytest.skip(
+            "the plugin soak (bridge_plugin/test/nav2/test_plugin_soak.py: 100 000 control "
+            "cycles and 100 lifecycle cycles under LeakSanitizer, about 30 min) runs only when "
+            "NAV2_PYIF_SOAK_CYCLES gives the cycles"
+        )
+    assert int(cycles) >= 100_000 or os.environ.get("NAV2_PYIF_SOAK_SHORT") == "1", (
+        "NAV2_PYIF_SOAK_CYCLES below 100 000 is not the soak (NAV2_PYIF_SOAK_SHORT=1 to try it)"
+    )
+    selection = f"-s bridge_plugin/test/nav2/{SOAK}"
+    _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
 
 
 @pytest.mark.timeout(3 * 3600)
