@@ -111,7 +111,7 @@ GALLERY = "test_gallery.py"
 # for Jazzy, and Nav2's MPPI with its mppi step).
 BRINGUP = "test_bringup.py"
 BRINGUP_NEEDS = {
-    "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
+    "nav2_bringup": "share/nav2_bringup/launch/bringup_launch.py",
     "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
     "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
     "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/package.xml",

@@ -57,7 +57,8 @@ pytestmark = pytest.mark.timeout(1200)
 
 PREFIX = nav2_testing.PREFIX
 STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
-LAUNCH = ("nav2_bringup", "tb3_loopback_simulation.launch.py")
+# The loopback launch: Jazzy's name, and Lyrical's (Humble has none: no nav2_loopback_sim).
+LAUNCHES = ("tb3_loopback_simulation.launch.py", "tb3_loopback_simulation_launch.py")
 # The TurtleBot 3 sandbox (nav2_bringup's default map): the robot starts where the TurtleBot 3
 # simulation spawns it, drives up around the pillars and back.
 START = (-2.0, -0.5)
@@ -81,19 +82,9 @@ PYTHON_PLUGINS = {
 # The servers that hold a Python plugin: a `ros2 lifecycle` shutdown of these must end the
 # planner hosts their plugins started.
 PYTHON_SERVERS = ("controller_server", "planner_server")
-# nav2_bringup's navigation_launch.py: the nodes of lifecycle_manager_navigation (docking on
-# Jazzy and later).
-NAVIGATION = (
-    "controller_server",
-    "smoother_server",
-    "planner_server",
-    "behavior_server",
-    "velocity_smoother",
-    "collision_monitor",
-    "bt_navigator",
-    "waypoint_follower",
-    "docking_server",
-)
+# nav2_bringup's navigation_launch.py names the nodes of lifecycle_manager_navigation
+# (Jazzy adds collision_monitor and docking_server, Lyrical route_server and following_server).
+LIFECYCLE_NODES = re.compile(r"lifecycle_nodes = \[([^\]]*)\]")
 FAULT_AT, RESTART_AFTER = 3.0, 2.0  # [s] into the goal; [s] after the kill
 SLOW_FOR = 2.0  # [s] the host does not answer (SIGSTOP), FAULT_AT into a goal
 # Rates the container's other work keeps while a Python call fails, at least this share of
@@ -165,7 +156,7 @@ def _missing(native: bool, local: bool) -> list[str]:
     if shutil.which("ros2") is None:
         absent.append("the ros2 command (ros2cli)")
     needed = {
-        "nav2_bringup": f"share/{LAUNCH[0]}/launch/{LAUNCH[1]}",
+        "nav2_bringup's loopback launch": f"share/nav2_bringup/launch/{_launch()}",
         "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
         "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
         "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf",
@@ -271,7 +262,7 @@ def stock_bringup(logs: Path, python: bool, composed: bool, local: bool = False)
     procs.start(
         "launch",
         [
-            *("ros2", "launch", *LAUNCH),
+            *("ros2", "launch", "nav2_bringup", _launch()),
             f"params_file:={params}",
             "use_rviz:=False",
             f"use_composition:={composed}",
@@ -318,11 +309,21 @@ def stock_bringup(logs: Path, python: bool, composed: bool, local: bool = False)
         procs.stop_all()
 
 
+def _launch() -> str:
+    """The loopback launch file of this nav2_bringup (its first name when it has none)."""
+    for name in LAUNCHES:
+        if nav2_testing.find(f"share/nav2_bringup/launch/{name}") is not None:
+            return name
+    return LAUNCHES[0]
+
+
 def _navigation() -> tuple[str, ...]:
-    """NAVIGATION, as this distribution's navigation_launch.py has it (Humble: no docking)."""
+    """The nodes lifecycle_manager_navigation manages, as this distribution's
+    navigation_launch.py names them."""
     launch = nav2_testing.find("share/nav2_bringup/launch/navigation_launch.py")
-    text = launch.read_text() if launch else ""
-    return tuple(node for node in NAVIGATION if f"'{node}'" in text or f'"{node}"' in text)
+    found = LIFECYCLE_NODES.search(launch.read_text()) if launch else None
+    assert found, f"no lifecycle_nodes list in {launch}"
+    return tuple(re.findall(r"['\"](\w+)['\"]", found.group(1)))
 
 
 @dataclass
