@@ -160,15 +160,15 @@ def _missing(native: bool, local: bool) -> list[str]:
         "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
         "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
         "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf",
-        "rclcpp_components": "lib/rclcpp_components/component_container_isolated",
+        # (component_container_isolated before Lyrical, component_container --isolated on it)
+        "rclcpp_components": "lib/rclcpp_components/component_container",
         "ros2lifecycle (`ros2 lifecycle`)": "share/ros2lifecycle/package.xml",
     }
     stock = nav2_testing.find(STOCK_PARAMS)
     if native and stock is not None:
         package = _native_package(stock.read_text())
-        needed[f"{package} (the stock controller: testenv/build.sh DISTRO mppi)"] = (
-            f"share/{package}/package.xml"
-        )
+        built_by = " (testenv/build.sh DISTRO mppi)" if package == "nav2_mppi_controller" else ""
+        needed[f"the stock controller, {package}{built_by}"] = f"share/{package}/package.xml"
     absent += [name for name, path in needed.items() if nav2_testing.find(path) is None]
     host = nav2_testing.host_command()
     if local and host is not None and len(host) != 1:
