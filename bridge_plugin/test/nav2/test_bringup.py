@@ -27,6 +27,9 @@ rmw_zenoh's own router.
   the composed container drives the goals; `ros2 lifecycle set <server> shutdown` of
   controller_server and planner_server then ends every process the plugins started, while the
   container stays up.
+- The controller and global planner a new user writes in the tutorials (GoTo, GridSearch, taken
+  from python/doc/tutorials as the pages show them) drive the stock launch to the goals: issue
+  41's acceptance, its Nav2 half.
 - Ctrl-C on the launch (SIGINT to its process group) ends every process it started.
 
 Needs, beyond what test_nav2_pyif.py needs: nav2_bringup, nav2_loopback_sim,
@@ -53,6 +56,8 @@ import nav2_testing
 import pytest
 from test_host_recovery import record
 
+from tests.docs_blocks import used_files
+
 pytestmark = pytest.mark.timeout(1200)
 
 PREFIX = nav2_testing.PREFIX
@@ -65,7 +70,8 @@ START = (-2.0, -0.5)
 GOALS = ((0.5, 1.7), START)
 # The plugins changed, by server and plugin name (the same names on Humble, Jazzy and
 # Lyrical), and the Python plugin and planner that serve each.
-PYTHON_PLUGINS = {
+Plugins = dict[tuple[str, str], tuple[str, str]]
+PYTHON_PLUGINS: Plugins = {
     ("controller_server", "FollowPath"): (
         "nav2_pyif_bridge::PyController",
         "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
@@ -79,6 +85,19 @@ PYTHON_PLUGINS = {
         "nav2_pyif_planners.checker_plugins:SimpleProgressChecker",
     ),
 }
+# The tutorials' controller and global planner (python/doc/tutorials), as a new user writes
+# them, in place of the stock controller and planner.
+TUTORIAL_PLUGINS: Plugins = {
+    ("controller_server", "FollowPath"): (
+        "nav2_pyif_bridge::PyController",
+        "my_planners.go_to:GoTo",
+    ),
+    ("planner_server", "GridBased"): (
+        "nav2_pyif_bridge::PyGlobalPlanner",
+        "my_planners.grid_search:GridSearch",
+    ),
+}
+ROOT = nav2_testing.HERE.parents[2]
 # The servers that hold a Python plugin: a `ros2 lifecycle` shutdown of these must end the
 # planner hosts their plugins started.
 PYTHON_SERVERS = ("controller_server", "planner_server")
@@ -125,23 +144,25 @@ def native_plugins(stock: str) -> dict[tuple[str, str], str]:
     }
 
 
-def python_params(stock: str, serve: Callable[[str, str], list[str]]) -> str:
-    """nav2_bringup's params with only the plugin lines changed: each plugin of
-    PYTHON_PLUGINS becomes its nav2_pyif plugin, followed by the lines ``serve(name, planner)``
-    gives (where the host is: a key and the Zenoh line, or the local host's planner). Every
-    other line, the native plugins' own parameters included (the Python planners are given
-    them and ignore those they do not declare), is kept."""
+def python_params(
+    stock: str, serve: Callable[[str, str], list[str]], plugins: Plugins = PYTHON_PLUGINS
+) -> str:
+    """nav2_bringup's params with only the plugin lines changed: each plugin of ``plugins``
+    becomes its nav2_pyif plugin, followed by the lines ``serve(name, planner)`` gives (where
+    the host is: a key and the Zenoh line, or the local host's planner). Every other line, the
+    native plugins' own parameters included (the Python planners are given them and ignore
+    those they do not declare), is kept."""
     out, changed = [], []
     for line, role in plugin_lines(stock):
-        if role not in PYTHON_PLUGINS:
+        if role not in plugins:
             out.append(line)
             continue
         assert role is not None
         indent = line[: len(line) - len(line.lstrip())]
-        plugin, planner = PYTHON_PLUGINS[role]
+        plugin, planner = plugins[role]
         out += [f'{indent}plugin: "{plugin}"', *(indent + s for s in serve(role[1], planner))]
         changed.append(role)
-    assert sorted(changed) == sorted(PYTHON_PLUGINS), f"the stock params changed: {changed}"
+    assert sorted(changed) == sorted(plugins), f"the stock params changed: {changed}"
     return "\n".join(out) + "\n"
 
 
@@ -207,20 +228,24 @@ class Stack:
         return {source: count / (end - start) for source, count in counts.items()}
 
 
-def _separate_host(procs: nav2_testing.Processes, logs: Path, stock: str) -> tuple[str, Any]:
-    """The params for one planner host started beside the launch, and the function that
-    starts it: it listens on a free port the plugins dial, or, on rmw_zenoh, plugins and host
-    connect to rmw_zenoh's router."""
+def _separate_host(
+    procs: nav2_testing.Processes, logs: Path, stock: str, plugins: Plugins, path: Path | None
+) -> tuple[str, Any]:
+    """The params for one planner host started beside the launch (importing planners from
+    ``path`` too, when given), and the function that starts it: it listens on a free port the
+    plugins dial, or, on rmw_zenoh, plugins and host connect to rmw_zenoh's router."""
     router = nav2_testing.shared_router()
     endpoint = router or f"tcp/127.0.0.1:{nav2_testing.free_port()}"
     zenoh = nav2_testing.plugin_zenoh(logs, endpoint)
-    params = python_params(stock, lambda name, _: [f'key: "{PREFIX}/{name}"', zenoh])
+    params = python_params(stock, lambda name, _: [f'key: "{PREFIX}/{name}"', zenoh], plugins)
     served = [
         argument
-        for (_, name), (_, planner) in PYTHON_PLUGINS.items()
+        for (_, name), (_, planner) in plugins.items()
         for argument in ("--serve", f"{PREFIX}/{name}={planner}")
     ]
     host = [*(nav2_testing.host_command() or []), "--connect" if router else "--listen", endpoint]
+    if path is not None:
+        host += ["--path", str(path)]
 
     def start_host() -> None:
         procs.start("planner_host", [*host, *served])
@@ -239,11 +264,18 @@ def _local_hosts(stock: str) -> str:
 
 
 @contextmanager
-def stock_bringup(logs: Path, python: bool, composed: bool, local: bool = False) -> Iterator[Stack]:
-    """nav2_bringup's loopback launch with its params (the Python plugins' when ``python``,
-    with their planner host beside the launch, or started by the plugins when ``local``),
-    composed or not; the robot put at START; every lifecycle node active. Skips, naming what
-    is missing, where the environment lacks a part."""
+def stock_bringup(
+    logs: Path,
+    python: bool,
+    composed: bool,
+    local: bool = False,
+    plugins: Plugins = PYTHON_PLUGINS,
+    path: Path | None = None,
+) -> Iterator[Stack]:
+    """nav2_bringup's loopback launch with its params (``plugins`` changed when ``python``,
+    with their planner host beside the launch, importing from ``path`` too, or started by the
+    plugins when ``local``), composed or not; the robot put at START; every lifecycle node
+    active. Skips, naming what is missing, where the environment lacks a part."""
     missing = _missing(native=not python, local=local)
     if missing:
         pytest.skip("the stock nav2_bringup test needs: " + ", ".join(missing))
@@ -254,7 +286,7 @@ def stock_bringup(logs: Path, python: bool, composed: bool, local: bool = False)
     params = logs / "nav2_params.yaml"
     start_host = None
     if python and not local:
-        text, start_host = _separate_host(procs, logs, stock)
+        text, start_host = _separate_host(procs, logs, stock, plugins, path)
         params.write_text(text)
         start_host()
     else:
@@ -547,6 +579,30 @@ def test_local_hosts_in_the_container_and_a_lifecycle_shutdown_ends_them(tmp_pat
         assert nav2_testing.running(container), "the container ended with the shutdown"
         for node in PYTHON_SERVERS:
             assert stack.client.state(node) == "finalized", node
+        assert_ctrl_c_ends_everything(stack)
+
+
+def test_the_tutorials_planners_drive_the_stock_bringup(tmp_path: Path) -> None:
+    """Issue 41's acceptance, its Nav2 half: the controller and global planner a new user
+    writes by following the tutorials (python/doc/tutorials: GoTo and GridSearch, as the pages
+    show them) serve nav2_bringup's stock launch, with its params changed as
+    python/doc/howto/bringup.md shows."""
+    user = tmp_path / "user"
+    for name, text in used_files(ROOT / "python/doc/tutorials/in_nav2.md", ROOT).items():
+        (user / name).parent.mkdir(parents=True, exist_ok=True)
+        (user / name).write_text(text)
+    assert (user / "my_planners" / "grid_search.py").is_file(), sorted(user.rglob("*.py"))
+    with stock_bringup(
+        tmp_path, python=True, composed=True, plugins=TUTORIAL_PLUGINS, path=user
+    ) as stack:
+        runs = [navigate(stack, goal) for goal in GOALS]
+        record(
+            **{f"bringup_tutorial_to_goal_{i}_s": run.seconds for i, run in enumerate(runs)},
+            bringup_tutorial_recoveries=sum(run.recoveries for run in runs),
+        )
+        print("the tutorials' planners:", runs)
+        logs = stack.procs.log("launch", 80) + "\n" + stack.procs.log("planner_host", 40)
+        assert all(run.succeeded for run in runs), f"{runs}\n{logs}"
         assert_ctrl_c_ends_everything(stack)
 
 
