@@ -24,9 +24,9 @@ rmw_zenoh's own router.
   heartbeats and both costmaps' footprints keep at least half their rate, and no server is
   reported down.
 - Local-host mode (the plugins start their own planner hosts: `python_planner`, no key) inside
-  the composed container drives the goals; `ros2 lifecycle set <server> shutdown` of
-  controller_server and planner_server then ends every process the plugins started, while the
-  container stays up.
+  the composed container drives the goals; `ros2 lifecycle set /controller_server shutdown`
+  then ends every process its plugins started (keeper, host, workers) while the container and
+  planner_server's hosts stay up, and Ctrl-C ends those.
 - The controller and global planner a new user writes in the tutorials (GoTo, GridSearch, taken
   from python/doc/tutorials as the pages show them) drive the stock launch to the goals: issue
   41's acceptance, its Nav2 half.
@@ -98,8 +98,7 @@ TUTORIAL_PLUGINS: Plugins = {
     ),
 }
 ROOT = nav2_testing.HERE.parents[2]
-# The servers that hold a Python plugin: a `ros2 lifecycle` shutdown of these must end the
-# planner hosts their plugins started.
+# The servers that hold a Python plugin (each starts its own hosts in local-host mode).
 PYTHON_SERVERS = ("controller_server", "planner_server")
 # nav2_bringup's navigation_launch.py names the nodes of lifecycle_manager_navigation
 # (Jazzy adds collision_monitor and docking_server, Lyrical route_server and following_server).
@@ -559,27 +558,49 @@ def test_python_plugins_not_composed_reach_the_goals_and_survive_a_killed_host(
         assert_ctrl_c_ends_everything(stack)
 
 
-def test_local_hosts_in_the_container_and_a_lifecycle_shutdown_ends_them(tmp_path: Path) -> None:
+def local_hosts(container: int) -> dict[str, set[int]]:
+    """The planner hosts the plugins started in the container, by the node whose plugin
+    started them: each keeper (a child of the container: `planner-host --respawn --key
+    nav2_pyif/local/<node>/<plugin>`) and every process below it (its host, the workers)."""
+    by_node: dict[str, set[int]] = {}
+    for pid in nav2_testing.descendants(container):
+        try:
+            stat = Path(f"/proc/{pid}/stat").read_text()
+            argv = Path(f"/proc/{pid}/cmdline").read_bytes().decode().split("\0")
+        except OSError:
+            continue
+        if int(stat.rsplit(")", 1)[1].split()[1]) != container or "--key" not in argv:
+            continue
+        node = argv[argv.index("--key") + 1].split("/")[2]
+        by_node.setdefault(node, set()).update({pid, *nav2_testing.descendants(pid)})
+    return by_node
+
+
+def test_local_hosts_in_the_container_end_with_a_lifecycle_shutdown_and_ctrl_c(
+    tmp_path: Path,
+) -> None:
     with stock_bringup(tmp_path, python=True, composed=True, local=True) as stack:
         container = stack.container()
-        hosts = nav2_testing.descendants(container)
+        hosts = local_hosts(container)
         # a keeper (planner-host --respawn) per plugin, each with its host and worker
-        assert len(hosts) >= len(PYTHON_PLUGINS), {p: nav2_testing.comm(p) for p in hosts}
+        assert sorted(hosts) == sorted(PYTHON_SERVERS), hosts
         TIMES["python_local"] = drive_the_goals(stack, "python_local")
-        for node in PYTHON_SERVERS:
-            lifecycle_shutdown(stack, node)
+        # controller_server's, by `ros2 lifecycle`; planner_server's, by Ctrl-C
+        lifecycle_shutdown(stack, "controller_server")
         deadline = time.monotonic() + 20.0
-        while time.monotonic() < deadline and any(nav2_testing.running(p) for p in hosts):
+        ended = hosts["controller_server"]
+        while time.monotonic() < deadline and any(nav2_testing.running(p) for p in ended):
             time.sleep(0.2)
-        left = {p: nav2_testing.comm(p) for p in hosts if nav2_testing.running(p)}
+        left = {p: nav2_testing.comm(p) for p in ended if nav2_testing.running(p)}
         assert not left, (
-            f"still running after `ros2 lifecycle set ... shutdown`: {left}\n"
+            f"still running after `ros2 lifecycle set /controller_server shutdown`: {left}\n"
             + stack.procs.log("launch", 60)
         )
+        assert stack.client.state("controller_server") == "finalized"
         assert nav2_testing.running(container), "the container ended with the shutdown"
-        for node in PYTHON_SERVERS:
-            assert stack.client.state(node) == "finalized", node
-        assert_ctrl_c_ends_everything(stack)
+        kept = hosts["planner_server"]
+        assert all(nav2_testing.running(p) for p in kept), "planner_server's hosts ended too"
+        assert_ctrl_c_ends_everything(stack)  # planner_server's hosts among them
 
 
 def test_the_tutorials_planners_drive_the_stock_bringup(tmp_path: Path) -> None:
