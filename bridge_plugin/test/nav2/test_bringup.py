@@ -363,6 +363,7 @@ class Run:
     seconds: float
     recoveries: int
     status: int
+    longest_stop: float  # [s] the robot stood still between moving
 
 
 def navigate(stack: Stack, goal: tuple[float, float], fault: Any = None) -> Run:
@@ -380,7 +381,11 @@ def navigate(stack: Stack, goal: tuple[float, float], fault: Any = None) -> Run:
     client.recording = False
     status = -1 if result is None else int(result.status)
     return Run(
-        status == nav2_testing.SUCCEEDED, time.monotonic() - started, client.recoveries, status
+        status == nav2_testing.SUCCEEDED,
+        time.monotonic() - started,
+        client.recoveries,
+        status,
+        nav2_testing.longest_stop(client.speeds),
     )
 
 
@@ -438,6 +443,7 @@ def survive_a_killed_host(stack: Stack, label: str, healthy: dict[str, float]) -
         stack.start_host()
 
     run = navigate(stack, GOALS[0], kill_and_restart)
+    print(f"{label}, the host killed: {run}")
     logs = procs.log("launch", 120) + "\n" + procs.log("planner_host", 40)
     assert run.succeeded, f"NavigateToPose with the host killed: {run}\n{logs}"
     assert run.recoveries <= 1, f"{run}\n{logs}"
@@ -448,6 +454,7 @@ def survive_a_killed_host(stack: Stack, label: str, healthy: dict[str, float]) -
         **{
             f"bringup_{label}_host_killed_s": run.seconds,
             f"bringup_{label}_host_killed_recoveries": run.recoveries,
+            f"bringup_{label}_host_killed_longest_stop_s": run.longest_stop,
             f"bringup_{label}_host_dead_kept_rate_min": _least_kept(healthy, rates),
         }
     )
@@ -470,6 +477,7 @@ def survive_a_slow_host(stack: Stack, label: str, healthy: dict[str, float]) -> 
             os.killpg(host.pid, signal.SIGCONT)
 
     run = navigate(stack, GOALS[0], stop_for_a_while)
+    print(f"{label}, the host stopped {SLOW_FOR} s: {run}")
     logs = stack.procs.log("launch", 120) + "\n" + stack.procs.log("planner_host", 40)
     assert run.succeeded, f"NavigateToPose with the host stopped {SLOW_FOR} s: {run}\n{logs}"
     slow = (stopped[0], stopped[0] + SLOW_FOR)
@@ -478,6 +486,7 @@ def survive_a_slow_host(stack: Stack, label: str, healthy: dict[str, float]) -> 
         **{
             f"bringup_{label}_host_slow_s": run.seconds,
             f"bringup_{label}_host_slow_recoveries": run.recoveries,
+            f"bringup_{label}_host_slow_longest_stop_s": run.longest_stop,
             f"bringup_{label}_host_slow_kept_rate_min": _least_kept(healthy, rates),
         }
     )
