@@ -114,12 +114,21 @@ BRINGUP = "test_bringup.py"
 # under LeakSanitizer (about 30 min), run when NAV2_PYIF_SOAK_CYCLES says how many cycles.
 SOAK = "test_plugin_soak.py"
 BRINGUP_NEEDS = {
-    "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
+    "nav2_bringup": "share/nav2_bringup/launch/bringup_launch.py",
     "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
     "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
     "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/package.xml",
-    "nav2_mppi_controller (testenv/build.sh DISTRO mppi)": "share/nav2_mppi_controller/package.xml",
+    "ros2lifecycle": "share/ros2lifecycle/package.xml",
 }
+# The stock params' own controller, which the native side of the comparison runs: Humble's is
+# DWB, later ones' MPPI (testenv/build.sh DISTRO mppi builds it).
+STOCK_CONTROLLER = {"humble": "dwb_core"}
+
+
+def _bringup_needs(distro: str) -> dict[str, str]:
+    package = STOCK_CONTROLLER.get(distro, "nav2_mppi_controller")
+    build = "" if distro in STOCK_CONTROLLER else f" (testenv/build.sh {distro} mppi)"
+    return {**BRINGUP_NEEDS, f"{package}{build}": f"share/{package}/package.xml"}
 
 
 @pytest.mark.timeout(1800)
@@ -150,7 +159,12 @@ def test_gallery_ompl_planner_and_dwa_controller_in_a_real_nav2(distro: str, bac
 def test_nav2_bringup_stock_launch_with_python_plugins(distro: str, backend: str) -> None:
     selection = f"-s bridge_plugin/test/nav2/{BRINGUP}"
     _launch_tests(
-        distro, backend, selection, timeout=3000, recovery_figures=False, needs=BRINGUP_NEEDS
+        distro,
+        backend,
+        selection,
+        timeout=3000,
+        recovery_figures=False,
+        needs=_bringup_needs(distro),
     )
 
 
@@ -236,7 +250,7 @@ def _launch_tests(
             "nav2_lifecycle_manager/lifecycle_manager",
         )
     }
-    required.update({name.replace("DISTRO", distro): path for name, path in (needs or {}).items()})
+    required.update(needs or {})
     look_for = "".join(
         f"found=; for p in ${{AMENT_PREFIX_PATH//:/ }}; do [ -e $p/{path} ] && found=1; done; "
         f'[ -n "$found" ] || echo missing: {shlex.quote(name)}; '
