@@ -250,7 +250,8 @@ class Journal:
     ) -> int:
         """Hot swap, all or nothing: replay every session on the new planner (``new``: its
         label and kind) through ``call``, then, holding ``lock`` so that no call changes them
-        meanwhile, the sessions changed since, and ``swap()``. Raises PlannerLoadError naming
+        meanwhile, what changed since (changed_since: never a second configure of a session
+        the new planner has), and ``swap()``. Raises PlannerLoadError naming
         the first session and step that failed (nothing swapped). Returns the number of
         sessions carried over.
 
