@@ -11,6 +11,7 @@ from contextlib import nullcontext
 from typing import Any
 
 import numpy as np
+import pytest
 from geometry_msgs.msg import PoseStamped, Twist
 from nav2_pyif import Plan
 from nav2_pyif.client.controller import ControllerClient
@@ -21,6 +22,8 @@ from nav2_pyif_protocol.constants import Op, PluginType
 
 from tests.conftest import make_costmap
 from tests.fixtures.echo_planners import EchoController
+
+pytestmark = pytest.mark.unit
 
 CONFIGURES: list[str] = []  # the session id of each configure of the new planner
 
