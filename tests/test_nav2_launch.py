@@ -110,6 +110,8 @@ GALLERY = "test_gallery.py"
 # of its own, which needs nav2_bringup's stack in the environment (testenv/build.sh builds it
 # for Jazzy, and Nav2's MPPI with its mppi step).
 BRINGUP = "test_bringup.py"
+# What only Lyrical's Nav2 has (nav2_core::PathHandler): run in the lyrical variants only.
+LYRICAL_ONLY = ["test_lyrical_path_handler.py"]
 BRINGUP_NEEDS = {
     "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
     "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
@@ -124,6 +126,8 @@ BRINGUP_NEEDS = {
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
     apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP]
+    if distro != "lyrical":
+        apart += LYRICAL_ONLY  # they would skip there, and a skip fails the run
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
     _launch_tests(distro, backend, f"{ignored} bridge_plugin/test/nav2", timeout=900)
 

@@ -174,13 +174,15 @@ inline constexpr std::array<std::pair<PluginKind, Op>, 4> kRestored = {{
   {PluginKind::PathHandler, Op::SetPlan},
 }};
 
-// Whether a plugin type sends a call of the carried control cycle (schema.py CARRIES; PROTOCOL.md
-// section 15): the plugins of such types in one controller_server share its carried cycle.
+// Whether a plugin type sends or answers a call of the carried control cycle (schema.py CARRIES;
+// PROTOCOL.md section 15): the plugins of such types in one controller_server share its carried
+// cycle.
 constexpr bool in_carried_cycle(PluginKind kind) noexcept
 {
   return kind == PluginKind::Controller ||
          kind == PluginKind::GoalChecker ||
-         kind == PluginKind::ProgressChecker;
+         kind == PluginKind::ProgressChecker ||
+         kind == PluginKind::PathHandler;
 }
 
 // std::nullopt for a name this version of the protocol does not know.
