@@ -13,7 +13,6 @@ import sys
 
 import numpy as np
 from geometry_msgs.msg import PoseStamped
-
 from nav2_pyif import Costmap, Plan
 from nav2_pyif.client import PathHandlerClient
 from nav2_pyif.common.host_process import PlannerHostProcess, wait_alive
