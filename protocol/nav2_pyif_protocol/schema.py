@@ -318,8 +318,8 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
             _f(
                 "path",
                 "Path",
-                "the plan to follow (a path handler's: to cut segments from), in the costmap's "
-                "global frame (sections 14, 19)",
+                "the plan to follow, in the costmap's global frame (section 14); a path "
+                "handler's, to cut segments from, in its own frame (section 19)",
             ),
             _f(
                 "goal",
@@ -563,7 +563,7 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         (),
     ),
     Op.FIND_PLAN_SEGMENT: (
-        (_f("pose", "PoseStamped", "robot pose, in the costmap's global frame"),),
+        (_f("pose", "PoseStamped", "robot pose, in the plan's frame"),),
         (
             _f("start", UINT, "first pose of the segment: an index into the plan set_plan sent"),
             _f("end", UINT, "one past its last pose; start < end <= the plan's length"),

@@ -45,18 +45,18 @@ class PathHandler(PlannerPlugin):
     """
 
     plugin_type: ClassVar[PluginType] = PluginType.PATH_HANDLER
-    #: The plan ``set_plan`` last gave, in the costmap's global frame; empty before.
+    #: The plan ``set_plan`` last gave, in its own frame (``plan.frame_id``); empty before.
     plan: Plan = Plan([], "")
 
     def set_plan(self, plan: Plan) -> None:
         """A new plan (controller_server's setPlan, at every new or updated FollowPath goal),
-        in the costmap's global frame; re-sent when localisation moves it there. The default
-        keeps it as ``self.plan``: override to reset per-plan state, then call this."""
+        in its own frame (the planner's: usually ``map``), as Nav2's path handlers get it. The
+        default keeps it as ``self.plan``: override to reset per-plan state, then call this."""
         self.plan = plan
 
     @abstractmethod
     def find_plan_segment(self, pose: Any) -> tuple[int, int]:
-        """``pose``: geometry_msgs/PoseStamped, the robot in the costmap's global frame.
+        """``pose``: geometry_msgs/PoseStamped, the robot in the plan's frame.
 
         Return ``(start, end)``: the poses ``self.plan[start:end]`` the controller follows
         this cycle (``0 <= start < end <= len(self.plan)``), indices into the plan as

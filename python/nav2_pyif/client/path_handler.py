@@ -21,12 +21,12 @@ class PathHandlerClient(PluginClient):
         self._plan: dict[str, Any] | None = None  # the latest plan, for a new session
 
     def set_plan(self, path: Plan | Any) -> None:
-        """``path``: a Plan or a nav_msgs/Path, in the costmap's global frame."""
+        """``path``: a Plan or a nav_msgs/Path, in its own frame."""
         self._plan = (path if isinstance(path, Plan) else Plan.from_msg(path)).to_wire()
         self._call(Op.SET_PLAN, {"path": self._plan})
 
     def find_plan_segment(self, pose: Any) -> tuple[int, int]:
-        """geometry_msgs/PoseStamped (global frame) -> (start, end) into the plan."""
+        """geometry_msgs/PoseStamped (the plan's frame) -> (start, end) into the plan."""
         return segment_of(self._call(Op.FIND_PLAN_SEGMENT, segment_body(pose)))
 
     def _restored(self, op: Op) -> Body | None:

@@ -90,8 +90,8 @@ struct SetParametersReply
 // --- set_plan ------------------------------------------------------------------------------------
 struct SetPlanRequest
 {
-  // the plan to follow (a path handler's: to cut segments from), in the costmap's global frame
-  // (sections 14, 19)
+  // the plan to follow, in the costmap's global frame (section 14); a path handler's, to cut
+  // segments from, in its own frame (section 19)
   Path path;
   // optional: the global goal, same frame: Nav2's (Lyrical); absent: the plan's last pose
   std::optional<PoseStamped> goal;
@@ -406,7 +406,7 @@ struct OnActionCompletionReply {};
 // --- find_plan_segment ---------------------------------------------------------------------------
 struct FindPlanSegmentRequest
 {
-  // robot pose, in the costmap's global frame
+  // robot pose, in the plan's frame
   PoseStamped pose;
 };
 
