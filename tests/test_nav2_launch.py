@@ -111,7 +111,7 @@ GALLERY = "test_gallery.py"
 # for Jazzy, and Nav2's MPPI with its mppi step).
 BRINGUP = "test_bringup.py"
 # What only Lyrical's Nav2 has (nav2_core::PathHandler): run in the lyrical variants only.
-LYRICAL_ONLY = ["test_lyrical_path_handler.py"]
+LYRICAL_ONLY = ["test_lyrical_path_handler.py", "test_lyrical_api.py"]
 BRINGUP_NEEDS = {
     "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
     "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",

@@ -35,8 +35,7 @@ PLANNERS = (
 SUCCEEDED, ABORTED = nav2_testing.SUCCEEDED, nav2_testing.ABORTED
 
 pytestmark = pytest.mark.skipif(
-    nav2_testing.find("include/nav2_core/nav2_core/path_handler.hpp") is None
-    and nav2_testing.find("include/nav2_core/path_handler.hpp") is None,
+    not nav2_testing.is_lyrical(),
     reason="Lyrical's path handler test skipped: this Nav2 has no nav2_core/path_handler.hpp "
     "(Humble, Jazzy, Kilted: controller_server has no path handler)",
 )
