@@ -17,22 +17,28 @@ NAV2_PACKAGES=(
 # Its loopback launch (tb3_loopback_simulation.launch.py) also reads the TurtleBot 3's URDF
 # (nav2_minimal_tb3_sim) and publishes its frames with robot_state_publisher. `ros2 lifecycle`
 # shuts a stack down as its users do.
-# Jazzy only so far: DISTRO.repos must bring what they need (yaml_cpp_vendor, cv_bridge,
-# image_transport, robot_localization, urdf, kdl_parser).
+# DISTRO.repos must bring what they need (yaml_cpp_vendor, cv_bridge, image_transport; Jazzy's
+# also robot_localization, urdf, kdl_parser).
 BRINGUP_PACKAGES=(
   nav2_bringup nav2_common nav2_map_server nav2_amcl nav2_velocity_smoother
-  nav2_collision_monitor nav2_waypoint_follower opennav_docking opennav_docking_bt
-  nav2_loopback_sim nav2_simple_commander nav2_minimal_tb3_sim robot_state_publisher
-  ros2lifecycle
+  nav2_collision_monitor nav2_waypoint_follower nav2_simple_commander ros2lifecycle
 )
+# Jazzy's docking, and Nav2's own simulator with the TurtleBot 3 it loads.
+BRINGUP_JAZZY=(
+  opennav_docking opennav_docking_bt nav2_loopback_sim nav2_minimal_tb3_sim
+  robot_state_publisher
+)
+# Humble's Nav2 has the route server (backported to 1.1) but no docking and no loopback
+# simulator; its stock params run DWB, the native side of the comparison (named here, so not
+# ignored: BRINGUP_IGNORE leaves DWB out elsewhere).
+BRINGUP_HUMBLE=(nav2_route dwb_core dwb_critics dwb_plugins dwb_msgs costmap_queue)
 # What the stock stack needs from Debian: GraphicsMagick++ (map_server's image maps),
-# OpenCV and Boost.Python (cv_bridge, for waypoint_follower's photo plugin), GeographicLib
-# (robot_localization, for waypoint_follower's GPS plugin), urdfdom (urdf, for
-# robot_state_publisher).
-APT_BRINGUP=(
-  libgraphicsmagick++1-dev libopencv-dev libboost-dev libboost-python-dev libgeographiclib-dev
-  liburdfdom-dev liburdfdom-headers-dev
-)
+# OpenCV and Boost.Python (cv_bridge, for waypoint_follower's photo plugin); Jazzy's also
+# GeographicLib (robot_localization, for waypoint_follower's GPS plugin) and urdfdom (urdf, for
+# robot_state_publisher); Humble's route server nanoflann.
+APT_BRINGUP=(libgraphicsmagick++1-dev libopencv-dev libboost-dev libboost-python-dev)
+APT_BRINGUP_JAZZY=(libgeographiclib-dev liburdfdom-dev liburdfdom-headers-dev)
+APT_BRINGUP_HUMBLE=(libnanoflann-dev)
 
 # Debian packages: compilers, and the system libraries the ROS packages above find with CMake
 # (liblttng-ust-dev: the tracetools wheel's CMake export links it into rclcpp).
@@ -124,8 +130,8 @@ distro_settings() {
   case "$1" in
     jazzy)
       PYPI_BASE=1
-      ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}")
-      APT_PACKAGES+=("${APT_BRINGUP[@]}")
+      ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}" "${BRINGUP_JAZZY[@]}")
+      APT_PACKAGES+=("${APT_BRINGUP[@]}" "${APT_BRINGUP_JAZZY[@]}")
       PIP_PACKAGES+=("${PIP_BRINGUP[@]}")
       IGNORE_PACKAGES+=("${BRINGUP_IGNORE[@]}")
       local wheel
@@ -150,6 +156,11 @@ distro_settings() {
     humble)
       # Humble's Nav2 uses BehaviorTree.CPP 3 (behaviortree_cpp_v3), whose CMake options differ.
       ROS_PACKAGES+=(behaviortree_cpp_v3)
+      # nav2_bringup's stock stack (a package a step names is never ignored: map_server is
+      # built here, DWB too)
+      ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}" "${BRINGUP_HUMBLE[@]}")
+      APT_PACKAGES+=("${APT_BRINGUP[@]}" "${APT_BRINGUP_HUMBLE[@]}")
+      IGNORE_PACKAGES+=("${BRINGUP_IGNORE[@]}")
       CMAKE_ARGS+=(-DBUILD_EXAMPLES=OFF -DBUILD_UNIT_TESTS=OFF -DBUILD_TOOLS=OFF)
       # (nav2_util 1.1's lifecycle_bringup takes its arguments with Boost.Program_options)
       APT_PACKAGES+=(libboost-coroutine-dev libboost-program-options-dev)

@@ -69,6 +69,10 @@ def test_the_report_is_the_same_on_an_idle_and_a_loaded_machine(tmp_path: Path) 
     assert any(r["success"] for r in idle["runs"]), idle["runs"]  # not four failures alike
     assert all(r.get("compute_p99_ms") is not None for r in idle["runs"]), idle["runs"]
     assert without_compute(loaded) == without_compute(idle)
+    compared = nav2_pyif_tool("eval", "--compare", str(tmp_path / "idle"), str(tmp_path / "loaded"))
+    assert compared.returncode == 0 and "identical: 4 run(s) of 2 planner(s)" in compared.stdout, (
+        compared.stdout + compared.stderr
+    )
 
 
 def test_the_outputs_are_written_and_the_table_printed(tmp_path: Path) -> None:
@@ -96,8 +100,9 @@ def test_the_outputs_are_written_and_the_table_printed(tmp_path: Path) -> None:
         (("--map", "no_such_map"), "the bundled maps: office, cluttered"),
         (("--generated", "1", "--density", "1.5"), "--density 1.5: give a fraction in [0, 1)"),
         (("--controller", "apf", "apf"), "a planner is named twice"),
+        (("--compare", "no_such_dir", "other"), "--compare: no_such_dir is not a readable"),
     ],
-    ids=["unknown-map", "bad-density", "twice"],
+    ids=["unknown-map", "bad-density", "twice", "compare-unreadable"],
 )
 def test_bad_input_is_a_usage_error(tmp_path: Path, args: tuple[str, ...], said: str) -> None:
     done = nav2_pyif_tool("eval", "--out", str(tmp_path), *args, timeout=60)

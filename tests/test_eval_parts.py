@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
+from nav2_pyif.evaluation.compare import compare
 from nav2_pyif.evaluation.metrics import COMPUTE_FIELDS, barn_score, jerk_rms
 from nav2_pyif.evaluation.report import summarize, without_compute
 from nav2_pyif.evaluation.scenarios import (
@@ -100,3 +102,31 @@ def test_the_summary_and_the_report_less_compute() -> None:
     less = without_compute(report)
     assert not set(COMPUTE_FIELDS) & {k for r in less["runs"] + less["summary"] for k in r}
     assert less["settings"] == {"mode": "lockstep"} and less["runs"][0]["barn_score"] == 0.2
+
+
+def _report(rows: list[dict[str, Any]], workers: int) -> dict[str, Any]:
+    planners = list(dict.fromkeys(r["planner"] for r in rows))
+    return {
+        "settings": {"mode": "lockstep", "workers": workers},
+        "summary": summarize(rows, planners),
+        "runs": rows,
+    }
+
+
+def test_compare_finds_only_what_is_not_a_compute_figure() -> None:
+    rows = [
+        {"planner": p, "scenario": s, "success": True, "time_to_goal_s": 10.0 + i,
+         "compute_median_ms": 1.0, "compute_p99_ms": 3.0, "wall_time_s": 4.0}
+        for i, (p, s) in enumerate([("a", "office"), ("a", "gen_1"), ("b", "office")])
+    ]  # fmt: skip
+    idle = _report(rows, workers=2)
+    busy = [dict(r, compute_median_ms=9.0, compute_p99_ms=80.0, wall_time_s=30.0) for r in rows]
+    assert compare(idle, _report(busy[::-1], workers=1)) == []  # any order, any worker count
+    busy[1] = dict(busy[1], success=False, time_to_goal_s=None)
+    assert compare(idle, _report(busy, workers=1)) == [
+        "summary[a].successes: 2 != 1",
+        "summary[a].success_rate: 1.0 != 0.5",
+        "summary[a].time_to_goal_s: 10.5 != 10.0",
+        "runs[a on gen_1].success: True != False",
+        "runs[a on gen_1].time_to_goal_s: 11.0 != None",
+    ]

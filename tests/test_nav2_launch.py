@@ -112,20 +112,32 @@ GALLERY = "test_gallery.py"
 BRINGUP = "test_bringup.py"
 # What only Lyrical's Nav2 has (nav2_core::PathHandler): run in the lyrical variants only.
 LYRICAL_ONLY = ["test_lyrical_path_handler.py", "test_lyrical_api.py"]
+# The plugin side soaked: 100 000 control cycles and 100 lifecycle cycles of a controller_server
+# under LeakSanitizer (about 30 min), run when NAV2_PYIF_SOAK_CYCLES says how many cycles.
+SOAK = "test_plugin_soak.py"
 BRINGUP_NEEDS = {
-    "nav2_bringup": "share/nav2_bringup/launch/tb3_loopback_simulation.launch.py",
+    "nav2_bringup": "share/nav2_bringup/launch/bringup_launch.py",
     "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
     "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
     "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/package.xml",
-    "nav2_mppi_controller (testenv/build.sh DISTRO mppi)": "share/nav2_mppi_controller/package.xml",
+    "ros2lifecycle": "share/ros2lifecycle/package.xml",
 }
+# The stock params' own controller, which the native side of the comparison runs: Humble's is
+# DWB, later ones' MPPI (testenv/build.sh DISTRO mppi builds it).
+STOCK_CONTROLLER = {"humble": "dwb_core"}
+
+
+def _bringup_needs(distro: str) -> dict[str, str]:
+    package = STOCK_CONTROLLER.get(distro, "nav2_mppi_controller")
+    build = "" if distro in STOCK_CONTROLLER else f" (testenv/build.sh {distro} mppi)"
+    return {**BRINGUP_NEEDS, f"{package}{build}": f"share/{package}/package.xml"}
 
 
 @pytest.mark.timeout(1800)
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP]
+    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP, SOAK]
     if distro != "lyrical":
         apart += LYRICAL_ONLY  # they would skip there, and a skip fails the run
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
@@ -151,7 +163,12 @@ def test_gallery_ompl_planner_and_dwa_controller_in_a_real_nav2(distro: str, bac
 def test_nav2_bringup_stock_launch_with_python_plugins(distro: str, backend: str) -> None:
     selection = f"-s bridge_plugin/test/nav2/{BRINGUP}"
     _launch_tests(
-        distro, backend, selection, timeout=3000, recovery_figures=False, needs=BRINGUP_NEEDS
+        distro,
+        backend,
+        selection,
+        timeout=3000,
+        recovery_figures=False,
+        needs=_bringup_needs(distro),
     )
 
 
@@ -172,6 +189,24 @@ def test_full_stack_navigations_survive_every_fault(distro: str, backend: str) -
     chosen = f"-k {shlex.quote(select)} " if select else ""
     # -x: a failed navigation leaves the robot where the next test does not expect it
     _launch_tests(distro, backend, f"-s -x {chosen}{files}", timeout=4 * 3600 - 600)
+
+
+@pytest.mark.timeout(3 * 3600)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_plugin_soaked_in_controller_server(distro: str, backend: str) -> None:
+    cycles = os.environ.get("NAV2_PYIF_SOAK_CYCLES")
+    if not cycles:
+        pytest.skip(
+            "the plugin soak (bridge_plugin/test/nav2/test_plugin_soak.py: 100 000 control "
+            "cycles and 100 lifecycle cycles under LeakSanitizer, about 30 min) runs only when "
+            "NAV2_PYIF_SOAK_CYCLES gives the cycles"
+        )
+    assert int(cycles) >= 100_000 or os.environ.get("NAV2_PYIF_SOAK_SHORT") == "1", (
+        "NAV2_PYIF_SOAK_CYCLES below 100 000 is not the soak (NAV2_PYIF_SOAK_SHORT=1 to try it)"
+    )
+    selection = f"-s bridge_plugin/test/nav2/{SOAK}"
+    _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
 
 
 @pytest.mark.timeout(3 * 3600)
@@ -219,7 +254,7 @@ def _launch_tests(
             "nav2_lifecycle_manager/lifecycle_manager",
         )
     }
-    required.update({name.replace("DISTRO", distro): path for name, path in (needs or {}).items()})
+    required.update(needs or {})
     look_for = "".join(
         f"found=; for p in ${{AMENT_PREFIX_PATH//:/ }}; do [ -e $p/{path} ] && found=1; done; "
         f'[ -n "$found" ] || echo missing: {shlex.quote(name)}; '

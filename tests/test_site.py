@@ -129,3 +129,40 @@ def test_rendered_page_shows_its_text_code_and_images(
     if least_images:  # an image's pixels: colours that no text or background has
         saturation = body.max(axis=2) - body.min(axis=2)
         assert (saturation > 0.08).sum() > 2000, f"{name}: no image to see on the screen"
+
+
+# What rosdoc2 itself warns of on any ament_python package with its own Sphinx project: its
+# sphinx-apidoc pages describe the modules our API page describes too, its copy of the pages
+# (user_docs/) is in no toctree, and its theme (Read the Docs') takes none of alabaster's
+# options. Anything else is ours.
+ROSDOC2_OWN_WARNINGS = (
+    "duplicate object description",
+    "document isn't included in any toctree",
+    "unsupported theme option",
+)
+
+
+def test_rosdoc2_builds_the_package_documentation(tmp_path: Path) -> None:
+    """docs.ros.org's tool builds the ROS package nav2_pyif's documentation from python/
+    (package.xml, doc/conf.py), with no warning of ours, and the tutorials are in it."""
+    if shutil.which("rosdoc2", path=str(ROOT / ".venv" / "bin")) is None:
+        pytest.skip("rosdoc2 is not installed: python -m pip install -e '.[dev]'")
+    built = subprocess.run(
+        in_project_env(f"rosdoc2 build --package-path {ROOT / 'python'}"),
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+    log = built.stdout + built.stderr
+    assert built.returncode == 0, log[-4000:]
+    ours = [
+        line
+        for line in log.splitlines()
+        if "WARNING" in line and not any(known in line for known in ROSDOC2_OWN_WARNINGS)
+    ]
+    assert not ours, "\n".join(ours)
+    output = tmp_path / "docs_output" / "nav2_pyif"
+    tutorial = (output / "tutorials" / "first_controller.html").read_text()
+    assert "compute_velocity_commands" in tutorial
+    assert (output / "_images" / "architecture.png").is_file()

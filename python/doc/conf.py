@@ -8,11 +8,38 @@ builds the same with plain ``sphinx-build python/doc OUT`` (tests/test_site.py d
 
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 from xml.etree import ElementTree
 
-HERE = Path(__file__).resolve().parent
+
+def _this_folder() -> Path:
+    """This file's folder. rosdoc2 runs this file through exec() from a conf.py it writes
+    elsewhere, where ``__file__`` is its own: that file names this one in its exec line."""
+    here = Path(__file__).resolve()
+    wrapped = re.search(r'exec\(open\("([^"]+)"\)', here.read_text())
+    return Path(wrapped.group(1)).resolve().parent if wrapped else here.parent
+
+
+HERE = _this_folder()
+REPOSITORY = HERE.parents[1]
+
+
+def _link_the_repository_beside(wrapped: Path) -> None:
+    """rosdoc2 builds this folder from its own build folder, and a copy of it one level
+    deeper (``user_docs/``), where the pages' links into the repository
+    (``../../docs/office_pure_pursuit.png``) would point at nothing: link the repository's
+    top-level folders where those links lead."""
+    for beside in (wrapped.parent, wrapped.parents[1]):
+        for folder in REPOSITORY.iterdir():
+            link = beside / folder.name
+            if folder.is_dir() and not folder.name.startswith(".") and not link.exists():
+                link.symlink_to(folder)
+
+
+if Path(__file__).resolve().parent != HERE:
+    _link_the_repository_beside(Path(__file__).resolve().parent)
 sys.path.insert(0, str(HERE / "_ext"))
 
 PACKAGE_XML = ElementTree.parse(HERE.parent / "package.xml").getroot()

@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <memory>
+#include <mutex>
 #include <string>
 
 #include "nav2_costmap_2d/costmap_2d_ros.hpp"
@@ -98,6 +99,8 @@ public:
 private:
   rcl_interfaces::msg::SetParametersResult on_parameters(
     const std::vector<rclcpp::Parameter> & parameters);
+  // Stop the local host once the node is finalized (`ros2 lifecycle set <node> shutdown`).
+  void stop_local_host_when_finalized(rclcpp_lifecycle::LifecycleNode & node);
   void declare_planner_parameters(const protocol::Params & declared);
 
   rclcpp_lifecycle::LifecycleNode::WeakPtr node_;
@@ -110,7 +113,9 @@ private:
   // The session's: the plugin's name, node and frames, the forwarded parameters, the key, and
   // configure's nav2_params (Nav2's own, outside the plugin's namespace)
   client::SessionConfig config_;
+  std::mutex local_host_mutex_;  // the finalized check stops it from the node's executor
   std::unique_ptr<client::LocalHost> local_host_;
+  rclcpp::TimerBase::SharedPtr finalized_check_;
   std::unique_ptr<ZenohTransport> transport_;
   std::unique_ptr<client::CostmapSource> costmap_source_;
 

@@ -81,6 +81,7 @@ PluginBridge::PluginBridge(
     if (client::starts_local_host(settings_)) {
       local_host_ = std::make_unique<client::LocalHost>(settings_, config_.key_prefix, logger());
       zenoh = ZenohOptions{"", {local_host_->endpoint()}};
+      stop_local_host_when_finalized(*node);
     }
     transport_ =
       std::make_unique<ZenohTransport>(zenoh, client::KeySpace(config_.key_prefix), logger());
@@ -99,8 +100,32 @@ PluginBridge::PluginBridge(
 PluginBridge::~PluginBridge()
 {
   parameter_callback_.reset();
+  finalized_check_.reset();
   transport_.reset();
+  const std::lock_guard<std::mutex> lock(local_host_mutex_);
   local_host_.reset();  // stops the process
+}
+
+void PluginBridge::stop_local_host_when_finalized(rclcpp_lifecycle::LifecycleNode & node)
+{
+  // A shutdown from active or inactive finalizes the node without cleaning its plugins up
+  // (Nav2's servers do nothing in on_shutdown), and in a component container the node, this
+  // plugin and its host live on. No hook tells a plugin of it: the node's state, read twice a
+  // second on the node's own executor, does.
+  finalized_check_ = node.create_wall_timer(
+    std::chrono::milliseconds(500), [this]() {
+      auto locked = node_.lock();
+      if (!locked || locked->get_current_state().label() != "finalized") {
+        return;
+      }
+      finalized_check_->cancel();
+      const std::lock_guard<std::mutex> lock(local_host_mutex_);
+      if (local_host_) {
+        RCLCPP_INFO(
+          logger_, "%s: node finalized: stopping its local planner host", config_.name.c_str());
+        local_host_->stop();
+      }
+    });
 }
 
 client::Logger PluginBridge::logger() const

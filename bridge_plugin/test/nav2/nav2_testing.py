@@ -4,6 +4,7 @@ process group, stopped by pid), and an rclpy client of Nav2's lifecycle and acti
 from __future__ import annotations
 
 import ctypes
+import itertools
 import json
 import math
 import os
@@ -278,6 +279,15 @@ def ctrl_c(launch: subprocess.Popen[bytes], grace: float = 10.0) -> tuple[int, d
 
 
 SUCCEEDED, CANCELED, ABORTED = 4, 5, 6  # action_msgs/GoalStatus
+
+
+def longest_stop(speeds: list[tuple[float, float]]) -> float:
+    """The longest time [s] the robot stood still between the first and the last moment it
+    moved, from (monotonic time, speed) samples (Nav2Client.speeds)."""
+    moving = [t for t, v in speeds if v > 0.01]
+    if len(moving) < 2:
+        return 0.0
+    return max(b - a for a, b in itertools.pairwise(moving))
 
 
 def error_code(result: Any) -> int | None:

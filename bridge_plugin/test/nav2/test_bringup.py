@@ -6,33 +6,47 @@ and robot_state_publisher) and its own nav2_params.yaml, changed only in the plu
 - GridBased: PyGlobalPlanner, served by the reference A*;
 - progress_checker: PyProgressChecker, served by the Python SimpleProgressChecker;
 
-each given its key and the planner host's endpoint. One planner host, started beside the
-launch as a user would, serves the three.
+each given its key and where to meet the planner host. One planner host, started beside the
+launch as a user would, serves the three: it listens on a free port the plugins dial, or, on
+rmw_zenoh ($NAV2_PYIF_SHARED_ROUTER, set by tests/test_nav2_launch.py), plugins and host meet at
+rmw_zenoh's own router.
 
 - Composed (nav2_bringup's default: every server a component of one
   component_container_isolated) and not composed, NavigateToPose goals succeed with no
   recovery.
-- The unchanged stock params (Nav2's MPPI and NavFn) drive the same goals: the Python-planned
-  stack's time to the goals is within 10 % of theirs (both printed, and recorded in
-  $NAV2_PYIF_FIGURES).
-- The planner host SIGKILLed mid-goal and restarted 2 s later costs at most one recovery; while
-  it is dead the container does not stall: every lifecycle bond's heartbeats and both
-  costmaps' footprints keep at least half their rate, and no server is reported down.
+- The unchanged stock params (Nav2's MPPI and NavFn; Humble's DWB) drive the same goals: the
+  Python-planned stacks' time to the goals is within 10 % of theirs (all printed side by side,
+  and recorded in $NAV2_PYIF_FIGURES).
+- Composed and not, the planner host SIGKILLed mid-goal and restarted 2 s later costs at most
+  one recovery. Composed, the host also stops answering for 2 s mid-goal (SIGSTOP: every call
+  runs into its timeout, a slow Python call as Nav2 sees it), and the goal still succeeds.
+  While the host is slow or dead the container does not stall: every lifecycle bond's
+  heartbeats and both costmaps' footprints keep at least half their rate, and no server is
+  reported down.
+- Local-host mode (the plugins start their own planner hosts: `python_planner`, no key) inside
+  the composed container drives the goals; `ros2 lifecycle set /controller_server shutdown`
+  then ends every process its plugins started (keeper, host, workers) while the container and
+  planner_server's hosts stay up, and Ctrl-C ends those.
+- The controller and global planner a new user writes in the tutorials (GoTo, GridSearch, taken
+  from python/doc/tutorials as the pages show them) drive the stock launch to the goals: issue
+  41's acceptance, its Nav2 half.
 - Ctrl-C on the launch (SIGINT to its process group) ends every process it started.
 
 Needs, beyond what test_nav2_pyif.py needs: nav2_bringup, nav2_loopback_sim,
-robot_state_publisher, nav2_minimal_tb3_sim, rclcpp_components, `ros2 launch` and, for the
-native comparison, nav2_mppi_controller (testenv/build.sh jazzy builds the first ones, then
-`testenv/build.sh jazzy mppi`). Skipped, naming what is missing, otherwise.
+robot_state_publisher, nav2_minimal_tb3_sim, rclcpp_components, `ros2 launch`, `ros2 lifecycle`
+and, for the native comparison, the stock controller's package (nav2_mppi_controller:
+`testenv/build.sh jazzy mppi`; Humble's dwb_core). Skipped, naming what is missing, otherwise.
 """
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
 import signal
+import subprocess
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -42,72 +56,143 @@ import nav2_testing
 import pytest
 from test_host_recovery import record
 
-pytestmark = pytest.mark.timeout(900)
+from tests.docs_blocks import used_files
+
+pytestmark = pytest.mark.timeout(1200)
 
 PREFIX = nav2_testing.PREFIX
 STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
-LAUNCH = ("nav2_bringup", "tb3_loopback_simulation.launch.py")
+# The loopback launch: Jazzy's name, and Lyrical's (Humble has none: no nav2_loopback_sim).
+LAUNCHES = ("tb3_loopback_simulation.launch.py", "tb3_loopback_simulation_launch.py")
 # The TurtleBot 3 sandbox (nav2_bringup's default map): the robot starts where the TurtleBot 3
 # simulation spawns it, drives up around the pillars and back.
 START = (-2.0, -0.5)
 GOALS = ((0.5, 1.7), START)
-# The plugin lines changed, and the Python planner that serves each.
-PYTHON_PLUGINS = {
-    "nav2_mppi_controller::MPPIController": (
+# The plugins changed, by server and plugin name (the same names on Humble, Jazzy and
+# Lyrical), and the Python plugin and planner that serve each.
+Plugins = dict[tuple[str, str], tuple[str, str]]
+PYTHON_PLUGINS: Plugins = {
+    ("controller_server", "FollowPath"): (
         "nav2_pyif_bridge::PyController",
-        "FollowPath",
         "nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit",
     ),
-    "nav2_navfn_planner::NavfnPlanner": (
+    ("planner_server", "GridBased"): (
         "nav2_pyif_bridge::PyGlobalPlanner",
-        "GridBased",
         "nav2_pyif_planners.astar:AStar",
     ),
-    "nav2_controller::SimpleProgressChecker": (
+    ("controller_server", "progress_checker"): (
         "nav2_pyif_bridge::PyProgressChecker",
-        "progress_checker",
         "nav2_pyif_planners.checker_plugins:SimpleProgressChecker",
     ),
 }
-# nav2_bringup's navigation_launch.py: the nodes of lifecycle_manager_navigation.
-NAVIGATION = (
-    "controller_server",
-    "smoother_server",
-    "planner_server",
-    "behavior_server",
-    "velocity_smoother",
-    "collision_monitor",
-    "bt_navigator",
-    "waypoint_follower",
-    "docking_server",
-)
+# The tutorials' controller and global planner (python/doc/tutorials), as a new user writes
+# them, in place of the stock controller and planner.
+TUTORIAL_PLUGINS: Plugins = {
+    ("controller_server", "FollowPath"): (
+        "nav2_pyif_bridge::PyController",
+        "my_planners.go_to:GoTo",
+    ),
+    ("planner_server", "GridBased"): (
+        "nav2_pyif_bridge::PyGlobalPlanner",
+        "my_planners.grid_search:GridSearch",
+    ),
+}
+ROOT = nav2_testing.HERE.parents[2]
+# The servers that hold a Python plugin (each starts its own hosts in local-host mode).
+PYTHON_SERVERS = ("controller_server", "planner_server")
+# nav2_bringup's navigation_launch.py names the nodes of lifecycle_manager_navigation
+# (Jazzy adds collision_monitor and docking_server, Lyrical route_server and following_server).
+LIFECYCLE_NODES = re.compile(r"lifecycle_nodes = \[([^\]]*)\]")
 FAULT_AT, RESTART_AFTER = 3.0, 2.0  # [s] into the goal; [s] after the kill
+SLOW_FOR = 2.0  # [s] the host does not answer (SIGSTOP), FAULT_AT into a goal
 # Rates the container's other work keeps while a Python call fails, at least this share of
 # their healthy rate.
 KEPT_RATE = 0.5
+HEALTHY_WINDOW = 20.0  # [s] before the first fault: the rates of a healthy stack
 # Time to the goals, Python-planned against native, at most this far apart.
 WITHIN = 0.10
 FOOTPRINTS = ("/local_costmap/published_footprint", "/global_costmap/published_footprint")
 # What lifecycle_manager logs when a server's bond misses its heartbeats.
 SERVER_DOWN = re.compile(r"Have not received a heartbeat|IS DOWN")
+CONTAINER = "component_conta"  # component_container_isolated, as /proc/PID/comm cuts it
+KEY_LINE = re.compile(r"(\s*)([A-Za-z_][\w]*):(.*)")
 
 
-def _missing(native: bool) -> list[str]:
+def plugin_lines(stock: str) -> Iterator[tuple[str, tuple[str, str] | None]]:
+    """Each line of a Nav2 params file, with the plugin it names when it is a plugin's
+    `plugin:` line (server and plugin name: ("controller_server", "FollowPath")), else None."""
+    path: list[tuple[int, str]] = []  # (indent, key) of the line and its parents
+    for line in stock.splitlines():
+        found = KEY_LINE.fullmatch(line)
+        role = None
+        if found and not line.lstrip().startswith("#"):
+            indent = len(found.group(1))
+            path = [(i, k) for i, k in path if i < indent] + [(indent, found.group(2))]
+            keys = [key for _, key in path]
+            if len(keys) == 4 and keys[1] == "ros__parameters" and keys[3] == "plugin":
+                role = (keys[0], keys[2])
+        yield line, role
+
+
+def native_plugins(stock: str) -> dict[tuple[str, str], str]:
+    """The stock plugin type of each plugin PYTHON_PLUGINS replaces."""
+    return {
+        role: line.split(":", 1)[1].strip().strip("'\"")
+        for line, role in plugin_lines(stock)
+        if role in PYTHON_PLUGINS
+    }
+
+
+def python_params(
+    stock: str, serve: Callable[[str, str], list[str]], plugins: Plugins = PYTHON_PLUGINS
+) -> str:
+    """nav2_bringup's params with only the plugin lines changed: each plugin of ``plugins``
+    becomes its nav2_pyif plugin, followed by the lines ``serve(name, planner)`` gives (where
+    the host is: a key and the Zenoh line, or the local host's planner). Every other line, the
+    native plugins' own parameters included (the Python planners are given them and ignore
+    those they do not declare), is kept."""
+    out, changed = [], []
+    for line, role in plugin_lines(stock):
+        if role not in plugins:
+            out.append(line)
+            continue
+        assert role is not None
+        indent = line[: len(line) - len(line.lstrip())]
+        plugin, planner = plugins[role]
+        out += [f'{indent}plugin: "{plugin}"', *(indent + s for s in serve(role[1], planner))]
+        changed.append(role)
+    assert sorted(changed) == sorted(plugins), f"the stock params changed: {changed}"
+    return "\n".join(out) + "\n"
+
+
+def _native_package(stock: str) -> str:
+    """The package of the stock controller (nav2_mppi_controller, dwb_core, ...)."""
+    controller = native_plugins(stock)[("controller_server", "FollowPath")]
+    return re.split(r"::|/", controller)[0]
+
+
+def _missing(native: bool, local: bool) -> list[str]:
     absent = nav2_testing.missing()
     if shutil.which("ros2") is None:
         absent.append("the ros2 command (ros2cli)")
     needed = {
-        "nav2_bringup": f"share/{LAUNCH[0]}/launch/{LAUNCH[1]}",
+        "nav2_bringup's loopback launch": f"share/nav2_bringup/launch/{_launch()}",
         "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
         "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
         "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf",
-        "rclcpp_components": "lib/rclcpp_components/component_container_isolated",
+        # (component_container_isolated before Lyrical, component_container --isolated on it)
+        "rclcpp_components": "lib/rclcpp_components/component_container",
+        "ros2lifecycle (`ros2 lifecycle`)": "share/ros2lifecycle/package.xml",
     }
-    if native:
-        needed["nav2_mppi_controller (testenv/build.sh jazzy mppi)"] = (
-            "share/nav2_mppi_controller/package.xml"
-        )
+    stock = nav2_testing.find(STOCK_PARAMS)
+    if native and stock is not None:
+        package = _native_package(stock.read_text())
+        built_by = " (testenv/build.sh DISTRO mppi)" if package == "nav2_mppi_controller" else ""
+        needed[f"the stock controller, {package}{built_by}"] = f"share/{package}/package.xml"
     absent += [name for name, path in needed.items() if nav2_testing.find(path) is None]
+    host = nav2_testing.host_command()
+    if local and host is not None and len(host) != 1:
+        absent.append("$NAV2_PYIF_PLANNER_HOST as one executable (planner_host_command)")
     try:
         import bond.msg  # noqa: F401
     except ImportError:
@@ -115,51 +200,24 @@ def _missing(native: bool) -> list[str]:
     return absent
 
 
-def python_params(stock: str, zenoh: str) -> str:
-    """nav2_bringup's params with only the plugin lines changed: each plugin of
-    PYTHON_PLUGINS becomes its nav2_pyif plugin, with the key its host serves and ``zenoh``
-    (the line that names the host's endpoint). Every other line, the native plugins' own
-    parameters included (the Python planners are given them and ignore those they do not
-    declare), is kept."""
-    out, changed = [], []
-    for line in stock.splitlines():
-        found = re.fullmatch(r'(\s+)plugin: "([^"]+)"\s*', line)
-        if found and found.group(2) in PYTHON_PLUGINS:
-            indent, native = found.groups()
-            plugin, name, _ = PYTHON_PLUGINS[native]
-            out += [
-                f'{indent}plugin: "{plugin}"',
-                f'{indent}key: "{PREFIX}/{name}"',
-                f"{indent}{zenoh}",
-            ]
-            changed.append(native)
-        else:
-            out.append(line)
-    assert sorted(changed) == sorted(PYTHON_PLUGINS), f"the stock params changed: {changed}"
-    return "\n".join(out) + "\n"
-
-
-def _host_arguments(endpoint: str) -> list[str]:
-    served = [
-        argument
-        for _, name, planner in PYTHON_PLUGINS.values()
-        for argument in ("--serve", f"{PREFIX}/{name}={planner}")
-    ]
-    return [*(nav2_testing.host_command() or []), "--listen", endpoint, *served]
-
-
 @dataclass
 class Stack:
     client: Any
     procs: nav2_testing.Processes
-    start_host: Any  # () -> None; None for the native stack
+    start_host: Any  # () -> None; None for the native stack and local hosts
     # (monotonic time, source): each bond heartbeat ("bond:<node>") and footprint received
     events: list[tuple[float, str]] = field(default_factory=list)
 
-    def launched(self) -> set[str]:
-        """The names of the processes the launch runs (comm: their first 15 characters)."""
+    def launched(self) -> dict[int, str]:
+        """The processes the launch runs, by pid: their names (comm: the first 15
+        characters)."""
         launch = self.procs.procs["launch"].pid
-        return {nav2_testing.comm(p) for p in nav2_testing.descendants(launch)}
+        return {p: nav2_testing.comm(p) for p in nav2_testing.descendants(launch)}
+
+    def container(self) -> int:
+        found = [p for p, name in self.launched().items() if name == CONTAINER]
+        assert len(found) == 1, f"not one component container: {self.launched()}"
+        return found[0]
 
     def rates(self, start: float, end: float) -> dict[str, float]:
         counts: dict[str, int] = {}
@@ -169,35 +227,73 @@ class Stack:
         return {source: count / (end - start) for source, count in counts.items()}
 
 
+def _separate_host(
+    procs: nav2_testing.Processes, logs: Path, stock: str, plugins: Plugins, path: Path | None
+) -> tuple[str, Any]:
+    """The params for one planner host started beside the launch (importing planners from
+    ``path`` too, when given), and the function that starts it: it listens on a free port the
+    plugins dial, or, on rmw_zenoh, plugins and host connect to rmw_zenoh's router."""
+    router = nav2_testing.shared_router()
+    endpoint = router or f"tcp/127.0.0.1:{nav2_testing.free_port()}"
+    zenoh = nav2_testing.plugin_zenoh(logs, endpoint)
+    params = python_params(stock, lambda name, _: [f'key: "{PREFIX}/{name}"', zenoh], plugins)
+    served = [
+        argument
+        for (_, name), (_, planner) in plugins.items()
+        for argument in ("--serve", f"{PREFIX}/{name}={planner}")
+    ]
+    host = [*(nav2_testing.host_command() or []), "--connect" if router else "--listen", endpoint]
+    if path is not None:
+        host += ["--path", str(path)]
+
+    def start_host() -> None:
+        procs.start("planner_host", [*host, *served])
+
+    return params, start_host
+
+
+def _local_hosts(stock: str) -> str:
+    """The params in which each plugin starts its own planner host (no key)."""
+    host = nav2_testing.host_command()
+    assert host is not None and len(host) == 1
+    return python_params(
+        stock,
+        lambda _, planner: [f'python_planner: "{planner}"', f'planner_host_command: "{host[0]}"'],
+    )
+
+
 @contextmanager
-def stock_bringup(logs: Path, python: bool, composed: bool) -> Iterator[Stack]:
-    """nav2_bringup's loopback launch with its params (the Python plugins' when ``python``,
-    with their planner host), composed or not; the robot put at START; every lifecycle node
+def stock_bringup(
+    logs: Path,
+    python: bool,
+    composed: bool,
+    local: bool = False,
+    plugins: Plugins = PYTHON_PLUGINS,
+    path: Path | None = None,
+) -> Iterator[Stack]:
+    """nav2_bringup's loopback launch with its params (``plugins`` changed when ``python``,
+    with their planner host beside the launch, importing from ``path`` too, or started by the
+    plugins when ``local``), composed or not; the robot put at START; every lifecycle node
     active. Skips, naming what is missing, where the environment lacks a part."""
-    missing = _missing(native=not python)
+    missing = _missing(native=not python, local=local)
     if missing:
         pytest.skip("the stock nav2_bringup test needs: " + ", ".join(missing))
-    stock = nav2_testing.find(STOCK_PARAMS)
-    assert stock is not None
+    stock_file = nav2_testing.find(STOCK_PARAMS)
+    assert stock_file is not None
+    stock = stock_file.read_text()
     procs = nav2_testing.processes_in_own_domain(logs)
     params = logs / "nav2_params.yaml"
     start_host = None
-    if python:
-        endpoint = f"tcp/127.0.0.1:{nav2_testing.free_port()}"
-        params.write_text(
-            python_params(stock.read_text(), nav2_testing.plugin_zenoh(logs, endpoint))
-        )
-
-        def start_host() -> None:
-            procs.start("planner_host", _host_arguments(endpoint))
-
+    if python and not local:
+        text, start_host = _separate_host(procs, logs, stock, plugins, path)
+        params.write_text(text)
         start_host()
     else:
-        params.write_text(stock.read_text())
+        params.write_text(_local_hosts(stock) if python else stock)
     procs.start(
         "launch",
         [
-            *("ros2", "launch", *LAUNCH),
+            *("ros2", "launch", "nav2_bringup", _launch()),
             f"params_file:={params}",
             "use_rviz:=False",
             f"use_composition:={composed}",
@@ -206,7 +302,7 @@ def stock_bringup(logs: Path, python: bool, composed: bool) -> Iterator[Stack]:
     import rclpy
     from bond.msg import Status
     from geometry_msgs.msg import PolygonStamped, PoseWithCovarianceStamped
-    from rclpy.qos import qos_profile_sensor_data
+    from rclpy.qos import QoSProfile, ReliabilityPolicy
 
     rclpy.init()
     client = nav2_testing.Nav2Client()
@@ -215,14 +311,12 @@ def stock_bringup(logs: Path, python: bool, composed: bool) -> Iterator[Stack]:
     def heard(source: str) -> None:
         stack.events.append((time.monotonic(), source))
 
-    # best effort: matches the publishers whichever reliability they offer
-    client.create_subscription(
-        Status, "/bond", lambda m: heard(f"bond:{m.id}"), qos_profile_sensor_data
-    )
+    # Best effort matches the publishers whichever reliability they offer; a deep queue, so a
+    # busy test process counts every message late rather than losing some.
+    qos = QoSProfile(depth=500, reliability=ReliabilityPolicy.BEST_EFFORT)
+    client.create_subscription(Status, "/bond", lambda m: heard(f"bond:{m.id}"), qos)
     for topic in FOOTPRINTS:
-        client.create_subscription(
-            PolygonStamped, topic, lambda _m, t=topic: heard(t), qos_profile_sensor_data
-        )
+        client.create_subscription(PolygonStamped, topic, lambda _m, t=topic: heard(t), qos)
     initial_pose = client.create_publisher(PoseWithCovarianceStamped, "/initialpose", 10)
     pose = PoseWithCovarianceStamped()
     pose.header.frame_id = "map"
@@ -231,11 +325,11 @@ def stock_bringup(logs: Path, python: bool, composed: bool) -> Iterator[Stack]:
     try:
         # The loopback simulator places the robot where the initial pose says (as RViz's
         # "2D Pose Estimate" does); the costmaps activate once map -> base_link exists.
-        deadline = time.monotonic() + 240.0
+        deadline = time.monotonic() + 300.0
         states: dict[str, str | None] = {}
         while time.monotonic() < deadline:
             initial_pose.publish(pose)
-            states = client.wait_active(NAVIGATION, 2.0)
+            states = client.wait_active(_navigation(), 2.0)
             if all(s == "active" for s in states.values()):
                 break
         assert all(s == "active" for s in states.values()), f"{states}\n{procs.log('launch', 80)}"
@@ -246,12 +340,30 @@ def stock_bringup(logs: Path, python: bool, composed: bool) -> Iterator[Stack]:
         procs.stop_all()
 
 
+def _launch() -> str:
+    """The loopback launch file of this nav2_bringup (its first name when it has none)."""
+    for name in LAUNCHES:
+        if nav2_testing.find(f"share/nav2_bringup/launch/{name}") is not None:
+            return name
+    return LAUNCHES[0]
+
+
+def _navigation() -> tuple[str, ...]:
+    """The nodes lifecycle_manager_navigation manages, as this distribution's
+    navigation_launch.py names them."""
+    launch = nav2_testing.find("share/nav2_bringup/launch/navigation_launch.py")
+    found = LIFECYCLE_NODES.search(launch.read_text()) if launch else None
+    assert found, f"no lifecycle_nodes list in {launch}"
+    return tuple(re.findall(r"['\"](\w+)['\"]", found.group(1)))
+
+
 @dataclass
 class Run:
     succeeded: bool
     seconds: float
     recoveries: int
     status: int
+    longest_stop: float  # [s] the robot stood still between moving
 
 
 def navigate(stack: Stack, goal: tuple[float, float], fault: Any = None) -> Run:
@@ -269,7 +381,11 @@ def navigate(stack: Stack, goal: tuple[float, float], fault: Any = None) -> Run:
     client.recording = False
     status = -1 if result is None else int(result.status)
     return Run(
-        status == nav2_testing.SUCCEEDED, time.monotonic() - started, client.recoveries, status
+        status == nav2_testing.SUCCEEDED,
+        time.monotonic() - started,
+        client.recoveries,
+        status,
+        nav2_testing.longest_stop(client.speeds),
     )
 
 
@@ -287,14 +403,129 @@ def drive_the_goals(stack: Stack, label: str) -> list[float]:
     return seconds
 
 
+def assert_the_container_kept_its_rates(
+    stack: Stack, healthy: dict[str, float], start: float, end: float, what: str
+) -> dict[str, float]:
+    """Between ``start`` and ``end`` (monotonic) every bond and footprint kept KEPT_RATE of
+    its ``healthy`` rate: the rates then."""
+    faulty = stack.rates(start, end)
+    print(f"rates [1/s] healthy: {healthy}\n{what}: {faulty}")
+    bonds = [s for s in healthy if s.startswith("bond:")]
+    assert len(bonds) >= len(_navigation()), f"bonds heard: {bonds}"
+    for source in [*bonds, *FOOTPRINTS]:
+        assert source in healthy, f"never heard {source}: {healthy}"
+        assert faulty.get(source, 0.0) >= KEPT_RATE * healthy[source], (
+            f"{source} fell from {healthy[source]:.1f}/s to {faulty.get(source, 0.0):.1f}/s "
+            f"while {what}\n" + stack.procs.log("launch", 120)
+        )
+    return faulty
+
+
+def assert_no_server_reported_down(stack: Stack) -> None:
+    log = stack.procs.log("launch", 100_000)
+    down = [line for line in log.splitlines() if SERVER_DOWN.search(line)]
+    assert not down, "\n".join(down)
+    states = stack.client.wait_active(_navigation(), 10.0)
+    assert all(s == "active" for s in states.values()), states
+
+
+def survive_a_killed_host(stack: Stack, label: str, healthy: dict[str, float]) -> None:
+    """The planner host SIGKILLed FAULT_AT s into a goal and restarted RESTART_AFTER s later:
+    the goal succeeds with a recovery at most, the bonds and footprints keep their rates."""
+    procs = stack.procs
+    killed: list[float] = []
+
+    def kill_and_restart() -> None:
+        procs.kill("planner_host", signal.SIGKILL)
+        killed.append(time.monotonic())
+        stack.client.spin_until(lambda: False, RESTART_AFTER)
+        assert stack.start_host is not None
+        stack.start_host()
+
+    run = navigate(stack, GOALS[0], kill_and_restart)
+    print(f"{label}, the host killed: {run}")
+    logs = procs.log("launch", 120) + "\n" + procs.log("planner_host", 40)
+    assert run.succeeded, f"NavigateToPose with the host killed: {run}\n{logs}"
+    assert run.recoveries <= 1, f"{run}\n{logs}"
+    # (dead, then starting: the host answers again only once it has imported its planners)
+    dead = (killed[0], killed[0] + RESTART_AFTER + 1.0)
+    rates = assert_the_container_kept_its_rates(stack, healthy, *dead, "the host was dead")
+    record(
+        **{
+            f"bringup_{label}_host_killed_s": run.seconds,
+            f"bringup_{label}_host_killed_recoveries": run.recoveries,
+            f"bringup_{label}_host_killed_longest_stop_s": run.longest_stop,
+            f"bringup_{label}_host_dead_kept_rate_min": _least_kept(healthy, rates),
+        }
+    )
+    assert_returns_to_start(stack)
+
+
+def survive_a_slow_host(stack: Stack, label: str, healthy: dict[str, float]) -> None:
+    """The planner host stopped (SIGSTOP: no answer, every call runs into its timeout) for
+    SLOW_FOR s FAULT_AT s into a goal: the goal succeeds, the bonds and footprints keep their
+    rates."""
+    host = stack.procs.procs["planner_host"]
+    stopped: list[float] = []
+
+    def stop_for_a_while() -> None:
+        os.killpg(host.pid, signal.SIGSTOP)
+        try:
+            stopped.append(time.monotonic())
+            stack.client.spin_until(lambda: False, SLOW_FOR)
+        finally:
+            os.killpg(host.pid, signal.SIGCONT)
+
+    run = navigate(stack, GOALS[0], stop_for_a_while)
+    print(f"{label}, the host stopped {SLOW_FOR} s: {run}")
+    logs = stack.procs.log("launch", 120) + "\n" + stack.procs.log("planner_host", 40)
+    assert run.succeeded, f"NavigateToPose with the host stopped {SLOW_FOR} s: {run}\n{logs}"
+    slow = (stopped[0], stopped[0] + SLOW_FOR)
+    rates = assert_the_container_kept_its_rates(stack, healthy, *slow, "the host was slow")
+    record(
+        **{
+            f"bringup_{label}_host_slow_s": run.seconds,
+            f"bringup_{label}_host_slow_recoveries": run.recoveries,
+            f"bringup_{label}_host_slow_longest_stop_s": run.longest_stop,
+            f"bringup_{label}_host_slow_kept_rate_min": _least_kept(healthy, rates),
+        }
+    )
+    assert_returns_to_start(stack)
+
+
+def _least_kept(healthy: dict[str, float], faulty: dict[str, float]) -> float:
+    """The smallest share of its healthy rate any bond or footprint kept."""
+    sources = [s for s in healthy if s.startswith("bond:") or s in FOOTPRINTS]
+    return min(faulty.get(s, 0.0) / healthy[s] for s in sources)
+
+
+def assert_returns_to_start(stack: Stack) -> None:
+    run = navigate(stack, START)
+    assert run.succeeded, f"back to the start: {run}\n" + stack.procs.log("launch", 80)
+
+
 def assert_ctrl_c_ends_everything(stack: Stack) -> None:
     launch = stack.procs.procs["launch"]
-    started = {nav2_testing.comm(p) for p in nav2_testing.descendants(launch.pid)}
+    started = set(stack.launched().values())
     code, left = nav2_testing.ctrl_c(launch)
     assert not left, f"still running after Ctrl-C: {left} (of {started})\n" + stack.procs.log(
         "launch", 60
     )
     assert code == 0, f"ros2 launch exited {code}\n{stack.procs.log('launch', 60)}"
+
+
+def lifecycle_shutdown(stack: Stack, node: str) -> None:
+    """`ros2 lifecycle set /NODE shutdown`, as a user types it (no ros2 daemon left behind)."""
+    done = subprocess.run(
+        ["ros2", "lifecycle", "set", "--no-daemon", f"/{node}", "shutdown"],
+        env=stack.procs.env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0 and "successful" in done.stdout, (
+        f"ros2 lifecycle set /{node} shutdown: exit {done.returncode}\n{done.stdout}{done.stderr}"
+    )
 
 
 # Seconds to each goal, by configuration, for the comparison at the end.
@@ -307,65 +538,106 @@ def test_the_unchanged_stock_stack_drives_the_goals(tmp_path: Path) -> None:
         assert_ctrl_c_ends_everything(stack)
 
 
-def test_python_plugins_composed_reach_the_goals_and_survive_a_killed_host(
+def test_python_plugins_composed_reach_the_goals_and_survive_a_slow_and_a_killed_host(
     tmp_path: Path,
 ) -> None:
     with stock_bringup(tmp_path, python=True, composed=True) as stack:
-        names = stack.launched()
-        assert "component_conta" in names, names  # one container, composed (comm: 15 chars)
+        names = set(stack.launched().values())
+        assert CONTAINER in names, names  # one container, composed
         assert "controller_serv" not in names, names
         TIMES["python_composed"] = drive_the_goals(stack, "python_composed")
-
-        procs = stack.procs
-        killed: list[float] = []
-
-        def kill_and_restart() -> None:
-            procs.kill("planner_host", signal.SIGKILL)
-            killed.append(time.monotonic())
-            stack.client.spin_until(lambda: False, RESTART_AFTER)
-            assert stack.start_host is not None
-            stack.start_host()
-
-        run = navigate(stack, GOALS[0], kill_and_restart)
-        logs = procs.log("launch", 120) + "\n" + procs.log("planner_host", 40)
-        assert run.succeeded, f"NavigateToPose with the host killed: {run}\n{logs}"
-        assert run.recoveries <= 1, f"{run}\n{logs}"
-        record(
-            bringup_host_killed_s=run.seconds,
-            bringup_host_killed_recoveries=run.recoveries,
-        )
-        # The container did not stall while the host was dead: the healthy rates are the
-        # previous goals' (the robot driving), the dead window the host's downtime.
-        healthy = stack.rates(killed[0] - 20.0, killed[0] - 1.0)
-        # (dead, then starting: the host answers again only once it has imported its planners)
-        dead = stack.rates(killed[0], killed[0] + RESTART_AFTER + 1.0)
-        print("rates [1/s] healthy:", healthy, "host dead:", dead)
-        bonds = [s for s in healthy if s.startswith("bond:")]
-        assert len(bonds) >= len(NAVIGATION), f"bonds heard: {bonds}"
-        for source in [*bonds, *FOOTPRINTS]:
-            assert source in healthy, f"never heard {source}: {healthy}"
-            assert dead.get(source, 0.0) >= KEPT_RATE * healthy[source], (
-                f"{source} fell from {healthy[source]:.1f}/s to {dead.get(source, 0.0):.1f}/s "
-                f"while the host was dead\n{logs}"
-            )
-        down = [
-            line for line in procs.log("launch", 100_000).splitlines() if SERVER_DOWN.search(line)
-        ]
-        assert not down, "\n".join(down)
-        states = stack.client.wait_active(NAVIGATION, 10.0)
-        assert all(s == "active" for s in states.values()), states
+        now = time.monotonic()
+        healthy = stack.rates(now - HEALTHY_WINDOW, now)
+        survive_a_slow_host(stack, "composed", healthy)
+        survive_a_killed_host(stack, "composed", healthy)
+        assert_no_server_reported_down(stack)
         assert_ctrl_c_ends_everything(stack)
 
 
-def test_python_plugins_not_composed_reach_the_goals(tmp_path: Path) -> None:
+def test_python_plugins_not_composed_reach_the_goals_and_survive_a_killed_host(
+    tmp_path: Path,
+) -> None:
     with stock_bringup(tmp_path, python=True, composed=False) as stack:
-        names = stack.launched()
+        names = set(stack.launched().values())
         assert {"controller_serv", "planner_server"} <= names, names  # a process each
         TIMES["python_separate"] = drive_the_goals(stack, "python_separate")
+        now = time.monotonic()
+        survive_a_killed_host(stack, "separate", stack.rates(now - HEALTHY_WINDOW, now))
+        assert_no_server_reported_down(stack)
+        assert_ctrl_c_ends_everything(stack)
+
+
+def local_hosts(container: int) -> dict[str, set[int]]:
+    """The planner hosts the plugins started in the container, by the node whose plugin
+    started them: each keeper (a child of the container: `planner-host --respawn --key
+    nav2_pyif/local/<node>/<plugin>`) and every process below it (its host, the workers)."""
+    by_node: dict[str, set[int]] = {}
+    for pid in nav2_testing.descendants(container):
+        try:
+            stat = Path(f"/proc/{pid}/stat").read_text()
+            argv = Path(f"/proc/{pid}/cmdline").read_bytes().decode().split("\0")
+        except OSError:
+            continue
+        if int(stat.rsplit(")", 1)[1].split()[1]) != container or "--key" not in argv:
+            continue
+        node = argv[argv.index("--key") + 1].split("/")[2]
+        by_node.setdefault(node, set()).update({pid, *nav2_testing.descendants(pid)})
+    return by_node
+
+
+def test_local_hosts_in_the_container_end_with_a_lifecycle_shutdown_and_ctrl_c(
+    tmp_path: Path,
+) -> None:
+    with stock_bringup(tmp_path, python=True, composed=True, local=True) as stack:
+        container = stack.container()
+        hosts = local_hosts(container)
+        # a keeper (planner-host --respawn) per plugin, each with its host and worker
+        assert sorted(hosts) == sorted(PYTHON_SERVERS), hosts
+        TIMES["python_local"] = drive_the_goals(stack, "python_local")
+        # controller_server's, by `ros2 lifecycle`; planner_server's, by Ctrl-C
+        lifecycle_shutdown(stack, "controller_server")
+        deadline = time.monotonic() + 20.0
+        ended = hosts["controller_server"]
+        while time.monotonic() < deadline and any(nav2_testing.running(p) for p in ended):
+            time.sleep(0.2)
+        left = {p: nav2_testing.comm(p) for p in ended if nav2_testing.running(p)}
+        assert not left, (
+            f"still running after `ros2 lifecycle set /controller_server shutdown`: {left}\n"
+            + stack.procs.log("launch", 60)
+        )
+        assert stack.client.state("controller_server") == "finalized"
+        assert nav2_testing.running(container), "the container ended with the shutdown"
+        kept = hosts["planner_server"]
+        assert all(nav2_testing.running(p) for p in kept), "planner_server's hosts ended too"
+        assert_ctrl_c_ends_everything(stack)  # planner_server's hosts among them
+
+
+def test_the_tutorials_planners_drive_the_stock_bringup(tmp_path: Path) -> None:
+    """Issue 41's acceptance, its Nav2 half: the controller and global planner a new user
+    writes by following the tutorials (python/doc/tutorials: GoTo and GridSearch, as the pages
+    show them) serve nav2_bringup's stock launch, with its params changed as
+    python/doc/howto/bringup.md shows."""
+    user = tmp_path / "user"
+    for name, text in used_files(ROOT / "python/doc/tutorials/in_nav2.md", ROOT).items():
+        (user / name).parent.mkdir(parents=True, exist_ok=True)
+        (user / name).write_text(text)
+    assert (user / "my_planners" / "grid_search.py").is_file(), sorted(user.rglob("*.py"))
+    with stock_bringup(
+        tmp_path, python=True, composed=True, plugins=TUTORIAL_PLUGINS, path=user
+    ) as stack:
+        runs = [navigate(stack, goal) for goal in GOALS]
+        record(
+            **{f"bringup_tutorial_to_goal_{i}_s": run.seconds for i, run in enumerate(runs)},
+            bringup_tutorial_recoveries=sum(run.recoveries for run in runs),
+        )
+        print("the tutorials' planners:", runs)
+        logs = stack.procs.log("launch", 80) + "\n" + stack.procs.log("planner_host", 40)
+        assert all(run.succeeded for run in runs), f"{runs}\n{logs}"
         assert_ctrl_c_ends_everything(stack)
 
 
 def test_time_to_the_goals_within_ten_percent_of_native() -> None:
+    python = [label for label in TIMES if label != "native"]
     for needed in ("native", "python_composed", "python_separate"):
         if needed not in TIMES:
             pytest.skip(
@@ -381,6 +653,6 @@ def test_time_to_the_goals_within_ten_percent_of_native() -> None:
         )
     print("\n".join(rows))
     record(**{f"bringup_{label}_ratio": sum(s) / native for label, s in TIMES.items()})
-    for label in ("python_composed", "python_separate"):
+    for label in python:
         ratio = sum(TIMES[label]) / native
         assert abs(ratio - 1.0) <= WITHIN, f"{label}: {ratio:.2f} x native\n" + "\n".join(rows)

@@ -21,7 +21,6 @@ $NAV2_PYIF_FIGURES (JSON) when set; tests/test_nav2_launch.py prints them.
 
 from __future__ import annotations
 
-import itertools
 import os
 import re
 import signal
@@ -121,13 +120,6 @@ class Run:
     faulted: bool  # the fault was made while the navigation ran
 
 
-def _longest_stop(speeds: list[tuple[float, float]]) -> float:
-    moving = [t for t, v in speeds if v > 0.01]
-    if len(moving) < 2:
-        return 0.0
-    return max(b - a for a, b in itertools.pairwise(moving))
-
-
 def _navigate(
     client: Any, goal: tuple[float, float], fault: Callable[[], None] | None, tree: str = ""
 ) -> Run:
@@ -148,7 +140,7 @@ def _navigate(
         status == nav2_testing.SUCCEEDED,
         seconds,
         client.recoveries,
-        _longest_stop(client.speeds),
+        nav2_testing.longest_stop(client.speeds),
         status,
         faulted,
     )

@@ -70,6 +70,9 @@ def error_mapping_table() -> str:
     return "\n".join(rows) + "\n"
 
 
+DOC = Path(__file__).resolve().parents[1]  # python/doc
+
+
 def _write_if_changed(path: Path, text: str) -> None:
     """Unchanged files keep their time stamp, so Sphinx rebuilds no page for them."""
     if not path.exists() or path.read_text() != text:
@@ -82,7 +85,9 @@ def generate(app: Any) -> None:
     _write_if_changed(out / "plugin_parameters.md", plugin_parameters_table())
     _write_if_changed(out / "errors.md", error_mapping_table())
     for name, source in REPOSITORY_DOCUMENTS.items():
-        _write_if_changed(out / name, for_the_site(source, Path(app.srcdir)))
+        # Links resolve against this folder, not app.srcdir: rosdoc2 builds a copy of it
+        # elsewhere, with the same pages at the same places.
+        _write_if_changed(out / name, for_the_site(source, DOC))
     figure = out / "architecture.png"
     if not figure.exists():
         draw_call_path(figure)

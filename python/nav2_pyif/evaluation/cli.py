@@ -33,6 +33,7 @@ examples:
   nav2-pyif eval --controller pure_pursuit apf mppi --map office cluttered --generated 18
   nav2-pyif eval --controller my_pkg.ctl:Mine --map my_map.yaml --start 1 1 0 --goal 8 4 0
   nav2-pyif eval --controller pure_pursuit --realtime --jobs 1   # wall-clock pace, as a robot
+  nav2-pyif eval --compare out/idle out/loaded   # the same report, but for compute figures?
 
 writes (under --out): eval.json (settings, scenarios, the summary and every run), eval.csv
 (the summary), eval.png (the summary plotted), scenarios/SCENARIO.png (every planner's path
@@ -140,6 +141,14 @@ def add_eval_parser(subparsers: argparse._SubParsersAction) -> None:  # type: ig
     p.add_argument(
         "--out", type=Path, default=Path("out/eval"), help="output directory (default out/eval)"
     )
+    p.add_argument(
+        "--compare",
+        nargs=2,
+        type=Path,
+        metavar=("A", "B"),
+        help="run nothing: compare two reports (--out directories or eval.json files) "
+        "less the compute figures; exit 0 when identical, 1 listing what differs",
+    )
     p.add_argument("--no-plots", action="store_true", help="no PNG per scenario and per run")
     p.add_argument("--no-progress", action="store_true", help="no progress bar on stderr")
     p.set_defaults(func=run_command)
@@ -182,6 +191,14 @@ def run_command(args: argparse.Namespace) -> int:
     )
     from nav2_pyif.runner.needs import INSTALL_HINT, missing
 
+    if args.compare:
+        from nav2_pyif.evaluation.compare import CompareError, run_compare
+
+        try:
+            return run_compare(*args.compare)
+        except CompareError as exc:
+            print(f"nav2-pyif eval: error: --compare: {exc}", file=sys.stderr)
+            return 2
     progress = not args.no_progress and sys.stderr.isatty()
     absent = missing(progress=progress)
     if absent:

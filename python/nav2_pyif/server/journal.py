@@ -5,10 +5,16 @@ substituted in), whether the session is active, the parameter changes it accepte
 latest request of each op a new session is told again (``schema.RESTORED``: the plan, the speed
 limit, a behaviour's action under way). Replayed, in that order, on a restarted or hot-swapped
 worker under the same session id and epoch, so the plugin never notices.
+
+A hot swap replays every session on the new planner, then, between two calls, only what changed
+meanwhile: a session configured meanwhile whole; in one it already has, the parameters, the
+costmap, the activation and the restored requests that changed, and a cleanup for one that
+ended. Its planner is configured once per session, as the old one was.
 """
 
 from __future__ import annotations
 
+import itertools
 import threading
 from collections.abc import Callable, Iterator
 from contextlib import AbstractContextManager
@@ -46,6 +52,9 @@ _FOLLOWED = (b"\xa4plan\x83", b"\xa4goal\x83")
 _STATE_OP_NAMES = frozenset(op.value for op in STATE_OPS)
 _OP_NAMES = frozenset(op.value for op in Op)
 
+# Each configure a session record is made from, numbered: a re-configure is a new session.
+_configures = itertools.count(1)
+
 
 @dataclass
 class SessionRecord:
@@ -57,6 +66,47 @@ class SessionRecord:
     # The latest body of each of RESTORED_OPS (a behaviour's on_run while its action runs)
     restored: dict[Op, dict[str, Any]] = field(default_factory=dict)
     version: int = 0  # bumped on every change: a hot swap replays what changed meanwhile
+    configured: int = field(default_factory=lambda: next(_configures))
+
+    def copy(self) -> SessionRecord:
+        """A copy that later changes to this record leave alone (they replace the values of
+        these dicts, never change them in place)."""
+        return SessionRecord(
+            self.sid,
+            self.epoch,
+            dict(self.configure),
+            self.active,
+            dict(self.params),
+            dict(self.restored),
+            self.version,
+            self.configured,
+        )
+
+    def delta(self, before: SessionRecord) -> list[Request] | None:
+        """What a planner told this session as it was ``before`` must be told to catch up
+        with it now; None when only the whole replay can (a re-configure, an action ended)."""
+        if before.configured != self.configured or (
+            Op.ON_RUN in before.restored and Op.ON_RUN not in self.restored
+        ):
+            return None
+        requests = []
+        params = {k: v for k, v in self.params.items() if before.params.get(k, _UNSET) != v}
+        costmap = self.configure["costmap"]
+        if params or costmap is not before.configure["costmap"]:
+            # set_parameters carries the costmap here: a host takes a session's costmap from
+            # any request that has one, and no other op could deliver it without a call
+            # into the planner. Host-internal; plugins never send it so.
+            body = {"params": params, "costmap": costmap}
+            requests.append(Request(Op.SET_PARAMETERS, self.sid, self.epoch, 0, body))
+        if self.active != before.active:
+            op = Op.ACTIVATE if self.active else Op.DEACTIVATE
+            requests.append(Request(op, self.sid, self.epoch, 0, {}))
+        requests += [
+            Request(op, self.sid, self.epoch, 0, self.restored[op])
+            for op in RESTORED_OPS
+            if op in self.restored and self.restored[op] is not before.restored.get(op)
+        ]
+        return requests
 
     def replay(self) -> list[Request]:
         body = self.configure
@@ -74,6 +124,7 @@ class SessionRecord:
 
 
 Snapshot = dict[str, tuple[int, list[tuple[str, bytes]]]]
+_UNSET = object()
 
 
 def _followed(plan: dict[str, Any] | None, cycle: dict[str, Any]) -> dict[str, Any] | None:
@@ -88,7 +139,15 @@ def _followed(plan: dict[str, Any] | None, cycle: dict[str, Any]) -> dict[str, A
 
 
 def _encoded(record: SessionRecord) -> list[tuple[str, bytes]]:
-    return [(q.op.value, encode_request(q)) for q in record.replay()]
+    return _encode_all(record.replay())
+
+
+def _encode_all(requests: list[Request]) -> list[tuple[str, bytes]]:
+    # The catch-up's set_parameters keeps its costmap (see SessionRecord.delta): not checked
+    # against the schema, which would drop it; every body here was checked when it came.
+    return [
+        (q.op.value, encode_request(q, validate=q.op is not Op.SET_PARAMETERS)) for q in requests
+    ]
 
 
 class Journal:
@@ -153,14 +212,32 @@ class Journal:
         with self._lock:
             return {sid: (r.version, _encoded(r)) for sid, r in self._sessions.items()}
 
-    def changed_since(self, snapshot: Snapshot) -> Snapshot:
-        """Sessions created or changed after ``snapshot`` was taken."""
+    def records(self) -> dict[str, SessionRecord]:
+        """Every session as it is now, copied."""
         with self._lock:
-            return {
-                sid: (r.version, _encoded(r))
-                for sid, r in self._sessions.items()
-                if sid not in snapshot or snapshot[sid][0] != r.version
-            }
+            return {sid: r.copy() for sid, r in self._sessions.items()}
+
+    def changed_since(self, before: dict[str, SessionRecord]) -> Snapshot:
+        """What a planner told the sessions ``before`` (records()) must be told to catch up:
+        the whole replay of a session new since, the delta of one changed since, a cleanup of
+        one ended since."""
+        with self._lock:
+            changed: Snapshot = {}
+            for sid, record in self._sessions.items():
+                old = before.get(sid)
+                if old is not None and (old.configured, old.version) == (
+                    record.configured,
+                    record.version,
+                ):
+                    continue  # (a re-configure starts again from version 0)
+                delta = record.delta(old) if old is not None else None
+                requests = record.replay() if delta is None else delta
+                changed[sid] = (record.version, _encode_all(requests))
+            for sid, old in before.items():
+                if sid not in self._sessions:
+                    cleanup = Request(Op.CLEANUP, sid, old.epoch, 0, {})
+                    changed[sid] = (old.version, _encode_all([cleanup]))
+            return changed
 
     def hand_over(
         self,
@@ -173,7 +250,8 @@ class Journal:
     ) -> int:
         """Hot swap, all or nothing: replay every session on the new planner (``new``: its
         label and kind) through ``call``, then, holding ``lock`` so that no call changes them
-        meanwhile, the sessions changed since, and ``swap()``. Raises PlannerLoadError naming
+        meanwhile, what changed since (changed_since: never a second configure of a session
+        the new planner has), and ``swap()``. Raises PlannerLoadError naming
         the first session and step that failed (nothing swapped). Returns the number of
         sessions carried over.
 
@@ -190,10 +268,12 @@ class Journal:
             raise PlannerLoadError(
                 f"{label} is a {kind.value}; this key serves a {serving.value}: {why}"
             )
-        snapshot = self.snapshot()
-        _replay_all_or_refuse(snapshot, call, label)
+        before = self.records()
+        _replay_all_or_refuse(
+            {sid: (r.version, _encoded(r)) for sid, r in before.items()}, call, label
+        )
         with lock:
-            _replay_all_or_refuse(self.changed_since(snapshot), call, label)
+            _replay_all_or_refuse(self.changed_since(before), call, label)
             swap()
             return len(self)
 

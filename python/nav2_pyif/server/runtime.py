@@ -387,11 +387,7 @@ class PlannerRuntime:
         settle_heap()
         context.params.on_change(planner.on_parameters_changed)
         self.sessions[request.sid] = Session(request.sid, request.epoch, planner, context)
-        # The same session and epoch again: a hot swap catching up with what changed while
-        # the new planner took the sessions (journal.hand_over), said once already.
-        caught_up = previous is not None and previous.epoch == request.epoch
-        self.log.log(
-            logging.DEBUG if caught_up else logging.INFO,
+        self.log.info(
             "%s: session %s configured (epoch %d) for %s/%s",
             self.label,
             request.sid[:8],
