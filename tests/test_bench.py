@@ -193,6 +193,21 @@ def test_checkers_benchmark_quick_run_prints_the_three_cycles_side_by_side() -> 
     )
 
 
+def test_path_handler_benchmark_prints_each_cycle_with_its_queries() -> None:
+    """A Python path handler carried with the checks costs Lyrical's cycle no query: two a
+    cycle, as with Nav2's own; on its own query, three."""
+    result = bench("path-handler", "--quick")
+    assert_prints(result, "Lyrical's control cycle", "queries/cycle")
+    for row, queries in (
+        ("Nav2's path handler (in process)", "2.00"),
+        ("Python path handler, a query each", "3.00"),
+        ("Python path handler, carried", "2.00"),
+    ):
+        assert re.search(
+            rf"{re.escape(row)}\s+[\d.]+\s+[\d.]+\s+300\s+{queries}$", result.stdout, re.M
+        ), result.stdout
+
+
 def test_layer_benchmark_quick_run_prints_both_windows() -> None:
     assert_prints(
         bench("layer", "--quick"),

@@ -9,6 +9,7 @@ nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long r
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
 nav2-pyif-bench host --connect E --key K        the control cycle against a running host
 nav2-pyif-bench checkers [--quick]              the cycle with Python goal/progress checkers
+nav2-pyif-bench path-handler [--quick]          Lyrical's cycle with a Python path handler
 nav2-pyif-bench hops [--quick]                  one more hop: pipe, Zenoh thread, relay, router
 nav2-pyif-bench layer [--quick]                 a Python costmap layer, 400 x 400 at 5 Hz
 nav2-pyif-bench inputs [--quick]                a scan, a cloud, an image: protocol vs a topic
@@ -40,6 +41,7 @@ from nav2_pyif_bench import (
     mppi_bench,
     mppi_profile,
     obstacles_bench,
+    path_handler_bench,
     protocol_bench,
     record_bench,
     reliability_bench,
@@ -216,6 +218,10 @@ def build_parser() -> argparse.ArgumentParser:
         "checkers", help="the control cycle with Python goal and progress checkers"
     )
     checkers_bench.add_arguments(checkers)
+    handler = sub.add_parser(
+        "path-handler", help="Lyrical's control cycle with a Python path handler"
+    )
+    path_handler_bench.add_arguments(handler)
     hops = sub.add_parser(
         "hops", help="what one more hop costs: worker pipe, Zenoh thread, relay, router"
     )
@@ -274,6 +280,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "checkers":
         results = checkers_bench.run(args)
         text = checkers_bench.report(results)
+    elif args.bench == "path-handler":
+        results = path_handler_bench.run(args)
+        text = path_handler_bench.report(results)
     elif args.bench == "inputs":
         results = inputs_bench.run(args)
         text = inputs_bench.report(results)

@@ -18,6 +18,7 @@ add_library(nav2_pyif_client STATIC
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/host_watcher.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/keys.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/local_host.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/../src/client/path_handler_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/planner_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/plugin_session.cpp
   ${CMAKE_CURRENT_LIST_DIR}/../src/client/settings.cpp

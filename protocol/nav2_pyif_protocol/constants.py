@@ -17,6 +17,7 @@ class PluginType(str, Enum):
     PROGRESS_CHECKER = "progress_checker"  # nav2_core::ProgressChecker (controller_server)
     COSTMAP_LAYER = "costmap_layer"  # nav2_costmap_2d::Layer (a costmap's plugins)
     BEHAVIOR = "behavior"  # nav2_core::Behavior (behavior_server), as TimedBehavior runs it
+    PATH_HANDLER = "path_handler"  # nav2_core::PathHandler (controller_server, Lyrical)
 
 
 class Op(str, Enum):
@@ -51,6 +52,8 @@ class Op(str, Enum):
     ON_RUN = "on_run"
     ON_CYCLE_UPDATE = "on_cycle_update"
     ON_ACTION_COMPLETION = "on_action_completion"
+    # path handler (and SET_PLAN): Lyrical's nav2_core::PathHandler
+    FIND_PLAN_SEGMENT = "find_plan_segment"
 
 
 LIFECYCLE_OPS = frozenset({Op.CONFIGURE, Op.ACTIVATE, Op.DEACTIVATE, Op.CLEANUP, Op.SET_PARAMETERS})
@@ -70,6 +73,8 @@ GOAL_CHECKER_OPS = LIFECYCLE_OPS | {Op.IS_GOAL_REACHED, Op.GET_TOLERANCES, Op.RE
 PROGRESS_CHECKER_OPS = LIFECYCLE_OPS | {Op.CHECK, Op.RESET}
 COSTMAP_LAYER_OPS = LIFECYCLE_OPS | {Op.UPDATE_BOUNDS, Op.UPDATE_COSTS, Op.MATCH_SIZE, Op.RESET}
 BEHAVIOR_OPS = LIFECYCLE_OPS | {Op.ON_RUN, Op.ON_CYCLE_UPDATE, Op.ON_ACTION_COMPLETION}
+# Like the checkers, a path handler has only initialize in Nav2 (configure here).
+PATH_HANDLER_OPS = LIFECYCLE_OPS | {Op.SET_PLAN, Op.FIND_PLAN_SEGMENT}
 OPS_BY_PLUGIN = {
     PluginType.CONTROLLER: CONTROLLER_OPS,
     PluginType.GLOBAL_PLANNER: GLOBAL_PLANNER_OPS,
@@ -78,6 +83,7 @@ OPS_BY_PLUGIN = {
     PluginType.PROGRESS_CHECKER: PROGRESS_CHECKER_OPS,
     PluginType.COSTMAP_LAYER: COSTMAP_LAYER_OPS,
     PluginType.BEHAVIOR: BEHAVIOR_OPS,
+    PluginType.PATH_HANDLER: PATH_HANDLER_OPS,
 }
 
 
@@ -173,6 +179,9 @@ ERRORS_BY_PLUGIN = {
     # The plugin turns any failed call into FAILED (the action's UNKNOWN code);
     # ControllerException only names the failure here.
     PluginType.BEHAVIOR: frozenset({ErrorType.CONTROLLER_EXCEPTION}),
+    # A path handler runs in controller_server's cycle and throws its exceptions, as Nav2's
+    # FeasiblePathHandler does (InvalidPath, ControllerTFError).
+    PluginType.PATH_HANDLER: CONTROLLER_ERRORS,
 }
 #: The catch-all exception of each plugin type, its host failure and its configure failure.
 GENERIC_ERROR = {
@@ -183,6 +192,7 @@ GENERIC_ERROR = {
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.BEHAVIOR: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.PATH_HANDLER: ErrorType.CONTROLLER_EXCEPTION,
 }
 #: What a plugin throws when its host failed it rather than the planner: no host alive, no
 #: reply in time, a broken connection, or an ``Unavailable`` reply (the worker crashed and is
@@ -197,6 +207,8 @@ GENERIC_ERROR = {
 HOST_FAILURE_ERROR = {
     **GENERIC_ERROR,  # UNKNOWN in every server: the generic exceptions are retried
     PluginType.CONTROLLER: ErrorType.NO_VALID_CONTROL,
+    # the cycle's plan comes from it: a host failure is the controller's (held still, retried)
+    PluginType.PATH_HANDLER: ErrorType.NO_VALID_CONTROL,
 }
 INVALID_ERROR = {
     PluginType.CONTROLLER: ErrorType.INVALID_CONTROLLER,
@@ -206,6 +218,7 @@ INVALID_ERROR = {
     PluginType.PROGRESS_CHECKER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.COSTMAP_LAYER: ErrorType.CONTROLLER_EXCEPTION,
     PluginType.BEHAVIOR: ErrorType.CONTROLLER_EXCEPTION,
+    PluginType.PATH_HANDLER: ErrorType.INVALID_CONTROLLER,
 }
 PROTOCOL_ERRORS = frozenset(
     {

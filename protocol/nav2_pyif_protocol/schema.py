@@ -218,7 +218,7 @@ _CONFIGURE_REQUEST = (
         "plugin_type",
         STR,
         "'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker', "
-        "'costmap_layer' or 'behavior'",
+        "'costmap_layer', 'behavior' or 'path_handler'",
     ),
     _f("name", STR, "plugin name in Nav2 (e.g. FollowPath)"),
     _f("node", STR, "name of the Nav2 server node"),
@@ -315,7 +315,12 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
     ),
     Op.SET_PLAN: (
         (
-            _f("path", "Path", "the plan to follow, in the costmap's global frame (section 14)"),
+            _f(
+                "path",
+                "Path",
+                "the plan to follow, in the costmap's global frame (section 14); a path "
+                "handler's, to cut segments from, in its own frame (section 19)",
+            ),
             _f(
                 "goal",
                 "PoseStamped",
@@ -557,6 +562,13 @@ BODIES: dict[Op, tuple[tuple[Field, ...], tuple[Field, ...]]] = {
         ),
         (),
     ),
+    Op.FIND_PLAN_SEGMENT: (
+        (_f("pose", "PoseStamped", "robot pose, in the plan's frame"),),
+        (
+            _f("start", UINT, "first pose of the segment: an index into the plan set_plan sent"),
+            _f("end", UINT, "one past its last pose; start < end <= the plan's length"),
+        ),
+    ),
 }
 
 
@@ -598,6 +610,7 @@ OP_TIMEOUT: dict[Op, Timeout] = {
     Op.ON_RUN: Timeout.LIFECYCLE,
     Op.ON_CYCLE_UPDATE: Timeout.CALL,
     Op.ON_ACTION_COMPLETION: Timeout.LIFECYCLE,
+    Op.FIND_PLAN_SEGMENT: Timeout.CALL,  # every control cycle
 }
 
 #: smooth gives the smoother ``max_time``: a client awaits the reply that long and this much
@@ -633,14 +646,17 @@ COSTMAP_SENT: dict[Op, CostmapSent] = {op: _costmap_sent(op) for op in Op}
 RESTORED: dict[PluginType, tuple[Op, ...]] = {
     PluginType.CONTROLLER: (Op.SET_PLAN, Op.SET_SPEED_LIMIT),
     PluginType.BEHAVIOR: (Op.ON_RUN,),
+    PluginType.PATH_HANDLER: (Op.SET_PLAN,),
 }
 
 #: The control cycle in fewer queries (PROTOCOL.md section 15): op -> the ops its request may
 #: carry. Nav2's controller_server calls the goal check, the progress check and the command
 #: in one of two orders (goal check first or last); a call carries those that follow it.
+# Lyrical's path handler cuts the cycle's plan between the check and the command: its
+# find_plan_segment rides with the checks (section 19).
 CARRIES: dict[Op, tuple[Op, ...]] = {
-    Op.IS_GOAL_REACHED: (Op.CHECK, Op.COMPUTE_VELOCITY_COMMANDS),
-    Op.CHECK: (Op.COMPUTE_VELOCITY_COMMANDS,),
+    Op.IS_GOAL_REACHED: (Op.CHECK, Op.FIND_PLAN_SEGMENT, Op.COMPUTE_VELOCITY_COMMANDS),
+    Op.CHECK: (Op.FIND_PLAN_SEGMENT, Op.COMPUTE_VELOCITY_COMMANDS),
     Op.COMPUTE_VELOCITY_COMMANDS: (Op.IS_GOAL_REACHED,),
 }
 

@@ -1,11 +1,13 @@
 """nav2_pyif: write Nav2 controllers, global planners, path smoothers, goal checkers,
-progress checkers, costmap layers and behaviours in Python; serve them over Zenoh.
+progress checkers, costmap layers, behaviours and (Lyrical) path handlers in Python; serve them
+over Zenoh.
 
 The planner API (what a planner imports)::
 
     from nav2_pyif import Controller, GlobalPlanner, Costmap, Plan, GoalTolerances
     from nav2_pyif import Smoother, GoalChecker, ProgressChecker, CostmapLayer
     from nav2_pyif import Behavior, Status, Step, Failure  # behavior_server's plugins
+    from nav2_pyif import PathHandler  # Lyrical's controller_server: the cycle's plan segment
     from nav2_pyif import NoValidControl, NoValidPathCouldBeFound, ...  # nav2_core names
     from nav2_pyif import carrot, pose_xy_yaw, wrap, ...  # geometry (nav2_pyif.geometry)
     from nav2_pyif import Batch, one_cycle  # many robots' cycles in one call (nav2_pyif.batch)
@@ -62,6 +64,7 @@ from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import Parameters, ParamValue
+from nav2_pyif.path_handler import PathHandler
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.progress_checker import ProgressChecker
@@ -100,6 +103,7 @@ __all__ = [
     "NoViapointsGiven",
     "ParamValue",
     "Parameters",
+    "PathHandler",
     "PatienceExceeded",
     "Plan",
     "PlannerCancelled",

@@ -32,11 +32,23 @@ void CarriedCycle::use_progress_checker(ProgressCheckerSession & session)
   progress_checker_ = &session;
 }
 
+void CarriedCycle::use_path_handler(PathHandlerSession & session)
+{
+  std::lock_guard<std::mutex> lock(mutex_);
+  path_handler_ = &session;
+}
+
 void CarriedCycle::forget(const PluginSession & session)
 {
   std::lock_guard<std::mutex> lock(mutex_);
   if (controller_ == &session) {
     controller_ = nullptr;
+  }
+  if (path_handler_ == &session) {
+    path_handler_ = nullptr;
+  }
+  if (segment_ && segment_->session == &session) {
+    segment_.reset();
   }
   if (progress_checker_ == &session) {
     progress_checker_ = nullptr;
@@ -92,6 +104,19 @@ void CarriedCycle::keep(
   }
 }
 
+void CarriedCycle::prepare_rest(
+  CarriedCalls & carry, const proto::PoseStamped & pose, const CommandInputs & inputs,
+  std::optional<Pending> & segment, std::optional<Pending> & compute)
+{
+  if (path_handler_ != nullptr) {
+    segment = add(carry, *path_handler_, path_handler_->prepare_segment(pose));
+  } else if (controller_ != nullptr) {
+    compute = add(
+      carry, *controller_,
+      controller_->prepare_command(pose, inputs.velocity, inputs.tolerances));
+  }
+}
+
 void CarriedCycle::learn(bool goal_last_seen, bool seen)
 {
   (goal_last_seen ? seen_last_ : seen_first_) = seen;
@@ -129,11 +154,13 @@ bool CarriedCycle::is_goal_reached(
   }
   if (!reached) {
     std::optional<Pending> check;
+    std::optional<Pending> segment;
     std::optional<Pending> compute;
     CarriedCalls carry;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       check_.reset();  // a previous cycle's, unused: Nav2 went another way
+      segment_.reset();
       compute_.reset();
       if (!goal_last_ && robot) {
         command_inputs_ = CommandInputs{*robot, velocity, tolerances};
@@ -141,10 +168,7 @@ bool CarriedCycle::is_goal_reached(
           check =
             add(carry, *progress_checker_, progress_checker_->prepare(progress_check(*robot)));
         }
-        if (controller_ != nullptr) {
-          compute =
-            add(carry, *controller_, controller_->prepare_command(*robot, velocity, tolerances));
-        }
+        prepare_rest(carry, *robot, *command_inputs_, segment, compute);
       }
     }
     proto::IsGoalReachedReply reply = checker.call(carrying(request, std::move(carry)));
@@ -152,6 +176,7 @@ bool CarriedCycle::is_goal_reached(
     std::lock_guard<std::mutex> lock(mutex_);
     std::size_t next = 0;
     keep(check_, std::move(check), replies, next, progress_checker_);
+    keep(segment_, std::move(segment), replies, next, path_handler_);
     keep(compute_, std::move(compute), replies, next, controller_);
     reached = reply.reached;
   }
@@ -177,25 +202,44 @@ bool CarriedCycle::check(ProgressCheckerSession & session, const proto::CheckReq
       return carried->making_progress;
     }
   }
+  std::optional<Pending> segment;
   std::optional<Pending> compute;
   CarriedCalls carry;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     const std::optional<CommandInputs> inputs = std::exchange(command_inputs_, std::nullopt);
-    // Goal first, TF moved on since the goal check: the command prepared for it will not fit
-    if (!goal_last_ && inputs && controller_ != nullptr && !same_pose(inputs->pose, pose)) {
+    // Goal first, TF moved on since the goal check: the calls prepared for it will not fit
+    if (!goal_last_ && inputs && !same_pose(inputs->pose, pose)) {
+      segment_.reset();
       compute_.reset();
-      compute = add(
-        carry, *controller_,
-        controller_->prepare_command(pose, inputs->velocity, inputs->tolerances));
+      prepare_rest(carry, pose, *inputs, segment, compute);
     }
   }
   proto::CheckReply reply = session.call(carrying(request, std::move(carry)));
   CarriedCalls replies = std::move(reply.carried).value_or(CarriedCalls{});
   std::lock_guard<std::mutex> lock(mutex_);
   std::size_t next = 0;
+  keep(segment_, std::move(segment), replies, next, path_handler_);
   keep(compute_, std::move(compute), replies, next, controller_);
   return reply.making_progress;
+}
+
+std::pair<std::size_t, std::size_t> CarriedCycle::find_plan_segment(
+  PathHandlerSession & session, const proto::PoseStamped & pose)
+{
+  std::optional<Pending> mine;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    mine = take_for(segment_, session);
+  }
+  if (mine) {
+    auto carried = session.take_segment(std::move(mine->prepared), mine->reply, pose);
+    count(carried.has_value());
+    if (carried) {
+      return *carried;
+    }
+  }
+  return session.find_plan_segment(pose);
 }
 
 proto::TwistStamped CarriedCycle::compute_velocity_commands(

@@ -613,6 +613,22 @@ void write(Writer & w, const OnActionCompletionReply &, const FieldPath &)
   w.map(0);
 }
 
+void write(Writer & w, const FindPlanSegmentRequest & value, const FieldPath & where)
+{
+  w.map(1);
+  w.key("pose");
+  write(w, value.pose, where.key("pose"));
+}
+
+void write(Writer & w, const FindPlanSegmentReply & value, const FieldPath &)
+{
+  w.map(2);
+  w.key("start");
+  w.u64(value.start);
+  w.key("end");
+  w.u64(value.end);
+}
+
 void write(Writer & w, const RequestBody & body, const FieldPath & where)
 {
   std::visit([&](const auto & alternative) {write(w, alternative, where);}, body);
@@ -1125,6 +1141,24 @@ OnActionCompletionReply read_on_action_completion_reply(
   return OnActionCompletionReply{};
 }
 
+FindPlanSegmentRequest read_find_plan_segment_request(
+  const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  FindPlanSegmentRequest out;
+  out.pose = m.required("pose", read_pose_stamped);
+  return out;
+}
+
+FindPlanSegmentReply read_find_plan_segment_reply(const Object & object, const FieldPath & where)
+{
+  const MapReader m(object, where);
+  FindPlanSegmentReply out;
+  out.start = m.required("start", read_u64);
+  out.end = m.required("end", read_u64);
+  return out;
+}
+
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where)
 {
   switch (op) {
@@ -1172,6 +1206,8 @@ RequestBody read_request_body(Op op, const Object & object, const FieldPath & wh
       return read_on_cycle_update_request(object, where);
     case Op::OnActionCompletion:
       return read_on_action_completion_request(object, where);
+    case Op::FindPlanSegment:
+      return read_find_plan_segment_request(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -1223,6 +1259,8 @@ ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where)
       return read_on_cycle_update_reply(object, where);
     case Op::OnActionCompletion:
       return read_on_action_completion_reply(object, where);
+    case Op::FindPlanSegment:
+      return read_find_plan_segment_reply(object, where);
   }
   fail(where, "unknown op");  // unreachable: every Op is handled above
 }
@@ -1429,6 +1467,13 @@ std::size_t payload_size(const OnActionCompletionRequest & value)
 }
 
 std::size_t payload_size(const OnActionCompletionReply &) {return 0;}
+
+std::size_t payload_size(const FindPlanSegmentRequest & value)
+{
+  return payload_size(value.pose);
+}
+
+std::size_t payload_size(const FindPlanSegmentReply &) {return 0;}
 
 std::size_t payload_size(const RequestBody & body)
 {

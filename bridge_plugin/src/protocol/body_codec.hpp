@@ -73,6 +73,8 @@ void write(Writer & w, const OnCycleUpdateRequest & value, const FieldPath & whe
 void write(Writer & w, const OnCycleUpdateReply & value, const FieldPath & where);
 void write(Writer & w, const OnActionCompletionRequest & value, const FieldPath & where);
 void write(Writer & w, const OnActionCompletionReply & value, const FieldPath & where);
+void write(Writer & w, const FindPlanSegmentRequest & value, const FieldPath & where);
+void write(Writer & w, const FindPlanSegmentReply & value, const FieldPath & where);
 void write(Writer & w, const RequestBody & body, const FieldPath & where);
 void write(Writer & w, const ReplyBody & body, const FieldPath & where);
 
@@ -144,6 +146,9 @@ OnActionCompletionRequest read_on_action_completion_request(
   const Object & object, const FieldPath & where);
 OnActionCompletionReply read_on_action_completion_reply(
   const Object & object, const FieldPath & where);
+FindPlanSegmentRequest read_find_plan_segment_request(
+  const Object & object, const FieldPath & where);
+FindPlanSegmentReply read_find_plan_segment_reply(const Object & object, const FieldPath & where);
 RequestBody read_request_body(Op op, const Object & object, const FieldPath & where);
 ReplyBody read_reply_body(Op op, const Object & object, const FieldPath & where);
 
@@ -201,6 +206,8 @@ std::size_t payload_size(const OnCycleUpdateRequest & value);
 std::size_t payload_size(const OnCycleUpdateReply & value);
 std::size_t payload_size(const OnActionCompletionRequest & value);
 std::size_t payload_size(const OnActionCompletionReply & value);
+std::size_t payload_size(const FindPlanSegmentRequest & value);
+std::size_t payload_size(const FindPlanSegmentReply & value);
 std::size_t payload_size(const RequestBody & body);
 std::size_t payload_size(const ReplyBody & body);
 inline std::size_t payload_size(const std::string & text) {return text.size();}

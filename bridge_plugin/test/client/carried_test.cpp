@@ -13,6 +13,7 @@
 #include "fakes.hpp"
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/client/controller_session.hpp"
+#include "nav2_pyif_bridge/client/path_handler_session.hpp"
 
 namespace nav2_pyif_bridge::client::test
 {
@@ -463,11 +464,78 @@ INSTANTIATE_TEST_SUITE_P(
     return info.param ? "WithProgressChecker" : "GoalCheckerOnly";
   });
 
+// Lyrical's cycle: the goal check, the progress check, the path handler's segment, then the
+// command with the segment's plan (which it needs, so it cannot be prepared before).
+TEST_F(CarriedTest, ThePathHandlersSegmentRidesWithTheChecksNoQueryOfItsOwn)
+{
+  Timeouts timeouts;
+  timeouts.call = 2s;
+  auto made = checkers(timeouts);
+  SessionConfig config;
+  config.node = "controller_server";
+  config.global_frame = "odom";
+  config.timeouts = timeouts;
+  config.key_prefix = "nav2_pyif/test_robot/path_handler";
+  config.name = "path_handler";
+  PathHandlerSession handler(config, host, costmap, log.logger());
+  handler.configure();
+  EXPECT_FALSE(handler.set_plan(straight_path(40, 3.0, 0.0)).has_value());
+  auto cycle = CarriedCycle::of("/carried_test_path_handler");
+  for (PluginSession * member : {static_cast<PluginSession *>(session.get()),
+      static_cast<PluginSession *>(made.goal.get()), static_cast<PluginSession *>(made.progress.get()),
+      static_cast<PluginSession *>(&handler)})
+  {
+    member->join(cycle);
+  }
+  cycle->use_controller(*session);
+  cycle->use_progress_checker(*made.progress);
+  const std::array<double, 7> goal{3.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+  // one Lyrical cycle: the segment's and the command's answers, and the queries it took
+  // (`python`: the segment is the Python path handler's; else Nav2's own, a fixed one)
+  auto lyrical_cycle = [&](
+    const proto::PoseStamped & robot, const proto::PoseStamped & moved, bool python) {
+      const std::size_t before = host.received.size();
+      EXPECT_FALSE(cycle->is_goal_reached(
+        *made.goal, robot, goal_check(robot.pose, goal, kVelocity), kTolerances));
+      EXPECT_TRUE(cycle->check(*made.progress, progress_check(moved)));
+      const auto segment = python ? cycle->find_plan_segment(handler, moved) :
+        std::pair<std::size_t, std::size_t>{0, 5};
+      proto::Path part = straight_path(segment.second - segment.first, 3.0, 0.0);
+      session->follow(part, pose_at(3.0, 0.0));
+      cycle->compute_velocity_commands(*session, moved, kVelocity, kTolerances);
+      return std::make_pair(segment, host.received.size() - before);
+    };
+
+  // Without the path handler in the cycle (Nav2's own): the checks' query, then the command's.
+  for (double x : {0.3, 0.5}) {
+    EXPECT_EQ(lyrical_cycle(pose_at(x, 0.0), pose_at(x, 0.0), false).second, 2u);
+  }
+  // With it: the goal check's query carries the check and the segment: still two queries.
+  cycle->use_path_handler(handler);
+  host.carried_ops.clear();
+  auto [segment, queries] = lyrical_cycle(pose_at(1.0, 0.0), pose_at(1.0, 0.0), true);
+  EXPECT_EQ(segment, (std::pair<std::size_t, std::size_t>{10, 15}));
+  EXPECT_EQ(queries, 2u);
+  EXPECT_EQ(host.carried_ops, (std::vector<std::string>{"check", "find_plan_segment"}));
+  // TF moved on between the goal check's pose lookup and the check's: the check goes on its
+  // own, carrying the segment prepared for its pose; the command still has a query of its own.
+  auto moved = pose_at(1.2, 0.0);
+  moved.stamp_ns += 20000000;
+  auto [later, three] = lyrical_cycle(pose_at(1.1, 0.0), moved, true);
+  EXPECT_EQ(later, (std::pair<std::size_t, std::size_t>{12, 17}));
+  EXPECT_EQ(three, 3u);
+  // from carried replies: the three checks of the goal check's pose, two segments
+  EXPECT_EQ(cycle->carried_used(), 5u);
+  cycle->forget(handler);
+}
+
 TEST(CarriedCycleMembers, AreTheControllerServersPluginTypesOnly)
 {
-  // (schema.py CARRIES: the goal check, the progress check and the command carry each other)
+  // (schema.py CARRIES: the goal check, the progress check and the command carry each other;
+  // Lyrical's path handler's segment is carried)
   for (const PluginKind kind :
-    {PluginKind::Controller, PluginKind::GoalChecker, PluginKind::ProgressChecker})
+    {PluginKind::Controller, PluginKind::GoalChecker, PluginKind::ProgressChecker,
+      PluginKind::PathHandler})
   {
     EXPECT_TRUE(proto::in_carried_cycle(kind)) << plugin_type_name(kind);
   }

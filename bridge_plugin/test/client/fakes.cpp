@@ -517,6 +517,17 @@ proto::Reply FakeHost::handle(
     case proto::Op::OnActionCompletion:
       reply.outcome = proto::ReplyBody{proto::OnActionCompletionReply{}};
       break;
+    case proto::Op::FindPlanSegment: {
+        // the poses from the robot's x on (one per 0.1 m), five of them, within the plan
+        const auto & body = std::get<proto::FindPlanSegmentRequest>(request.body);
+        const auto size = static_cast<std::uint64_t>(std::max(0.0, s.plan_size));
+        proto::FindPlanSegmentReply out;
+        out.start = std::min(static_cast<std::uint64_t>(std::max(0.0, body.pose.pose[0] * 10.0)),
+            size > 0 ? size - 1 : 0);
+        out.end = std::min(out.start + 5, size);
+        reply.outcome = proto::ReplyBody{out};
+        break;
+      }
     default:
       return error(id, request, "BadRequest", "unexpected op");
   }

@@ -38,6 +38,12 @@ def find(relative: str) -> Path | None:
     return None
 
 
+def is_lyrical() -> bool:
+    """Lyrical's Nav2 (navigation2 1.5 on): its nav2_core has path_handler.hpp."""
+    headers = ("include/nav2_core/nav2_core/path_handler.hpp", "include/nav2_core/path_handler.hpp")
+    return any(find(header) is not None for header in headers)
+
+
 def nav2_controller_version() -> tuple[int, int, int]:
     """nav2_controller's version in this environment, from its package.xml."""
     xml = find("share/nav2_controller/package.xml")
@@ -554,7 +560,15 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             finally:
                 self.destroy_client(client)
 
-        def plan(self, x: float, y: float, timeout: float = 30.0) -> Any:
+        def plan(
+            self,
+            x: float,
+            y: float,
+            timeout: float = 30.0,
+            viapoints: list[tuple[float, float]] = (),  # type: ignore[assignment]
+        ) -> Any:
+            """ComputePathToPose from the robot to (x, y) in the map frame, through
+            ``viapoints`` (Lyrical's goal field): the action's result, or None."""
             assert self.plan_client.wait_for_server(timeout_sec=10.0)
             goal = ComputePathToPose.Goal()
             goal.goal = PoseStamped()
@@ -562,6 +576,12 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             goal.goal.pose.position.x, goal.goal.pose.position.y = x, y
             goal.goal.pose.orientation.w = 1.0
             goal.use_start = False
+            for vx, vy in viapoints:
+                via = PoseStamped()
+                via.header.frame_id = "map"
+                via.pose.position.x, via.pose.position.y = vx, vy
+                via.pose.orientation.w = 1.0
+                goal.viapoints.append(via)
             handle = self.wait(self.plan_client.send_goal_async(goal), 10.0)
             assert handle is not None and handle.accepted, "ComputePathToPose not accepted"
             return self.wait(handle.get_result_async(), timeout)

@@ -177,7 +177,8 @@ TEST(DecodeErrors, UnknownOpListsTheKnownOnes)
     "BadRequest: request.op: unknown op 'fly'; known: configure, activate, deactivate, "
     "cleanup, set_parameters, set_plan, compute_velocity_commands, set_speed_limit, cancel, "
     "reset, create_plan, cancel_plan, smooth, is_goal_reached, get_tolerances, check, "
-    "update_bounds, update_costs, match_size, on_run, on_cycle_update, on_action_completion");
+    "update_bounds, update_costs, match_size, on_run, on_cycle_update, on_action_completion, "
+    "find_plan_segment");
 }
 
 TEST(DecodeErrors, VersionIsCheckedFirst)

@@ -71,6 +71,9 @@ _READ_PARAMS = "const Object & object, const FieldPath & where"
 # Kinds whose reading or writing names the field in errors (so the path is needed).
 _NAMED_KINDS = {STR, PARAMS, STR_MAP}
 
+#: every op some call may carry
+_CARRIED_OPS = frozenset(op for carried in CARRIES.values() for op in carried)
+
 
 def header(purpose: str, source: str = "schema.py") -> str:
     """The first lines of every generated file: where it comes from, and what it is."""
@@ -374,8 +377,8 @@ def ops_hpp() -> str:
         "}};",
         "",
         *comment(
-            "Whether a plugin type sends a call of the carried control cycle (schema.py "
-            "CARRIES; PROTOCOL.md section 15): the plugins of such types in one "
+            "Whether a plugin type sends or answers a call of the carried control cycle "
+            "(schema.py CARRIES; PROTOCOL.md section 15): the plugins of such types in one "
             "controller_server share its carried cycle.",
             "",
         ),
@@ -386,7 +389,7 @@ def ops_hpp() -> str:
             [
                 f"kind == PluginKind::{camel(p.value)}"
                 for p in PluginType
-                if any(op in CARRIES for op in OPS_BY_PLUGIN[p])
+                if any(op in CARRIES or op in _CARRIED_OPS for op in OPS_BY_PLUGIN[p])
             ],
             " ||",
             ";",

@@ -348,6 +348,34 @@ def _requests() -> Iterator[tuple[str, Request, str]]:
     yield "on_cycle_update_request", req(Op.ON_CYCLE_UPDATE, cycle, seq=21), ""
     ended = {"status": "succeeded", "elapsed": 2.5}
     yield "on_action_completion_request", req(Op.ON_ACTION_COMPLETION, ended, seq=22), ""
+    handler_configure = dict(
+        configure,
+        plugin_type="path_handler",
+        name="path_handler",
+        params={"prune_distance": 2.0},
+        costmap=costmap(8, 6, 1, "odom"),
+    )
+    yield (
+        "configure_path_handler",
+        req(Op.CONFIGURE, handler_configure, seq=0),
+        "Lyrical's nav2_core::PathHandler",
+    )
+    segment = {"pose": pose(1.0, 2.0, 0.5, "odom")}
+    yield "find_plan_segment_request", req(Op.FIND_PLAN_SEGMENT, segment, seq=23), ""
+    check_carrying = dict(
+        segment,
+        carry=[
+            {
+                "key": "nav2_pyif/robot1/path_handler",
+                "payload": encode_request(req(Op.FIND_PLAN_SEGMENT, segment, seq=24)),
+            }
+        ],
+    )
+    yield (
+        "check_carrying_the_plan_segment",
+        req(Op.CHECK, check_carrying, seq=25),
+        "Lyrical's order: the path handler's call rides with the progress check",
+    )
 
 
 def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
@@ -512,6 +540,12 @@ def _replies() -> Iterator[tuple[str, Op, Reply, str]]:
         Op.CHECK,
         ok(Op.CHECK, {"making_progress": True, "carried": [command]}, seq=92),
         "making progress: the carried command's reply (encoded)",
+    )
+    yield (
+        "find_plan_segment_reply",
+        Op.FIND_PLAN_SEGMENT,
+        ok(Op.FIND_PLAN_SEGMENT, {"start": 3, "end": 41}, seq=23),
+        "the poses 3 to 40 of the plan",
     )
     errors = [
         (

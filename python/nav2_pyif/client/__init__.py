@@ -13,6 +13,7 @@ from nav2_pyif.client.cycle import ControlCycle
 from nav2_pyif.client.global_planner import GlobalPlannerClient
 from nav2_pyif.client.hosts import HostWatcher
 from nav2_pyif.client.layer import CostmapLayerClient
+from nav2_pyif.client.path_handler import PathHandlerClient
 from nav2_pyif.client.plugin_client import PluginClient, Timeouts
 from nav2_pyif.client.smoother import SmootherClient
 
@@ -25,6 +26,7 @@ __all__ = [
     "GlobalPlannerClient",
     "GoalCheckerClient",
     "HostWatcher",
+    "PathHandlerClient",
     "PluginClient",
     "ProgressCheckerClient",
     "SmootherClient",

@@ -17,6 +17,11 @@ same bytes and nothing else went on that plugin's session since it was prepared
 (``PluginClient._take``); otherwise the call goes on its own, so the results are always those
 of Nav2's order. When TF moved on between the goal check's pose and the check's (goal check
 first), the check goes on its own carrying the command prepared for its pose: two round trips.
+
+Lyrical calls its path handler's ``findPlanSegment(pose)`` between the check and the command,
+with the check's pose: a Python path handler's call rides with the goal check (or, when TF
+moved on, the check), prepared like the command. Lyrical's command needs the segment's plan,
+so it goes on its own there (PROTOCOL.md section 19).
 """
 
 from __future__ import annotations
@@ -29,6 +34,7 @@ from nav2_pyif_protocol.constants import Op
 from nav2_pyif._messages import pose_to_wire, twist_to_list
 from nav2_pyif.client.checkers import GoalCheckerClient, ProgressCheckerClient, pose7
 from nav2_pyif.client.controller import ControllerClient
+from nav2_pyif.client.path_handler import PathHandlerClient, segment_body, segment_of
 from nav2_pyif.client.plugin_client import Body, Carried, PluginClient
 from nav2_pyif.goal_tolerances import GoalTolerances
 
@@ -44,10 +50,12 @@ class ControlCycle:
         controller: ControllerClient,
         goal_checker: GoalCheckerClient,
         progress_checker: ProgressCheckerClient | None = None,
+        path_handler: PathHandlerClient | None = None,
     ) -> None:
         self.controller = controller
         self.goal_checker = goal_checker
         self.progress_checker = progress_checker
+        self.path_handler = path_handler
         self._pending: dict[Op, _Pending] = {}
         self.goal_last = False  # the order learned: the goal check ends the cycle
         self._evidence = {"first": False, "last": False}
@@ -83,7 +91,7 @@ class ControlCycle:
                 if self.progress_checker is not None:
                     check = self.progress_checker._prepare(Op.CHECK, {"pose": pose_to_wire(pose)})
                     carry.append((self.progress_checker, check))
-                carry.append((self.controller, self._prepare_command(*self._compute_inputs)))
+                carry += self._prepare_rest(*self._compute_inputs)
             answer = self._send(self.goal_checker, Op.IS_GOAL_REACHED, body, carry)
         self._goal, self._goal_seq = body["goal"], self.goal_checker._seq
         reached: bool = answer["reached"]
@@ -99,11 +107,20 @@ class ControlCycle:
             inputs, self._compute_inputs = self._compute_inputs, None
             moved = inputs is not None and pose_to_wire(inputs[0]) != body["pose"]
             if inputs is not None and moved and not self.goal_last:
-                # TF moved on since the goal check: the command prepared for it will not fit
-                carry.append((self.controller, self._prepare_command(pose, *inputs[1:])))
+                # TF moved on since the goal check: the calls prepared for it will not fit
+                carry += self._prepare_rest(pose, *inputs[1:])
             answer = self._send(self.progress_checker, Op.CHECK, body, carry)
         progress: bool = answer["making_progress"]
         return progress
+
+    def find_plan_segment(self, pose: Any) -> tuple[int, int]:
+        """The path handler's ``find_plan_segment`` (Lyrical: after the check)."""
+        assert self.path_handler is not None
+        body = segment_body(pose)
+        answer = self._take(self.path_handler, Op.FIND_PLAN_SEGMENT, body)
+        if answer is None:
+            answer = self._send(self.path_handler, Op.FIND_PLAN_SEGMENT, body, [])
+        return segment_of(answer)
 
     def compute_velocity_commands(
         self,
@@ -136,6 +153,14 @@ class ControlCycle:
         self._evidence[order] = seen
         if self._evidence["last"] != self._evidence["first"]:
             self.goal_last = self._evidence["last"]
+
+    def _prepare_rest(self, pose: Any, *inputs: Any) -> list[tuple[PluginClient, Carried | None]]:
+        """The calls after the check, prepared for ``pose``: the path handler's segment
+        (Lyrical; its command needs that segment, so it is not prepared), else the command."""
+        if self.path_handler is not None:
+            prepared = self.path_handler._prepare(Op.FIND_PLAN_SEGMENT, segment_body(pose))
+            return [(self.path_handler, prepared)]
+        return [(self.controller, self._prepare_command(pose, *inputs))]
 
     def _prepare_command(self, pose: Any, *inputs: Any) -> Carried | None:
         body = self.controller.compute_body(pose, *inputs)

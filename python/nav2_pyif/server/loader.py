@@ -61,6 +61,7 @@ PLUGIN_BASES = (
     "ProgressChecker",
     "CostmapLayer",
     "Behavior",
+    "PathHandler",
 )
 PLUGIN_BASES_TEXT = f"{', '.join(PLUGIN_BASES[:-1])} or {PLUGIN_BASES[-1]}"
 

@@ -14,6 +14,7 @@ from nav2_pyif.costmap_layer import Combine
 from nav2_pyif.exceptions import (
     ControllerException,
     FailedToSmoothPath,
+    InvalidPath,
     Nav2Error,
     NoValidControl,
     NoValidPathCouldBeFound,
@@ -89,6 +90,25 @@ def checked_bool(result: Any, method: str, error: type[Nav2Error]) -> bool:
     if not isinstance(result, (bool, np.bool_)):
         raise error(f"{method} returned {type(result).__name__}; expected bool")
     return bool(result)
+
+
+def checked_segment(result: Any, plan_length: int) -> tuple[int, int]:
+    """What find_plan_segment returned -> (start, end) with 0 <= start < end <= plan_length;
+    else InvalidPath (Nav2's FeasiblePathHandler throws it for an empty transformed plan)."""
+    if not (isinstance(result, (tuple, list)) and len(result) == 2):
+        raise InvalidPath(
+            f"find_plan_segment returned {type(result).__name__}; expected (start, end)"
+        )
+    if not all(isinstance(i, (int, np.integer)) and not isinstance(i, bool) for i in result):
+        kinds = ", ".join(type(i).__name__ for i in result)
+        raise InvalidPath(f"find_plan_segment returned ({kinds}); expected two ints")
+    start, end = int(result[0]), int(result[1])
+    if not 0 <= start < end <= plan_length:
+        raise InvalidPath(
+            f"find_plan_segment returned ({start}, {end}): not a segment of the plan's "
+            f"{plan_length} poses (0 <= start < end <= {plan_length})"
+        )
+    return start, end
 
 
 def checked_smoothed(result: Any, frame_id: str, stamp_ns: int) -> tuple[Plan, bool]:

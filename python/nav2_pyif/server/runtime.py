@@ -47,6 +47,7 @@ from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.goal_tolerances import GoalTolerances
 from nav2_pyif.params import Parameters
+from nav2_pyif.path_handler import PathHandler
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.progress_checker import ProgressChecker
@@ -57,6 +58,7 @@ from nav2_pyif.server.results import (
     checked_bounds,
     checked_layer_costs,
     checked_plan,
+    checked_segment,
     checked_smoothed,
     checked_step,
     checked_twist_stamped,
@@ -167,6 +169,7 @@ class PlannerRuntime:
             Op.ON_RUN: self._on_run,
             Op.ON_CYCLE_UPDATE: self._on_cycle_update,
             Op.ON_ACTION_COMPLETION: self._on_action_completion,
+            Op.FIND_PLAN_SEGMENT: self._find_plan_segment,
         }
 
     # --- entry points -------------------------------------------------------------------
@@ -434,8 +437,21 @@ class PlannerRuntime:
         return {"rejected": rejected}
 
     def _set_plan(self, session: Session, request: Request) -> Body:
+        if isinstance(session.planner, PathHandler):
+            plan = Plan.from_wire(request.body["path"])
+            if not np.isfinite(plan.array).all():
+                raise InvalidPath("the plan sent to set_plan has non-finite values")
+            session.planner.set_plan(plan)
+            return {}
         follow_plan(session.planner, request.body["path"], request.body.get("goal"))
         return {}
+
+    def _find_plan_segment(self, session: Session, request: Request) -> Body:
+        handler = session.planner
+        assert isinstance(handler, PathHandler)
+        segment = handler.find_plan_segment(pose_from_wire(request.body["pose"]))
+        start, end = checked_segment(segment, len(handler.plan))
+        return {"start": start, "end": end}
 
     def _compute_velocity_commands(self, session: Session, request: Request) -> Body:
         pose, velocity, checker = self._cycle_arguments(session, request)

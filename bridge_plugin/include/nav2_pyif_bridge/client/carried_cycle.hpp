@@ -16,6 +16,12 @@
 // cycle holds the controller that got the latest plan and the progress checker reset last
 // (controller_server resets the current one at every new goal). A wrong guess costs one
 // prepared call the host runs and nobody uses.
+//
+// Lyrical calls its path handler's findPlanSegment between the check and the command, with the
+// check's pose (PROTOCOL.md section 19): a Python path handler's segment is prepared like the
+// command and carried by the goal check's (or, TF moved on, the check's) query. The cycle
+// holds the path handler that got the latest plan. Lyrical's command needs the segment's plan,
+// so it is not carried there: two round trips a cycle, with or without a Python path handler.
 #pragma once
 
 #include <array>
@@ -27,6 +33,7 @@
 #include <vector>
 
 #include "nav2_pyif_bridge/client/controller_session.hpp"
+#include "nav2_pyif_bridge/client/path_handler_session.hpp"
 
 namespace nav2_pyif_bridge::client
 {
@@ -59,6 +66,7 @@ public:
   // session is destroyed.
   void use_controller(ControllerSession & session);
   void use_progress_checker(ProgressCheckerSession & session);
+  void use_path_handler(PathHandlerSession & session);
   void forget(const PluginSession & session);
 
   // Nav2's three calls. `robot`: the goal checker's own lookup of the robot's pose when it
@@ -70,6 +78,10 @@ public:
     const protocol::IsGoalReachedRequest & request,
     const std::optional<protocol::GoalChecker> & tolerances);
   bool check(ProgressCheckerSession & session, const protocol::CheckRequest & request);
+  // The path handler's segment (Lyrical), answered from the checks' query when prepared for
+  // this pose.
+  std::pair<std::size_t, std::size_t> find_plan_segment(
+    PathHandlerSession & session, const protocol::PoseStamped & pose);
   protocol::TwistStamped compute_velocity_commands(
     ControllerSession & session, const protocol::PoseStamped & pose,
     const std::array<double, 6> & velocity,
@@ -101,6 +113,11 @@ private:
   // The pending call prepared for `session`, taken out of `slot`.
   static std::optional<Pending> take_for(
     std::optional<Pending> & slot, const PluginSession & session);
+  // The calls after the check, prepared for `pose` into `carry` (mutex_ held): the path
+  // handler's segment when there is one (Lyrical), else the command.
+  void prepare_rest(
+    CarriedCalls & carry, const protocol::PoseStamped & pose, const CommandInputs & inputs,
+    std::optional<Pending> & segment, std::optional<Pending> & compute);
   // A prepared call joins `carry`, and waits for its reply.
   static std::optional<Pending> add(
     CarriedCalls & carry, const PluginSession & session, std::optional<Carried> prepared);
@@ -113,8 +130,10 @@ private:
   mutable std::mutex mutex_;
   ControllerSession * controller_{nullptr};
   ProgressCheckerSession * progress_checker_{nullptr};
+  PathHandlerSession * path_handler_{nullptr};
   GoalCheckerSession * goal_checker_{nullptr};  // the one Nav2 called last
   std::optional<Pending> check_;
+  std::optional<Pending> segment_;
   std::optional<Pending> compute_;
   std::optional<Pending> goal_check_;
   std::optional<CommandInputs> command_inputs_;  // this cycle's, until the progress check

@@ -23,8 +23,8 @@ namespace nav2_pyif_bridge::protocol
 // --- configure -----------------------------------------------------------------------------------
 struct ConfigureRequest
 {
-  // 'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker', 'costmap_layer'
-  // or 'behavior'
+  // 'controller', 'global_planner', 'smoother', 'goal_checker', 'progress_checker',
+  // 'costmap_layer', 'behavior' or 'path_handler'
   std::string plugin_type;
   // plugin name in Nav2 (e.g. FollowPath)
   std::string name;
@@ -90,7 +90,8 @@ struct SetParametersReply
 // --- set_plan ------------------------------------------------------------------------------------
 struct SetPlanRequest
 {
-  // the plan to follow, in the costmap's global frame (section 14)
+  // the plan to follow, in the costmap's global frame (section 14); a path handler's, to cut
+  // segments from, in its own frame (section 19)
   Path path;
   // optional: the global goal, same frame: Nav2's (Lyrical); absent: the plan's last pose
   std::optional<PoseStamped> goal;
@@ -402,20 +403,35 @@ struct OnActionCompletionRequest
 
 struct OnActionCompletionReply {};
 
+// --- find_plan_segment ---------------------------------------------------------------------------
+struct FindPlanSegmentRequest
+{
+  // robot pose, in the plan's frame
+  PoseStamped pose;
+};
+
+struct FindPlanSegmentReply
+{
+  // first pose of the segment: an index into the plan set_plan sent
+  std::uint64_t start{0};
+  // one past its last pose; start < end <= the plan's length
+  std::uint64_t end{0};
+};
+
 // Alternative i belongs to Op(i).
 using RequestBody = std::variant<ConfigureRequest, ActivateRequest, DeactivateRequest,
   CleanupRequest, SetParametersRequest, SetPlanRequest, ComputeVelocityCommandsRequest,
   SetSpeedLimitRequest, CancelRequest, ResetRequest, CreatePlanRequest, CancelPlanRequest,
   SmoothRequest, IsGoalReachedRequest, GetTolerancesRequest, CheckRequest, UpdateBoundsRequest,
   UpdateCostsRequest, MatchSizeRequest, OnRunRequest, OnCycleUpdateRequest,
-  OnActionCompletionRequest>;
+  OnActionCompletionRequest, FindPlanSegmentRequest>;
 
 // Alternative i belongs to Op(i).
 using ReplyBody = std::variant<ConfigureReply, ActivateReply, DeactivateReply, CleanupReply,
   SetParametersReply, SetPlanReply, ComputeVelocityCommandsReply, SetSpeedLimitReply, CancelReply,
   ResetReply, CreatePlanReply, CancelPlanReply, SmoothReply, IsGoalReachedReply, GetTolerancesReply,
   CheckReply, UpdateBoundsReply, UpdateCostsReply, MatchSizeReply, OnRunReply, OnCycleUpdateReply,
-  OnActionCompletionReply>;
+  OnActionCompletionReply, FindPlanSegmentReply>;
 
 inline Op op_of(const RequestBody & body) noexcept {return static_cast<Op>(body.index());}
 inline Op op_of(const ReplyBody & body) noexcept {return static_cast<Op>(body.index());}
@@ -470,6 +486,8 @@ template<> struct ReplyOfT<OnCycleUpdateRequest>
 {using type = OnCycleUpdateReply;};
 template<> struct ReplyOfT<OnActionCompletionRequest>
 {using type = OnActionCompletionReply;};
+template<> struct ReplyOfT<FindPlanSegmentRequest>
+{using type = FindPlanSegmentReply;};
 template<class Request>
 using ReplyOf = typename ReplyOfT<Request>::type;
 

@@ -387,4 +387,17 @@ void for_each_field(const OnActionCompletionRequest & value, Visit && visit)
 template<class Visit>
 void for_each_field(const OnActionCompletionReply &, Visit &&) {}
 
+template<class Visit>
+void for_each_field(const FindPlanSegmentRequest & value, Visit && visit)
+{
+  visit("pose", value.pose);
+}
+
+template<class Visit>
+void for_each_field(const FindPlanSegmentReply & value, Visit && visit)
+{
+  visit("start", value.start);
+  visit("end", value.end);
+}
+
 }  // namespace nav2_pyif_bridge::protocol

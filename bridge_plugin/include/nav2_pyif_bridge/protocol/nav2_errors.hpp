@@ -26,8 +26,9 @@ enum class PluginKind : std::uint8_t
   ProgressChecker,
   CostmapLayer,
   Behavior,
+  PathHandler,
 };
-inline constexpr std::size_t kPluginKindCount = 7;
+inline constexpr std::size_t kPluginKindCount = 8;
 
 // Wire names, by PluginKind.
 inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames = {
@@ -38,6 +39,7 @@ inline constexpr std::array<std::string_view, kPluginKindCount> kPluginKindNames
   "progress_checker",
   "costmap_layer",
   "behavior",
+  "path_handler",
 };
 
 // The nav2_core exception classes of Jazzy and Kilted, by name; the names are also the wire's
@@ -138,6 +140,7 @@ inline constexpr std::array<std::uint32_t, kPluginKindCount> kOwnErrors = {
   0x00000001u,  // progress_checker
   0x00000001u,  // costmap_layer
   0x00000001u,  // behavior
+  0x000000ffu,  // path_handler
 };
 
 // Each plugin type's catch-all exception, by PluginKind.
@@ -145,6 +148,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kGenericError = {
   ErrorKind::ControllerException,
   ErrorKind::PlannerException,
   ErrorKind::SmootherException,
+  ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
@@ -161,6 +165,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kHostFailureError = {
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
+  ErrorKind::NoValidControl,
 };
 
 // Each plugin type's exception when it cannot be configured, by PluginKind.
@@ -172,6 +177,7 @@ inline constexpr std::array<ErrorKind, kPluginKindCount> kInvalidError = {
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
   ErrorKind::ControllerException,
+  ErrorKind::InvalidController,
 };
 
 template<class Kind>

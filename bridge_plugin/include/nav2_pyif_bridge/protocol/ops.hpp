@@ -27,7 +27,7 @@ enum class Op : std::uint8_t
   Deactivate,  // every plugin type
   Cleanup,  // every plugin type
   SetParameters,  // every plugin type
-  SetPlan,  // controller
+  SetPlan,  // controller and path_handler
   ComputeVelocityCommands,  // controller
   SetSpeedLimit,  // controller
   Cancel,  // controller
@@ -44,9 +44,10 @@ enum class Op : std::uint8_t
   OnRun,  // behavior
   OnCycleUpdate,  // behavior
   OnActionCompletion,  // behavior
+  FindPlanSegment,  // path_handler
 };
 
-inline constexpr std::size_t kOpCount = 22;
+inline constexpr std::size_t kOpCount = 23;
 
 inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "configure",
@@ -71,6 +72,7 @@ inline constexpr std::array<std::string_view, kOpCount> kOpNames = {
   "on_run",
   "on_cycle_update",
   "on_action_completion",
+  "find_plan_segment",
 };
 
 constexpr std::string_view op_name(Op op) noexcept
@@ -111,6 +113,7 @@ inline constexpr std::array<TimeoutClass, kOpCount> kOpTimeout = {
   TimeoutClass::Lifecycle,  // on_run
   TimeoutClass::Call,  // on_cycle_update
   TimeoutClass::Lifecycle,  // on_action_completion
+  TimeoutClass::Call,  // find_plan_segment
 };
 
 constexpr TimeoutClass timeout_class(Op op) noexcept
@@ -154,6 +157,7 @@ inline constexpr std::array<CostmapSent, kOpCount> kOpCostmap = {
   CostmapSent::IfChanged,  // on_run
   CostmapSent::IfChanged,  // on_cycle_update
   CostmapSent::Never,  // on_action_completion
+  CostmapSent::Never,  // find_plan_segment
 };
 
 constexpr CostmapSent costmap_sent(Op op) noexcept
@@ -163,19 +167,22 @@ constexpr CostmapSent costmap_sent(Op op) noexcept
 
 // What a new session on the host is sent again after configure (and activate), per plugin type, in
 // this order (schema.py RESTORED; PROTOCOL.md section 4).
-inline constexpr std::array<std::pair<PluginKind, Op>, 3> kRestored = {{
+inline constexpr std::array<std::pair<PluginKind, Op>, 4> kRestored = {{
   {PluginKind::Controller, Op::SetPlan},
   {PluginKind::Controller, Op::SetSpeedLimit},
   {PluginKind::Behavior, Op::OnRun},
+  {PluginKind::PathHandler, Op::SetPlan},
 }};
 
-// Whether a plugin type sends a call of the carried control cycle (schema.py CARRIES; PROTOCOL.md
-// section 15): the plugins of such types in one controller_server share its carried cycle.
+// Whether a plugin type sends or answers a call of the carried control cycle (schema.py CARRIES;
+// PROTOCOL.md section 15): the plugins of such types in one controller_server share its carried
+// cycle.
 constexpr bool in_carried_cycle(PluginKind kind) noexcept
 {
   return kind == PluginKind::Controller ||
          kind == PluginKind::GoalChecker ||
-         kind == PluginKind::ProgressChecker;
+         kind == PluginKind::ProgressChecker ||
+         kind == PluginKind::PathHandler;
 }
 
 // std::nullopt for a name this version of the protocol does not know.
