@@ -3,7 +3,7 @@
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers through a host, both maps
-nav2-pyif-bench mppi-profile [--rollouts N ...]  where Nav2MPPI's compiled step spends its time
+nav2-pyif-bench mppi-profile [--cycle-only]     where Nav2MPPI's cycle and compiled step spend time
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
@@ -95,6 +95,11 @@ def build_parser() -> argparse.ArgumentParser:
         nargs="+",
         default=[1000, 2000],
         help="batch sizes to profile (default 1000 2000)",
+    )
+    profile.add_argument(
+        "--cycle-only",
+        action="store_true",
+        help="only the whole cycle as the host runs it, not the step's parts compiled apart",
     )
     profile.add_argument(
         "--repeat", type=positive_int, default=200, help="timed runs per part (default 200)"

@@ -135,6 +135,7 @@ class Nav2MPPI(Controller):
         s = self.settings
         self.sequence = jnp.zeros((3, s.time_steps), jnp.float32)
         self.history = jnp.zeros((4, 3), jnp.float32)
+        self._optimal = self.sequence
 
     def set_plan(self, plan: Plan) -> None:
         super().set_plan(plan)
@@ -185,10 +186,23 @@ class Nav2MPPI(Controller):
         self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         started = time.perf_counter()
+        state = np.array(pose_xy_yaw(pose))
+        inputs = self.cycle_inputs(state, velocity, goal_checker)
+        command = self.optimise(inputs)
+        if self.debug_wanted("local_plan"):
+            self._publish_local_plan(state, np.asarray(self._optimal))
+        cmd = self.twist(pose, command)
+        self.last_compute_s = time.perf_counter() - started
+        return cmd
+
+    def cycle_inputs(
+        self, state: np.ndarray, velocity: Any, goal_checker: GoalTolerances | None
+    ) -> Inputs:
+        """The step's inputs for the robot at ``state`` (x, y, yaw): the plan pruned (Nav2's
+        path handler) and padded, the speed, the goal, the limits."""
         if self.plan is None:
             raise NoValidControl("no plan to follow")
-        x, y, yaw = pose_xy_yaw(pose)
-        pruned = self.path.transform(x, y, self.costmap)
+        pruned = self.path.transform(float(state[0]), float(state[1]), self.costmap)
         if len(pruned) > self.settings.path_points and not self._subsampled:
             self._subsampled = True
             self.logger.warning(
@@ -198,11 +212,13 @@ class Nav2MPPI(Controller):
             )  # fmt: skip
         path, count = padded(pruned, self.settings.path_points)
         speed = np.array([velocity.linear.x, velocity.linear.y, velocity.angular.z])
-        inputs = self._inputs(
-            np.array([x, y, yaw]), speed, self.plan.xy_yaw[-1], path, count, goal_checker
-        )
+        return self._inputs(state, speed, self.plan.xy_yaw[-1], path, count, goal_checker)
+
+    def optimise(self, inputs: Inputs) -> np.ndarray:
+        """Nav2's evalControl: the step, reset and retried while every rollout collides;
+        the warm start kept. -> the command (vx, vy, wz)."""
         failures = 0
-        while True:  # Nav2's evalControl: reset and retry while every rollout collides
+        while True:
             out = self._run(inputs)
             reply = np.asarray(out.reply, np.float64)
             command, fail = reply[:3], reply[3] != 0.0
@@ -212,15 +228,16 @@ class Nav2MPPI(Controller):
             failures += 1
             if failures > self.retry_attempt_limit:
                 raise NoValidControl("Optimizer fail to compute path")
-        self.sequence, self.history = out.sequence, out.history
+        self.sequence, self.history, self._optimal = out.sequence, out.history, out.optimal
         if not np.isfinite(command).all():
             raise NoValidControl("MPPI produced a non-finite command")
-        if self.debug_wanted("local_plan"):
-            self._publish_local_plan(np.array([x, y, yaw]), np.asarray(out.optimal))
+        return command
+
+    def twist(self, pose: Any, command: np.ndarray) -> Any:
+        """The command as the TwistStamped Nav2 expects: the pose's stamp, the base frame."""
         cmd = TwistStamped(header=pose.header)
         cmd.header.frame_id = self.robot_base_frame
         cmd.twist.linear.x, cmd.twist.linear.y, cmd.twist.angular.z = (float(v) for v in command)
-        self.last_compute_s = time.perf_counter() - started
         return cmd
 
     def _publish_local_plan(self, state: np.ndarray, optimal: np.ndarray) -> None:
