@@ -24,7 +24,7 @@ PARTS = (
 )
 
 
-def _robot(rollouts: int) -> tuple[Any, Any]:
+def configured_robot(rollouts: int) -> tuple[Any, Any]:
     """A configured Nav2MPPI and its plan."""
     from nav2_pyif import Costmap, Inflation, Parameters, Plan
     from nav2_pyif._context import PluginContext
@@ -49,7 +49,7 @@ def cycle(rollouts: int, repeat: int) -> dict[str, Any]:
     from geometry_msgs.msg import Twist
     from nav2_pyif.runner.run import pose_msg
 
-    robot, plan = _robot(rollouts)
+    robot, plan = configured_robot(rollouts)
     pose = pose_msg(10.0, 0.2 * np.sin(2.5), 0.0)
     state = np.array([10.0, 0.2 * np.sin(2.5), 0.0])
     velocity = Twist()
