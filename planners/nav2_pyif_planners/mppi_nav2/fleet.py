@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import time
 from functools import partial
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import jax
 import numpy as np
@@ -102,7 +102,8 @@ def compute_batch(batch: Batch) -> list[Any]:
     an invalid path, no valid control) is its item; the others are served."""
     out: list[Any] = [None] * len(batch)
     groups: dict[Any, list[tuple[int, Nav2MPPI, np.ndarray]]] = {}
-    for i, robot in enumerate(batch.planners):
+    for i, planner in enumerate(batch.planners):
+        robot = cast("Nav2MPPI", planner)  # a batch holds one planner class's robots
         try:
             packed = robot.cycle_inputs(
                 batch.poses[i], batch.velocity_messages[i], batch.goal_checkers[i]
