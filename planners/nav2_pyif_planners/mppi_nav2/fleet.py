@@ -14,6 +14,7 @@ from functools import partial
 from typing import TYPE_CHECKING, Any, cast
 
 import jax
+import jax.numpy as jnp
 import numpy as np
 from nav2_pyif.batch import Batch, bucket, pad_rows
 
@@ -49,7 +50,10 @@ class _Stacked:
             or any(a is not b for a, b in zip(grids, self.grids, strict=True))
         ):
             self.grids = grids
-            self.stacked = Grid(*(np.stack([np.asarray(g[k]) for g in grids]) for k in range(4)))
+            # stacked in NumPy (one copy), put on the device once: not re-sent every cycle
+            self.stacked = Grid(
+                *(jnp.asarray(np.stack([np.asarray(g[k]) for g in grids])) for k in range(4))
+            )
         return self.stacked
 
 
