@@ -1,6 +1,6 @@
 """The batched reference planners drive to the goal: two simulated robots (two offline
 runners, ``nav2-pyif sim --connect``) share one batched planner host, their control cycles
-served together by the JAX MPPI's one jit-compiled call for all robots."""
+served together by one jit-compiled call for all robots: the JAX MPPI's, and Nav2MPPI's."""
 
 from __future__ import annotations
 
@@ -69,12 +69,16 @@ def batch_info(host: Any, name: str) -> dict[str, Any]:
     return batch
 
 
+@pytest.mark.parametrize(
+    "controller",
+    ["nav2_pyif_planners.mppi_jax:MPPIJax", "nav2_pyif_planners.mppi_nav2:Nav2MPPI"],
+)
 def test_two_robots_reach_the_goal_with_one_batched_jax_mppi(
-    start_host: Any, tmp_path: Path
+    start_host: Any, tmp_path: Path, controller: str
 ) -> None:
     names = ["alpha", "beta"]
     host = start_host(
-        *(f"--serve={robot_key(n)}=nav2_pyif_planners.mppi_jax:MPPIJax" for n in names),
+        *(f"--serve={robot_key(n)}={controller}" for n in names),
         f"--serve={PLANNER_KEY}=nav2_pyif_planners.astar:AStar",
         "--batch",
     )
@@ -82,9 +86,11 @@ def test_two_robots_reach_the_goal_with_one_batched_jax_mppi(
     for record in records:
         summary = record["summary"]
         assert summary["reached"] is True and summary["collisions"] == 0, summary
-        assert summary["served"]["controller"] == "nav2_pyif_planners.mppi_jax:MPPIJax"
+        assert summary["served"]["controller"] == controller
     batch = batch_info(host, names[0])
     assert batch["keys"] == sorted(robot_key(n) for n in names)
-    # the two robots' cycles were served by fewer calls than cycles: they shared batches
-    assert batch["cycles"] >= sum(r["summary"]["cycles"] for r in records)
+    # every cycle reached the batch gate (computed, or on an overloaded machine answered
+    # "overloaded" uncomputed after waiting a control period), and the two robots' cycles
+    # were served by fewer calls than cycles: they shared batches
+    assert batch["cycles"] + batch["dropped"] >= sum(r["summary"]["cycles"] for r in records)
     assert batch["batches"] < batch["cycles"], batch

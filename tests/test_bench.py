@@ -42,9 +42,30 @@ def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
         "nav2_pyif cycle, --isolation none",
         "rclpy node over topics",
         "1000-pose plan",
+        "of which host handler (decode..planner)",
+        "over this run's control cycle",
         "400 x 400 costmap",
         "calls/s",
     )
+
+
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
+def test_mppi_profile_cycle_prints_each_part_of_the_hosts_cycle() -> None:
+    assert_prints(
+        bench("mppi-profile", "--cycle-only", "--rollouts", "200", "--repeat", "5"),
+        "whole cycle as the host runs it, 200 rollouts",
+        "of which plan pruning",
+        "step dispatch",
+        "TwistStamped",
+    )
+
+
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
+def test_mppi_fleet_prints_cpu_per_robot_cycle_beside_cpp() -> None:
+    result = bench("mppi-fleet", "--robots", "1", "3", "--rollouts", "200", "--seconds", "0.5")
+    assert_prints(result, "CPU / robot-cycle", "vs C++", "largest fleet with no missed period")
+    rows = [line.split() for line in result.stdout.splitlines() if re.match(r"\s+[13] ", line)]
+    assert [row[0] for row in rows] == ["1", "3"]
 
 
 def test_hop_benchmark_quick_run_prints_each_hop_tight_and_at_20_hz() -> None:

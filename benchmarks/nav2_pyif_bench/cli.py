@@ -3,7 +3,8 @@
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers through a host, both maps
-nav2-pyif-bench mppi-profile [--rollouts N ...]  where Nav2MPPI's compiled step spends its time
+nav2-pyif-bench mppi-profile [--cycle-only]     where Nav2MPPI's cycle and compiled step spend time
+nav2-pyif-bench mppi-fleet [--robots 1 5 10]   Nav2MPPI batched: CPU per robot-cycle at 20 Hz
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
@@ -39,6 +40,7 @@ from nav2_pyif_bench import (
     inputs_bench,
     layer_bench,
     mppi_bench,
+    mppi_fleet,
     mppi_profile,
     obstacles_bench,
     path_handler_bench,
@@ -99,7 +101,36 @@ def build_parser() -> argparse.ArgumentParser:
         help="batch sizes to profile (default 1000 2000)",
     )
     profile.add_argument(
+        "--cycle-only",
+        action="store_true",
+        help="only the whole cycle as the host runs it, not the step's parts compiled apart",
+    )
+    profile.add_argument(
         "--repeat", type=positive_int, default=200, help="timed runs per part (default 200)"
+    )
+    mppi_fleet_parser = sub.add_parser(
+        "mppi-fleet", help="Nav2MPPI batched: N robots in one call at 20 Hz, CPU per robot"
+    )
+    mppi_fleet_parser.add_argument(
+        "--robots",
+        type=positive_int,
+        nargs="+",
+        default=[1, 5, 10, 20, 30, 35, 40],
+        help="fleet sizes (default 1 5 10 20 30 35 40)",
+    )
+    mppi_fleet_parser.add_argument(
+        "--rollouts", type=positive_int, default=1000, help="batch_size per robot (default 1000)"
+    )
+    mppi_fleet_parser.add_argument(
+        "--seconds", type=positive_float, default=5.0, help="seconds per fleet size (default 5)"
+    )
+    mppi_fleet_parser.add_argument(
+        "--cpp-ms",
+        type=positive_float,
+        nargs="+",
+        default=[2.1, 3.0],
+        help="the C++ MPPI's compute per cycle to compare with [ms] (default 2.1 3.0: the "
+        "low end of this machine type's C++ figures and the side-by-side harness's median)",
     )
     fleet = sub.add_parser("fleet", help="N robots at 20 Hz on one planner host")
     fleet.add_argument(
@@ -307,6 +338,9 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "mppi-profile":
         results = mppi_profile.run(args)
         text = mppi_profile.report(results)
+    elif args.bench == "mppi-fleet":
+        results = mppi_fleet.run(args)
+        text = mppi_fleet.report(results)
     elif args.bench == "hops":
         results = hop_bench.run(hop_bench.apply_quick(args))
         text = hop_bench.report(results)

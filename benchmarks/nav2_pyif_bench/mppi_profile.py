@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import logging
+import os
 import time
 from collections.abc import Callable
 from typing import Any
@@ -136,12 +137,30 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    return {str(n): profile(n, args.repeat) for n in args.rollouts}
+    from nav2_pyif_bench.mppi_cycle import cycle
+
+    results: dict[str, Any] = {}
+    for n in args.rollouts:
+        results[str(n)] = {} if args.cycle_only else profile(n, args.repeat)
+        results[str(n)].update(rollouts=n, cycle=cycle(n, args.repeat), load=os.getloadavg()[0])
+    return results
 
 
 def report(results: dict[str, Any]) -> str:
     lines = []
     for r in results.values():
+        lines.append(
+            f"Nav2MPPI's whole cycle as the host runs it, {r['rollouts']} rollouts x 56 steps "
+            f"(load average {r['load']:.1f}):"
+        )
+        lines.append(f"  {'part':<40} {'wall median':>12} {'wall p99':>10} {'CPU median':>11}")
+        for name, t in r["cycle"].items():
+            lines.append(
+                f"  {name:<40} {t['wall_median_ms']:>9.3f} ms {t['wall_p99_ms']:>7.3f} ms "
+                f"{t['cpu_median_ms']:>8.3f} ms"
+            )
+        if "parts" not in r:
+            continue
         lines.append(
             f"Nav2MPPI's step, {r['rollouts']} rollouts x {r['time_steps']} steps on "
             f"{r['device']} (jax {r['jax']}): XLA cost analysis {r['flops_m']:.1f} Mflop, "

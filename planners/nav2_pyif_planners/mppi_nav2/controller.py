@@ -13,12 +13,14 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 from geometry_msgs.msg import TwistStamped
-from nav2_pyif import Controller, GoalTolerances, InvalidController, NoValidControl, Plan
+from nav2_pyif import Batch, Controller, GoalTolerances, InvalidController, NoValidControl, Plan
+from nav2_pyif.batch import buckets
 from nav2_pyif.geometry import pose_xy_yaw
 
 from nav2_pyif_planners.mppi_nav2.costs import Grid
-from nav2_pyif_planners.mppi_nav2.optimizer import Inputs, Outputs, step
-from nav2_pyif_planners.mppi_nav2.params import Settings, read_settings
+from nav2_pyif_planners.mppi_nav2.fleet import compute_batch, optimise_fleet
+from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, pack, packed_step
+from nav2_pyif_planners.mppi_nav2.params import read_settings
 from nav2_pyif_planners.mppi_nav2.path import PathHandler, padded
 
 
@@ -29,7 +31,9 @@ class Nav2MPPI(Controller):
 
     Parameters of its own, beside Nav2's: ``noise_sets`` (noise bank size, see
     optimizer.py), ``seed``, ``path_points`` (the pruned plan's fixed length in the step),
-    ``track_unknown_space`` (the local costmap's: Nav2 reads it from the costmap). Debug
+    ``track_unknown_space`` (the local costmap's: Nav2 reads it from the costmap),
+    ``fleet_size`` (the most robots a batched host serves: their shapes compiled at
+    configure; ``compute_velocity_commands_batch``, fleet.py). Debug
     output: ``local_plan`` (the optimal trajectory)."""
 
     debug_outputs: ClassVar[dict[str, str]] = {"local_plan": "nav_msgs/msg/Path"}
@@ -60,6 +64,7 @@ class Nav2MPPI(Controller):
         self._subsampled = False
         self.regenerate_noises = p.declare("regenerate_noises", False, "new noise every cycle")
         self.retry_attempt_limit = p.declare("retry_attempt_limit", 1, "resets before failing")
+        self.fleet_size = p.declare("fleet_size", 1, "robots a batched host serves at most")
         sets = p.declare("noise_sets", 8, "noise sets drawn at configure (regenerate_noises)")
         self.rng = np.random.default_rng(p.declare("seed", 0, "noise seed"))
         # vx, (vy: only for Omni, the others have no lateral noise,) wz
@@ -128,6 +133,9 @@ class Nav2MPPI(Controller):
         inputs = self._inputs(np.zeros(3), np.zeros(3), straight[-1], path, count, None)
         for _ in range(2):  # the second run: XLA's first-execution set-up, off the first cycle
             jax.block_until_ready(self._run(inputs))
+            if self.fleet_size > 1:  # each padded fleet size a batched host may call
+                for size in buckets(self.fleet_size):
+                    optimise_fleet([self], [inputs.copy()], pad_to=size)
         self.reset()
 
     def reset(self) -> None:
@@ -135,6 +143,7 @@ class Nav2MPPI(Controller):
         s = self.settings
         self.sequence = jnp.zeros((3, s.time_steps), jnp.float32)
         self.history = jnp.zeros((4, 3), jnp.float32)
+        self._optimal = self.sequence
 
     def set_plan(self, plan: Plan) -> None:
         super().set_plan(plan)
@@ -157,27 +166,24 @@ class Nav2MPPI(Controller):
         path: np.ndarray,
         count: int,
         goal_checker: GoalTolerances | None,
-    ) -> Inputs:
-        return Inputs(
-            pose=np.asarray(pose, np.float32),
-            speed=np.asarray(speed, np.float32),
-            goal=np.asarray(goal, np.float32),
-            limits=self._limits(),
-            goal_tolerance=np.float32(goal_checker.xy_goal_tolerance if goal_checker else -1.0),
-            path=path,
-            count=np.int32(count),
-        )
+    ) -> np.ndarray:
+        tolerance = goal_checker.xy_goal_tolerance if goal_checker else -1.0
+        return pack(pose, speed, goal, self._limits(), tolerance, path, count)
 
-    def _run(self, inputs: Inputs) -> Outputs:
-        s: Settings = self.settings
+    def pick_noise(self, inputs: np.ndarray) -> None:
+        """This cycle's noise set and roll into packed inputs: always the first set unrolled
+        unless regenerate_noises (optimizer.py)."""
         if self.regenerate_noises:
-            pick = np.array(
-                [self.rng.integers(self.bank.shape[0]), self.rng.integers(s.batch_size)], np.int32
+            inputs[5, :2] = (
+                self.rng.integers(self.bank.shape[0]),
+                self.rng.integers(self.settings.batch_size),
             )
-        else:
-            pick = np.zeros(2, np.int32)
-        out: Outputs = step(
-            self.sequence, self.history, self.bank, pick, inputs, self._upload_costmap(), s
+
+    def _run(self, inputs: np.ndarray) -> Outputs:
+        """The compiled step on packed inputs (optimizer.pack), this cycle's noise picked."""
+        self.pick_noise(inputs)
+        out: Outputs = packed_step(
+            self.sequence, self.history, self.bank, inputs, self._upload_costmap(), self.settings
         )
         return out
 
@@ -185,10 +191,23 @@ class Nav2MPPI(Controller):
         self, pose: Any, velocity: Any, goal_checker: GoalTolerances | None
     ) -> Any:
         started = time.perf_counter()
+        state = np.array(pose_xy_yaw(pose))
+        inputs = self.cycle_inputs(state, velocity, goal_checker)
+        command = self.optimise(inputs)
+        if self.debug_wanted("local_plan"):
+            self._publish_local_plan(state, np.asarray(self._optimal))
+        cmd = self.twist(pose, command)
+        self.last_compute_s = time.perf_counter() - started
+        return cmd
+
+    def cycle_inputs(
+        self, state: np.ndarray, velocity: Any, goal_checker: GoalTolerances | None
+    ) -> np.ndarray:
+        """The step's packed inputs for the robot at ``state`` (x, y, yaw): the plan pruned (Nav2's
+        path handler) and padded, the speed, the goal, the limits."""
         if self.plan is None:
             raise NoValidControl("no plan to follow")
-        x, y, yaw = pose_xy_yaw(pose)
-        pruned = self.path.transform(x, y, self.costmap)
+        pruned = self.path.transform(float(state[0]), float(state[1]), self.costmap)
         if len(pruned) > self.settings.path_points and not self._subsampled:
             self._subsampled = True
             self.logger.warning(
@@ -198,11 +217,12 @@ class Nav2MPPI(Controller):
             )  # fmt: skip
         path, count = padded(pruned, self.settings.path_points)
         speed = np.array([velocity.linear.x, velocity.linear.y, velocity.angular.z])
-        inputs = self._inputs(
-            np.array([x, y, yaw]), speed, self.plan.xy_yaw[-1], path, count, goal_checker
-        )
-        failures = 0
-        while True:  # Nav2's evalControl: reset and retry while every rollout collides
+        return self._inputs(state, speed, self.plan.xy_yaw[-1], path, count, goal_checker)
+
+    def optimise(self, inputs: np.ndarray, failures: int = 0) -> np.ndarray:
+        """Nav2's evalControl: the step, reset and retried while every rollout collides
+        (``failures``: tries already failed); the warm start kept. -> (vx, vy, wz)."""
+        while True:
             out = self._run(inputs)
             reply = np.asarray(out.reply, np.float64)
             command, fail = reply[:3], reply[3] != 0.0
@@ -212,15 +232,25 @@ class Nav2MPPI(Controller):
             failures += 1
             if failures > self.retry_attempt_limit:
                 raise NoValidControl("Optimizer fail to compute path")
-        self.sequence, self.history = out.sequence, out.history
+        self.sequence, self.history, self._optimal = out.sequence, out.history, out.optimal
+        return self.checked(command)
+
+    @staticmethod
+    def checked(command: np.ndarray) -> np.ndarray:
         if not np.isfinite(command).all():
             raise NoValidControl("MPPI produced a non-finite command")
-        if self.debug_wanted("local_plan"):
-            self._publish_local_plan(np.array([x, y, yaw]), np.asarray(out.optimal))
+        return command
+
+    @classmethod
+    def compute_velocity_commands_batch(cls, batch: Batch) -> list[Any]:
+        """The cycles of a fleet, robots of one shape in one compiled call (fleet.py)."""
+        return compute_batch(batch)
+
+    def twist(self, pose: Any, command: np.ndarray) -> Any:
+        """The command as the TwistStamped Nav2 expects: the pose's stamp, the base frame."""
         cmd = TwistStamped(header=pose.header)
         cmd.header.frame_id = self.robot_base_frame
         cmd.twist.linear.x, cmd.twist.linear.y, cmd.twist.angular.z = (float(v) for v in command)
-        self.last_compute_s = time.perf_counter() - started
         return cmd
 
     def _publish_local_plan(self, state: np.ndarray, optimal: np.ndarray) -> None:

@@ -23,6 +23,7 @@ from typing import Any, NamedTuple
 
 import jax
 import jax.numpy as jnp
+import numpy as np
 
 from nav2_pyif_planners.mppi_nav2.costs import INSCRIBED, LETHAL, NO_INFORMATION, Grid, point_cost
 from nav2_pyif_planners.mppi_nav2.critics import CRITICS, CriticData
@@ -122,8 +123,7 @@ def _iterate(
     return constrain_sequence(new, s, x.limits), fail
 
 
-@partial(jax.jit, static_argnames=("s",))
-def step(
+def _step(
     sequence: Any,
     history: Any,
     bank: Any,
@@ -154,3 +154,42 @@ def step(
     # the command and the flag in one array: one transfer to the host per cycle, not two
     reply = jnp.concatenate([command, fail.astype(jnp.float32)[None]])
     return Outputs(sequence, history, reply, optimal)
+
+
+step = jax.jit(_step, static_argnames=("s",))
+
+#: rows of a packed cycle array before the plan's: pose, speed, goal, limits (vx_max, vx_min,
+#: vy_max), (wz_max, goal_tolerance, count), (noise set, roll, unused)
+HEADER = 6
+
+
+def pack(
+    pose: Any, speed: Any, goal: Any, limits: Any, goal_tolerance: float, path: Any, count: int
+) -> np.ndarray:
+    """A cycle's inputs in one float32 (HEADER + P, 3) array: one transfer to the device
+    and one argument to dispatch, not eight (measured: 54 against 9 us of dispatch). Its
+    noise pick (row 5) is filled in by the caller."""
+    out = np.zeros((HEADER + len(path), 3), np.float32)
+    out[0], out[1], out[2], out[3] = pose, speed, goal, limits[:3]
+    out[4] = limits[3], goal_tolerance, count
+    out[HEADER:] = path
+    return out
+
+
+def unpack(packed: Any) -> tuple[Any, Inputs]:
+    """(pick, Inputs) from a packed cycle array, inside the compiled step."""
+    limits = jnp.concatenate([packed[3], packed[4, :1]])
+    count = packed[4, 2].astype(jnp.int32)
+    x = Inputs(packed[0], packed[1], packed[2], limits, packed[4, 1], packed[HEADER:], count)
+    return packed[5, :2].astype(jnp.int32), x
+
+
+def _packed_step(
+    sequence: Any, history: Any, bank: Any, packed: Any, grid: Grid, s: Settings
+) -> Outputs:
+    pick, x = unpack(packed)
+    return _step(sequence, history, bank, pick, x, grid, s)
+
+
+#: the step on a packed cycle array (``pack``): what the controller runs each cycle
+packed_step = jax.jit(_packed_step, static_argnames=("s",))

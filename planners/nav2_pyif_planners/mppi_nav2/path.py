@@ -9,40 +9,45 @@ import numpy as np
 from nav2_pyif import Costmap, InvalidPath
 
 
-def first_after(xy: np.ndarray, distance: float) -> int:
-    """Index of the first point whose integrated distance from ``xy[0]`` exceeds
-    ``distance`` (Nav2's first_after_integrated_distance); len(xy) when none does."""
-    if len(xy) < 2:
-        return len(xy)
-    along = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(xy, axis=0).T))])
-    return int(np.searchsorted(along, distance, side="right"))
-
-
 class PathHandler:
-    """The part of the global plan still ahead, pruned each cycle as Nav2 does."""
+    """The part of the global plan still ahead, pruned each cycle as Nav2 does. The plan's
+    integrated length is summed once per plan, so a cycle looks at the poses it keeps (and
+    those within the search distance), not at the whole plan."""
 
     def __init__(self, prune_distance: float, search_distance: float) -> None:
         self.prune_distance = prune_distance
         self.search_distance = search_distance
-        self.remaining = np.zeros((0, 3))
+        self.set_plan(np.zeros((0, 3)))
 
     def set_plan(self, xy_yaw: np.ndarray) -> None:
-        self.remaining = np.asarray(xy_yaw, np.float64)
+        self.plan = np.asarray(xy_yaw, np.float64)
+        steps = np.hypot(*np.diff(self.plan[:, :2], axis=0).T) if len(self.plan) > 1 else []
+        self.along = np.concatenate([[0.0], np.cumsum(steps)])[: len(self.plan)]
+        self.start = 0  # the plan behind this index is dropped
+
+    @property
+    def remaining(self) -> np.ndarray:
+        return self.plan[self.start :]
+
+    def first_after(self, index: int, distance: float) -> int:
+        """Index of the first pose whose integrated distance from pose ``index`` exceeds
+        ``distance`` (Nav2's first_after_integrated_distance); len(plan) when none does."""
+        return int(np.searchsorted(self.along, self.along[index] + distance, side="right"))
 
     def transform(self, x: float, y: float, costmap: Costmap) -> np.ndarray:
         """(M, 3) the plan from the pose closest to (x, y) on, pruned; the plan behind that
         pose is dropped for good. Raises InvalidPath when nothing is left."""
-        plan = self.remaining
-        if len(plan) == 0:
+        start, plan = self.start, self.plan
+        if len(plan) == start:
             raise InvalidPath("Received plan with zero length")
-        bound = max(first_after(plan[:, :2], self.search_distance), 1)
-        closest = int(np.argmin(np.hypot(plan[:bound, 0] - x, plan[:bound, 1] - y)))
-        ahead = plan[closest:]
-        ahead = ahead[: first_after(ahead[:, :2], self.prune_distance)]
+        bound = max(self.first_after(start, self.search_distance), start + 1)
+        near = plan[start:bound]
+        closest = start + int(np.argmin(np.hypot(near[:, 0] - x, near[:, 1] - y)))
+        ahead = plan[closest : self.first_after(closest, self.prune_distance)]
         _, inside = costmap.world_to_map_array(ahead[:, :2])
         if not inside.all():
             ahead = ahead[: int(np.argmin(inside))]  # up to the first point off the costmap
-        self.remaining = plan[closest:]
+        self.start = closest
         if len(ahead) == 0:
             raise InvalidPath("Resulting plan has 0 poses in it.")
         return ahead
