@@ -388,6 +388,10 @@ step_zenoh_c() {
 # releases (DISTRO.repos' zenoh-c-1.8, zenoh-cpp-1.8) on crates.io's zenoh 1.8.0, built like
 # the zenoh-c step's, and the vendor package takes them through its own USE_SYSTEM_ZENOH.
 step_rmw_zenoh() {
+  if [ "$DISTRO" != jazzy ]; then
+    log "rmw-zenoh: only jazzy's recipe has rmw_zenoh; nothing to do for $DISTRO"
+    return
+  fi
   [ -d "$SOURCES/ros2/rmw_zenoh" ] || die "rmw-zenoh: no rmw_zenoh sources (ros2/rmw_zenoh in $REPOS; run the sources step)"
   local zenoh="$PREFIX/rmw-zenoh-c"
   # The vendor package's cargo flags, but for the serial transport (its serialport crate

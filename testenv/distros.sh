@@ -168,6 +168,8 @@ distro_settings() {
     lyrical)
       # Run with --root DIR: Debian 13's toolchain; its rosidl takes empy 4.
       PIP_PACKAGES=("${PIP_PACKAGES[@]/empy==3.3.4/empy}")
+      # rclpy, launch and the generated services import typing_extensions at run time.
+      PIP_PACKAGES+=(typing-extensions)
       ;;
   esac
 }

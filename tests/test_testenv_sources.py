@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-BUILD = Path(__file__).resolve().parents[1] / "testenv" / "build.sh"
+from tests.testenv_build import run_build
 
 pytestmark = [
     pytest.mark.integration,  # runs build.sh and git
@@ -67,17 +67,8 @@ def _repos_file(
 
 def _sources(tmp_path: Path, mirrors: Path, repos: Path) -> subprocess.CompletedProcess[str]:
     """build.sh's sources step, from ``mirrors``, into tmp_path/src."""
-    return subprocess.run(
-        [
-            "bash",
-            str(BUILD),
-            *("--prefix", str(tmp_path / "prefix"), "--sources", str(tmp_path / "src")),
-            *("--mirrors", str(mirrors), "--repos", str(repos)),
-            *("humble", "sources"),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
+    return run_build(
+        tmp_path, "--mirrors", str(mirrors), "--repos", str(repos), "humble", "sources"
     )
 
 
