@@ -1,7 +1,7 @@
 """A hot swap configures each live session once on the new planner, then catches it up with
 only what changed while the new planner was taking the sessions: the parameters, the costmap,
-the plan, a session configured meanwhile, and a cleanup of one that ended (issue 41's
-"configure runs twice on a swap"). Real planner runtimes, real encoded requests, the host's
+the plan, a session configured meanwhile, and a cleanup of one that ended (before, the new
+planner's configure ran twice on a swap). Real planner runtimes, real encoded requests, the host's
 own journal; the plugin's calls arrive while the new planner configures its first session."""
 
 from __future__ import annotations

@@ -613,7 +613,7 @@ def test_local_hosts_in_the_container_end_with_a_lifecycle_shutdown_and_ctrl_c(
 
 
 def test_the_tutorials_planners_drive_the_stock_bringup(tmp_path: Path) -> None:
-    """Issue 41's acceptance, its Nav2 half: the controller and global planner a new user
+    """A new user's first hour, its Nav2 half: the controller and global planner a new user
     writes by following the tutorials (python/doc/tutorials: GoTo and GridSearch, as the pages
     show them) serve nav2_bringup's stock launch, with its params changed as
     python/doc/howto/bringup.md shows."""
