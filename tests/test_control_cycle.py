@@ -49,17 +49,22 @@ def cycle_on(zsession_factory: Any, hosts: dict[str, Any], progress: bool = True
     )
 
 
-def one_host(start_host: Any) -> dict[str, Any]:
-    host = start_host(
+def serving_the_cycle(controller: str, goal: str, progress: str) -> list[str]:
+    """planner-host arguments: one host serving a counting controller and the two checkers."""
+    return [
         "--key",
-        CONTROLLER,
+        controller,
         "--planner",
         "echo_planners:EchoController",
         "--serve",
-        f"{GOAL}={CHECKERS}:StoppedGoalChecker",
+        f"{goal}={CHECKERS}:StoppedGoalChecker",
         "--serve",
-        f"{PROGRESS}={CHECKERS}:SimpleProgressChecker",
-    )
+        f"{progress}={CHECKERS}:SimpleProgressChecker",
+    ]
+
+
+def one_host(start_host: Any) -> dict[str, Any]:
+    host = start_host(*serving_the_cycle(CONTROLLER, GOAL, PROGRESS))
     return dict.fromkeys((CONTROLLER, GOAL, PROGRESS), host)
 
 

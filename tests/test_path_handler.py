@@ -23,6 +23,7 @@ from nav2_pyif.client import (
 from nav2_pyif_protocol.keys import KeySpace
 
 from tests.conftest import make_costmap
+from tests.test_control_cycle import serving_the_cycle
 from tests.test_smoother_and_checker_hosts import GENEROUS, no_costmap, pose, stamped
 
 pytestmark = pytest.mark.integration
@@ -32,7 +33,6 @@ GOAL = "nav2_pyif/test_robot/goal_checker"
 PROGRESS = "nav2_pyif/test_robot/progress_checker"
 HANDLER = "nav2_pyif/test_robot/path_handler"
 KEYS = (CONTROLLER, GOAL, PROGRESS, HANDLER)
-CHECKERS = "nav2_pyif_planners.checker_plugins"
 PRUNING = "nav2_pyif_planners.path_handler:PruningPathHandler"
 # a straight plan along y = 0.5, a pose every 5 cm from x = 0 to 3 m (Nav2's planners' spacing)
 PLAN = Plan(np.column_stack([np.linspace(0.0, 3.0, 61), np.full(61, 0.5)]), "odom")
@@ -41,16 +41,7 @@ PLAN = Plan(np.column_stack([np.linspace(0.0, 3.0, 61), np.full(61, 0.5)]), "odo
 def serve_all(start_host: Any, handler: str = PRUNING) -> Any:
     """One host serving the four plugins of Lyrical's controller_server."""
     return start_host(
-        "--key",
-        CONTROLLER,
-        "--planner",
-        "echo_planners:EchoController",
-        "--serve",
-        f"{GOAL}={CHECKERS}:StoppedGoalChecker",
-        "--serve",
-        f"{PROGRESS}={CHECKERS}:SimpleProgressChecker",
-        "--serve",
-        f"{HANDLER}={handler}",
+        *serving_the_cycle(CONTROLLER, GOAL, PROGRESS), "--serve", f"{HANDLER}={handler}"
     )
 
 
