@@ -433,6 +433,14 @@ step_ros() {
   [ "$SELECT_ONLY" = 1 ] && selection=(--packages-select "${ROS_PACKAGES[@]}")
   log "ros: colcon build ${selection[*]} (ignored: ${ignore[*]})"
   mkdir -p "$PREFIX/build/ros" "$PREFIX/log"
+  # A link killed midway leaves an empty library, newer than its objects: make would keep it,
+  # and what links against it would link against nothing (seen: Jazzy's libsmooth_control_law,
+  # then opennav_docking failing at load with an undefined symbol). Those are made again.
+  local empty
+  while IFS= read -r -d '' empty; do
+    log "ros: removing $empty (empty: a link that was stopped), to link it again"
+    rm -f "$empty" "$PREFIX/ros/lib/${empty##*/}"
+  done < <(find "$PREFIX/build/ros" -name 'lib*.so*' -type f -size 0 -print0)
   (
     cd "$PREFIX"
     colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \

@@ -114,6 +114,7 @@ WITHIN = 0.10
 FOOTPRINTS = ("/local_costmap/published_footprint", "/global_costmap/published_footprint")
 # What lifecycle_manager logs when a server's bond misses its heartbeats.
 SERVER_DOWN = re.compile(r"Have not received a heartbeat|IS DOWN")
+DIED = "process has died"  # what `ros2 launch` logs when one of its processes ends
 CONTAINER = "component_conta"  # component_container_isolated, as /proc/PID/comm cuts it
 KEY_LINE = re.compile(r"(\s*)([A-Za-z_][\w]*):(.*)")
 
@@ -332,6 +333,10 @@ def stock_bringup(
             states = client.wait_active(_navigation(), 2.0)
             if all(s == "active" for s in states.values()):
                 break
+            # a process of the launch that died (a plugin library that fails to load) never
+            # comes back: say so now rather than after the deadline
+            died = [line for line in procs.log("launch", 100_000).splitlines() if DIED in line]
+            assert not died, "\n".join(died) + "\n" + procs.log("launch", 60)
         assert all(s == "active" for s in states.values()), f"{states}\n{procs.log('launch', 80)}"
         yield stack
     finally:
