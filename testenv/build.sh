@@ -431,6 +431,10 @@ step_ros() {
   fi
   local selection=(--packages-up-to "${ROS_PACKAGES[@]}")
   [ "$SELECT_ONLY" = 1 ] && selection=(--packages-select "${ROS_PACKAGES[@]}")
+  # DISTRO.meta: a package's own CMake arguments (jazzy.meta: Debian 12's ld spins for hours
+  # linking nav2_graceful_controller's libsmooth_control_law; gold links it in a second)
+  local metas=()
+  [ -f "$HERE/$DISTRO.meta" ] && metas=(--metas "$HERE/$DISTRO.meta")
   log "ros: colcon build ${selection[*]} (ignored: ${ignore[*]})"
   mkdir -p "$PREFIX/build/ros" "$PREFIX/log"
   # A link killed midway leaves an empty library, newer than its objects: make would keep it,
@@ -445,7 +449,7 @@ step_ros() {
     cd "$PREFIX"
     colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \
       --build-base "$PREFIX/build/ros" --install-base "$PREFIX/ros" --merge-install \
-      "${selection[@]}" --packages-ignore "${ignore[@]}" \
+      "${selection[@]}" --packages-ignore "${ignore[@]}" "${metas[@]}" \
       --parallel-workers "$JOBS" --event-handlers console_cohesion- console_start_end+ \
       console_stderr+ status- summary+ \
       --cmake-args "${CMAKE_ARGS[@]}" -DPython3_EXECUTABLE="$VENV/bin/python" \
