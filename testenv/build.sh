@@ -122,7 +122,9 @@ mkdir -p "$PREFIX" "$SOURCES"
 repos_entries() {
   awk '
     /^repositories:/ { inside = 1; next }
-    inside && /^  [^ #][^:]*:[ \t]*$/ {
+    # an entry: "  NAME:", maybe with a comment after it (which must not hide the entry:
+    # its url and version would be taken as those of the entry above)
+    inside && /^  [^ #][^:]*:[ \t]*(#.*)?$/ {
       if (name != "") print name, version, url
       name = $1; sub(/:$/, "", name); version = ""; url = ""; next }
     inside && $1 == "version:" { version = $2 }

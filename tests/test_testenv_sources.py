@@ -133,3 +133,20 @@ def test_a_github_entry_is_found_by_its_url(tmp_path: Path) -> None:
     assert (sources / "org/thing/VERSION").read_text() == "upstream/1.0.0\n"
     assert (sources / "org/lib/VERSION").read_text() == "1.9.0\n"
     assert (sources / "org/lib-1.8/VERSION").read_text() == "1.8.0\n"
+
+
+def test_an_entry_with_a_comment_after_its_name_is_its_own(tmp_path: Path) -> None:
+    """"  NAME:  # why" is an entry: its url and version are not taken as the entry above's."""
+    mirrors, scratch = tmp_path / "mirrors", tmp_path / "scratch"
+    mirrors.mkdir()
+    scratch.mkdir()
+    _bare_mirror(mirrors, "org/first", ["1.0.0"], scratch)
+    _bare_mirror(mirrors, "org/second", ["2.0.0"], scratch)
+    repos = tmp_path / "test.repos"
+    _repos_file(repos, [("org/first", "1.0.0"), ("org/second", "2.0.0")])
+    text = repos.read_text().replace("  org/second:\n", "  org/second:  # a reason\n")
+    repos.write_text(text)
+    result = _sources(tmp_path, mirrors, repos)
+    assert result.returncode == 0, result.stderr
+    assert (tmp_path / "src/org/first/VERSION").read_text() == "1.0.0\n"
+    assert (tmp_path / "src/org/second/VERSION").read_text() == "2.0.0\n"
