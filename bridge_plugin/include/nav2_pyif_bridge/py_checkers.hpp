@@ -77,7 +77,15 @@ public:
   void reset() override;
 
 private:
+  // A check the host did not answer (dead, stopped, too slow) gives no verdict: the robot is
+  // taken as progressing for up to controller_server's failure_tolerance, the time Nav2 grants
+  // a failing controller, and the check fails after that. Without it one late reply aborted
+  // the goal, where the same late reply to the controller is tolerated.
+  bool unanswered(const client::CallError & error);
+
   BridgedSession<client::ProgressCheckerSession> plugin_;
+  double failure_tolerance_{0.0};  // [s] controller_server's (0: none, -1: without end)
+  std::optional<rclcpp::Time> unanswered_since_;
 };
 
 }  // namespace nav2_pyif_bridge

@@ -42,6 +42,10 @@ struct ZenohOptions
 {
   std::string config_file;           // JSON5 (zenoh-c only); empty: $NAV2_PYIF_ZENOH_CONFIG
   std::vector<std::string> connect;  // empty: the file's
+  // The Nav2 server whose plugins share one session. In a composed container every server
+  // is in one process: a planner's costmap on a shared zenoh-pico session queued the
+  // controller's 40 ms queries behind it. Empty: shared by the whole process.
+  std::string owner;
 };
 
 // "zenoh-c" or "zenoh-pico": the backend this package was built with.

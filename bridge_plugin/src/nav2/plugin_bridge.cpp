@@ -77,10 +77,11 @@ PluginBridge::PluginBridge(
     config_.timeouts = settings_.timeouts;
     config_.key_prefix =
       settings_.key.empty() ? client::local_host_key(config_.node, name) : settings_.key;
-    ZenohOptions zenoh{settings_.zenoh_config, settings_.zenoh_connect};
+    const std::string server = node->get_fully_qualified_name();
+    ZenohOptions zenoh{settings_.zenoh_config, settings_.zenoh_connect, server};
     if (client::starts_local_host(settings_)) {
       local_host_ = std::make_unique<client::LocalHost>(settings_, config_.key_prefix, logger());
-      zenoh = ZenohOptions{"", {local_host_->endpoint()}};
+      zenoh = ZenohOptions{"", {local_host_->endpoint()}, server};
       stop_local_host_when_finalized(*node);
     }
     transport_ =

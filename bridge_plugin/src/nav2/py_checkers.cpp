@@ -120,6 +120,31 @@ void PyProgressChecker::initialize(
   if (client::CarriedCycle * cycle = plugin_.session().cycle()) {
     cycle->use_progress_checker(plugin_.session());
   }
+  auto node = parent.lock();
+  if (node && node->has_parameter("failure_tolerance")) {
+    failure_tolerance_ = node->get_parameter("failure_tolerance").as_double();
+  }
+}
+
+bool PyProgressChecker::unanswered(const client::CallError & error)
+{
+  if (!error.host_failed()) {
+    return false;  // the checker's own answer (an exception of the Python checker) stands
+  }
+  const rclcpp::Time now = plugin_.bridge().clock()->now();
+  if (!unanswered_since_) {
+    unanswered_since_ = now;
+  }
+  const double seconds = (now - *unanswered_since_).seconds();
+  // (Nav2's meaning: 0 tolerates nothing, -1 everything)
+  if (failure_tolerance_ == 0.0 || (failure_tolerance_ > 0.0 && seconds > failure_tolerance_)) {
+    return false;
+  }
+  RCLCPP_WARN_THROTTLE(
+    plugin_.bridge().ros_logger(), *plugin_.bridge().clock(), 1000,
+    "%s; no verdict for %.2f s, taken as progressing for up to failure_tolerance (%.2f s)",
+    error.what(), seconds, failure_tolerance_);
+  return true;
 }
 
 bool PyProgressChecker::check(geometry_msgs::msg::PoseStamped & current_pose)
@@ -131,12 +156,23 @@ bool PyProgressChecker::check(geometry_msgs::msg::PoseStamped & current_pose)
       // The answer the goal check's query carried, when it was prepared for this pose;
       // else a check that carries the command
       client::CarriedCycle * cycle = session.cycle();
-      return cycle ? cycle->check(session, request) : session.call(request).making_progress;
+      try {
+        const bool progressing =
+          cycle ? cycle->check(session, request) : session.call(request).making_progress;
+        unanswered_since_.reset();
+        return progressing;
+      } catch (const client::CallError & error) {
+        if (unanswered(error)) {
+          return true;
+        }
+        throw;
+      }
     });
 }
 
 void PyProgressChecker::reset()
 {
+  unanswered_since_.reset();
   plugin_.bridge().forward(
     [this]() {
       if (client::CarriedCycle * cycle = plugin_.session().cycle()) {

@@ -82,15 +82,16 @@ std::string describe(const ZenohOptions & options)
 #endif
 }
 
-// One session per configuration and process, shared by its plugins, and kept until the
-// process ends: closing a zenoh-pico (1.9) session whose peer went away and came back can
+// One session per configuration and server (owner), shared by that server's plugins, and kept
+// until the process ends: closing a zenoh-pico (1.9) session whose peer went away and came back can
 // block forever in z_session_drop, which would hang Nav2's cleanup and shutdown. The OS closes
 // the connection at exit. (Never destroyed, so no exit-time destructor can block either.)
 std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options)
 {
   static auto * mutex = new std::mutex;
   static auto * sessions = new std::map<std::string, std::shared_ptr<zenoh::Session>>;
-  const std::string id = config_file(options) + "|" + json_string_list(options.connect);
+  const std::string id =
+    options.owner + "|" + config_file(options) + "|" + json_string_list(options.connect);
   std::lock_guard<std::mutex> lock(*mutex);
   auto & session = (*sessions)[id];
   if (!session) {

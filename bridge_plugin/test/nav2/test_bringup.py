@@ -111,9 +111,18 @@ KEPT_RATE = 0.5
 HEALTHY_WINDOW = 20.0  # [s] before the first fault: the rates of a healthy stack
 # Time to the goals, Python-planned against native, at most this far apart.
 WITHIN = 0.10
+# The native side of that comparison: the stock params with Nav2's own regulated pure pursuit
+# as FollowPath, the algorithm the Python stacks serve (the stock MPPI drives differently: a
+# comparison with it measures the controllers, not the bridge).
+NATIVE_RPP = "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController"
+# The stacks that face a killed or stopped host give controller_server a failure_tolerance
+# that covers the outage: the stock 0.3 s turns a host restart (RESTART_AFTER, then about
+# 2.5 s of imports here) into recoveries, and the full-stack suite's 3.0 s ran out too.
+STOCK_TOLERANCE, FAULT_TOLERANCE = "failure_tolerance: 0.3", "failure_tolerance: 6.0"
 FOOTPRINTS = ("/local_costmap/published_footprint", "/global_costmap/published_footprint")
 # What lifecycle_manager logs when a server's bond misses its heartbeats.
 SERVER_DOWN = re.compile(r"Have not received a heartbeat|IS DOWN")
+BT_NOT_ACKNOWLEDGED = "Timed out while waiting for action server to acknowledge goal request"
 DIED = "process has died"  # what `ros2 launch` logs when one of its processes ends
 CONTAINER = "component_conta"  # component_container_isolated, as /proc/PID/comm cuts it
 KEY_LINE = re.compile(r"(\s*)([A-Za-z_][\w]*):(.*)")
@@ -163,6 +172,17 @@ def python_params(
         out += [f'{indent}plugin: "{plugin}"', *(indent + s for s in serve(role[1], planner))]
         changed.append(role)
     assert sorted(changed) == sorted(plugins), f"the stock params changed: {changed}"
+    return "\n".join(out) + "\n"
+
+
+def native_rpp_params(stock: str) -> str:
+    """The stock params with Nav2's regulated pure pursuit as FollowPath (every other line,
+    the stock controller's own parameters included, kept: RPP ignores them)."""
+    out = []
+    for line, role in plugin_lines(stock):
+        if role == ("controller_server", "FollowPath"):
+            line = line.split(":", 1)[0] + f': "{NATIVE_RPP}"'
+        out.append(line)
     return "\n".join(out) + "\n"
 
 
@@ -271,6 +291,7 @@ def stock_bringup(
     local: bool = False,
     plugins: Plugins = PYTHON_PLUGINS,
     path: Path | None = None,
+    native_rpp: bool = False,
 ) -> Iterator[Stack]:
     """nav2_bringup's loopback launch with its params (``plugins`` changed when ``python``,
     with their planner host beside the launch, importing from ``path`` too, or started by the
@@ -287,10 +308,13 @@ def stock_bringup(
     start_host = None
     if python and not local:
         text, start_host = _separate_host(procs, logs, stock, plugins, path)
-        params.write_text(text)
+        assert STOCK_TOLERANCE in text, f"no '{STOCK_TOLERANCE}' in {stock_file}"
+        params.write_text(text.replace(STOCK_TOLERANCE, FAULT_TOLERANCE))
         start_host()
+    elif python:
+        params.write_text(_local_hosts(stock))
     else:
-        params.write_text(_local_hosts(stock) if python else stock)
+        params.write_text(native_rpp_params(stock) if native_rpp else stock)
     procs.start(
         "launch",
         [
@@ -337,12 +361,34 @@ def stock_bringup(
             # comes back: say so now rather than after the deadline
             died = [line for line in procs.log("launch", 100_000).splitlines() if DIED in line]
             assert not died, "\n".join(died) + "\n" + procs.log("launch", 60)
+            if states and all(s == "inactive" for s in states.values()):
+                resume_after_a_failed_activation(client, procs)
         assert all(s == "active" for s in states.values()), f"{states}\n{procs.log('launch', 80)}"
         yield stack
     finally:
         client.destroy_node()
         rclpy.try_shutdown()
         procs.stop_all()
+
+
+def resume_after_a_failed_activation(client: Any, procs: nav2_testing.Processes) -> None:
+    """Activate again what the lifecycle manager left configured. Nav2's own race, not the
+    plugins': on simulated time a costmap that starts activating before the loopback
+    simulator's first /clock waits until 0 + 60 s, and the first clock (today's time) is past
+    that, so it gives up at once ("did not become available before timeout")."""
+    from nav2_msgs.srv import ManageLifecycleNodes
+
+    if "Failed to activate" not in procs.log("launch", 100_000):
+        return
+    manage = client.create_client(
+        ManageLifecycleNodes, "/lifecycle_manager_navigation/manage_nodes"
+    )
+    try:
+        if manage.wait_for_service(timeout_sec=10.0):
+            request = ManageLifecycleNodes.Request(command=ManageLifecycleNodes.Request.RESUME)
+            client.wait(manage.call_async(request), 30.0)
+    finally:
+        client.destroy_client(manage)
 
 
 def _launch() -> str:
@@ -399,6 +445,15 @@ def drive_the_goals(stack: Stack, label: str) -> list[float]:
     seconds = []
     for goal in GOALS:
         run = navigate(stack, goal)
+        if (
+            not run.succeeded
+            and run.seconds < 1.0
+            and BT_NOT_ACKNOWLEDGED in stack.procs.log("launch", 400)
+        ):
+            # bt_navigator's own 20 ms wait for a server to take the goal (the stock
+            # default_server_timeout) ran out on a loaded machine: no plugin was called yet
+            print(f"{label} to {goal}: {BT_NOT_ACKNOWLEDGED}; the goal sent again")
+            run = navigate(stack, goal)
         assert run.succeeded and run.recoveries == 0, (
             f"{label} to {goal}: {run}\n" + stack.procs.log("launch", 80)
         )
@@ -522,7 +577,8 @@ def assert_ctrl_c_ends_everything(stack: Stack) -> None:
 def lifecycle_shutdown(stack: Stack, node: str) -> None:
     """`ros2 lifecycle set /NODE shutdown`, as a user types it (no ros2 daemon left behind)."""
     done = subprocess.run(
-        ["ros2", "lifecycle", "set", "--no-daemon", f"/{node}", "shutdown"],
+        # (without the daemon, discovery gets --spin-time: its default found no node here)
+        ["ros2", "lifecycle", "set", "--no-daemon", "--spin-time", "10", f"/{node}", "shutdown"],
         env=stack.procs.env,
         capture_output=True,
         text=True,
@@ -539,6 +595,13 @@ TIMES: dict[str, list[float]] = {}
 
 def test_the_unchanged_stock_stack_drives_the_goals(tmp_path: Path) -> None:
     with stock_bringup(tmp_path, python=False, composed=True) as stack:
+        TIMES["stock"] = drive_the_goals(stack, "stock")
+        assert_ctrl_c_ends_everything(stack)
+
+
+def test_nav2s_own_pure_pursuit_drives_the_goals(tmp_path: Path) -> None:
+    """The native side of the comparison: the algorithm the Python stacks serve, in C++."""
+    with stock_bringup(tmp_path, python=False, composed=True, native_rpp=True) as stack:
         TIMES["native"] = drive_the_goals(stack, "native")
         assert_ctrl_c_ends_everything(stack)
 
@@ -642,7 +705,7 @@ def test_the_tutorials_planners_drive_the_stock_bringup(tmp_path: Path) -> None:
 
 
 def test_time_to_the_goals_within_ten_percent_of_native() -> None:
-    python = [label for label in TIMES if label != "native"]
+    python = [label for label in TIMES if label.startswith("python")]
     for needed in ("native", "python_composed", "python_separate"):
         if needed not in TIMES:
             pytest.skip(
