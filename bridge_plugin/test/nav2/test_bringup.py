@@ -411,7 +411,8 @@ def _navigation() -> tuple[str, ...]:
 @dataclass
 class Run:
     succeeded: bool
-    seconds: float
+    seconds: float  # [s] wall time
+    sim_seconds: float  # [s] bt_navigator's navigation_time: simulated time, as the robot lives it
     recoveries: int
     status: int
     longest_stop: float  # [s] the robot stood still between moving
@@ -434,6 +435,7 @@ def navigate(stack: Stack, goal: tuple[float, float], fault: Any = None) -> Run:
     return Run(
         status == nav2_testing.SUCCEEDED,
         time.monotonic() - started,
+        client.navigation_time,
         client.recoveries,
         status,
         nav2_testing.longest_stop(client.speeds),
@@ -457,9 +459,11 @@ def drive_the_goals(stack: Stack, label: str) -> list[float]:
         assert run.succeeded and run.recoveries == 0, (
             f"{label} to {goal}: {run}\n" + stack.procs.log("launch", 80)
         )
-        seconds.append(run.seconds)
+        # simulated time: on a loaded machine the loopback simulator's clock runs slower than
+        # the wall's, by as much as the load, which differs from one launch to the next
+        seconds.append(run.sim_seconds)
     record(**{f"bringup_{label}_to_goal_{i}_s": s for i, s in enumerate(seconds)})
-    print(label, "seconds to each goal:", [round(s, 2) for s in seconds])
+    print(label, "simulated seconds to each goal:", [round(s, 2) for s in seconds])
     return seconds
 
 
@@ -712,7 +716,8 @@ def test_time_to_the_goals_within_ten_percent_of_native() -> None:
                 f"the comparison needs the {needed} run of this module, which did not finish"
             )
     native = sum(TIMES["native"])
-    rows = [f"{'stack':<16} {'goal 0 [s]':>10} {'goal 1 [s]':>10} {'total [s]':>10} {'ratio':>6}"]
+    header = f"{'stack':<16} {'goal 0 [s]':>10} {'goal 1 [s]':>10} {'total [s]':>10}"
+    rows = [f"{header} {'ratio':>6}  (simulated time)"]
     for label, seconds in TIMES.items():
         total = sum(seconds)
         rows.append(
