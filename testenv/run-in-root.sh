@@ -18,7 +18,7 @@ usage() {
 Usage: testenv/run-in-root.sh [OPTIONS] ROOT [TEST_FILE...]
 
 From the host, inside the Debian 13 root ROOT (testenv/build.sh --root ROOT lyrical):
-  1. installs nav2-pyif[record] and nav2-pyif-planners[jax] from this checkout into
+  1. installs nav2-pyif[record,runner] and nav2-pyif-planners[jax] from this checkout into
      PREFIX/venv (not editable: from a copy, so nothing is written into the checkout);
   2. builds nav2_pyif_bridge with colcon into PREFIX/ws_BACKEND against the root's ROS 2;
   3. runs the launch tests of bridge_plugin/test/nav2, one file at a time (pytest -x), the
@@ -55,10 +55,11 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD FILE...
     copy="$(mktemp -d)"
     log "install: nav2-pyif and nav2-pyif-planners into $prefix/venv"
     tar -C "$repo" --exclude=./.git --exclude=./.venv --exclude=./build -cf - . | tar -C "$copy" -xf -
-    "$prefix/venv/bin/python" -m pip install -q "${copy}[record]" "${copy}/planners[jax]" cryptography \
+    "$prefix/venv/bin/python" -m pip install -q "${copy}[record,runner]" "${copy}/planners[jax]" cryptography \
       || { rm -rf "$copy"; die "pip install failed"; }
     rm -rf "$copy"
   fi
+  set +u  # (the setup scripts read unset variables)
   # shellcheck source=/dev/null
   source "$setup" >/dev/null
   mkdir -p "$ws/src" "$ws/logs"
@@ -73,6 +74,7 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD FILE...
   fi
   # shellcheck source=/dev/null
   source "$ws/install/local_setup.bash"
+  set -u
   # The planner host's environment: the venv, with the ROS 2 the tests run in.
   # shellcheck disable=SC2016
   printf '#!/bin/bash\nexport PATH=%q/venv/bin:"$PATH"\nexec "$@"\n' "$prefix" >"$ws/in-venv.sh"

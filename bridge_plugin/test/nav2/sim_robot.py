@@ -117,9 +117,7 @@ class SimRobot(Node):
         self.truth_pub = self.create_publisher(PoseStamped, "ground_truth", 10)
         self.odom_pub = self.create_publisher(Odometry, "odom", 10)
         if STAMPED_CMD_VEL:
-            self.create_subscription(
-                TwistStamped, "cmd_vel", lambda msg: self.on_cmd(msg.twist), 10
-            )
+            self.create_subscription(TwistStamped, "cmd_vel", self.on_stamped_cmd, 10)
         else:
             self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
         self.create_timer(1.0 / RATE_HZ, self.step)
@@ -138,6 +136,9 @@ class SimRobot(Node):
             for i in range(SCAN_BEAMS)
         ]
         self.scan_pub.publish(scan)
+
+    def on_stamped_cmd(self, msg: TwistStamped) -> None:
+        self.on_cmd(msg.twist)
 
     def on_cmd(self, msg: Twist) -> None:
         self.cmd = msg
