@@ -170,6 +170,9 @@ distro_settings() {
       PIP_PACKAGES=("${PIP_PACKAGES[@]/empy==3.3.4/empy}")
       # rclpy, launch and the generated services import typing_extensions at run time.
       PIP_PACKAGES+=(typing-extensions)
+      # The plugin's codec takes msgpack-c, which trixie packs apart from msgpack-cxx; the
+      # launch tests' vanished host is a network namespace behind a veth link (ip).
+      APT_PACKAGES+=(libmsgpack-c-dev iproute2)
       ;;
   esac
 }

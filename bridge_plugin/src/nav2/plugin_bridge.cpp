@@ -5,6 +5,8 @@
 #include <utility>
 #include <vector>
 
+#include "rcutils/logging.h"
+
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/ros_conversions.hpp"
 
@@ -136,9 +138,14 @@ client::Logger PluginBridge::logger() const
            static constexpr int kSeverity[] = {
              RCUTILS_LOG_SEVERITY_DEBUG, RCUTILS_LOG_SEVERITY_INFO, RCUTILS_LOG_SEVERITY_WARN,
              RCUTILS_LOG_SEVERITY_ERROR};
-           RCUTILS_LOG_COND_NAMED(
-             kSeverity[static_cast<int>(level)], RCUTILS_LOG_CONDITION_EMPTY,
-             RCUTILS_LOG_CONDITION_EMPTY, logger.get_name(), "%s", text.c_str());
+           // rcutils_log itself: the macros with a run-time severity differ by release
+           // (RCUTILS_LOG_COND_NAMED up to Kilted, RCUTILS_LOG_NAMED in Lyrical)
+           const int severity = kSeverity[static_cast<int>(level)];
+           RCUTILS_LOGGING_AUTOINIT;
+           if (rcutils_logging_logger_is_enabled_for(logger.get_name(), severity)) {
+             static const rcutils_log_location_t location = {__func__, __FILE__, __LINE__};
+             rcutils_log(&location, severity, logger.get_name(), "%s", text.c_str());
+           }
          };
 }
 

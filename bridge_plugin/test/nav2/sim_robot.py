@@ -10,8 +10,9 @@ map, TF and odometry, as Nav2's servers expect them.
 With --drift-step DY, odometry drifts as a real robot's does: every --drift-period seconds of
 driving, until --drift-max, the odom frame moves DY metres along the map's y axis against the
 true pose, and map -> odom (now published at 50 Hz) jumps by as much, as AMCL's corrections do.
-/cmd_vel is read as geometry_msgs/Twist (Jazzy's controller_server default); a command older
-than 0.5 s stops the robot. With --scan, a laser on base_link publishes /scan
+/cmd_vel is read as controller_server publishes it by default: geometry_msgs/Twist on Humble
+and Jazzy, TwistStamped from Kilted on (enable_stamped_cmd_vel); a command older than 0.5 s
+stops the robot. With --scan, a laser on base_link publishes /scan
 (sensor_msgs/LaserScan, 20 Hz, 181 beams over the front half, 4 m) ray-cast on the wall.
 
     python sim_robot.py [--x X --y Y --yaw YAW]
@@ -21,11 +22,12 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 import signal
 from typing import Any
 
 import rclpy
-from geometry_msgs.msg import PoseStamped, TransformStamped, Twist
+from geometry_msgs.msg import PoseStamped, TransformStamped, Twist, TwistStamped
 from nav_msgs.msg import OccupancyGrid, Odometry
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
@@ -33,6 +35,8 @@ from sensor_msgs.msg import LaserScan
 from tf2_ros import StaticTransformBroadcaster, TransformBroadcaster
 
 RATE_HZ = 50.0
+# controller_server's enable_stamped_cmd_vel default: false up to Jazzy, true from Kilted on
+STAMPED_CMD_VEL = os.environ.get("ROS_DISTRO", "jazzy") not in ("humble", "jazzy")
 MAP_SIZE_M = 8.0
 RESOLUTION = 0.05
 WALL_X = 1.0
@@ -112,7 +116,10 @@ class SimRobot(Node):
         self.tf = TransformBroadcaster(self)
         self.truth_pub = self.create_publisher(PoseStamped, "ground_truth", 10)
         self.odom_pub = self.create_publisher(Odometry, "odom", 10)
-        self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
+        if STAMPED_CMD_VEL:
+            self.create_subscription(TwistStamped, "cmd_vel", self.on_stamped_cmd, 10)
+        else:
+            self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
         self.create_timer(1.0 / RATE_HZ, self.step)
         if scan:
             self.scan_pub = self.create_publisher(LaserScan, "scan", 10)
@@ -129,6 +136,9 @@ class SimRobot(Node):
             for i in range(SCAN_BEAMS)
         ]
         self.scan_pub.publish(scan)
+
+    def on_stamped_cmd(self, msg: TwistStamped) -> None:
+        self.on_cmd(msg.twist)
 
     def on_cmd(self, msg: Twist) -> None:
         self.cmd = msg

@@ -25,7 +25,7 @@ import pytest
 
 PREFIX = nav2_testing.PREFIX
 GOAL = (2.0, 0.5)  # behind the wall
-VIAPOINT = (1.0, -0.5)
+VIAPOINT = (1.0, -1.0)  # below the wall (x = 1, y from -0.6), clear of the robot's radius
 RPP = "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController"
 PLANNERS = (
     *("--path", str(nav2_testing.HERE / "planners")),

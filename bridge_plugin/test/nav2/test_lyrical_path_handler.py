@@ -27,6 +27,7 @@ import pytest
 
 PREFIX = nav2_testing.PREFIX
 GOAL = (2.0, 0.5)  # behind the wall
+START = (0.0, 0.0)  # back again: the goals after the first start away from the robot
 PRUNE_DISTANCE = 1.0  # [m]
 PLANNERS = (
     *nav2_testing.REFERENCE_PLANNERS,
@@ -74,13 +75,14 @@ def _logs(nav2: dict[str, Any], *names: str) -> str:
     return "\n".join(nav2["procs"].log(n) for n in names)
 
 
-def _plan(nav2: dict[str, Any], timeout: float = 60.0) -> Any:
-    """A* through the planner server; retried while the plugin waits for a new host."""
+def _plan(nav2: dict[str, Any], goal: tuple[float, float] = GOAL, timeout: float = 60.0) -> Any:
+    """A* to ``goal`` through the planner server; retried while the plugin waits for a new
+    host."""
     client = nav2["client"]
     deadline = time.monotonic() + timeout
     planned = None
     while time.monotonic() < deadline:
-        planned = client.plan(*GOAL)
+        planned = client.plan(*goal)
         if planned is not None and planned.status == SUCCEEDED:
             return planned.result.path
         client.spin_until(lambda: False, 1.0)
@@ -145,8 +147,9 @@ def test_a_python_path_handler_prunes_the_plan_and_survives_its_host(
     assert sent["path_handler"] >= len(segments) // 2, (sent, len(segments))
     print(f"queries during FollowPath: {sent}, {len(segments)} transformed plans published")
 
-    # 2. the host dies mid-goal: a clean abort, controller_server stays up
-    handle = client.follow(_plan(nav2))
+    # 2. the host dies mid-goal (back to the start, from the goal): a clean abort,
+    # controller_server stays up
+    handle = client.follow(_plan(nav2, START))
     client.spin_until(lambda: False, 1.5)  # driving
     procs.kill("planner_host", signal.SIGKILL)
     killed = time.monotonic()
@@ -162,7 +165,7 @@ def test_a_python_path_handler_prunes_the_plan_and_survives_its_host(
     assert client.spin_until(lambda: procs.logged_at("controller_server", alive, started), 30.0), (
         procs.log("controller_server")
     )
-    handle = client.follow(_plan(nav2))
+    handle = client.follow(_plan(nav2, START))
     result = client.wait(handle.get_result_async(), 90.0)
     logs = _logs(nav2, "controller_server", "planner_host")
     assert result is not None and result.status == SUCCEEDED, f"FollowPath: {result}\n{logs}"
