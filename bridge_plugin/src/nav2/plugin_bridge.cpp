@@ -5,7 +5,9 @@
 #include <utility>
 #include <vector>
 
-#include "rcutils/logging.h"
+// rcutils_log and its logger check, through rclcpp's logging (its macros are built on them):
+// the package's key for them is rclcpp's
+#include "rclcpp/logging.hpp"
 
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/ros_conversions.hpp"
