@@ -43,6 +43,9 @@ EOF
 log() { printf '[run-in-root %s] %s\n' "$(date +%H:%M:%S)" "$*" >&2; }
 die() { log "error: $*"; exit 1; }
 usage_error() { log "$*"; echo "Run testenv/run-in-root.sh --help for usage." >&2; exit 2; }
+# root_mount and unmount_root: build.sh --root's own mounts
+# shellcheck source=testenv/rootfs.sh
+source "$HERE/rootfs.sh"
 
 # --- inside the root: the three steps ------------------------------------------------------
 inside() {  # REPO PREFIX BACKEND INSTALL BUILD FILE...
@@ -139,12 +142,11 @@ case "$BACKEND" in zenoh-pico | zenoh-c) ;; *) usage_error "unknown backend: $BA
 [ "$(id -u)" = 0 ] || die "mount and chroot need root"
 
 # --- the mounts, undone on every way out ---------------------------------------------------
-MOUNTS=()
+ROOT_MOUNTS=()
 # shellcheck disable=SC2317
 unmount() {
-  local where
-  for where in "${MOUNTS[@]}"; do umount -l "$where" 2>/dev/null || true; done
-  MOUNTS=()
+  unmount_root
+  ROOT_MOUNTS=()
   [ -z "${AT:-}" ] || rmdir "$ROOTFS$AT" 2>/dev/null || true
 }
 CHILD=""
@@ -158,11 +160,7 @@ trap unmount EXIT
 trap 'stop INT 130' INT
 trap 'stop TERM 143' TERM
 mount_once() {  # WHERE MOUNT-ARGS...: mount unless something is mounted there already
-  local where="$1"
-  shift
-  mountpoint -q "$where" && return
-  mount "$@" "$where" || die "mount $* $where failed"
-  MOUNTS=("$where" "${MOUNTS[@]}")
+  mountpoint -q "$1" || root_mount "$@"
 }
 mount_once "$ROOTFS/proc" -t proc proc
 mount_once "$ROOTFS/sys" --rbind /sys
