@@ -384,6 +384,9 @@ def prepare(
     return endpoint, params, processes_in_own_domain(logs, domain)
 
 
+# Nav2's own regulated pure pursuit: the C++ twin of the reference Python controller, which
+# the native sides of the comparisons run.
+NATIVE_PURE_PURSUIT = "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController"
 REFERENCE_PLANNERS = (
     *("--serve", f"{PREFIX}/FollowPath=nav2_pyif_planners.pure_pursuit:RegulatedPurePursuit"),
     *("--serve", f"{PREFIX}/GridBased=nav2_pyif_planners.astar:AStar"),

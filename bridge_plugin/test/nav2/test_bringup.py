@@ -117,7 +117,7 @@ WITHIN = 0.10
 # The native side of that comparison: the stock params with Nav2's own regulated pure pursuit
 # as FollowPath, the algorithm the Python stacks serve (the stock MPPI drives differently: a
 # comparison with it measures the controllers, not the bridge).
-NATIVE_RPP = "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController"
+NATIVE_RPP = nav2_testing.NATIVE_PURE_PURSUIT
 # The stacks that face a killed or stopped host give controller_server a failure_tolerance
 # that covers the outage: the stock 0.3 s turns a host restart (RESTART_AFTER, then about
 # 2.5 s of imports here) into recoveries, and the full-stack suite's 3.0 s ran out too.

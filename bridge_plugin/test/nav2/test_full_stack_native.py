@@ -21,8 +21,7 @@ from test_full_stack import (
 )
 
 NATIVE = {
-    "nav2_pyif_bridge::PyController": "nav2_regulated_pure_pursuit_controller::"
-    "RegulatedPurePursuitController",
+    "nav2_pyif_bridge::PyController": nav2_testing.NATIVE_PURE_PURSUIT,
     "nav2_pyif_bridge::PyGlobalPlanner": "nav2_navfn_planner::NavfnPlanner",
     "nav2_pyif_bridge::PyBackUp": "nav2_behaviors::BackUp",
 }

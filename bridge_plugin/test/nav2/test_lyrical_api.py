@@ -26,7 +26,7 @@ import pytest
 PREFIX = nav2_testing.PREFIX
 GOAL = (2.0, 0.5)  # behind the wall
 VIAPOINT = (1.0, -1.0)  # below the wall (x = 1, y from -0.6), clear of the robot's radius
-RPP = "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController"
+RPP = nav2_testing.NATIVE_PURE_PURSUIT
 PLANNERS = (
     *("--path", str(nav2_testing.HERE / "planners")),
     *("--serve", f"{PREFIX}/FollowPath=lyrical_reports:ReportingPursuit"),

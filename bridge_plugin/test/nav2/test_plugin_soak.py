@@ -41,7 +41,7 @@ GOALS = ((2.0, 0.5), (0.0, 0.0))  # around the wall and back
 KEY = f"{nav2_testing.PREFIX}/FollowPath"
 LIFECYCLE_CYCLES, LIFECYCLE_WARM_UP = 100, 10
 PYTHON_CONTROLLER = "nav2_pyif_bridge::PyController"
-NATIVE_CONTROLLER = "nav2_regulated_pure_pursuit_controller::RegulatedPurePursuitController"
+NATIVE_CONTROLLER = nav2_testing.NATIVE_PURE_PURSUIT
 SAMPLE_EVERY_S = 15.0
 # The plugin's own code and the Zenoh library it brings into controller_server (on rmw_zenoh,
 # ROS's own middleware links zenoh-c too: there only the plugin's frames count)
