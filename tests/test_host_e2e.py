@@ -116,6 +116,36 @@ def test_planner_session_and_cancellation(start_host: Any, zsession_factory: Any
     assert len(client.create_plan(pose(), pose(3.0, 3.0))) == 25
 
 
+PLAN_TIMEOUTS = Timeouts(call=0.5, lifecycle=5.0, configure=20.0, plan=8.0)
+
+
+def active_planner(
+    start_host: Any, zsession_factory: Any, *host_args: str
+) -> tuple[Any, GlobalPlannerClient]:
+    """A planner host started with ``host_args`` and an active client of it (PLAN_TIMEOUTS)."""
+    host = start_host(*host_args)
+    client = GlobalPlannerClient(
+        zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(), timeouts=PLAN_TIMEOUTS
+    )
+    assert client.wait_for_host(15)
+    client.configure()
+    client.activate()
+    return host, client
+
+
+def plan_across(client: GlobalPlannerClient, delay: float, event: Any) -> tuple[Any, float]:
+    """create_plan with ``event()`` (a host's kill, a restart) run ``delay`` s into it: the
+    plan and how long the call took [s]."""
+    timer = threading.Timer(delay, event)
+    started = time.monotonic()
+    timer.start()
+    try:
+        plan = client.create_plan(pose(0.0, 0.0), pose(2.0, 1.0))
+    finally:
+        timer.join()
+    return plan, time.monotonic() - started
+
+
 def test_a_plan_waits_for_a_restarting_host_within_its_timeout_and_a_cycle_does_not(
     start_host: Any, zsession_factory: Any
 ) -> None:
@@ -123,25 +153,15 @@ def test_a_plan_waits_for_a_restarting_host_within_its_timeout_and_a_cycle_does_
     path: a host restart there costs a slow plan, not a recovery. The control loop's calls
     fail at once (the controller server's failure_tolerance rides those out)."""
     args = ("--key", PLANNER_KEY, "--planner", "echo_planners:LinePlanner")
-    host = start_host(*args)
-    timeouts = Timeouts(call=0.5, lifecycle=5.0, configure=20.0, plan=8.0)
-    client = GlobalPlannerClient(
-        zsession_factory(host.endpoint), PLANNER_KEY, make_costmap(), timeouts=timeouts
-    )
-    assert client.wait_for_host(15)
-    client.configure()
-    client.activate()
+    host, client = active_planner(start_host, zsession_factory, *args)
+    timeouts = PLAN_TIMEOUTS
     host.kill()
     assert client.hosts.wait_for(lambda alive: not alive, 10)
     restarted: list[Any] = []
-    restart = threading.Timer(1.0, lambda: restarted.append(start_host(*args, port=host.port)))
-    started = time.monotonic()
-    restart.start()
-    try:
-        plan = client.create_plan(pose(0.0, 0.0), pose(2.0, 1.0))
-    finally:
-        restart.join()
-    assert len(plan) > 1 and time.monotonic() - started > 1.0  # it waited for the new host
+    plan, took = plan_across(
+        client, 1.0, lambda: restarted.append(start_host(*args, port=host.port))
+    )
+    assert len(plan) > 1 and took > 1.0  # it waited for the new host
     assert client.resyncs == 1  # and re-established the session there
 
     short = GlobalPlannerClient(
@@ -165,6 +185,33 @@ def test_a_plan_waits_for_a_restarting_host_within_its_timeout_and_a_cycle_does_
     with pytest.raises(api.NoValidControl, match="no planner host is alive"):
         ctrl.compute_velocity_commands(pose(), Twist())
     assert time.monotonic() - started < 0.5  # at once
+
+
+def test_a_plan_whose_host_dies_in_the_call_is_sent_again_to_its_restart(
+    start_host: Any, zsession_factory: Any
+) -> None:
+    """The host is killed with create_plan in it: the query ends at once with no reply. Within
+    the plan's timeout the call waits for a host to come back and is sent again there (the
+    session re-established first), as the C++ plugin does: no recovery in Nav2."""
+    host, client = active_planner(
+        start_host, zsession_factory, "--key", PLANNER_KEY, "--planner", "echo_planners:LinePlanner"
+    )
+    client.set_parameters({"mode": "slow"})  # the planner would take 10 s
+    first = client.host
+    restarted: list[Any] = []
+
+    def kill_and_restart() -> None:
+        host.kill()  # SIGKILL, 0.5 s into the plan
+        restarted.append(
+            start_host(
+                "--key", PLANNER_KEY, "--planner", "echo_planners:QuickLinePlanner", port=host.port
+            )
+        )
+
+    plan, took = plan_across(client, 0.5, kill_and_restart)
+    assert len(plan) == 11 and np.allclose(plan.xy[-1], [2.0, 1.0])  # the new host's plan
+    assert took < PLAN_TIMEOUTS.plan
+    assert client.resyncs == 1 and client.host not in (None, first) and restarted
 
 
 def test_errors_cross_the_wire_typed_with_traceback(start_host: Any, zsession_factory: Any) -> None:
@@ -395,12 +442,11 @@ def test_a_misspelt_parameter_is_reported_and_an_undeclared_update_refused(
     client = controller(zsession_factory, host, params={"gain": 2.0, "gian": 3.0})
     with caplog.at_level(logging.WARNING, logger="nav2_pyif.client"):
         assert client.configure() == {"gain": 2.0, "label": "echo"}
-    reason = (
-        "gian is not a parameter of this planner (did you mean gain?); it declares: gain, label"
-    )
+    reason = "gian is not a parameter of this planner (did you mean gain?)"
     assert client.undeclared == {"gian": reason}  # in the configure reply
-    assert f"FollowPath: the planner ignores parameter(s) gian: {reason}" in caplog.text
-    assert warned(host.log(), f"parameters given but never declared, ignored: {reason}")
+    warning = f"{reason}; it declares: gain, label"
+    assert f"FollowPath: the planner ignores parameter(s) gian: {warning}" in caplog.text
+    assert warned(host.log(), f"parameters given but never declared, ignored: {warning}")
     # as ROS 2 does: an update to a parameter the planner does not declare is refused
     assert client.set_parameters({"gain": 4.0, "lable": "x"}) == {
         "lable": "lable is not a parameter of this planner (did you mean label?); "

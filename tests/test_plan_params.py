@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from geometry_msgs.msg import PoseStamped
 from nav2_pyif import Parameters, Plan
+from nav2_pyif.params import declares
 from nav_msgs.msg import Path
 
 pytestmark = pytest.mark.unit
@@ -49,13 +50,17 @@ def test_given_parameters_the_planner_neither_declares_nor_reads_are_reported() 
     params = Parameters({"max_speed": 1.0, "max_sped": 2.0, "name": "x", "mode": "fast"})
     params.declare("max_speed", 0.5)
     assert params["name"] == "x" and "mode" in params  # read without declaring: used
+    # what the planner declares is left out of each reason: a warning of several names
+    # gives it once (declares)
     assert params.undeclared() == {
-        "max_sped": "max_sped is not a parameter of this planner (did you mean max_speed?); "
-        "it declares: max_speed"
+        "max_sped": "max_sped is not a parameter of this planner (did you mean max_speed?)"
     }
-    assert Parameters({"k": 1}).undeclared() == {
-        "k": "k is not a parameter of this planner; it declares: none"
+    assert Parameters({"k": 1, "j": 2}).undeclared() == {
+        "k": "k is not a parameter of this planner",
+        "j": "j is not a parameter of this planner",
     }
+    assert declares(params.declared()) == "it declares: max_speed"
+    assert declares(["b", "a"]) == "it declares: a, b" and declares([]) == "it declares: none"
 
 
 def test_parameters_wrong_type_at_declare_raises() -> None:

@@ -136,7 +136,7 @@ def test_a_github_entry_is_found_by_its_url(tmp_path: Path) -> None:
 
 
 def test_an_entry_with_a_comment_after_its_name_is_its_own(tmp_path: Path) -> None:
-    """"  NAME:  # why" is an entry: its url and version are not taken as the entry above's."""
+    """ "  NAME:  # why" is an entry: its url and version are not taken as the entry above's."""
     mirrors, scratch = tmp_path / "mirrors", tmp_path / "scratch"
     mirrors.mkdir()
     scratch.mkdir()

@@ -14,7 +14,7 @@ ignored (a misspelt name in the Nav2 YAML), and an update to it is rejected.
 from __future__ import annotations
 
 import difflib
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
@@ -90,19 +90,23 @@ class Parameters:
 
     def undeclared(self) -> dict[str, str]:
         """Given parameters the planner neither declared nor read (call after configure):
-        name -> why it is ignored."""
-        return {name: self._not_a_parameter(name) for name in self._values if not self._known(name)}
+        name -> why it is ignored. The reasons leave out what the planner declares, which
+        a warning of several names gives once (:func:`declares`)."""
+        return {
+            name: self._not_a_parameter(name, with_declared=False)
+            for name in self._values
+            if not self._known(name)
+        }
 
     def _known(self, name: str) -> bool:
         return name in self._declared or name in self._read
 
-    def _not_a_parameter(self, name: str) -> str:
-        declared = sorted(self._declared)
-        close = difflib.get_close_matches(name, declared, n=1)
+    def _not_a_parameter(self, name: str, *, with_declared: bool = True) -> str:
+        close = difflib.get_close_matches(name, sorted(self._declared), n=1)
         return (
             f"{name} is not a parameter of this planner"
             + (f" (did you mean {close[0]}?)" if close else "")
-            + f"; it declares: {', '.join(declared) or 'none'}"
+            + (f"; {declares(self._declared)}" if with_declared else "")
         )
 
     def description(self, name: str) -> str:
@@ -135,3 +139,8 @@ class Parameters:
             for listener in self._listeners:
                 listener(applied)
         return applied, rejected
+
+
+def declares(names: Iterable[str]) -> str:
+    """What a planner declares, for a message: "it declares: a, b" (sorted; "none")."""
+    return f"it declares: {', '.join(sorted(names)) or 'none'}"

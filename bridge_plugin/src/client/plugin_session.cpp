@@ -5,9 +5,11 @@
 #include <chrono>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 #include "nav2_pyif_bridge/client/carried_cycle.hpp"
 #include "nav2_pyif_bridge/client/command_check.hpp"
@@ -118,9 +120,20 @@ proto::Params PluginSession::configure_locked()
       names += (names.empty() ? "" : ", ") + name;
       reasons += (reasons.empty() ? "" : "; ") + reason;
     }
+    // What the planner declares, once for all names (the host's reasons leave it out).
+    std::vector<std::string> declared;
+    for (const auto & [name, value] : reply.declared) {
+      declared.push_back(name);
+    }
+    std::sort(declared.begin(), declared.end());
+    std::string declares;
+    for (const auto & name : declared) {
+      declares += (declares.empty() ? "" : ", ") + name;
+    }
     log(
       logger_, LogLevel::Warn,
-      keys_.prefix() + ": the planner ignores parameter(s) " + names + ": " + reasons);
+      keys_.prefix() + ": the planner ignores parameter(s) " + names + ": " + reasons +
+      "; it declares: " + (declares.empty() ? std::string("none") : declares));
   }
   for (const auto & [name, value] : reply.declared) {
     if (config_.params.find(name) == nullptr) {
@@ -232,10 +245,11 @@ proto::ReplyBody PluginSession::call_body(
   // follows its last path: without a host it waits, up to its timeout, for one to come back,
   // as it would for a slow planner, so that a host restart costs no recovery. The control
   // loop's and the lifecycle's ops fail at once.
-  if (!transport_.hosts_alive() &&
-    !(proto::timeout_class(op) == proto::TimeoutClass::Plan &&
-    transport_.wait_for_host(options.timeout.value_or(timeout_of(body)))))
-  {
+  const bool plan_class = proto::timeout_class(op) == proto::TimeoutClass::Plan;
+  const Duration timeout = options.timeout.value_or(timeout_of(body));
+  const Clock & clock = transport_.hosts().clock();
+  const TimePoint started = clock.now();
+  if (!transport_.hosts_alive() && !(plan_class && transport_.wait_for_host(timeout))) {
     fail(
       host_failure_error(config_.kind), Cause::NoHost,
       "no planner host is alive on " + keys_.prefix() + " (start one: planner-host --key " +
@@ -255,6 +269,7 @@ proto::ReplyBody PluginSession::call_body(
   retry.allow_failover = false;
   retry.allow_resync = true;
   proto::Reply reply;
+  const TimePoint sent = clock.now();
   try {
     reply = exchange(request, options);
   } catch (const CallError & error) {
@@ -264,6 +279,29 @@ proto::ReplyBody PluginSession::call_body(
       error.cause() == Cause::BadReply;
     if (exchange_failed && options.allow_failover && fail_over(state_.pinned_host)) {
       return call_body(body, retry);
+    }
+    // The only host died with a plan-class call in it (its query ended early with no reply;
+    // its liveliness token may go a moment later): as before a call, wait within what is left
+    // of the op's timeout for that host to be gone and another to be alive (its restart), and
+    // send the call once more, so that a host restart mid-plan costs no recovery either.
+    const std::string gone = state_.pinned_host;
+    const bool ended_early = clock.now() - sent < timeout;
+    if (error.cause() == Cause::TimedOut && options.allow_failover && plan_class &&
+      (ended_early || transport_.hosts().alive().count(gone) == 0))
+    {
+      const Duration left = timeout - (clock.now() - started);
+      const auto restarted = [&gone](const HostWatcher::Hosts & hosts) {
+          return hosts.count(gone) == 0 && !hosts.empty();
+        };
+      if (left > Duration::zero() && transport_.hosts().wait_until(restarted, left)) {
+        log(
+          logger_, LogLevel::Warn,
+          keys_.prefix() + ": host " + gone + " went away during " + op_text +
+          "; sending it again to the host that came back");
+        CallOptions rest = retry;
+        rest.timeout = std::max(Duration{1}, timeout - (clock.now() - started));
+        return call_body(body, rest);
+      }
     }
     throw;
   }
@@ -426,6 +464,8 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
     hook.poll = [&options, seq = request.seq]() {options.while_waiting(seq);};
     hook_ptr = &hook;
   }
+  const Clock & clock = transport_.hosts().clock();
+  const TimePoint sent = clock.now();
   std::optional<proto::Bytes> answer;
   try {
     answer = transport_.query(target(keys_.call(op)), payload, timeout, hook_ptr);
@@ -437,8 +477,13 @@ proto::Reply PluginSession::exchange(const proto::Request & request, const CallO
       op_text + " on " + keys_.prefix() + ": Zenoh query failed: " + error.what());
   }
   if (!answer) {
+    // Zenoh ends a query early, with no reply, when the host it went to is gone.
+    const Duration waited = clock.now() - sent;
     fail(
       host_failure_error(config_.kind), Cause::TimedOut,
+      waited < timeout ?
+      op_text + " got no reply from " + keys_.prefix() + ": the query ended after " +
+      milliseconds(waited) + " ms of " + milliseconds(timeout) + " (its host went away)" :
       op_text + " got no reply from " + keys_.prefix() + " within " + milliseconds(timeout) +
       " ms");
   }

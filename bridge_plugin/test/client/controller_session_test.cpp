@@ -65,8 +65,9 @@ TEST_F(ControllerSessionTest, ConfigureWarnsOfParametersThePlannerIgnores)
   s.configure();
   EXPECT_EQ(s.state().served, "fakes:Echo");
   EXPECT_TRUE(log.contains(
-      std::string(kKey) + ": the planner ignores parameter(s) gian, lable: 'gian' is not "
-      "declared (declared: gain, label); 'lable' is not declared (declared: gain, label)"));
+      std::string(kKey) + ": the planner ignores parameter(s) gian, lable: gian is not a "
+      "parameter of this planner; lable is not a parameter of this planner; it declares: "
+      "gain, label"));
 
   auto & quiet = make();  // every parameter known: nothing to warn of
   log.lines.clear();

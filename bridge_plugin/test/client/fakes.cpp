@@ -215,6 +215,12 @@ std::optional<proto::Bytes> FakeHost::query(
     return std::nullopt;
   }
 
+  if (dies_during_next_call) {
+    clock_.advance(std::min(*dies_during_next_call, timeout));
+    dies_during_next_call.reset();
+    kill_replica(id);
+    return std::nullopt;
+  }
   Duration work = next_call_time.value_or(call_time);
   next_call_time.reset();
   if (request.op() == proto::Op::CreatePlan && replica->sessions.count(request.sid)) {
@@ -350,7 +356,8 @@ proto::Reply FakeHost::handle(
         if (!configured.undeclared) {
           configured.undeclared.emplace();
         }
-        configured.undeclared->set(name, "'" + name + "' is not declared (declared: gain, label)");
+        // as the host: the reason leaves out what is declared (the warning gives it once)
+        configured.undeclared->set(name, name + " is not a parameter of this planner");
       }
     }
     reply.outcome = proto::ReplyBody{configured};

@@ -126,6 +126,9 @@ public:
   bool nan_once{false};                      // the next command has vx = NaN (host not checking)
   std::optional<protocol::Bytes> raw_reply_once;  // the next reply is these bytes
   bool transport_error_once{false};          // the next query throws (a broken Zenoh session)
+  // The answering host dies this far into the next call: its token goes, its sessions are
+  // lost, and the query ends at once with no reply (what Zenoh does when a queryable goes).
+  std::optional<Duration> dies_during_next_call;
   bool making_progress{true};                // what progress checks answer
   double reached_x{1e9};                     // goal checks answer reached from this pose x on
 

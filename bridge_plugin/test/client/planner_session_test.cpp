@@ -83,6 +83,34 @@ TEST_F(PlannerSessionTest, APlanWaitsForARestartingHostWithinItsTimeout)
   EXPECT_EQ(clock.elapsed() - before, Duration{5s});  // no host came: the plan timeout
 }
 
+TEST_F(PlannerSessionTest, APlanWhoseHostDiesInTheCallIsSentAgainToItsRestart)
+{
+  auto & s = make();
+  const std::string first = host.host_id();
+  host.dies_during_next_call = 300ms;  // killed 300 ms into create_plan: Zenoh ends the query
+  const Duration sent = clock.elapsed();
+  clock.at(sent + 2s, [&] {host.start();});  // ... and the host is back 2 s after the call
+  const proto::Path plan =
+    s.create_plan(plan_request(pose_at(0, 0, "map"), pose_at(2.0, 1.0, "map")));
+  EXPECT_EQ(plan.pose_count(), 25u);  // no recovery: the restarted host planned it
+  EXPECT_EQ(clock.elapsed() - sent, Duration{2s});
+  EXPECT_EQ(s.state().resyncs, 1u);  // the new host was given the session first
+  EXPECT_EQ(host.received.back().answered_by, host.host_id());
+  EXPECT_NE(host.host_id(), first);
+  EXPECT_TRUE(log.contains(
+      std::string(kKey) + ": host " + first + " went away during create_plan; sending it again"));
+
+  // No host back within the plan's timeout (5 s): the call fails as a dead host's, typed.
+  host.dies_during_next_call = 300ms;
+  const Duration before = clock.elapsed();
+  const CallError e = error_of([&] {s.create_plan(plan_request(pose_at(0, 0), pose_at(1, 1)));});
+  EXPECT_EQ(e.cause(), Cause::TimedOut);
+  EXPECT_EQ(e.kind(), ErrorKind::PlannerException);
+  EXPECT_NE(std::string(e.what()).find("the query ended after 300 ms of 5000 (its host went away)"),
+    std::string::npos) << e.what();
+  EXPECT_EQ(clock.elapsed() - before, Duration{5s});
+}
+
 TEST_F(PlannerSessionTest, PlannerErrorsAreTyped)
 {
   make();

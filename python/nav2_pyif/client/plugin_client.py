@@ -50,7 +50,7 @@ from nav2_pyif.client.calls import CallRecord
 from nav2_pyif.client.transport import Transport, ZenohTransport, selector
 from nav2_pyif.costmap import Costmap
 from nav2_pyif.exceptions import NAV2_EXCEPTIONS, Nav2Error, generic_error, host_failure_error
-from nav2_pyif.params import ParamValue
+from nav2_pyif.params import ParamValue, declares
 
 log = logging.getLogger("nav2_pyif.client")
 Body = dict[str, Any]
@@ -169,14 +169,15 @@ class PluginClient:
         self.served = body.get("planner")
         self.undeclared = body.get("undeclared") or {}
         self.debug_outputs = body.get("debug_outputs") or {}
+        declared: dict[str, ParamValue] = body["declared"]
         if self.undeclared:
             log.warning(
-                "%s: the planner ignores parameter(s) %s: %s",
+                "%s: the planner ignores parameter(s) %s: %s; %s",
                 self.name,
                 ", ".join(self.undeclared),
                 "; ".join(self.undeclared.values()),
+                declares(declared),
             )
-        declared: dict[str, ParamValue] = body["declared"]
         for name, value in declared.items():
             self.params.setdefault(name, value)
         return declared
@@ -289,15 +290,16 @@ class PluginClient:
         self.failovers += 1
         return True
 
-    def _host_came_back(self) -> bool:
-        """With ``host_wait``: no reply because the link to the pinned host dropped (its lease
-        lapsed; its token goes with it, a moment after the query ended), and a host is back
-        within ``host_wait``. The call is then retried once."""
-        if self.timeouts.host_wait <= 0:
+    def _host_came_back(self, within: float) -> bool:
+        """No reply because the pinned host went (it died, or its lease lapsed; its token goes
+        a moment after the query ended), and a host is back ``within`` seconds: ``host_wait``,
+        or for a plan-class call what is left of its timeout. The call is then retried once."""
+        if within <= 0:
             return False
-        if not self.hosts.wait_for(lambda alive: self.host not in alive, 2.0):
+        deadline = time.monotonic() + within
+        if not self.hosts.wait_for(lambda alive: self.host not in alive, min(2.0, within)):
             return False  # alive and silent: a hung host is not waited for again
-        return self.hosts.wait_for(bool, self.timeouts.host_wait)
+        return self.hosts.wait_for(bool, max(0.0, deadline - time.monotonic()))
 
     def selector(self, key: str) -> str:
         """``key?host=<pinned id>``: replicas other than the pinned host drop the query."""
@@ -391,6 +393,7 @@ class PluginClient:
                 f"{op.value} before configure on {self.keys.prefix}"
             )
         wait = self._timeout(op) if timeout is None else timeout
+        started = time.monotonic()
         alive = self.hosts.alive  # one snapshot per call: fail-fast check and pinning
         if not alive and (OP_TIMEOUT[op] is Timeout.PLAN or self.timeouts.host_wait > 0):
             # create_plan and smooth run in their server's own thread while the robot follows
@@ -414,13 +417,14 @@ class PluginClient:
         wire, send_costmap, version = self._with_costmap(op, body)
         request = self._next_request(op, wire)
 
-        def retry() -> Body:  # once, on the new replica, whose SessionUnknown re-sends state
+        def retry(within: float | None = timeout) -> Body:
+            # once, on the new replica, whose SessionUnknown re-sends state
             return self._call(
                 op,
                 body,
                 allow_failover=False,
                 while_waiting=while_waiting,
-                timeout=timeout,
+                timeout=within,
             )
 
         try:
@@ -430,8 +434,17 @@ class PluginClient:
             # gone yet) or hangs. Another alive replica gets the call instead.
             if allow_failover and self._fail_over(avoid=self.host):
                 return retry()
-            if allow_failover and self._host_came_back():
-                return retry()
+            # The only host went: wait for it to come back (host_wait), and a plan-class call
+            # for what is left of its timeout, as before a call: a host restart mid-plan then
+            # costs a slow plan, not a recovery.
+            left = wait - (time.monotonic() - started)
+            is_plan = OP_TIMEOUT[op] is Timeout.PLAN
+            if allow_failover and self._host_came_back(
+                max(self.timeouts.host_wait, left if is_plan else 0.0)
+            ):
+                return retry(
+                    max(0.001, wait - (time.monotonic() - started)) if is_plan else timeout
+                )
             raise
         if (
             not reply.ok

@@ -46,7 +46,7 @@ from nav2_pyif.exceptions import (
 from nav2_pyif.global_planner import GlobalPlanner
 from nav2_pyif.goal_checker import GoalChecker
 from nav2_pyif.goal_tolerances import GoalTolerances
-from nav2_pyif.params import Parameters
+from nav2_pyif.params import Parameters, declares
 from nav2_pyif.path_handler import PathHandler
 from nav2_pyif.plan import Plan
 from nav2_pyif.plugin import PlannerPlugin
@@ -399,10 +399,11 @@ class PlannerRuntime:
         undeclared = context.params.undeclared()
         if undeclared:
             self.log.warning(
-                "%s: session %s: parameters given but never declared, ignored: %s",
+                "%s: session %s: parameters given but never declared, ignored: %s; %s",
                 self.label,
                 request.sid[:8],
                 "; ".join(undeclared.values()),
+                declares(reply["declared"]),
             )
             reply["undeclared"] = undeclared
         if context.debug.declared:

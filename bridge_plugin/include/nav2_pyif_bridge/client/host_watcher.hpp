@@ -34,6 +34,9 @@ public:
   // How many times the set of hosts changed (a new host, or one gone).
   std::size_t changes() const;
 
+  // The clock its waits run on (a fake one in the unit tests).
+  Clock & clock() const {return clock_;}
+
   // Block until at least one host is alive; false when `timeout` passed first.
   bool wait_for_any(Duration timeout);
   // Block until `predicate(alive hosts)` holds; false when `timeout` passed first.
