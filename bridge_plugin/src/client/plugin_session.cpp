@@ -280,13 +280,15 @@ proto::ReplyBody PluginSession::call_body(
     if (exchange_failed && options.allow_failover && fail_over(state_.pinned_host)) {
       return call_body(body, retry);
     }
-    // The only host died with a plan-class call in it (its query ended early with no reply;
-    // its liveliness token may go a moment later): as before a call, wait within what is left
-    // of the op's timeout for that host to be gone and another to be alive (its restart), and
-    // send the call once more, so that a host restart mid-plan costs no recovery either.
+    // The only host died with a plan-class call in it: its query ended early with no reply,
+    // or failed at once where the host was the Zenoh session's only link (its liveliness
+    // token may go a moment later). As before a call, wait within what is left of the op's
+    // timeout for that host to be gone and another to be alive (its restart), and send the
+    // call once more, so that a host restart mid-plan costs no recovery either.
     const std::string gone = state_.pinned_host;
     const bool ended_early = clock.now() - sent < timeout;
-    if (error.cause() == Cause::TimedOut && options.allow_failover && plan_class &&
+    const bool no_reply = error.cause() == Cause::TimedOut || error.cause() == Cause::Transport;
+    if (no_reply && options.allow_failover && plan_class &&
       (ended_early || transport_.hosts().alive().count(gone) == 0))
     {
       const Duration left = timeout - (clock.now() - started);

@@ -100,6 +100,18 @@ TEST_F(PlannerSessionTest, APlanWhoseHostDiesInTheCallIsSentAgainToItsRestart)
   EXPECT_TRUE(log.contains(
       std::string(kKey) + ": host " + first + " went away during create_plan; sending it again"));
 
+  // Where the host was the Zenoh session's only link, its death breaks the query at once
+  // (a transport error), a moment before its token goes: the same wait, the same retry.
+  host.transport_error_once = true;
+  const std::string second = host.host_id();
+  const Duration broken = clock.elapsed();
+  clock.at(broken + 100ms, [&] {host.kill();});
+  clock.at(broken + 1s, [&] {host.start();});
+  EXPECT_EQ(s.create_plan(plan_request(pose_at(0, 0), pose_at(1, 1))).pose_count(), 25u);
+  EXPECT_EQ(clock.elapsed() - broken, Duration{1s});
+  EXPECT_EQ(s.state().resyncs, 2u);
+  EXPECT_TRUE(log.contains(": host " + second + " went away during create_plan"));
+
   // No host back within the plan's timeout (5 s): the call fails as a dead host's, typed.
   host.dies_during_next_call = 300ms;
   const Duration before = clock.elapsed();
