@@ -5,7 +5,8 @@ a goal (Python A* and regulated pure pursuit) while the host records every call 
 host then stops (SIGTERM: it closes the recording), and `nav2-pyif replay` feeds the
 recording to the same planners: every output is the recorded one. The recording is kept in
 the test's logs (nav2_run.mcap), and copied to $NAV2_PYIF_RECORDING_OUT when set
-(tests/fixtures/nav2_launch_run.mcap, which tests/test_record_replay.py replays, was made so).
+(tests/fixtures/nav2_launch_run.mcap, which tests/test_record_replay.py replays in every run
+of the suite, was made so: Jazzy 1.3.8, zenoh-pico, 2026-12-02).
 
 Needs what test_nav2_pyif.py needs, and `nav2-pyif` (through $NAV2_PYIF_RUN or on PATH).
 """
