@@ -1,7 +1,8 @@
 """The documented launch file, run as the README says: ``ros2 launch nav2_pyif_bridge
 nav2_pyif.launch.py`` (with this test's params and endpoint) brings up the planner host,
 controller_server, planner_server and the lifecycle manager; a goal is reached; Ctrl-C (SIGINT
-to the launch's process group, as a terminal sends it) ends every process it started.
+to the launch's process group, as a terminal sends it) ends every process it started. And
+with no params_file, the package's own params file alone configures every server.
 
 Needs what test_nav2_pyif.py needs, plus `ros2 launch` (ros2cli, launch, launch_ros). Skipped,
 saying what is missing, otherwise.
@@ -12,6 +13,7 @@ from __future__ import annotations
 import math
 import os
 import shutil
+import time
 from pathlib import Path
 
 import nav2_testing
@@ -23,6 +25,7 @@ GOAL = (2.0, 0.5)
 #: The host the launch file is given; without it, the launch file's own choice (nav2_pyif's
 #: planner-host from the install space, else the one on PATH) is tested.
 CHOSEN_HOST = os.environ.get("NAV2_PYIF_PLANNER_HOST")
+DIED = "process has died"  # what `ros2 launch` logs when one of its processes ends
 
 
 def _launch_missing() -> list[str]:
@@ -94,6 +97,42 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
         code, left = nav2_testing.ctrl_c(launch)  # Ctrl-C in the launch's terminal
         assert not left, f"still running after Ctrl-C: {left}\n{procs.log('launch')}"
         assert code == 0, f"ros2 launch exited {code}\n{procs.log('launch')}"
+    finally:
+        client.destroy_node()
+        rclpy.try_shutdown()
+        procs.stop_all()
+
+
+def test_the_launch_file_with_its_own_params_configures_every_server(tmp_path: Path) -> None:
+    """No params_file: the launch passes the package's params/nav2_pyif_params.yaml alone, as a
+    new user's first try does. Every server configures (a costmap layer listed without its
+    plugin once crashed controller_server here), and nothing the launch started dies."""
+    missing = nav2_testing.missing() + _launch_missing()
+    if missing:
+        pytest.skip("the launch-file test needs: " + ", ".join(missing))
+    endpoint, _, procs = nav2_testing.prepare(tmp_path)
+    host_argument = [f"planner_host:={CHOSEN_HOST}"] if CHOSEN_HOST else []
+    procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py")])
+    procs.start(
+        "launch",
+        ["ros2", "launch", "nav2_pyif_bridge", "nav2_pyif.launch.py", f"listen:={endpoint}",
+         *host_argument],
+    )  # fmt: skip
+    import rclpy
+
+    rclpy.init()
+    client = nav2_testing.Nav2Client()
+    try:
+        configured = ("inactive", "active")
+        deadline = time.monotonic() + 90.0
+        states = client.wait_active(nav2_testing.SERVERS, 1.0)
+        while time.monotonic() < deadline and not all(s in configured for s in states.values()):
+            assert DIED not in procs.log("launch", 100_000), procs.log("launch")
+            states = client.wait_active(nav2_testing.SERVERS, 1.0)
+        assert all(s in configured for s in states.values()), f"{states}\n{procs.log('launch')}"
+        assert DIED not in procs.log("launch", 100_000), procs.log("launch")
+        _, left = nav2_testing.ctrl_c(procs.procs["launch"])
+        assert not left, f"still running after Ctrl-C: {left}\n{procs.log('launch')}"
     finally:
         client.destroy_node()
         rclpy.try_shutdown()
