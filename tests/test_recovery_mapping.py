@@ -15,7 +15,7 @@ from typing import Any
 
 import nav2_pyif as api
 import pytest
-from nav2_pyif.client.plugin_client import error_from_reply
+from nav2_pyif.client.plugin_client import error_from_reply, no_reply_message
 from nav2_pyif_protocol.codec import ErrorInfo
 from nav2_pyif_protocol.constants import (
     ERRORS_BY_PLUGIN,
@@ -104,3 +104,12 @@ def test_unavailable_becomes_the_host_failure_and_own_errors_pass_through(
 def test_a_planner_raising_controller_timed_out_means_it() -> None:
     error = error_from_reply(_error("ControllerTimedOut"), PluginType.CONTROLLER)
     assert type(error) is api.ControllerTimedOut
+
+
+def test_a_call_without_reply_says_whether_its_timeout_ran_out_or_its_host_went_away() -> None:
+    """The time waited, not only the timeout: a query Zenoh ended at once (the host died in
+    it) once read "no reply within 60000 ms" after 4.7 s."""
+    assert no_reply_message("configure", "P", 4.7, 60.0) == (
+        "configure got no reply from P: the query ended after 4700 ms of 60000 (its host went away)"
+    )
+    assert no_reply_message("check", "P", 0.0401, 0.04) == "check got no reply from P within 40 ms"

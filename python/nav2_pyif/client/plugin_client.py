@@ -484,8 +484,7 @@ class PluginClient:
         if answer is None:
             self._record(request, elapsed, 0, len(payload), False)
             raise host_failure_error(self.plugin_type)(
-                f"{request.op.value} got no reply from {self.keys.prefix} within "
-                f"{timeout * 1000:.0f} ms",
+                no_reply_message(request.op.value, self.keys.prefix, elapsed / 1e9, timeout),
                 host_failed=True,
             )
         try:
@@ -553,3 +552,14 @@ class Carried:
     payload: bytes
     costmap_version: int
     sent_costmap: bool
+
+
+def no_reply_message(op: str, prefix: str, waited: float, timeout: float) -> str:
+    """Why a call has no reply [s]: its timeout ran out, or Zenoh ended the query before
+    that, as it does when the host it went to is gone (the C++ plugin says the same)."""
+    if waited < timeout * 0.95:
+        return (
+            f"{op} got no reply from {prefix}: the query ended after {waited * 1000:.0f} ms "
+            f"of {timeout * 1000:.0f} (its host went away)"
+        )
+    return f"{op} got no reply from {prefix} within {timeout * 1000:.0f} ms"
