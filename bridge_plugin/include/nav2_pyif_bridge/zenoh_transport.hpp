@@ -12,7 +12,9 @@
 //   - zenoh-pico backend (ZENOHCXX_ZENOHPICO): client mode only, configured by integer keys;
 //     no JSON5 files (a `zenoh_config` is refused), one connect endpoint (the first).
 // A session that cannot be opened (no router or host listening yet) is retried every second
-// in the background; meanwhile no host is alive, so calls fail fast.
+// in the background; meanwhile no host is alive, so calls fail fast. A zenoh-pico session
+// connected to nothing for 5 s is replaced by a new one (zenoh-pico's own reconnection can give
+// up for good: zenoh_transport.cpp says when).
 // Sessions are shared between the plugins of one process that use the same configuration, and
 // live as long as the process (closing a zenoh-pico session whose peer went away can block).
 #pragma once
@@ -72,8 +74,14 @@ public:
 private:
   struct Link;  // the session and the liveliness subscriber
 
+  // A link on `session`: its liveliness subscriber feeding watcher_.
+  std::unique_ptr<Link> link_on(std::shared_ptr<zenoh::Session> session) const;
   bool try_open(bool quiet);
-  void keep_opening();
+  // zenoh-pico: moves to a new session in place of one connected to nothing (or to the one
+  // another plugin of this server opened in its place).
+  bool try_reopen(const std::shared_ptr<zenoh::Session> & stranded);
+  // The background thread: opens the session until it is open; on zenoh-pico, then watches it.
+  void keep_linked();
   std::shared_ptr<zenoh::Session> session() const;
 
   ZenohOptions options_;
@@ -87,7 +95,7 @@ private:
   std::condition_variable stop_cv_;
   bool stopping_{false};
   std::unique_ptr<Link> link_;
-  std::thread opener_;
+  std::thread keeper_;
 };
 
 }  // namespace nav2_pyif_bridge

@@ -1,10 +1,13 @@
 #include "nav2_pyif_bridge/zenoh_transport.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
+#include <string>
+#include <thread>
 #include <utility>
 
 #include "zenoh.hxx"
@@ -86,19 +89,102 @@ std::string describe(const ZenohOptions & options)
 // until the process ends: closing a zenoh-pico (1.9) session whose peer went away and came back can
 // block forever in z_session_drop, which would hang Nav2's cleanup and shutdown. The OS closes
 // the connection at exit. (Never destroyed, so no exit-time destructor can block either.)
+struct SharedSessions
+{
+  std::mutex mutex;
+  std::map<std::string, std::shared_ptr<zenoh::Session>> by_id;
+
+  static SharedSessions & instance()
+  {
+    static auto * sessions = new SharedSessions;
+    return *sessions;
+  }
+  static std::string id_of(const ZenohOptions & options)
+  {
+    return options.owner + "|" + config_file(options) + "|" + json_string_list(options.connect);
+  }
+};
+
 std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options)
 {
-  static auto * mutex = new std::mutex;
-  static auto * sessions = new std::map<std::string, std::shared_ptr<zenoh::Session>>;
-  const std::string id =
-    options.owner + "|" + config_file(options) + "|" + json_string_list(options.connect);
-  std::lock_guard<std::mutex> lock(*mutex);
-  auto & session = (*sessions)[id];
+  auto & shared = SharedSessions::instance();
+  std::lock_guard<std::mutex> lock(shared.mutex);
+  auto & session = shared.by_id[SharedSessions::id_of(options)];
   if (!session) {
     session = std::make_shared<zenoh::Session>(zenoh::Session::open(make_config(options)));
   }
   return session;
 }
+
+#if defined(ZENOHCXX_ZENOHPICO)
+// zenoh-pico (1.9) reconnects a client session by itself, but gives up for good when an attempt
+// reaches a peer that takes the connection and never answers it (a host stopped, or busy
+// swapping, while its port still accepts): the session stays open, connected to nothing, and
+// the plugin would never see its host again. Reproduced with a host stopped for 30 s (a 5 s stop
+// recovered by itself); most likely the same in nav2_bringup's composed container under load,
+// after a 2 s stop. Such
+// a session is replaced by a new one once it has been connected to nothing this long: a
+// reconnection of its own, when it works, takes about a second.
+constexpr bool kWatchesSession = true;
+constexpr auto kReopenAfter = std::chrono::seconds(5);
+
+bool connected_to_nothing(const zenoh::Session & session)
+{
+  zenoh::ZResult err = Z_OK;
+  const bool none = session.get_routers_z_id(&err).empty();  // a client's link (the only one)
+  return none && err == Z_OK;  // an error says nothing either way
+}
+
+// A replaced session is closed, so that a reconnection of its own cannot come back beside its
+// replacement, on a thread of its own (a zenoh-pico close can block, as above), and then kept,
+// never destroyed, for the same reason.
+void retire(std::shared_ptr<zenoh::Session> session)
+{
+  std::thread(
+    [session = std::move(session)]() mutable {
+      zenoh::ZResult err = Z_OK;
+      session->close(zenoh::Session::SessionCloseOptions::create_default(), &err);
+      new std::shared_ptr<zenoh::Session>(std::move(session));  // never destroyed
+    }).detach();
+}
+
+// The session the plugins of `options` share now, and whether this call opened it: `stranded`
+// replaced by a new one (and retired), unless a plugin sharing it did that already. Throws as
+// Session::open does (the host still unreachable).
+std::pair<std::shared_ptr<zenoh::Session>, bool> reopen_shared_session(
+  const ZenohOptions & options, const std::shared_ptr<zenoh::Session> & stranded)
+{
+  auto & shared = SharedSessions::instance();
+  const std::string id = SharedSessions::id_of(options);
+  {
+    std::lock_guard<std::mutex> lock(shared.mutex);
+    if (shared.by_id[id] != stranded) {
+      return {shared.by_id[id], false};
+    }
+  }
+  // Opened unlocked: an open that waits on an unanswering host holds up no other plugin.
+  auto fresh = std::make_shared<zenoh::Session>(zenoh::Session::open(make_config(options)));
+  std::lock_guard<std::mutex> lock(shared.mutex);
+  auto & session = shared.by_id[id];
+  if (session != stranded) {  // another plugin's keeper was quicker
+    retire(std::move(fresh));
+    return {session, false};
+  }
+  session = std::move(fresh);
+  retire(stranded);
+  return {session, true};
+}
+
+bool replaced_elsewhere(const ZenohOptions & options, const std::shared_ptr<zenoh::Session> & mine)
+{
+  auto & shared = SharedSessions::instance();
+  std::lock_guard<std::mutex> lock(shared.mutex);
+  return shared.by_id[SharedSessions::id_of(options)] != mine;
+}
+
+#else
+constexpr bool kWatchesSession = false;  // zenoh-c reconnects for as long as it takes
+#endif
 
 // Every query goes to all matching queryables (replicas drop what is not theirs: host=<id>).
 zenoh::Session::GetOptions get_options(const protocol::Bytes & payload, client::Duration timeout)
@@ -138,6 +224,8 @@ struct ZenohTransport::Link
 {
   std::shared_ptr<zenoh::Session> session;
   std::optional<zenoh::Subscriber<void>> hosts;
+  // Set when the link is replaced: its subscriber's samples no longer count.
+  std::shared_ptr<std::atomic<bool>> retired = std::make_shared<std::atomic<bool>>(false);
 
   ~Link()
   {
@@ -153,8 +241,8 @@ ZenohTransport::ZenohTransport(
       client::SteadyClock::instance(), host_change_logger(logger_, keys.prefix())))
 {
   (void)make_config(options_);  // refuse what this backend cannot do, now
-  if (!try_open(false)) {
-    opener_ = std::thread([this]() {keep_opening();});
+  if (!try_open(false) || kWatchesSession) {
+    keeper_ = std::thread([this]() {keep_linked();});
   }
 }
 
@@ -165,8 +253,8 @@ ZenohTransport::~ZenohTransport()
     stopping_ = true;
   }
   stop_cv_.notify_all();
-  if (opener_.joinable()) {
-    opener_.join();
+  if (keeper_.joinable()) {
+    keeper_.join();
   }
   std::unique_ptr<Link> link;
   {
@@ -176,25 +264,34 @@ ZenohTransport::~ZenohTransport()
   link.reset();
 }
 
-bool ZenohTransport::try_open(bool quiet)
+std::unique_ptr<ZenohTransport::Link> ZenohTransport::link_on(
+  std::shared_ptr<zenoh::Session> session) const
 {
   auto link = std::make_unique<Link>();
+  link->session = std::move(session);
+  zenoh::Session::LivelinessSubscriberOptions subscriber_options;
+  subscriber_options.history = true;  // the tokens alive before this subscriber, too
+  std::weak_ptr<client::HostWatcher> watcher = watcher_;
+  link->hosts.emplace(
+    link->session->liveliness_declare_subscriber(
+      zenoh::KeyExpr(hosts_key_),
+      [watcher, retired = link->retired](zenoh::Sample & sample) {
+        auto w = watcher.lock();
+        if (w && !retired->load()) {
+          w->on_token(
+            client::KeySpace::host_id_of(sample.get_keyexpr().as_string_view()),
+            sample.get_kind() == Z_SAMPLE_KIND_PUT);
+        }
+      },
+      []() {}, std::move(subscriber_options)));
+  return link;
+}
+
+bool ZenohTransport::try_open(bool quiet)
+{
+  std::unique_ptr<Link> link;
   try {
-    link->session = open_shared_session(options_);
-    zenoh::Session::LivelinessSubscriberOptions subscriber_options;
-    subscriber_options.history = true;  // the tokens alive before this subscriber, too
-    std::weak_ptr<client::HostWatcher> watcher = watcher_;
-    link->hosts.emplace(
-      link->session->liveliness_declare_subscriber(
-        zenoh::KeyExpr(hosts_key_),
-        [watcher](zenoh::Sample & sample) {
-          if (auto w = watcher.lock()) {
-            w->on_token(
-              client::KeySpace::host_id_of(sample.get_keyexpr().as_string_view()),
-              sample.get_kind() == Z_SAMPLE_KIND_PUT);
-          }
-        },
-        []() {}, std::move(subscriber_options)));
+    link = link_on(open_shared_session(options_));
   } catch (const std::exception & error) {
     client::log(
       logger_, quiet ? LogLevel::Debug : LogLevel::Warn,
@@ -211,19 +308,65 @@ bool ZenohTransport::try_open(bool quiet)
   return true;
 }
 
-void ZenohTransport::keep_opening()
+#if defined(ZENOHCXX_ZENOHPICO)
+bool ZenohTransport::try_reopen(const std::shared_ptr<zenoh::Session> & stranded)
 {
+  std::unique_ptr<Link> link;
+  bool opened_here = false;
+  try {
+    auto [session, opened] = reopen_shared_session(options_, stranded);
+    opened_here = opened;
+    link = link_on(std::move(session));
+  } catch (const std::exception & error) {
+    client::log(
+      logger_, LogLevel::Debug,
+      "cannot open a new Zenoh session (" + where_ + "): " + error.what() + "; retrying");
+    return false;
+  }
+  std::unique_ptr<Link> old;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    old = std::exchange(link_, std::move(link));
+  }
+  old->retired->store(true);
+  // Kept, never destroyed: its subscriber is not undeclared on the retired session.
+  static_cast<void>(old.release());
+  client::log(
+    logger_, opened_here ? LogLevel::Warn : LogLevel::Info,
+    opened_here ?
+    "the Zenoh session (zenoh-pico, " + where_ + ") was connected to nothing for " +
+    std::to_string(kReopenAfter.count()) + " s and did not reconnect by itself; a new one is "
+    "open, watching " + hosts_key_ :
+    "watching " + hosts_key_ + " on the new Zenoh session another plugin of this server opened");
+  return true;
+}
+#endif
+
+void ZenohTransport::keep_linked()
+{
+  using Clock = std::chrono::steady_clock;
   std::unique_lock<std::mutex> lock(mutex_);
-  while (!stopping_) {
-    if (stop_cv_.wait_for(lock, std::chrono::seconds(1), [this]() {return stopping_;})) {
-      return;
-    }
+  // Since when the session has been connected to nothing; epoch: it is connected.
+  [[maybe_unused]] Clock::time_point stranded_since{};
+  while (!stop_cv_.wait_for(lock, std::chrono::seconds(1), [this]() {return stopping_;})) {
+    const auto session = link_ ? link_->session : nullptr;
     lock.unlock();
-    const bool opened = try_open(true);
-    lock.lock();
-    if (opened) {
-      return;
+    if (!session) {
+      if (try_open(true) && !kWatchesSession) {
+        return;
+      }
+#if defined(ZENOHCXX_ZENOHPICO)
+    } else if (replaced_elsewhere(options_, session)) {
+      try_reopen(session);  // another plugin of this server reopened the session they share
+    } else if (!connected_to_nothing(*session)) {
+      stranded_since = {};
+    } else if (stranded_since == Clock::time_point{}) {
+      stranded_since = Clock::now();
+    } else if (Clock::now() - stranded_since >= kReopenAfter && try_reopen(session)) {
+      stranded_since = {};
+#endif
     }
+    lock.lock();
   }
 }
 
