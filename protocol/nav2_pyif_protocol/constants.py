@@ -8,6 +8,10 @@ from enum import Enum
 #: Sent in every request and reply; a host answers a different version with VersionMismatch.
 PROTOCOL_VERSION = 2
 
+#: The input names (a controller's ``inputs`` parameter) one session may send: the host keeps
+#: the latest message of each, so a session's memory is bounded by them.
+MAX_INPUTS = 64
+
 
 class PluginType(str, Enum):
     CONTROLLER = "controller"

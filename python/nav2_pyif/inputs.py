@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+from nav2_pyif_protocol.constants import MAX_INPUTS
 
 from nav2_pyif._messages import stamp_to_ns
 from nav2_pyif._ros_types import deserialize
@@ -208,7 +209,17 @@ class Inputs(Mapping[str, Any]):
         self.updated: frozenset[str] = frozenset()
 
     def update(self, wire: list[dict[str, Any]]) -> None:
-        """Decode the ``inputs`` of a compute_velocity_commands request (wire Input maps)."""
+        """Decode the ``inputs`` of a compute_velocity_commands request (wire Input maps).
+        A session keeps the latest of each name, so the names are bounded: the plugin's
+        ``inputs`` parameter names a few, and a peer sending ever new ones would otherwise grow
+        the session without end (a hostile one did)."""
+        new = {item["name"] for item in wire} - self._values.keys()
+        if len(self._values) + len(new) > MAX_INPUTS:
+            raise ValueError(
+                f"more than {MAX_INPUTS} input names in one session (new: "
+                f"{', '.join(sorted(map(repr, new))[:5])}); a plugin's 'inputs' parameter "
+                f"names at most {MAX_INPUTS}"
+            )
         for item in wire:
             name = item["name"]
             self._values[name] = from_cdr(item["type"], item["cdr"])

@@ -4,10 +4,12 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <variant>
 
 #include "nav2_pyif_bridge/client/keys.hpp"
+#include "nav2_pyif_bridge/protocol/constants.hpp"
 
 namespace nav2_pyif_bridge::client
 {
@@ -48,6 +50,11 @@ std::optional<std::pair<std::string, std::string>> input_part(const std::string 
 // `<name>.type` leave `forwarded` (they are the bridge's, not the planner's).
 std::vector<InputSpec> take_inputs(const std::vector<std::string> & names, proto::Params & forwarded)
 {
+  if (names.size() > proto::kMaxInputs) {
+    bad(
+      "inputs", "lists " + std::to_string(names.size()) + " inputs; a planner host keeps at most " +
+      std::to_string(proto::kMaxInputs) + " per session");
+  }
   std::vector<InputSpec> out;
   for (const std::string & name : names) {
     InputSpec spec{name, {}, {}};

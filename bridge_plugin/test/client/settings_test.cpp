@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "nav2_pyif_bridge/client/settings.hpp"
+#include "nav2_pyif_bridge/protocol/constants.hpp"
 
 namespace nav2_pyif_bridge::client
 {
@@ -137,6 +138,23 @@ TEST(Settings, ErrorsNameTheParameter)
   no_module.set("python_planner", std::string("m:C"));
   no_module.set("python_delegates", std::string("a=f"));
   EXPECT_NE(error_of(no_module).find("given without python_module"), std::string::npos);
+}
+
+TEST(Settings, AtMostTheInputsAHostKeepsPerSession)
+{
+  proto::Params p;
+  p.set("key", std::string("a/b"));
+  std::vector<std::string> names;
+  for (std::size_t i = 0; i <= proto::kMaxInputs; ++i) {
+    names.push_back("in" + std::to_string(i));
+    p.set(names.back() + ".topic", "/t" + std::to_string(i));
+    p.set(names.back() + ".type", std::string("sensor_msgs/msg/Imu"));
+  }
+  p.set("inputs", names);
+  EXPECT_NE(error_of(p).find("parameter inputs: lists 65 inputs"), std::string::npos);
+  names.pop_back();
+  p.set("inputs", names);
+  EXPECT_EQ(error_of(p), "no error");
 }
 
 TEST(Settings, EmptyListsAreEmpty)

@@ -14,6 +14,7 @@ import textwrap
 from collections.abc import Iterable
 
 from nav2_pyif_protocol.constants import (
+    MAX_INPUTS,
     OPS_BY_PLUGIN,
     PROTOCOL_ERRORS,
     PROTOCOL_VERSION,
@@ -428,6 +429,10 @@ def constants_hpp() -> str:
         "",
         "// Sent in every request and reply. Decoders refuse any other value (VersionMismatch).",
         f"inline constexpr std::int64_t kProtocolVersion = {PROTOCOL_VERSION};",
+        "",
+        "// The input names one session may send (a controller's `inputs` parameter): the host",
+        "// keeps the latest message of each.",
+        f"inline constexpr std::size_t kMaxInputs = {MAX_INPUTS};",
         "",
         *comment(
             "The protocol's own error types (error.type). The nav2_core exception names travel "

@@ -27,6 +27,7 @@ from nav2_pyif_protocol.constants import Op, PluginType
 from nav2_pyif_protocol.schema import RESTORED
 
 from nav2_pyif.exceptions import PlannerLoadError
+from nav2_pyif.server.session_limit import MAX_SESSIONS
 
 #: Every op a plugin re-sends to a new session of its own (schema.RESTORED), in that order: a
 #: new worker is told the same, from the latest of each the session sent.
@@ -152,7 +153,8 @@ def _encode_all(requests: list[Request]) -> list[tuple[str, bytes]]:
 
 class Journal:
     def __init__(self) -> None:
-        self._sessions: dict[str, SessionRecord] = {}
+        self._sessions: dict[str, SessionRecord] = {}  # the one heard from least recently first
+        self.max_sessions = MAX_SESSIONS
         self._lock = threading.Lock()
 
     @staticmethod
@@ -184,11 +186,17 @@ class Journal:
     def _apply(self, request: Request, rejected: dict[str, str], status: Any = None) -> None:
         op, body = request.op, request.body
         if op is Op.CONFIGURE:
+            self._sessions.pop(request.sid, None)
+            if len(self._sessions) >= self.max_sessions:
+                # The planner keeps as many (session_limit), so the journal need not keep more:
+                # it forgets the session it heard from least recently (the first: see below).
+                del self._sessions[next(iter(self._sessions))]
             self._sessions[request.sid] = SessionRecord(request.sid, request.epoch, dict(body))
             return
         record = self._sessions.get(request.sid)
         if record is None or record.epoch != request.epoch:
             return
+        self._sessions[request.sid] = self._sessions.pop(request.sid)  # heard from last
         record.version += 1
         if op is Op.CLEANUP:
             del self._sessions[request.sid]

@@ -53,6 +53,7 @@ from nav2_pyif.plugin import PlannerPlugin
 from nav2_pyif.progress_checker import ProgressChecker
 from nav2_pyif.server.followed_plan import follow_plan
 from nav2_pyif.server.heap import settle_heap
+from nav2_pyif.server.log_throttle import ThrottledWarning
 from nav2_pyif.server.results import (
     checked_bool,
     checked_bounds,
@@ -65,6 +66,7 @@ from nav2_pyif.server.results import (
     tolerances_to_wire,
 )
 from nav2_pyif.server.returns import return_site
+from nav2_pyif.server.session_limit import MAX_SESSIONS, session_to_end
 from nav2_pyif.smoother import Smoother
 
 MAX_TRACEBACK_CHARS = 16_000
@@ -80,6 +82,7 @@ class Session:
     active: bool = False
     running_seq: int | None = None
     cancel_requested: threading.Event = field(default_factory=threading.Event)
+    last_call: float = field(default_factory=time.monotonic)  # which session_limit ends first
 
 
 def _qualname(exc: BaseException) -> str:
@@ -146,6 +149,8 @@ class PlannerRuntime:
         self.label = label or planner_class.__qualname__
         self.log = logger or logging.getLogger("nav2_pyif.server.host")
         self.sessions: dict[str, Session] = {}
+        self.max_sessions = MAX_SESSIONS
+        self._ended_idle = ThrottledWarning(self.log)  # a configure flood may end many
         # cancel_plan has its own key (handle_cancel), never a call.
         self._served_ops = OPS_BY_PLUGIN[self.plugin_type] - {Op.CANCEL_PLAN}
         self._handlers: dict[Op, Callable[[Session, Request], Body]] = {
@@ -224,6 +229,7 @@ class PlannerRuntime:
                 f"session {request.sid} epoch {request.epoch} is not known to host "
                 f"{self.host_id}; re-send configure",
             )
+        session.last_call = time.monotonic()
         if "costmap" in request.body:
             session.context.costmap = Costmap.from_wire(
                 request.body["costmap"], session.context.inflation
@@ -366,6 +372,20 @@ class PlannerRuntime:
         previous = self.sessions.pop(request.sid, None)
         if previous is not None:
             self._safe_cleanup(previous)
+        idle = session_to_end(self.sessions, request.sid, time.monotonic(), self.max_sessions)
+        if idle is not None:
+            del self.sessions[idle.sid]
+            self._safe_cleanup(idle)
+            self._ended_idle(
+                "%s: session %s (%s) ended, idle for %.0f s, to make room for session %s: "
+                "the planner keeps at most %d",
+                self.label,
+                idle.sid[:8],
+                idle.context.node_name,
+                time.monotonic() - idle.last_call,
+                request.sid[:8],
+                self.max_sessions,
+            )
         planner = self.planner_class()
         nav2_params = body.get("nav2_params") or {}
         context = PluginContext(

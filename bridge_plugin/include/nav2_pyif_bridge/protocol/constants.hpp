@@ -18,6 +18,10 @@ namespace nav2_pyif_bridge::protocol
 // Sent in every request and reply. Decoders refuse any other value (VersionMismatch).
 inline constexpr std::int64_t kProtocolVersion = 2;
 
+// The input names one session may send (a controller's `inputs` parameter): the host
+// keeps the latest message of each.
+inline constexpr std::size_t kMaxInputs = 64;
+
 // The protocol's own error types (error.type). The nav2_core exception names travel as plain
 // strings too; mapping them to exceptions is the plugin's job (client/error_mapping.hpp).
 namespace error_type
