@@ -13,6 +13,7 @@ import tempfile
 import time
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -179,6 +180,21 @@ def zsession_factory() -> Iterator[object]:
     yield make
     for session in sessions:
         session.close()
+
+
+def configure_body(plugin_type: str = "controller", **fields: Any) -> dict[str, Any]:
+    """A configure request's body as controller_server's FollowPath sends it (its costmap:
+    make_costmap()); ``fields`` replace or add fields."""
+    body: dict[str, Any] = {
+        "plugin_type": plugin_type,
+        "name": "FollowPath",
+        "node": "controller_server",
+        "params": {},
+        "global_frame": "odom",
+        "robot_base_frame": "base_link",
+        "costmap": make_costmap().to_wire(),
+    }
+    return body | fields
 
 
 def make_costmap(size: int = 40, version: int = 1, frame: str = "odom") -> Costmap:

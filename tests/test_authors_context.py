@@ -22,7 +22,7 @@ from nav2_pyif_protocol.arrays import pack_poses
 from nav2_pyif_protocol.codec import Request, decode_request, encode_request
 from nav2_pyif_protocol.constants import Op
 
-from tests.conftest import make_costmap
+from tests.conftest import configure_body, make_costmap
 from tests.test_runtime import POSE, Driver
 
 pytestmark = pytest.mark.unit
@@ -43,31 +43,17 @@ class Told(api.Controller):
 
 
 def configure(driver: Driver, nav2_params: dict[str, Any] | None) -> None:
-    body: dict[str, Any] = {
-        "plugin_type": driver.plugin_type,
-        "name": "FollowPath",
-        "node": "controller_server",
-        "params": {},
-        "global_frame": "odom",
-        "robot_base_frame": "base_link",
-        "costmap": Costmap(make_costmap().data, 0.05, footprint=RECTANGLE).to_wire(),
-    }
+    body = configure_body(
+        driver.plugin_type,
+        costmap=Costmap(make_costmap().data, 0.05, footprint=RECTANGLE).to_wire(),
+    )
     if nav2_params is not None:
         body["nav2_params"] = nav2_params
     assert driver.call(Op.CONFIGURE, body).ok
 
 
 def test_nav2_params_survive_the_codec() -> None:
-    body = {
-        "plugin_type": "controller",
-        "name": "FollowPath",
-        "node": "controller_server",
-        "params": {},
-        "global_frame": "odom",
-        "robot_base_frame": "base_link",
-        "costmap": make_costmap().to_wire(),
-        "nav2_params": NAV2,
-    }
+    body = configure_body(nav2_params=NAV2)
     decoded = decode_request(encode_request(Request(Op.CONFIGURE, "s", 1, 1, body)))
     assert decoded.body["nav2_params"] == NAV2
 

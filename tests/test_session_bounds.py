@@ -24,20 +24,12 @@ from nav2_pyif_protocol.codec import Reply, Request, decode_reply, encode_reques
 from nav2_pyif_protocol.constants import MAX_INPUTS, Op
 from sensor_msgs.msg import Imu
 
-from tests.conftest import make_costmap
+from tests.conftest import configure_body
 from tests.fixtures.echo_planners import EchoController
 
 pytestmark = pytest.mark.unit
 
-CONFIGURE = {
-    "plugin_type": "controller",
-    "name": "FollowPath",
-    "node": "controller_server",
-    "params": {},
-    "global_frame": "odom",
-    "robot_base_frame": "base_link",
-    "costmap": make_costmap().to_wire(),
-}
+CONFIGURE = configure_body()
 
 
 def call(runtime: PlannerRuntime, op: Op, sid: str, body: dict[str, Any]) -> Reply:
