@@ -556,7 +556,8 @@ class Carried:
 
 def no_reply_message(op: str, prefix: str, waited: float, timeout: float) -> str:
     """Why a call has no reply [s]: its timeout ran out, or Zenoh ended the query before
-    that, as it does when the host it went to is gone (the C++ plugin says the same)."""
+    that, as it does when the host it went to is gone (the C++ plugin says the same, with the
+    same 5 % spare: a query that ran out may end a little early by Zenoh's clock)."""
     if waited < timeout * 0.95:
         return (
             f"{op} got no reply from {prefix}: the query ended after {waited * 1000:.0f} ms "
