@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 
 #include "zenoh.hxx"
@@ -149,8 +150,8 @@ void retire(std::shared_ptr<zenoh::Session> session)
 }
 
 // The session the plugins of `options` share now, and whether this call opened it: `stranded`
-// replaced by a new one (and retired), unless a plugin sharing it did that already. Throws as
-// Session::open does (the host still unreachable).
+// replaced by a new one (the caller retires it), unless a plugin sharing it did that already.
+// Throws as Session::open does (the host still unreachable).
 std::pair<std::shared_ptr<zenoh::Session>, bool> reopen_shared_session(
   const ZenohOptions & options, const std::shared_ptr<zenoh::Session> & stranded)
 {
@@ -171,7 +172,6 @@ std::pair<std::shared_ptr<zenoh::Session>, bool> reopen_shared_session(
     return {session, false};
   }
   session = std::move(fresh);
-  retire(stranded);
   return {session, true};
 }
 
@@ -311,24 +311,37 @@ bool ZenohTransport::try_open(bool quiet)
 #if defined(ZENOHCXX_ZENOHPICO)
 bool ZenohTransport::try_reopen(const std::shared_ptr<zenoh::Session> & stranded)
 {
-  std::unique_ptr<Link> link;
+  std::shared_ptr<zenoh::Session> session;
   bool opened_here = false;
   try {
-    auto [session, opened] = reopen_shared_session(options_, stranded);
-    opened_here = opened;
-    link = link_on(std::move(session));
+    std::tie(session, opened_here) = reopen_shared_session(options_, stranded);
   } catch (const std::exception & error) {
     client::log(
       logger_, LogLevel::Debug,
       "cannot open a new Zenoh session (" + where_ + "): " + error.what() + "; retrying");
     return false;
   }
-  std::unique_ptr<Link> old;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    old = std::exchange(link_, std::move(link));
+  // The old link goes deaf before the new one hears: a token withdrawn as the old session
+  // closes must not follow the new session's "alive".
+  std::unique_lock<std::mutex> lock(mutex_);
+  link_->retired->store(true);
+  lock.unlock();
+  if (opened_here) {
+    retire(stranded);
   }
-  old->retired->store(true);
+  std::unique_ptr<Link> link;
+  try {
+    link = link_on(session);
+  } catch (const std::exception & error) {
+    client::log(
+      logger_, LogLevel::Warn,
+      "cannot watch " + hosts_key_ + " on the new Zenoh session (" + where_ + "): " +
+      error.what() + "; retrying");
+    return false;  // the next try adopts the new session (replaced_elsewhere)
+  }
+  lock.lock();
+  std::unique_ptr<Link> old = std::exchange(link_, std::move(link));
+  lock.unlock();
   // Kept, never destroyed: its subscriber is not undeclared on the retired session.
   static_cast<void>(old.release());
   client::log(
