@@ -18,7 +18,7 @@ from nav2_pyif_protocol.codec import Reply, Request, decode_request, encode_repl
 from nav2_pyif_protocol.constants import OPS_BY_PLUGIN, Op, PluginType
 from nav2_pyif_protocol.schema import COSTMAP_SENT, RESTORED, SMOOTH_GRACE_S, CostmapSent
 
-from tests.conftest import ROOT, make_costmap
+from tests.conftest import ROOT, configure_body, make_costmap
 
 pytestmark = pytest.mark.unit
 
@@ -58,15 +58,7 @@ POSE = {"frame_id": "odom", "stamp_ns": 7, "pose": [1.0, 1.0, 0.0, 0.0, 0.0, 0.0
 
 
 def _configure(plugin: PluginType) -> dict[str, Any]:
-    return {
-        "plugin_type": plugin.value,
-        "name": "plugin",
-        "node": "server",
-        "params": {},
-        "global_frame": "odom",
-        "robot_base_frame": "base_link",
-        "costmap": make_costmap().to_wire(),
-    }
+    return configure_body(plugin.value, name="plugin", node="server")
 
 
 def _note(journal: Journal, op: Op, body: dict[str, Any], status: str | None = None) -> None:

@@ -20,7 +20,7 @@ from nav2_pyif_protocol.arrays import pack_poses
 from nav2_pyif_protocol.codec import Reply, Request, decode_reply, encode_request
 from nav2_pyif_protocol.constants import PROTOCOL_VERSION, Op
 
-from tests.conftest import CONTROLLER_ERRORS, make_costmap
+from tests.conftest import CONTROLLER_ERRORS, configure_body
 from tests.fixtures.echo_planners import FaultyController, LinePlanner
 
 pytestmark = pytest.mark.unit
@@ -43,18 +43,7 @@ class Driver:
         return decode_reply(self.runtime.handle(encode_request(request)), op)
 
     def configure(self, params: dict[str, Any] | None = None) -> Reply:
-        return self.call(
-            Op.CONFIGURE,
-            {
-                "plugin_type": self.plugin_type,
-                "name": "FollowPath",
-                "node": "controller_server",
-                "params": params or {},
-                "global_frame": "odom",
-                "robot_base_frame": "base_link",
-                "costmap": make_costmap().to_wire(),
-            },
-        )
+        return self.call(Op.CONFIGURE, configure_body(self.plugin_type, params=params or {}))
 
     def cycle(self) -> Reply:
         return self.call(Op.COMPUTE_VELOCITY_COMMANDS, {"pose": POSE, "velocity": [0.0] * 6})

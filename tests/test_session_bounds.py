@@ -20,21 +20,17 @@ from nav2_pyif.server.journal import Journal
 from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif.server.session_limit import IDLE_S
 from nav2_pyif_bench.mutations import load_seeds, mutate
-from nav2_pyif_protocol.codec import Reply, Request, decode_reply, encode_request
+from nav2_pyif_protocol.codec import Request, encode_request
 from nav2_pyif_protocol.constants import MAX_INPUTS, Op
 from sensor_msgs.msg import Imu
 
 from tests.conftest import configure_body
 from tests.fixtures.echo_planners import EchoController
+from tests.test_runtime import Driver
 
 pytestmark = pytest.mark.unit
 
 CONFIGURE = configure_body()
-
-
-def call(runtime: PlannerRuntime, op: Op, sid: str, body: dict[str, Any]) -> Reply:
-    request = Request(op, sid, 1, 1, body)
-    return decode_reply(runtime.handle(encode_request(request)), op)
 
 
 @pytest.fixture
@@ -42,18 +38,20 @@ def runtime() -> PlannerRuntime:
     runtime = PlannerRuntime(EchoController, "test-host")
     runtime.max_sessions = 3
     for sid in ("a", "b", "c"):
-        assert call(runtime, Op.CONFIGURE, sid, CONFIGURE).ok
+        assert Driver(runtime).call(Op.CONFIGURE, CONFIGURE, sid).ok
     return runtime
 
 
 def test_a_new_session_beyond_the_limit_is_refused_while_every_one_is_in_use(
     runtime: PlannerRuntime,
 ) -> None:
-    refused = call(runtime, Op.CONFIGURE, "d", CONFIGURE)
+    refused = Driver(runtime).call(Op.CONFIGURE, CONFIGURE, "d")
     assert not refused.ok and refused.error is not None
     assert "serves 3 sessions already" in refused.error.message
     assert set(runtime.sessions) == {"a", "b", "c"}
-    assert call(runtime, Op.CONFIGURE, "b", CONFIGURE).ok  # one of them again: no new session
+    assert (
+        Driver(runtime).call(Op.CONFIGURE, CONFIGURE, "b").ok
+    )  # one of them again: no new session
 
 
 def test_a_new_session_ends_the_one_idle_longest(runtime: PlannerRuntime) -> None:
@@ -61,21 +59,21 @@ def test_a_new_session_ends_the_one_idle_longest(runtime: PlannerRuntime) -> Non
     runtime.sessions["b"].last_call -= IDLE_S + 5
     cleaned: list[str] = []
     runtime.sessions["a"].planner.cleanup = lambda: cleaned.append("a")  # type: ignore[method-assign]
-    assert call(runtime, Op.CONFIGURE, "d", CONFIGURE).ok
+    assert Driver(runtime).call(Op.CONFIGURE, CONFIGURE, "d").ok
     assert set(runtime.sessions) == {"b", "c", "d"}
     assert cleaned == ["a"]  # its planner was cleaned up
-    gone = call(runtime, Op.ACTIVATE, "a", {})
+    gone = Driver(runtime).call(Op.ACTIVATE, {}, "a")
     assert gone.error is not None and gone.error.type == "SessionUnknown"  # a live plugin
     # would configure again on this reply; here "b" is now the one idle longest
-    assert call(runtime, Op.CONFIGURE, "a", CONFIGURE).ok
+    assert Driver(runtime).call(Op.CONFIGURE, CONFIGURE, "a").ok
     assert set(runtime.sessions) == {"c", "d", "a"}
 
 
 def test_a_call_keeps_a_session_from_counting_as_idle(runtime: PlannerRuntime) -> None:
     for sid in ("a", "b", "c"):
         runtime.sessions[sid].last_call -= IDLE_S + 10
-    assert call(runtime, Op.ACTIVATE, "a", {}).ok
-    assert call(runtime, Op.CONFIGURE, "d", CONFIGURE).ok
+    assert Driver(runtime).call(Op.ACTIVATE, {}, "a").ok
+    assert Driver(runtime).call(Op.CONFIGURE, CONFIGURE, "d").ok
     assert set(runtime.sessions) == {"a", "c", "d"}  # b, idle longest of the two idle
 
 

@@ -20,7 +20,7 @@ from nav2_pyif.server.runtime import PlannerRuntime
 from nav2_pyif_protocol.codec import Request, decode_reply, encode_request
 from nav2_pyif_protocol.constants import Op, PluginType
 
-from tests.conftest import make_costmap
+from tests.conftest import configure_body, make_costmap
 from tests.fixtures.echo_planners import EchoController
 
 pytestmark = pytest.mark.unit
@@ -54,18 +54,7 @@ class Plugin:
         return answer.body
 
     def configure(self, gain: float) -> None:
-        self.call(
-            Op.CONFIGURE,
-            {
-                "plugin_type": PluginType.CONTROLLER.value,
-                "name": self.name,
-                "node": "controller_server",
-                "params": {"gain": gain},
-                "global_frame": "odom",
-                "robot_base_frame": "base_link",
-                "costmap": make_costmap(version=1).to_wire(),
-            },
-        )
+        self.call(Op.CONFIGURE, configure_body(name=self.name, params={"gain": gain}))
         self.call(Op.ACTIVATE, {})
 
     def set_plan(self, poses: int) -> None:

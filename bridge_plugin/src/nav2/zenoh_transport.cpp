@@ -104,6 +104,12 @@ struct SharedSessions
   {
     return options.owner + "|" + config_file(options) + "|" + json_string_list(options.connect);
   }
+  // The session the plugins of `options` share now (null: none opened yet).
+  std::shared_ptr<zenoh::Session> current(const ZenohOptions & options)
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    return by_id[id_of(options)];
+  }
 };
 
 std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options)
@@ -123,9 +129,8 @@ std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options
 // swapping, while its port still accepts): the session stays open, connected to nothing, and
 // the plugin would never see its host again. Reproduced with a host stopped for 30 s (a 5 s stop
 // recovered by itself); most likely the same in nav2_bringup's composed container under load,
-// after a 2 s stop. Such
-// a session is replaced by a new one once it has been connected to nothing this long: a
-// reconnection of its own, when it works, takes about a second.
+// after a 2 s stop. Such a session is replaced by a new one once it has been connected to
+// nothing this long: a reconnection of its own, when it works, takes about a second.
 constexpr bool kWatchesSession = true;
 constexpr auto kReopenAfter = std::chrono::seconds(5);
 
@@ -156,30 +161,19 @@ std::pair<std::shared_ptr<zenoh::Session>, bool> reopen_shared_session(
   const ZenohOptions & options, const std::shared_ptr<zenoh::Session> & stranded)
 {
   auto & shared = SharedSessions::instance();
-  const std::string id = SharedSessions::id_of(options);
-  {
-    std::lock_guard<std::mutex> lock(shared.mutex);
-    if (shared.by_id[id] != stranded) {
-      return {shared.by_id[id], false};
-    }
+  if (auto now = shared.current(options); now != stranded) {
+    return {now, false};
   }
   // Opened unlocked: an open that waits on an unanswering host holds up no other plugin.
   auto fresh = std::make_shared<zenoh::Session>(zenoh::Session::open(make_config(options)));
   std::lock_guard<std::mutex> lock(shared.mutex);
-  auto & session = shared.by_id[id];
+  auto & session = shared.by_id[SharedSessions::id_of(options)];
   if (session != stranded) {  // another plugin's keeper was quicker
     retire(std::move(fresh));
     return {session, false};
   }
   session = std::move(fresh);
   return {session, true};
-}
-
-bool replaced_elsewhere(const ZenohOptions & options, const std::shared_ptr<zenoh::Session> & mine)
-{
-  auto & shared = SharedSessions::instance();
-  std::lock_guard<std::mutex> lock(shared.mutex);
-  return shared.by_id[SharedSessions::id_of(options)] != mine;
 }
 
 #else
@@ -337,7 +331,7 @@ bool ZenohTransport::try_reopen(const std::shared_ptr<zenoh::Session> & stranded
       logger_, LogLevel::Warn,
       "cannot watch " + hosts_key_ + " on the new Zenoh session (" + where_ + "): " +
       error.what() + "; retrying");
-    return false;  // the next try adopts the new session (replaced_elsewhere)
+    return false;  // the next try adopts the new session (SharedSessions::current)
   }
   lock.lock();
   std::unique_ptr<Link> old = std::exchange(link_, std::move(link));
@@ -369,7 +363,7 @@ void ZenohTransport::keep_linked()
         return;
       }
 #if defined(ZENOHCXX_ZENOHPICO)
-    } else if (replaced_elsewhere(options_, session)) {
+    } else if (SharedSessions::instance().current(options_) != session) {
       try_reopen(session);  // another plugin of this server reopened the session they share
     } else if (!connected_to_nothing(*session)) {
       stranded_since = {};

@@ -372,7 +372,8 @@ class PlannerRuntime:
         previous = self.sessions.pop(request.sid, None)
         if previous is not None:
             self._safe_cleanup(previous)
-        idle = session_to_end(self.sessions, request.sid, time.monotonic(), self.max_sessions)
+        now = time.monotonic()
+        idle = session_to_end(self.sessions, request.sid, now, self.max_sessions)
         if idle is not None:
             del self.sessions[idle.sid]
             self._safe_cleanup(idle)
@@ -382,7 +383,7 @@ class PlannerRuntime:
                 self.label,
                 idle.sid[:8],
                 idle.context.node_name,
-                time.monotonic() - idle.last_call,
+                now - idle.last_call,
                 request.sid[:8],
                 self.max_sessions,
             )
