@@ -10,6 +10,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -60,10 +61,13 @@ def every_core_busy() -> Iterator[list[subprocess.Popen[bytes]]]:
 def test_the_report_is_the_same_on_an_idle_and_a_loaded_machine(tmp_path: Path) -> None:
     idle = evaluate(tmp_path / "idle")
     with every_core_busy() as spinners:
+        started = time.monotonic()
         loaded = evaluate(tmp_path / "loaded")
+        took = time.monotonic() - started
         burnt = [cpu_seconds(s.pid) for s in spinners]
-    # the load was real: each spinner took a good share of a core while the eval ran
-    assert min(burnt) > 5.0, burnt
+    # the load was real: each spinner took a good share of a core while the eval ran (a share
+    # of its wall time, not a fixed number of seconds: a faster machine ends the eval sooner)
+    assert min(burnt) > 0.25 * took, (burnt, took)
     assert [r["planner"] for r in idle["summary"]] == ["pure_pursuit", "apf"]
     assert len(idle["runs"]) == 4
     assert any(r["success"] for r in idle["runs"]), idle["runs"]  # not four failures alike
