@@ -373,6 +373,15 @@ zenoh_c_into() {  # SOURCE BUILD INSTALL [CMAKE ARGS...]: zenoh-c on crates.io's
         's#version = "([0-9.]+)", git = "https://github.com/eclipse-zenoh/zenoh(\.git)?", (branch|tag|rev) = "[^"]*"#version = "=\1"#' \
         "$manifest"
     done
+  # The build script sizes zenoh-c's opaque types by building build-resources/opaque-types
+  # with --offline, which must then re-resolve its lock for crates.io's zenoh: a crate the
+  # main build never downloads (zenoh-link-quic_datagram) fails that resolution, the script
+  # ignores the failure, and cbindgen's header then lacks every opaque struct ("no sigatures
+  # found for building generic z_take_from_loaned"). Resolve and fetch it while online.
+  local opaque="$src/build-resources/opaque-types/Cargo.toml"
+  if [ -f "$opaque" ]; then
+    cargo +stable fetch --manifest-path "$opaque" || die "zenoh-c: cargo fetch for $opaque failed"
+  fi
   # The toolchain is the installed stable one: zenoh-c's rust-toolchain.toml pins a version
   # that rustup would try to download.
   CARGO_BUILD_JOBS="$JOBS" cmake_project "zenoh-c ${src##*/}" "$src" "$build" "$install" \
