@@ -97,13 +97,14 @@ def data(
     from nav2_pyif_planners.mppi_nav2.optimizer import furthest_reached, path_valid
 
     s = settings(track_unknown_space=False)
-    xj, yj = jnp.asarray(x), jnp.asarray(y)
+    # the step's layout is time-major: (T, batch)
+    xj, yj, yawj = jnp.asarray(x.T), jnp.asarray(y.T), jnp.asarray(yaw.T)
     return critics.CriticData(
-        x=xj, y=yj, yaw=jnp.asarray(yaw),
-        v=Controls(jnp.asarray(vx), jnp.zeros_like(xj), jnp.asarray(wz)),
+        x=xj, y=yj, yaw=yawj, cos=jnp.cos(yawj), sin=jnp.sin(yawj),
+        v=Controls(jnp.asarray(vx.T), jnp.zeros_like(xj), jnp.asarray(wz.T)),
         pose=jnp.asarray(pose, jnp.float32), goal=jnp.asarray(goal, jnp.float32),
         path=padded, count=count, valid=path_valid(g, padded, count, s),
-        furthest=furthest_reached(xj[:, -1], yj[:, -1], padded, count), grid=g,
+        furthest=furthest_reached(xj[-1], yj[-1], padded, count), grid=g,
         goal_tolerance=jnp.float32(goal_tolerance),
     )  # fmt: skip
 
@@ -444,3 +445,28 @@ def test_ackermann_turns_no_tighter_than_min_turning_r() -> None:
     tight = data([x, x], [y, y], vx=np.array([[0.2], [0.2]]), wz=np.array([[1.0], [0.3]]))
     cost = np.asarray(critics.constraint(tight, c, s))
     assert cost[0] == pytest.approx(4.0 * 0.2 * 0.05 * 56, rel=1e-4) and cost[1] == 0.0
+
+
+# --- the step's own arithmetic -----------------------------------------------------------
+
+
+def test_cos_sin_by_products_matches_libm_at_any_heading() -> None:
+    from nav2_pyif_planners.mppi_nav2.models import cos_sin
+
+    angles = np.concatenate(
+        [np.linspace(-40.0, 40.0, 20001), [0.0, math.pi, -math.pi, 2 * math.pi, 1e-8]]
+    ).astype(np.float32)
+    c, s = (np.asarray(a) for a in jax.jit(cos_sin)(jnp.asarray(angles)))
+    assert np.abs(c - np.cos(angles.astype(np.float64))).max() < 2e-6
+    assert np.abs(s - np.sin(angles.astype(np.float64))).max() < 2e-6
+    assert np.abs(c * c + s * s - 1.0).max() < 2e-6
+
+
+def test_counting_finds_what_searchsorted_finds() -> None:
+    rng = np.random.default_rng(7)
+    along = np.concatenate([[0.0], np.cumsum(rng.choice([0.0, 0.05, 0.0707], 40))])
+    along = np.concatenate([along, np.full(15, np.inf)]).astype(np.float32)  # the padding
+    queries = rng.uniform(-0.1, along[40] + 0.3, (13, 500)).astype(np.float32)
+    queries[0, :41] = along[:41]  # exact hits: "right" counts them
+    counted = np.asarray(critics._count_at_most(jnp.asarray(along), jnp.asarray(queries)))
+    assert counted.tolist() == np.searchsorted(along, queries, side="right").tolist()

@@ -43,6 +43,7 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
         Inputs,
         _iterate,
         furthest_reached,
+        noise_bank,
         path_valid,
         step,
     )
@@ -53,7 +54,7 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
         Parameters({"batch_size": rollouts, "path_points": points}), 20.0, logging.getLogger("p")
     )
     rng = np.random.default_rng(0)
-    bank = jnp.asarray(rng.standard_normal((8, 2, rollouts, steps), np.float32) * 0.2)
+    bank = noise_bank(rng.standard_normal((8, 2, rollouts, steps), np.float32) * 0.2)
     cells = np.zeros((100, 100), np.uint8)
     cells[:, 70:] = 254
     rectangle = [[0.2, 0.15], [0.2, -0.15], [-0.2, -0.15], [-0.2, 0.15]]
@@ -84,26 +85,29 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
         lambda *a: step(*a, grid, s), sequence, history, bank, pick, x, repeat=repeat
     )
     parts["noise pick and roll"] = _timed(
-        lambda b, p: jnp.roll(b[p[0]], p[1], axis=1), bank, pick, repeat=repeat
+        lambda b, p: jax.lax.dynamic_slice_in_dim(b[p[0]], p[1], rollouts, axis=2),
+        bank,
+        pick,
+        repeat=repeat,
     )
-    noise = Controls(bank[1, 0], jnp.zeros(()), bank[1, 1])
+    noise = Controls(bank[1, 0, :, :rollouts], jnp.zeros(()), bank[1, 1, :, :rollouts])
     u = Controls(sequence[0], sequence[1], sequence[2])
-    sampled = Controls(*(a[None, :] + n for a, n in zip(u, noise, strict=True)))
+    sampled = Controls(*(a[:, None] + n for a, n in zip(u, noise, strict=True)))
     parts["roll-out scan (limits, poses)"] = _timed(
         lambda c: roll_out(c, tuple(x.speed), tuple(x.pose), s), sampled, repeat=repeat
     )
-    _, v, rx, ry, ryaw = roll_out(sampled, tuple(x.speed), tuple(x.pose), s)
+    r = roll_out(sampled, tuple(x.speed), tuple(x.pose), s)
     parts["furthest plan point"] = _timed(
-        lambda a, b: furthest_reached(a[:, -1], b[:, -1], jnp.asarray(path), x.count),
-        rx,
-        ry,
+        lambda a, b: furthest_reached(a[-1], b[-1], jnp.asarray(path), x.count),
+        r.x,
+        r.y,
         repeat=repeat,
     )
     valid = path_valid(grid, jnp.asarray(path), x.count, s)
     data = CriticData(
-        rx, ry, ryaw, v, jnp.asarray(x.pose), jnp.asarray(x.goal), jnp.asarray(path),
-        jnp.int32(x.count), valid,
-        furthest_reached(rx[:, -1], ry[:, -1], jnp.asarray(path), x.count), grid,
+        r.x, r.y, r.yaw, r.cos, r.sin, r.velocities, jnp.asarray(x.pose), jnp.asarray(x.goal),
+        jnp.asarray(path), jnp.int32(x.count), valid,
+        furthest_reached(r.x[-1], r.y[-1], jnp.asarray(path), x.count), grid,
         jnp.float32(0.25),
     )  # fmt: skip
     extra = [

@@ -19,7 +19,7 @@ from nav2_pyif.geometry import pose_xy_yaw
 
 from nav2_pyif_planners.mppi_nav2.costs import Grid
 from nav2_pyif_planners.mppi_nav2.fleet import compute_batch, optimise_fleet
-from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, pack, packed_step
+from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, noise_bank, pack, packed_step
 from nav2_pyif_planners.mppi_nav2.params import read_settings
 from nav2_pyif_planners.mppi_nav2.path import PathHandler, padded
 
@@ -71,7 +71,7 @@ class Nav2MPPI(Controller):
         sigma = np.array([s.vx_std, s.vy_std, s.wz_std] if s.holonomic else [s.vx_std, s.wz_std])
         shape = (max(sets, 1), len(sigma), s.batch_size, s.time_steps)
         draw = self.rng.standard_normal(shape, np.float32)
-        self.bank = jnp.asarray(draw * sigma[None, :, None, None].astype(np.float32))
+        self.bank = noise_bank(draw * sigma[None, :, None, None].astype(np.float32))
         self._check_footprint()
         self._grid: Grid | None = None
         self._grid_version: int | None = None

@@ -45,10 +45,11 @@ def point_cost(grid: Grid, x: Any, y: Any) -> Any:
     return jnp.where(inside, cost, NO_INFORMATION)
 
 
-def footprint_cost(grid: Grid, x: Any, y: Any, yaw: Any) -> Any:
-    """Nav2's footprintCostAtPose at each pose (any shape): the most costly cell under the
-    footprint's outline; LETHAL when any outline point is off the map."""
-    c, s = jnp.cos(yaw)[..., None], jnp.sin(yaw)[..., None]
+def footprint_cost(grid: Grid, x: Any, y: Any, cos: Any, sin: Any) -> Any:
+    """Nav2's footprintCostAtPose at each pose (any shape; its heading's ``cos`` and
+    ``sin``, as the roll-out computed them): the most costly cell under the footprint's
+    outline; LETHAL when any outline point is off the map."""
+    c, s = cos[..., None], sin[..., None]
     ox, oy = grid.outline[:, 0], grid.outline[:, 1]
     wx = x[..., None] + c * ox - s * oy
     wy = y[..., None] + s * ox + c * oy

@@ -29,8 +29,9 @@ PI = math.pi
 
 
 class CriticData(NamedTuple):
-    """What critics score. Rollouts x, y, yaw: (batch, T) poses after each step; ``v``: the
-    velocities they moved with, (batch, T) per axis, the robot's own speed first. ``pose``
+    """What critics score. Rollouts x, y, yaw: (T, batch) poses after each step, with the
+    heading's ``cos`` and ``sin``; ``v``: the velocities they moved with, (T, batch) per
+    axis, the robot's own speed first. ``pose``
     (x, y, yaw) the robot's; ``goal`` (x, y, yaw) the plan's last pose. ``path`` (P, 3) the
     pruned plan padded to P with its last pose, ``count`` its real length, ``valid`` (P,)
     whether each plan point is free (Nav2's path_pts_valid), ``furthest`` the index of the
@@ -40,6 +41,8 @@ class CriticData(NamedTuple):
     x: Any
     y: Any
     yaw: Any
+    cos: Any
+    sin: Any
     v: Controls
     pose: Any
     goal: Any
@@ -82,7 +85,7 @@ def constraint(data: CriticData, c: Critic, s: Settings) -> Any:
     out = jnp.maximum(v - max_vel, 0.0) + jnp.maximum(min_vel - v, 0.0)
     if s.motion_model == "Ackermann":
         out = out + jnp.maximum(s.min_turning_r - jnp.abs(data.v.vx) / jnp.abs(data.v.wz), 0.0)
-    return weighted((out * s.model_dt).sum(axis=1), c)
+    return weighted((out * s.model_dt).sum(axis=0), c)
 
 
 def _collides(cost: Any, consider_footprint: bool, s: Settings) -> Any:
@@ -96,12 +99,12 @@ def _collides(cost: Any, consider_footprint: bool, s: Settings) -> Any:
     return hit
 
 
-def _footprint_where_needed(data: CriticData, x: Any, y: Any, yaw: Any, cost: Any) -> Any:
+def _footprint_where_needed(data: CriticData, x: Any, y: Any, cos: Any, sin: Any, cost: Any) -> Any:
     """The footprint's cost where the centre's reaches the possible-collision cost (or when
     that is unknown), else the centre's."""
     possible = data.grid.robot[0]
     need = (cost >= possible) | (possible < 1.0)
-    return jnp.where(need, footprint_cost(data.grid, x, y, yaw), cost)
+    return jnp.where(need, footprint_cost(data.grid, x, y, cos, sin), cost)
 
 
 def cost_critic(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
@@ -110,10 +113,13 @@ def cost_critic(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
     checked where it may touch, with consider_footprint)."""
     step = c["trajectory_point_step"]
     count = s.time_steps // step
-    x, y = data.x[:, ::step][:, :count], data.y[:, ::step][:, :count]
-    yaw = data.yaw[:, ::step][:, :count]
+    x, y = data.x[::step][:count], data.y[::step][:count]
     cost = point_cost(data.grid, x, y)
-    score = _footprint_where_needed(data, x, y, yaw, cost) if c["consider_footprint"] else cost
+    if c["consider_footprint"]:
+        cos, sin = data.cos[::step][:count], data.sin[::step][:count]
+        score = _footprint_where_needed(data, x, y, cos, sin, cost)
+    else:
+        score = cost
     hit = (cost >= 1.0) & _collides(score, c["consider_footprint"], s)
     near_goal = within(data, c["near_goal_distance"])
     added = jnp.where(
@@ -121,8 +127,8 @@ def cost_critic(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
         c["critical_cost"],
         jnp.where(near_goal, 0.0, cost),
     )
-    collide = hit.any(axis=1)
-    total = jnp.where(collide, c["collision_cost"], added.sum(axis=1))
+    collide = hit.any(axis=0)
+    total = jnp.where(collide, c["collision_cost"], added.sum(axis=0))
     return weighted(total, c, c["cost_weight"] / 254.0 / count), collide.all()
 
 
@@ -134,7 +140,7 @@ def obstacles(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
     inside = cost < NO_INFORMATION  # off-map poses are never checked by footprint
     footprint = c["consider_footprint"]
     if footprint:
-        checked = _footprint_where_needed(data, data.x, data.y, data.yaw, cost)
+        checked = _footprint_where_needed(data, data.x, data.y, data.cos, data.sin, cost)
         possible = data.grid.robot[0]
         used = inside & ((cost >= possible) | (possible < 1.0))
         cost = jnp.where(inside, checked, cost)
@@ -143,17 +149,17 @@ def obstacles(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
     counts = cost >= 1.0
     hit = counts & _collides(cost, footprint, s)
     # poses before the first collision: Nav2 stops scoring a rollout there
-    before = jnp.cumsum(hit.astype(jnp.int32), axis=1) == 0
+    before = _running_sum(hit.astype(jnp.int32)) == 0
     _, inscribed, radius, scale = (data.grid.robot[i] for i in range(4))
     active = counts & before & (radius != 0.0) & (scale != 0.0)
     safe_scale = jnp.where(scale == 0.0, 1.0, scale)
     dist = (scale * inscribed - jnp.log(jnp.maximum(cost, 1.0)) + math.log(253.0)) / safe_scale
     dist = jnp.where(used, dist, dist - inscribed)
     margin = c["collision_margin_distance"]
-    raw = jnp.where(active & (dist < margin), margin - dist, 0.0).sum(axis=1)
+    raw = jnp.where(active & (dist < margin), margin - dist, 0.0).sum(axis=0)
     near_goal = within(data, c["near_goal_distance"])
-    repulsive = jnp.where(active & ~near_goal, radius - dist, 0.0).sum(axis=1)
-    collide = hit.any(axis=1)
+    repulsive = jnp.where(active & ~near_goal, radius - dist, 0.0).sum(axis=0)
+    collide = hit.any(axis=0)
     raw = jnp.where(collide, c["collision_cost"], raw)
     repulsive = (repulsive - repulsive.min()) / s.time_steps
     total = c["critical_weight"] * raw + c["repulsion_weight"] * repulsive
@@ -162,7 +168,7 @@ def obstacles(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
 
 def goal(data: CriticData, c: Critic, s: Settings) -> Any:
     """GoalCritic: within threshold_to_consider of the goal, the mean distance to it."""
-    d = jnp.hypot(data.x - data.goal[0], data.y - data.goal[1]).mean(axis=1)
+    d = jnp.hypot(data.x - data.goal[0], data.y - data.goal[1]).mean(axis=0)
     return jnp.where(within(data, c["threshold_to_consider"]), weighted(d, c), 0.0)
 
 
@@ -170,19 +176,19 @@ def goal_angle(data: CriticData, c: Critic, s: Settings) -> Any:
     """GoalAngleCritic: within threshold_to_consider, the mean heading error to the pruned
     plan's last pose (Nav2 1.3 reads the plan's, not the goal's, heading)."""
     heading = data.path[data.count - 1, 2]
-    err = jnp.abs(normalize(heading - data.yaw)).mean(axis=1)
+    err = jnp.abs(normalize(heading - data.yaw)).mean(axis=0)
     return jnp.where(within(data, c["threshold_to_consider"]), weighted(err, c), 0.0)
 
 
 def prefer_forward(data: CriticData, c: Critic, s: Settings) -> Any:
     """PreferForwardCritic: reverse speed integrated over time, until near the goal."""
-    back = (jnp.maximum(-data.v.vx, 0.0) * s.model_dt).sum(axis=1)
+    back = (jnp.maximum(-data.v.vx, 0.0) * s.model_dt).sum(axis=0)
     return jnp.where(within(data, c["threshold_to_consider"]), 0.0, weighted(back, c))
 
 
 def twirling(data: CriticData, c: Critic, s: Settings) -> Any:
     """TwirlingCritic: the mean turn rate, until within the goal checker's tolerance."""
-    turn = jnp.abs(data.v.wz).mean(axis=1)
+    turn = jnp.abs(data.v.wz).mean(axis=0)
     near = (data.goal_tolerance >= 0.0) & within(data, data.goal_tolerance)
     return jnp.where(near, 0.0, weighted(turn, c))
 
@@ -196,7 +202,7 @@ def path_follow(data: CriticData, c: Critic, s: Settings) -> Any:
     free = data.valid & (index >= start) & (index < last - 1)
     target = jnp.where(start < last - 1, jnp.where(free.any(), jnp.argmax(free), last - 1), start)
     p = data.path[target]
-    d = jnp.hypot(data.x[:, -1] - p[0], data.y[:, -1] - p[1])
+    d = jnp.hypot(data.x[-1] - p[0], data.y[-1] - p[1])
     skip = (data.count < 2) | within(data, c["threshold_to_consider"])
     return jnp.where(skip, 0.0, weighted(d, c))
 
@@ -217,8 +223,8 @@ def path_angle(data: CriticData, c: Critic, s: Settings) -> Any:
     elif mode == 2:
         flipped = jnp.abs(normalize(target[2] - bearing)) > PI / 2
         off = jnp.abs(normalize(pyaw - jnp.where(flipped, normalize(bearing + PI), bearing)))
-    towards = jnp.arctan2(target[1] - data.y[:, -1], target[0] - data.x[:, -1])
-    final = data.yaw[:, -1]
+    towards = jnp.arctan2(target[1] - data.y[-1], target[0] - data.x[-1])
+    final = data.yaw[-1]
     err = jnp.abs(normalize(towards - final))
     if mode == 1:
         towards = jnp.where(err < PI / 2, towards, normalize(towards + PI))
@@ -247,11 +253,11 @@ def path_align(data: CriticData, c: Critic, s: Settings) -> Any:
     along = jnp.concatenate([jnp.zeros(1), jnp.cumsum(seg)])
     along = jnp.where(index < segments, along, jnp.inf)
     step = c["trajectory_point_step"]
-    tx, ty, tyaw = data.x[:, ::step], data.y[:, ::step], data.yaw[:, ::step]
-    travelled = jnp.cumsum(jnp.hypot(jnp.diff(tx, axis=1), jnp.diff(ty, axis=1)), axis=1)
+    tx, ty, tyaw = data.x[::step], data.y[::step], data.yaw[::step]
+    travelled = _running_sum(jnp.hypot(jnp.diff(tx, axis=0), jnp.diff(ty, axis=0)))
     # the nearest plan distance to each travelled one (ties and the end as Nav2's
     # findClosestPathPt), never going back along the plan
-    above = jnp.searchsorted(along, travelled, side="right")
+    above = _count_at_most(along, travelled)
     last = jnp.maximum(segments - 1, 0)
     lower = along[jnp.maximum(above - 1, 0)]
     upper = along[jnp.minimum(above, along.shape[0] - 1)]
@@ -259,14 +265,14 @@ def path_align(data: CriticData, c: Critic, s: Settings) -> Any:
     nearest = jnp.where(above >= segments, last, nearest)
     nearest = _running_max(nearest)
     p = data.path[nearest]
-    dx, dy = p[..., 0] - tx[:, 1:], p[..., 1] - ty[:, 1:]
+    dx, dy = p[..., 0] - tx[1:], p[..., 1] - ty[1:]
     d2 = dx * dx + dy * dy
     if c["use_path_orientations"]:
-        dyaw = normalize(tyaw[:, 1:] - p[..., 2])
+        dyaw = normalize(tyaw[1:] - p[..., 2])
         d2 = d2 + dyaw * dyaw
     counted = data.valid[nearest]
-    samples = counted.sum(axis=1)
-    mean = jnp.where(counted, jnp.sqrt(d2), 0.0).sum(axis=1) / jnp.maximum(samples, 1)
+    samples = counted.sum(axis=0)
+    mean = jnp.where(counted, jnp.sqrt(d2), 0.0).sum(axis=0) / jnp.maximum(samples, 1)
     skip = (
         within(data, c["threshold_to_consider"]) | (segments < c["offset_from_furthest"]) | occupied
     )
@@ -274,12 +280,30 @@ def path_align(data: CriticData, c: Critic, s: Settings) -> Any:
 
 
 def _running_max(values: Any) -> Any:
-    """The running max along axis 1, a dozen steps unrolled: lax.cummax's reduce-window is
+    """The running max along axis 0, a dozen steps unrolled: lax.cummax's reduce-window is
     slower on a CPU for so few."""
-    out = [values[:, 0]]
-    for k in range(1, values.shape[1]):
-        out.append(jnp.maximum(out[-1], values[:, k]))
-    return jnp.stack(out, axis=1)
+    out = [values[0]]
+    for k in range(1, values.shape[0]):
+        out.append(jnp.maximum(out[-1], values[k]))
+    return jnp.stack(out)
+
+
+def _running_sum(values: Any) -> Any:
+    """The running sum along axis 0, unrolled (as ``_running_max``)."""
+    out = [values[0]]
+    for k in range(1, values.shape[0]):
+        out.append(out[-1] + values[k])
+    return jnp.stack(out)
+
+
+def _count_at_most(sorted_values: Any, queries: Any) -> Any:
+    """How many of ``sorted_values`` (P,) are at most each query: searchsorted's "right"
+    index. A comparison per value, unrolled: on a CPU, 6x faster than searchsorted's binary
+    search (a while loop of gathers) for the plan's few dozen points."""
+    count = jnp.zeros(queries.shape, jnp.int32)
+    for k in range(sorted_values.shape[0]):
+        count = count + (sorted_values[k] <= queries).astype(jnp.int32)
+    return count
 
 
 #: critic name -> scoring function; those returning a pair also say "all rollouts collide"

@@ -1,11 +1,13 @@
 """Motion models (Nav2 MPPI's motion_models.hpp, in JAX): how sampled controls become the
 velocities a rollout moves with, and how velocities become poses.
 
-Velocities are (batch, steps) arrays, one per axis (vx, vy, wz): a trailing axis of 2 or 3
-defeats XLA's vectorisation on a CPU."""
+Velocities are (steps, batch) arrays, one per axis (vx, vy, wz): a trailing axis of 2 or 3
+defeats XLA's vectorisation on a CPU, and time-major rows are what a scan over the steps
+reads and writes without a transpose."""
 
 from __future__ import annotations
 
+import math
 from typing import Any, NamedTuple
 
 import jax
@@ -15,7 +17,7 @@ from nav2_pyif_planners.mppi_nav2.params import Settings
 
 
 class Controls(NamedTuple):
-    """Velocity commands per axis, each (..., steps) float32; vy is zeros unless Omni."""
+    """Velocity commands per axis, each (steps, ...) float32; vy is zeros unless Omni."""
 
     vx: Any
     vy: Any
@@ -30,61 +32,98 @@ def clamp_step(value: Any, last: Any, low: float, high: float) -> Any:
     )
 
 
+TWO_PI = 2.0 * math.pi
+
+
+def cos_sin(angle: Any) -> tuple[Any, Any]:
+    """cos and sin of float32 angles by multiplications and additions alone: reduced to
+    [-pi, pi], Taylor series at a quarter of it, then two double-angle steps. Within 4e-7 of
+    the libm values; on a CPU, XLA's cos and sin of a (56, 1000) array take 1 ms, this a
+    tenth of it."""
+    quarter = (angle - TWO_PI * jnp.round(angle * (1.0 / TWO_PI))) * 0.25
+    q2 = quarter * quarter
+    c = 1.0 + q2 * (-1.0 / 2 + q2 * (1.0 / 24 + q2 * (-1.0 / 720 + q2 * (1.0 / 40320))))
+    s = quarter * (
+        1.0 + q2 * (-1.0 / 6 + q2 * (1.0 / 120 + q2 * (-1.0 / 5040 + q2 * (1.0 / 362880))))
+    )
+    for _ in range(2):
+        c, s = c * c - s * s, 2.0 * s * c
+    return c, s
+
+
 class Rollouts(NamedTuple):
-    """The sampled controls after the acceleration limits (batch, T) per axis, the
+    """The sampled controls after the acceleration limits (T, batch) per axis, the
     velocities each rollout moved with (the robot's speed first), and its poses after each
-    step, x, y, yaw (batch, T)."""
+    step, x, y, yaw (T, batch), with the heading's cos and sin (the footprint's rotation)."""
 
     controls: Controls
     velocities: Controls
     x: Any
     y: Any
     yaw: Any
+    cos: Any
+    sin: Any
+
+
+def _running_sum(start: Any, steps: Any) -> Any:
+    """``start`` plus the running sum of ``steps`` along axis 0 (a scan: XLA's cumsum is a
+    reduce-window, slower on a CPU)."""
+
+    def add(total: Any, step: Any) -> tuple[Any, Any]:
+        total = total + step
+        return total, total
+
+    return jax.lax.scan(add, start, steps)[1]
 
 
 def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts:
-    """Nav2's MotionModel::predict and integrateStateVelocities in one scan over the steps:
-    each control (batch, T) clamped to the acceleration limits from the velocity before it,
-    starting from ``speed`` (vx, vy, wz), and each pose moved from ``pose`` (x, y, yaw) with
-    that velocity along the heading reached before it. The last control stays unclamped, as
-    in Nav2 (no velocity follows it). One scan, time-major: on a CPU, 1.4x faster than a
-    scan for the limits and triangular matrix products for the sums."""
+    """Nav2's MotionModel::predict and integrateStateVelocities: each control (T, batch)
+    clamped to the acceleration limits from the velocity before it, starting from ``speed``
+    (vx, vy, wz), and each pose moved from ``pose`` (x, y, yaw) with that velocity along the
+    heading reached before it. The last control stays unclamped, as in Nav2 (no velocity
+    follows it). Time-major, so that the scans read and write whole rows: the velocities and
+    headings in one scan, the headings' cos and sin at once (``cos_sin``), the positions in a
+    second scan. On a CPU, 2x faster than one scan over (batch, T) arrays with libm's trig."""
     dt = s.model_dt
     lim_x = (dt * s.ax_min, dt * s.ax_max)
     lim_y = (dt * s.ay_min, dt * s.ay_max)
     dwz = dt * s.az_max
+    batch = controls.vx.shape[1]
 
-    def step(carry: Any, u: Any) -> tuple[Any, Any]:
-        vx, vy, wz, x, y, yaw = carry
-        c, sn = jnp.cos(yaw), jnp.sin(yaw)
-        dx, dy = vx * c, vx * sn
-        if s.holonomic:
-            dx, dy = dx - vy * sn, dy + vy * c
-        x, y, yaw = x + dx * dt, y + dy * dt, yaw + wz * dt
+    def velocities(carry: Any, u: Any) -> tuple[Any, Any]:
+        vx, vy, wz, yaw = carry
+        yaw = yaw + wz * dt
         nvx = clamp_step(u[0], vx, *lim_x)
         nvy = clamp_step(u[1], vy, *lim_y) if s.holonomic else vy
         nwz = jnp.clip(u[2], wz - dwz, wz + dwz)
-        return (nvx, nvy, nwz, x, y, yaw), (vx, vy, wz, x, y, yaw, nvx, nvy, nwz)
+        return (nvx, nvy, nwz, yaw), (vx, vy, wz, yaw, nvx, nvy, nwz)
 
-    batch = controls.vx.shape[0]
-    full = [jnp.full((batch,), v, jnp.float32) for v in (*speed, *pose)]
+    start = [jnp.full((batch,), v, jnp.float32) for v in (*speed, pose[2])]
     if not s.holonomic:
         # no lateral velocity: a scalar zero, carried and returned as such (DiffDrive and
-        # Ackermann move no (batch, T) vy array through memory)
-        full[1] = jnp.zeros((), jnp.float32)
-        controls = controls._replace(vy=jnp.zeros((1, controls.vx.shape[1]), jnp.float32))
-    _, out = jax.lax.scan(step, tuple(full), tuple(c.T for c in controls))
+        # Ackermann move no (T, batch) vy array through memory)
+        start[1] = jnp.zeros((), jnp.float32)
+        controls = controls._replace(vy=jnp.zeros((controls.vx.shape[0], 1), jnp.float32))
+    _, out = jax.lax.scan(velocities, tuple(start), tuple(controls))
+    vx, vy, wz, yaw = out[:4]
+    cos, sin = cos_sin(yaw)
+    # each step moves along the heading before it: the robot's own, then the rollout's
+    first = cos_sin(jnp.full((1, batch), pose[2], jnp.float32))
+    before_cos = jnp.concatenate([first[0], cos[:-1]])
+    before_sin = jnp.concatenate([first[1], sin[:-1]])
+    dx, dy = vx * before_cos, vx * before_sin
+    if s.holonomic:
+        dx, dy = dx - vy * before_sin, dy + vy * before_cos
+    x = _running_sum(jnp.full((batch,), pose[0], jnp.float32), dx * dt)
+    y = _running_sum(jnp.full((batch,), pose[1], jnp.float32), dy * dt)
     zeros = jnp.zeros_like(controls.vx)
-    vy, nvy = (out[1].T, out[7]) if s.holonomic else (zeros, None)
-    velocities = Controls(out[0].T, vy, out[2].T)
-    pairs = [(out[6], controls.vx), (nvy, controls.vy), (out[8], controls.wz)]
+    velocities_ = Controls(vx, vy if s.holonomic else zeros, wz)
+    lateral = out[5] if s.holonomic else None
+    pairs = [(out[4], controls.vx), (lateral, controls.vy), (out[6], controls.wz)]
     clamped = Controls(
-        *(
-            jnp.concatenate([n[:-1].T, u[:, -1:]], axis=1) if n is not None else zeros
-            for n, u in pairs
-        )
+        *(jnp.concatenate([n[:-1], u[-1:]]) if n is not None else zeros for n, u in pairs)
     )
-    return Rollouts(clamped, velocities, out[3].T, out[4].T, out[5].T)
+    return Rollouts(clamped, velocities_, x, y, yaw, cos, sin)
 
 
 def constrain_sequence(u: Controls, s: Settings, limits: Any) -> Controls:
