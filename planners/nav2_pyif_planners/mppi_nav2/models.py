@@ -96,7 +96,7 @@ def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts
         nvx = clamp_step(u[0], vx, *lim_x)
         nvy = clamp_step(u[1], vy, *lim_y) if s.holonomic else vy
         nwz = jnp.clip(u[2], wz - dwz, wz + dwz)
-        return (nvx, nvy, nwz, yaw), (vx, vy, wz, yaw, nvx, nvy, nwz)
+        return (nvx, nvy, nwz, yaw), (vx, vy, wz, yaw)
 
     start = [jnp.full((batch,), v, jnp.float32) for v in (*speed, pose[2])]
     if not s.holonomic:
@@ -118,10 +118,11 @@ def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts
     y = _running_sum(jnp.full((batch,), pose[1], jnp.float32), dy * dt)
     zeros = jnp.zeros_like(controls.vx)
     velocities_ = Controls(vx, vy if s.holonomic else zeros, wz)
-    lateral = out[5] if s.holonomic else None
-    pairs = [(out[4], controls.vx), (lateral, controls.vy), (out[6], controls.wz)]
+    # a clamped control is the velocity of the step after it; the last one stays as sampled
+    lateral = vy if s.holonomic else None
+    pairs = [(vx, controls.vx), (lateral, controls.vy), (wz, controls.wz)]
     clamped = Controls(
-        *(jnp.concatenate([n[:-1], u[-1:]]) if n is not None else zeros for n, u in pairs)
+        *(jnp.concatenate([v[1:], u[-1:]]) if v is not None else zeros for v, u in pairs)
     )
     return Rollouts(clamped, velocities_, x, y, yaw, cos, sin)
 
