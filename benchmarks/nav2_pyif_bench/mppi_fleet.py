@@ -53,12 +53,10 @@ def _fleet(n: int, rollouts: int) -> tuple[list[Any], Any]:
 
 def measure(n: int, rollouts: int, seconds: float, cost: bool) -> dict[str, Any]:
     """One fleet size paced at 20 Hz; ``cost``: XLA's cost analysis too (a compile more)."""
-    import jax
     from nav2_pyif_planners.mppi_nav2 import Nav2MPPI
-    from nav2_pyif_planners.mppi_nav2.fleet import fleet_step
 
     robots, batch = _fleet(n, rollouts)
-    for _ in range(3):  # compiles this padded size
+    for _ in range(3):  # warm: XLA's first runs
         Nav2MPPI.compute_velocity_commands_batch(batch)
     walls, missed, cycles = [], 0, int(seconds / PERIOD_S)
     cpu_started, deadline = time.process_time(), time.perf_counter()
@@ -86,25 +84,22 @@ def measure(n: int, rollouts: int, seconds: float, cost: bool) -> dict[str, Any]
         "missed": missed,
         "cycles": cycles,
         "load": os.getloadavg()[0],
-        "bytes_per_robot_mb": _bytes_per_robot(robots, fleet_step, jax) if cost else None,
+        "bytes_per_robot_mb": _bytes_per_robot(robots) if cost else None,
     }
 
 
-def _bytes_per_robot(robots: list[Any], fleet_step: Any, jax: Any) -> float:
-    """XLA's 'bytes accessed' of the batched step for these robots, per robot."""
-    from nav2_pyif.batch import bucket
+def _bytes_per_robot(robots: list[Any]) -> float:
+    """XLA's 'bytes accessed' of one robot's step (each robot of a fleet runs its own)."""
+    from nav2_pyif_planners.mppi_nav2.optimizer import packed_step
 
     r = robots[0]
-    size = bucket(len(robots))
-    stack = lambda a: np.repeat(np.asarray(a)[None], size, 0)  # noqa: E731
-    grid = type(r._upload_costmap())(*(stack(g) for g in r._upload_costmap()))
-    packed = stack(r.cycle_inputs(np.array([10.0, 0.1, 0.0]), _still(), None))
-    lowered = fleet_step.lower(
-        stack(r.sequence), stack(r.history), r.bank, packed, grid, s=r.settings
+    packed = r.cycle_inputs(np.array([10.0, 0.1, 0.0]), _still(), None)
+    lowered = packed_step.lower(
+        r.sequence, r.history, r.bank, packed, r._upload_costmap(), s=r.settings
     )
     cost = lowered.compile().cost_analysis()
     cost = (cost[0] if isinstance(cost, list) else cost) or {}
-    return float(cost.get("bytes accessed", 0.0)) / 1e6 / size
+    return float(cost.get("bytes accessed", 0.0)) / 1e6
 
 
 def _still() -> Any:

@@ -14,11 +14,10 @@ import jax.numpy as jnp
 import numpy as np
 from geometry_msgs.msg import TwistStamped
 from nav2_pyif import Batch, Controller, GoalTolerances, InvalidController, NoValidControl, Plan
-from nav2_pyif.batch import buckets
 from nav2_pyif.geometry import pose_xy_yaw
 
 from nav2_pyif_planners.mppi_nav2.costs import Grid
-from nav2_pyif_planners.mppi_nav2.fleet import compute_batch, optimise_fleet
+from nav2_pyif_planners.mppi_nav2.fleet import compute_batch
 from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, noise_bank, pack, packed_step
 from nav2_pyif_planners.mppi_nav2.params import read_settings
 from nav2_pyif_planners.mppi_nav2.path import PathHandler, padded
@@ -32,8 +31,9 @@ class Nav2MPPI(Controller):
     Parameters of its own, beside Nav2's: ``noise_sets`` (noise bank size, see
     optimizer.py), ``seed``, ``path_points`` (the pruned plan's fixed length in the step),
     ``track_unknown_space`` (the local costmap's: Nav2 reads it from the costmap),
-    ``fleet_size`` (the most robots a batched host serves: their shapes compiled at
-    configure; ``compute_velocity_commands_batch``, fleet.py). Debug
+    ``fleet_size`` (accepted for the other batched planners' YAML; Nav2MPPI's fleet runs
+    each robot's own step, nothing compiled per size: ``compute_velocity_commands_batch``,
+    fleet.py). Debug
     output: ``local_plan`` (the optimal trajectory)."""
 
     debug_outputs: ClassVar[dict[str, str]] = {"local_plan": "nav_msgs/msg/Path"}
@@ -133,9 +133,6 @@ class Nav2MPPI(Controller):
         inputs = self._inputs(np.zeros(3), np.zeros(3), straight[-1], path, count, None)
         for _ in range(2):  # the second run: XLA's first-execution set-up, off the first cycle
             jax.block_until_ready(self._run(inputs))
-            if self.fleet_size > 1:  # each padded fleet size a batched host may call
-                for size in buckets(self.fleet_size):
-                    optimise_fleet([self], [inputs.copy()], pad_to=size)
         self.reset()
 
     def reset(self) -> None:
@@ -243,7 +240,7 @@ class Nav2MPPI(Controller):
 
     @classmethod
     def compute_velocity_commands_batch(cls, batch: Batch) -> list[Any]:
-        """The cycles of a fleet, robots of one shape in one compiled call (fleet.py)."""
+        """The cycles of a fleet, each robot's step dispatched before any is read (fleet.py)."""
         return compute_batch(batch)
 
     def twist(self, pose: Any, command: np.ndarray) -> Any:
