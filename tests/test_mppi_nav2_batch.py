@@ -1,4 +1,4 @@
-"""Nav2MPPI batched (fleet.py): robots served in one compiled call get the commands their
+"""Nav2MPPI batched (fleet.py): robots served in one host call get the commands their
 own single cycles give, keep their own warm starts, and a robot's own error (no plan, every
 rollout colliding) is its item alone."""
 
