@@ -22,7 +22,7 @@ from nav2_pyif_planners.mppi_nav2.costs import (
     footprint_cost,
     point_cost,
 )
-from nav2_pyif_planners.mppi_nav2.models import Controls
+from nav2_pyif_planners.mppi_nav2.models import Controls, running_sum
 from nav2_pyif_planners.mppi_nav2.params import Critic, Settings
 
 PI = math.pi
@@ -149,7 +149,7 @@ def obstacles(data: CriticData, c: Critic, s: Settings) -> tuple[Any, Any]:
     counts = cost >= 1.0
     hit = counts & _collides(cost, footprint, s)
     # poses before the first collision: Nav2 stops scoring a rollout there
-    before = _running_sum(hit.astype(jnp.int32)) == 0
+    before = running_sum(hit.astype(jnp.int32)) == 0
     _, inscribed, radius, scale = (data.grid.robot[i] for i in range(4))
     active = counts & before & (radius != 0.0) & (scale != 0.0)
     safe_scale = jnp.where(scale == 0.0, 1.0, scale)
@@ -254,7 +254,7 @@ def path_align(data: CriticData, c: Critic, s: Settings) -> Any:
     along = jnp.where(index < segments, along, jnp.inf)
     step = c["trajectory_point_step"]
     tx, ty, tyaw = data.x[::step], data.y[::step], data.yaw[::step]
-    travelled = _running_sum(jnp.hypot(jnp.diff(tx, axis=0), jnp.diff(ty, axis=0)))
+    travelled = running_sum(jnp.hypot(jnp.diff(tx, axis=0), jnp.diff(ty, axis=0)))
     # the nearest plan distance to each travelled one (ties and the end as Nav2's
     # findClosestPathPt), never going back along the plan
     above = _count_at_most(along, travelled)
@@ -285,14 +285,6 @@ def _running_max(values: Any) -> Any:
     out = [values[0]]
     for k in range(1, values.shape[0]):
         out.append(jnp.maximum(out[-1], values[k]))
-    return jnp.stack(out)
-
-
-def _running_sum(values: Any) -> Any:
-    """The running sum along axis 0, unrolled (as ``_running_max``)."""
-    out = [values[0]]
-    for k in range(1, values.shape[0]):
-        out.append(out[-1] + values[k])
     return jnp.stack(out)
 
 

@@ -65,15 +65,15 @@ class Rollouts(NamedTuple):
     sin: Any
 
 
-def _running_sum(start: Any, steps: Any) -> Any:
-    """``start`` plus the running sum of ``steps`` along axis 0 (a scan: XLA's cumsum is a
-    reduce-window, slower on a CPU)."""
+def running_sum(steps: Any, start: Any = 0) -> Any:
+    """``start`` plus the running sum of ``steps`` along axis 0, added in order (a scan:
+    XLA's cumsum is a reduce-window, slower on a CPU)."""
 
     def add(total: Any, step: Any) -> tuple[Any, Any]:
         total = total + step
         return total, total
 
-    return jax.lax.scan(add, start, steps)[1]
+    return jax.lax.scan(add, jnp.zeros_like(steps[0]) + start, steps)[1]
 
 
 def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts:
@@ -114,8 +114,8 @@ def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts
     dx, dy = vx * before_cos, vx * before_sin
     if s.holonomic:
         dx, dy = dx - vy * before_sin, dy + vy * before_cos
-    x = _running_sum(jnp.full((batch,), pose[0], jnp.float32), dx * dt)
-    y = _running_sum(jnp.full((batch,), pose[1], jnp.float32), dy * dt)
+    x = running_sum(dx * dt, pose[0])
+    y = running_sum(dy * dt, pose[1])
     zeros = jnp.zeros_like(controls.vx)
     velocities_ = Controls(vx, vy if s.holonomic else zeros, wz)
     # a clamped control is the velocity of the step after it; the last one stays as sampled
