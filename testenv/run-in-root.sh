@@ -23,6 +23,9 @@ From the host, inside the Debian 13 root ROOT (testenv/build.sh --root ROOT lyri
   2. builds nav2_pyif_bridge with colcon into PREFIX/ws_BACKEND against the root's ROS 2;
   3. runs the launch tests of bridge_plugin/test/nav2, one file at a time (pytest -x), the
      planner host from PREFIX/venv, and prints a table: file, result, seconds.
+With --workspace-trial, step 3 is instead tests/test_ros_workspace.py's Lyrical trials (a fresh
+colcon workspace with a clone of this checkout's HEAD: colcon build, ros2 run, colcon test,
+ros2 launch to the goal; and the host alone with pip beside ROS 2), on zenoh-pico.
 TEST_FILE: file names in bridge_plugin/test/nav2 (default: every test file but those run
 apart: ${APART[*]}).
 
@@ -31,6 +34,8 @@ OPTIONS:
   --backend NAME    zenoh-pico (default) or zenoh-c: PREFIX/setup-NAME.bash
   --no-install      skip step 1 (the venv has this checkout's packages already)
   --no-build        skip step 2
+  --workspace-trial run the workspace trials, not the launch tests (commit first: they clone
+                    HEAD)
   -h, --help        this text
 
 The checkout is bind-mounted at ROOT/nav2_pyif_run.PID for the run (and proc, sys, dev where
@@ -48,9 +53,9 @@ usage_error() { log "$*"; echo "Run testenv/run-in-root.sh --help for usage." >&
 source "$HERE/rootfs.sh"
 
 # --- inside the root: the three steps ------------------------------------------------------
-inside() {  # REPO PREFIX BACKEND INSTALL BUILD FILE...
-  local repo="$1" prefix="$2" backend="$3" install="$4" build="$5"
-  shift 5
+inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL FILE...
+  local repo="$1" prefix="$2" backend="$3" install="$4" build="$5" trial="$6"
+  shift 6
   local setup="$prefix/setup-$backend.bash" ws="$prefix/ws_$backend"
   [ -f "$setup" ] || die "no $setup: run testenv/build.sh --root ROOT lyrical first"
   if [ "$install" = 1 ]; then
@@ -62,10 +67,14 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD FILE...
       || { rm -rf "$copy"; die "pip install failed"; }
     rm -rf "$copy"
   fi
+  mkdir -p "$ws/src" "$ws/logs"
+  if [ "$trial" = 1 ]; then
+    workspace_trial "$repo" "$prefix" "$setup" "$ws"
+    return
+  fi
   set +u  # (the setup scripts read unset variables)
   # shellcheck source=/dev/null
   source "$setup" >/dev/null
-  mkdir -p "$ws/src" "$ws/logs"
   ln -sfn "$repo/bridge_plugin" "$ws/src/nav2_pyif_bridge"
   if [ "$build" = 1 ]; then
     log "build: nav2_pyif_bridge in $ws (log: $ws/build.log)"
@@ -116,8 +125,24 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD FILE...
   return "$failed"
 }
 
+# The trials run by the venv's pytest, which the plugin's workspace would only shadow: they
+# build their own from a clone, on the setup script alone.
+workspace_trial() {  # REPO PREFIX SETUP WS
+  local repo="$1" prefix="$2" setup="$3" ws="$4" status=0 start=$SECONDS
+  log "workspace trial: tests/test_ros_workspace.py, lyrical (log: $ws/logs/workspace_trial.log)"
+  cd "$repo"
+  NAV2_PYIF_NAV2_SETUP_LYRICAL_ZENOHPICO="$setup" "$prefix/venv/bin/python" -m pytest \
+    -p no:cacheprovider -q -rs -s -k lyrical tests/test_ros_workspace.py \
+    >"$ws/logs/workspace_trial.log" 2>&1 || status=$?
+  grep -E '^[a-z -]+: [0-9]+ s \(' "$ws/logs/workspace_trial.log" || true
+  tail -3 "$ws/logs/workspace_trial.log"
+  log "workspace trial: exit $status ($((SECONDS - start)) s)"
+  return "$status"
+}
+
 # --- arguments -----------------------------------------------------------------------------
 PREFIX=/opt/nav2_pyif_testenv/lyrical BACKEND=zenoh-pico INSTALL=1 BUILD=1 ROOTFS="" FILES=()
+TRIAL=0
 if [ "${1:-}" = --inside ]; then
   shift
   inside "$@"
@@ -130,6 +155,7 @@ while [ $# -gt 0 ]; do
     --backend) BACKEND="${2:?--backend needs a name}"; shift 2 ;;
     --no-install) INSTALL=0; shift ;;
     --no-build) BUILD=0; shift ;;
+    --workspace-trial) TRIAL=1; shift ;;
     -*) usage_error "unknown option: $1" ;;
     *)
       if [ -z "$ROOTFS" ]; then ROOTFS="$1"; else FILES+=("$1"); fi
@@ -174,7 +200,7 @@ status=0
 setsid chroot "$ROOTFS" /usr/bin/env -i HOME=/root TERM="${TERM:-dumb}" \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
   bash "$AT/testenv/run-in-root.sh" --inside "$AT" "$PREFIX" "$BACKEND" "$INSTALL" "$BUILD" \
-  "${FILES[@]}" &
+  "$TRIAL" "${FILES[@]}" &
 CHILD=$!
 wait "$CHILD" || status=$?
 exit "$status"

@@ -163,8 +163,12 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     # (50 %) costs 1.51 and fails this target. Goal check last: the check goes on its own
     # and the command carries the goal check, two queries; the goal check goes on its own too
     # when TF moved on between the command's pose lookup and its own, a window of two queries
-    # (2.07 to 2.47 here, loaded); the same half of the cycles missing fails the target. The
-    # mechanism is tested call by call in carried_test.cpp.
+    # (2.07 to 2.47 here, loaded); the same half of the cycles missing fails the target.
+    # Lyrical: goal check first, but controller_server's own path handler prunes the plan
+    # between the progress check and the command, and the command takes that segment; so the
+    # goal check carries only the check, and the command goes on its own: two queries, 2.09
+    # and 2.21 measured (testenv/README.md). The mechanism is tested call by call in
+    # carried_test.cpp.
     after = nav2_testing.host_queries(nav2["endpoint"])
     sent = {key.rsplit("/", 1)[1]: after[key] - before.get(key, 0) for key in after}
     first = nav2_testing.goal_check_first()
@@ -172,8 +176,10 @@ def test_python_smoother_and_checkers_in_nav2(nav2: dict[str, Any]) -> None:
     cycles = sent["general_goal_checker" if first else "progress_checker"]
     assert cycles > 40, sent  # 20 Hz for a few seconds
     queries = sum(sent[k] for k in ("general_goal_checker", "progress_checker", "FollowPath"))
-    assert queries < (1.5 if first else 2.5) * cycles, sent  # 3 a cycle without carrying
+    lyrical = nav2_testing.is_lyrical()
+    assert queries < (1.5 if first and not lyrical else 2.5) * cycles, sent  # 3 uncarried
     order = "goal check first" if first else "goal check last"
+    order += ", the command on Nav2's pruned segment" if lyrical else ""
     print(f"queries during FollowPath ({order}): {sent}, {queries / cycles:.2f} per control cycle")
     assert "general_goal_checker.stateful" in client.list_parameters(
         "controller_server", "general_goal_checker"
