@@ -131,6 +131,10 @@ workspace_trial() {  # REPO PREFIX SETUP WS
   local repo="$1" prefix="$2" setup="$3" ws="$4" status=0 start=$SECONDS
   log "workspace trial: tests/test_ros_workspace.py, lyrical (log: $ws/logs/workspace_trial.log)"
   cd "$repo"
+  set +u  # (the setup scripts read unset variables)
+  # shellcheck source=/dev/null
+  source "$setup" >/dev/null  # for the test process's own imports; each step sources it anew
+  set -u
   NAV2_PYIF_NAV2_SETUP_LYRICAL_ZENOHPICO="$setup" "$prefix/venv/bin/python" -m pytest \
     -p no:cacheprovider -q -rs -s -k lyrical tests/test_ros_workspace.py \
     >"$ws/logs/workspace_trial.log" 2>&1 || status=$?
