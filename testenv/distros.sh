@@ -173,6 +173,10 @@ distro_settings() {
       # The plugin's codec takes msgpack-c, which trixie packs apart from msgpack-cxx; the
       # launch tests' vanished host is a network namespace behind a veth link (ip).
       APT_PACKAGES+=(libmsgpack-c-dev iproute2)
+      # What Lyrical's apt packages bring the system's Python for the generated messages to
+      # import (rosidl_pycommon imports em; rclpy typing_extensions and yaml): a venv made
+      # beside this ROS 2 with --system-site-packages (README's pip way) needs them there.
+      APT_PACKAGES+=(python3-empy python3-typing-extensions python3-yaml)
       ;;
   esac
 }

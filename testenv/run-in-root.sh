@@ -63,7 +63,7 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL FILE...
     copy="$(mktemp -d)"
     log "install: nav2-pyif and nav2-pyif-planners into $prefix/venv"
     tar -C "$repo" --exclude=./.git --exclude=./.venv --exclude=./build -cf - . | tar -C "$copy" -xf -
-    "$prefix/venv/bin/python" -m pip install -q "${copy}[record,runner]" "${copy}/planners[jax]" cryptography \
+    "$prefix/venv/bin/python" -m pip install -q "${copy}[record,runner,ompl]" "${copy}/planners[jax]" cryptography \
       || { rm -rf "$copy"; die "pip install failed"; }
     rm -rf "$copy"
   fi
