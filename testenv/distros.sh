@@ -174,9 +174,10 @@ distro_settings() {
       # launch tests' vanished host is a network namespace behind a veth link (ip).
       APT_PACKAGES+=(libmsgpack-c-dev iproute2)
       # What Lyrical's apt packages bring the system's Python for the generated messages to
-      # import (rosidl_pycommon imports em; rclpy typing_extensions and yaml): a venv made
-      # beside this ROS 2 with --system-site-packages (README's pip way) needs them there.
-      APT_PACKAGES+=(python3-empy python3-typing-extensions python3-yaml)
+      # import (their base classes in rosidl_pycommon import em, and rosidl_parser lark; rclpy
+      # typing_extensions, yaml and numpy): a venv made beside this ROS 2 with
+      # --system-site-packages (README's pip way) sees only those.
+      APT_PACKAGES+=(python3-empy python3-lark python3-typing-extensions python3-yaml python3-numpy)
       ;;
   esac
 }
