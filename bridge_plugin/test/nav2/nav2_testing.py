@@ -452,8 +452,21 @@ def bring_up(
             "endpoint": endpoint,
         }
     finally:
+        tear_down(client, procs)
+
+
+def tear_down(client: Any, procs: Processes, *first: str) -> None:
+    """The test's rclpy client and context, then every process it started (``first`` by
+    name, before the rest): the processes are stopped even when rclpy's own teardown raises
+    (seen on rmw_zenoh, which left a failed test's Nav2 servers running)."""
+    import rclpy
+
+    try:
         client.destroy_node()
         rclpy.try_shutdown()
+    finally:
+        for name in first:
+            procs.kill(name, signal.SIGINT)
         procs.stop_all()
 
 

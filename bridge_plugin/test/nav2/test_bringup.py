@@ -377,9 +377,7 @@ def stock_bringup(
         assert all(s == "active" for s in states.values()), f"{states}\n{procs.log('launch', 80)}"
         yield stack
     finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        procs.stop_all()
+        nav2_testing.tear_down(client, procs)
 
 
 def resume_after_a_failed_activation(client: Any, procs: nav2_testing.Processes) -> None:

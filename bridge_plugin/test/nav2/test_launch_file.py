@@ -98,9 +98,7 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
         assert not left, f"still running after Ctrl-C: {left}\n{procs.log('launch')}"
         assert code == 0, f"ros2 launch exited {code}\n{procs.log('launch')}"
     finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        procs.stop_all()
+        nav2_testing.tear_down(client, procs)
 
 
 def test_the_launch_file_with_its_own_params_configures_every_server(tmp_path: Path) -> None:
@@ -134,6 +132,4 @@ def test_the_launch_file_with_its_own_params_configures_every_server(tmp_path: P
         _, left = nav2_testing.ctrl_c(procs.procs["launch"])
         assert not left, f"still running after Ctrl-C: {left}\n{procs.log('launch')}"
     finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        procs.stop_all()
+        nav2_testing.tear_down(client, procs)

@@ -13,7 +13,6 @@ from __future__ import annotations
 import math
 import os
 import random
-import signal
 import time
 from pathlib import Path
 
@@ -97,11 +96,7 @@ def test_seed_style_yaml_starts_its_own_host(tmp_path: Path) -> None:
         x, y = client.pose
         assert math.hypot(x - GOAL[0], y - GOAL[1]) < 0.35, f"robot at {(x, y)}, goal {GOAL}"
     finally:
-        client.destroy_node()
-        rclpy.try_shutdown()
-        for name in ("lifecycle_manager", *nav2_testing.SERVERS):
-            procs.kill(name, signal.SIGINT)
-        procs.stop_all()
+        nav2_testing.tear_down(client, procs, "lifecycle_manager", *nav2_testing.SERVERS)
     end = time.monotonic() + 15.0
     while local_hosts() and time.monotonic() < end:
         time.sleep(0.2)
