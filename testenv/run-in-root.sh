@@ -138,7 +138,7 @@ workspace_trial() {  # REPO PREFIX SETUP WS
   NAV2_PYIF_NAV2_SETUP_LYRICAL_ZENOHPICO="$setup" "$prefix/venv/bin/python" -m pytest \
     -p no:cacheprovider -q -rs -s -k lyrical tests/test_ros_workspace.py \
     >"$ws/logs/workspace_trial.log" 2>&1 || status=$?
-  grep -E '^[a-z -]+: [0-9]+ s \(' "$ws/logs/workspace_trial.log" || true
+  grep -E '^[a-z0-9 -]+: [0-9]+ s \(' "$ws/logs/workspace_trial.log" || true
   tail -3 "$ws/logs/workspace_trial.log"
   log "workspace trial: exit $status ($((SECONDS - start)) s)"
   return "$status"
