@@ -18,7 +18,7 @@ NAV2_PACKAGES=(
 # (nav2_minimal_tb3_sim) and publishes its frames with robot_state_publisher. `ros2 lifecycle`
 # shuts a stack down as its users do.
 # DISTRO.repos must bring what they need (yaml_cpp_vendor, cv_bridge, image_transport; Jazzy's
-# also robot_localization, urdf, kdl_parser).
+# and Lyrical's also robot_localization, urdf, kdl_parser).
 BRINGUP_PACKAGES=(
   nav2_bringup nav2_common nav2_map_server nav2_amcl nav2_velocity_smoother
   nav2_collision_monitor nav2_waypoint_follower nav2_simple_commander ros2lifecycle
@@ -28,6 +28,12 @@ BRINGUP_JAZZY=(
   opennav_docking opennav_docking_bt nav2_loopback_sim nav2_minimal_tb3_sim
   robot_state_publisher
 )
+# Lyrical's (Nav2 1.5): its navigation_launch.py also starts the route server and the
+# following server (opennav_following, beside docking), and its loopback simulator is C++.
+BRINGUP_LYRICAL=(
+  opennav_docking opennav_docking_bt opennav_following nav2_route nav2_loopback_sim
+  nav2_minimal_tb3_sim robot_state_publisher
+)
 # Humble's Nav2 has the route server (backported to 1.1) but no docking and no loopback
 # simulator; its stock params run DWB, the native side of the comparison (named here, so not
 # ignored: BRINGUP_IGNORE leaves DWB out elsewhere).
@@ -35,10 +41,11 @@ BRINGUP_HUMBLE=(nav2_route dwb_core dwb_critics dwb_plugins dwb_msgs costmap_que
 # What the stock stack needs from Debian: GraphicsMagick++ (map_server's image maps),
 # OpenCV and Boost.Python (cv_bridge, for waypoint_follower's photo plugin); Jazzy's also
 # GeographicLib (robot_localization, for waypoint_follower's GPS plugin) and urdfdom (urdf, for
-# robot_state_publisher); Humble's route server nanoflann.
+# robot_state_publisher); Humble's route server nanoflann; Lyrical's all three.
 APT_BRINGUP=(libgraphicsmagick++1-dev libopencv-dev libboost-dev libboost-python-dev)
 APT_BRINGUP_JAZZY=(libgeographiclib-dev liburdfdom-dev liburdfdom-headers-dev)
 APT_BRINGUP_HUMBLE=(libnanoflann-dev)
+APT_BRINGUP_LYRICAL=("${APT_BRINGUP_JAZZY[@]}" "${APT_BRINGUP_HUMBLE[@]}")
 
 # Debian packages: compilers, and the system libraries the ROS packages above find with CMake
 # (liblttng-ust-dev: the tracetools wheel's CMake export links it into rclcpp).
@@ -89,9 +96,7 @@ JAZZY_WHEELS=(
 )
 
 # Packages that colcon's --packages-up-to brings in only as test dependencies, ignored:
-# nav2_map_server (of nav2_costmap_2d) wants GraphicsMagick and yaml_cpp_vendor (built where
-# BRINGUP_PACKAGES are), and launch_testing's pytest plugin breaks every pytest run in the
-# environment with today's pytest
+# launch_testing's pytest plugin breaks every pytest run in the environment with today's pytest
 # ("Argument(s) {'path'} are declared in the hookimpl but can not be found in the hookspec").
 IGNORE_COMMON=(launch_testing launch_testing_ros launch_testing_ament_cmake)
 # nav2_bringup build-depends on the `navigation2` metapackage, which depends on every Nav2
@@ -142,7 +147,6 @@ distro_settings() {
       # ros2/ros2's DISTRO ros2.repos that Nav2's packages need), with rmw_cyclonedds_cpp,
       # the fastest DDS to build.
       PYPI_BASE=0
-      IGNORE_PACKAGES+=(nav2_map_server)
       ROS_PACKAGES+=(rclpy rmw_cyclonedds_cpp)
       APT_PACKAGES+=(libacl1-dev libxml2-utils libbenchmark-dev libboost-dev)
       # pybind11_vendor (rclpy) takes the system's pybind11 where there is one; otherwise it
@@ -178,6 +182,10 @@ distro_settings() {
       # typing_extensions, yaml and numpy): a venv made beside this ROS 2 with
       # --system-site-packages (README's pip way) sees only those.
       APT_PACKAGES+=(python3-empy python3-lark python3-typing-extensions python3-yaml python3-numpy)
+      # nav2_bringup's stock stack, as on Jazzy (transforms3d was for Jazzy's Python simulator)
+      ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}" "${BRINGUP_LYRICAL[@]}")
+      APT_PACKAGES+=("${APT_BRINGUP[@]}" "${APT_BRINGUP_LYRICAL[@]}")
+      IGNORE_PACKAGES+=("${BRINGUP_IGNORE[@]}")
       ;;
   esac
 }
