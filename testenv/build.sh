@@ -35,8 +35,9 @@ STEPS (default: all, in this order; name some to run only those):
   rmw-zenoh   jazzy: rmw_zenoh's release (rmw_zenoh_cpp, its router) into PREFIX/ros, on the
               zenoh-c/zenoh-cpp 1.8.0 it vendors, built into PREFIX/rmw-zenoh-c
   setup       write PREFIX/setup-zenoh-{pico,c}.bash (also done after each step above)
-  mppi        only when named: nav2_mppi_controller (jazzy; without xsimd, see
-              patches/jazzy), for the benchmark that drives Nav2's MPPI beside the JAX one
+  mppi        only when named: nav2_mppi_controller (jazzy: without xsimd, see
+              patches/jazzy; lyrical), the stock params' controller, for the bringup test's
+              native side and the benchmark that drives Nav2's MPPI beside the JAX one
 
 OPTIONS:
   --prefix DIR    where the environment goes (default /opt/nav2_pyif_testenv/DISTRO)
@@ -471,17 +472,27 @@ step_ros() {
 
 # Nav2's C++ MPPI (only when named): its system libraries, then colcon as in step_ros.
 step_mppi() {
-  [ "$DISTRO" = jazzy ] || die "mppi: only for jazzy (the comparison's C++ build is Jazzy's)"
-  APT_PACKAGES=(libxtensor-dev libxsimd-dev libomp-dev)
-  step_system
+  # BENCHMARK_TESTING: the controller logs each cycle's "Control loop execution time", which
+  # the benchmark reads.
+  case "$DISTRO" in
+    jazzy)
+      APT_PACKAGES=(libxtensor-dev libxsimd-dev libomp-dev)
+      # nav2_package() builds with -Werror, and GCC 12 finds a null dereference deep in
+      # Debian's xtensor 0.24 (xreducer.hpp) that Ubuntu's compiler does not report.
+      CMAKE_ARGS+=("-DCMAKE_CXX_FLAGS=-Wno-error=null-dereference -DBENCHMARK_TESTING")
+      ;;
+    lyrical)
+      # Nav2 1.4 on: MPPI on Eigen, which the ros step's packages already need (no xtensor).
+      APT_PACKAGES=()
+      CMAKE_ARGS+=("-DCMAKE_CXX_FLAGS=-DBENCHMARK_TESTING")
+      ;;
+    *) die "mppi: for jazzy and lyrical (the stock params' controller; Humble's is DWB)" ;;
+  esac
+  [ ${#APT_PACKAGES[@]} -eq 0 ] || step_system
   ROS_PACKAGES=(nav2_mppi_controller)
   # Only it, on the environment the ros step built: colcon's --packages-up-to would visit
   # every dependency again, and a dependency that looks changed rebuilds half of ROS.
   SELECT_ONLY=1
-  # nav2_package() builds with -Werror, and GCC 12 finds a null dereference deep in Debian's
-  # xtensor 0.24 (xreducer.hpp) that Ubuntu's compiler does not report. BENCHMARK_TESTING:
-  # the controller logs each cycle's "Control loop execution time", which the benchmark reads.
-  CMAKE_ARGS+=("-DCMAKE_CXX_FLAGS=-Wno-error=null-dereference -DBENCHMARK_TESTING")
   step_ros
 }
 

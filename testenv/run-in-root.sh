@@ -38,8 +38,9 @@ OPTIONS:
                     HEAD)
   -h, --help        this text
 
-The checkout is bind-mounted at ROOT/nav2_pyif_run.PID for the run (and proc, sys, dev where
-they are not mounted yet); all are unmounted on exit, on SIGINT and on SIGTERM. Logs:
+The checkout is bind-mounted at ROOT/nav2_pyif_run.PID for the run, and proc, sys and dev in
+ROOT (stacked on any mounted there: a build running beside it keeps its own); all are
+unmounted on exit, on SIGINT and on SIGTERM. Logs:
 PREFIX/ws_BACKEND/logs/FILE (the Nav2 processes' logs) and FILE.log (pytest's output).
 Exit status: 0 every file passed, 1 a step or a file failed, 2 usage.
 EOF
@@ -189,15 +190,14 @@ stop() {  # SIGNAL STATUS: end the run inside (its own process group), then unmo
 trap unmount EXIT
 trap 'stop INT 130' INT
 trap 'stop TERM 143' TERM
-mount_once() {  # WHERE MOUNT-ARGS...: mount unless something is mounted there already
-  mountpoint -q "$1" || root_mount "$@"
-}
-mount_once "$ROOTFS/proc" -t proc proc
-mount_once "$ROOTFS/sys" --rbind /sys
-mount_once "$ROOTFS/dev" --rbind /dev
+# Mounted again even where something is mounted already (stacked): a build.sh --root or
+# another run that mounted them first unmounts its own on exit, and this run must keep /proc.
+root_mount "$ROOTFS/proc" -t proc proc
+root_mount "$ROOTFS/sys" --rbind /sys
+root_mount "$ROOTFS/dev" --rbind /dev
 AT="/nav2_pyif_run.$$"
 mkdir -p "$ROOTFS$AT"
-mount_once "$ROOTFS$AT" --bind "$REPO_ROOT"
+root_mount "$ROOTFS$AT" --bind "$REPO_ROOT"
 
 log "in $ROOTFS: $BACKEND, environment $PREFIX"
 status=0
