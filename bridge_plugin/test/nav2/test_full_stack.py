@@ -66,6 +66,12 @@ def full_stack_params(text: str) -> str:
         f"node_names: {list(FULL_STACK)!r}".replace("'", '"'),
     )
     added = (nav2_testing.HERE / "full_stack_params.yaml").read_text()
+    if nav2_testing.is_lyrical():
+        # Lyrical's bt_navigator refuses the old name ("MUST be removed") and takes prefixes
+        names = "error_code_names:\n      - compute_path_error_code\n      - follow_path_error_code"
+        assert names in added, "full_stack_params.yaml's error_code_names changed"
+        prefixes = "error_code_name_prefixes:\n      - compute_path\n      - follow_path"
+        added = added.replace(names, prefixes)
     return text + added.replace("@ZENOH@", zenoh.group(0))
 
 
