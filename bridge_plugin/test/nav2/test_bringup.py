@@ -33,8 +33,8 @@ rmw_zenoh's own router.
   then ends every process its plugins started (keeper, host, workers) while the container and
   planner_server's hosts stay up, and Ctrl-C ends those.
 - The controller and global planner a new user writes in the tutorials (GoTo, GridSearch, taken
-  from python/doc/tutorials as the pages show them) drive the stock launch to the goals: issue
-  41's acceptance, its Nav2 half.
+  from python/doc/tutorials as the pages show them) drive the stock launch to the goals: what
+  the tutorials promise a new user, in Nav2.
 - Ctrl-C on the launch (SIGINT to its process group) ends every process it started.
 
 Needs, beyond what test_nav2_pyif.py needs: nav2_bringup, nav2_loopback_sim,
