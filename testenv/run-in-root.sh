@@ -36,6 +36,7 @@ OPTIONS:
   --no-build        skip step 2
   --workspace-trial run the workspace trials, not the launch tests (commit first: they clone
                     HEAD)
+  -k EXPRESSION     only the tests pytest's -k selects in each file
   -h, --help        this text
 
 The checkout is bind-mounted at ROOT/nav2_pyif_run.PID for the run, and proc, sys and dev in
@@ -54,9 +55,11 @@ usage_error() { log "$*"; echo "Run testenv/run-in-root.sh --help for usage." >&
 source "$HERE/rootfs.sh"
 
 # --- inside the root: the three steps ------------------------------------------------------
-inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL FILE...
-  local repo="$1" prefix="$2" backend="$3" install="$4" build="$5" trial="$6"
-  shift 6
+inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL SELECT FILE...
+  local repo="$1" prefix="$2" backend="$3" install="$4" build="$5" trial="$6" select="$7"
+  shift 7
+  local chosen=()
+  [ -z "$select" ] || chosen=(-k "$select")
   local setup="$prefix/setup-$backend.bash" ws="$prefix/ws_$backend"
   [ -f "$setup" ] || die "no $setup: run testenv/build.sh --root ROOT lyrical first"
   if [ "$install" = 1 ]; then
@@ -109,7 +112,7 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL FILE...
     log "test: $file"
     start=$SECONDS
     status=0
-    python -m pytest -p no:cacheprovider -q -rs -x --basetemp="$ws/logs/${file%.py}" \
+    python -m pytest -p no:cacheprovider -q -rs -x "${chosen[@]}" --basetemp="$ws/logs/${file%.py}" \
       "bridge_plugin/test/nav2/$file" >"$ws/logs/$file.log" 2>&1 || status=$?
     local summary
     summary="$(grep -E '^(=+ )?[0-9]+ (passed|failed|error|skipped)' "$ws/logs/$file.log" | tail -1)"
@@ -147,7 +150,7 @@ workspace_trial() {  # REPO PREFIX SETUP WS
 
 # --- arguments -----------------------------------------------------------------------------
 PREFIX=/opt/nav2_pyif_testenv/lyrical BACKEND=zenoh-pico INSTALL=1 BUILD=1 ROOTFS="" FILES=()
-TRIAL=0
+TRIAL=0 SELECT=""
 if [ "${1:-}" = --inside ]; then
   shift
   inside "$@"
@@ -161,6 +164,7 @@ while [ $# -gt 0 ]; do
     --no-install) INSTALL=0; shift ;;
     --no-build) BUILD=0; shift ;;
     --workspace-trial) TRIAL=1; shift ;;
+    -k) SELECT="${2:?-k needs a pytest expression}"; shift 2 ;;
     -*) usage_error "unknown option: $1" ;;
     *)
       if [ -z "$ROOTFS" ]; then ROOTFS="$1"; else FILES+=("$1"); fi
@@ -204,7 +208,7 @@ status=0
 setsid chroot "$ROOTFS" /usr/bin/env -i HOME=/root TERM="${TERM:-dumb}" \
   PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
   bash "$AT/testenv/run-in-root.sh" --inside "$AT" "$PREFIX" "$BACKEND" "$INSTALL" "$BUILD" \
-  "$TRIAL" "${FILES[@]}" &
+  "$TRIAL" "$SELECT" "${FILES[@]}" &
 CHILD=$!
 wait "$CHILD" || status=$?
 exit "$status"
