@@ -266,12 +266,22 @@ def comm(pid: int) -> str:
         return ""
 
 
-def ctrl_c(launch: subprocess.Popen[bytes], grace: float = 10.0) -> tuple[int, dict[int, str]]:
-    """SIGINT to the launch's process group, as a terminal's Ctrl-C: the launch's exit code
-    and what of every process below it still runs ``grace`` seconds after it exited."""
+def ctrl_c(
+    launch: subprocess.Popen[bytes],
+    grace: float = 10.0,
+    sig: int = signal.SIGINT,
+    wait: float = 60.0,
+) -> tuple[int | None, dict[int, str]]:
+    """SIGINT to the launch's process group, as a terminal's Ctrl-C (or ``sig``): the
+    launch's exit code and what of every process below it still runs ``grace`` seconds after
+    it exited; the code is None when the launch still runs ``wait`` seconds after the signal,
+    and what is left is then what runs below it."""
     started = descendants(launch.pid)
-    os.killpg(launch.pid, signal.SIGINT)
-    code = launch.wait(60)
+    os.killpg(launch.pid, sig)
+    try:
+        code: int | None = launch.wait(wait)
+    except subprocess.TimeoutExpired:
+        return None, {p: comm(p) for p in started | {launch.pid} if running(p)}
     deadline = time.monotonic() + grace
     while time.monotonic() < deadline and any(running(p) for p in started):
         time.sleep(0.2)
