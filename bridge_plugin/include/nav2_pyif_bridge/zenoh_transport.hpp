@@ -79,7 +79,8 @@ private:
   bool try_open(bool quiet);
   // zenoh-pico: moves to a new session in place of one connected to nothing (or to the one
   // another plugin of this server opened in its place).
-  bool try_reopen(const std::shared_ptr<zenoh::Session> & stranded);
+  // `why`: what is wrong with it, for the log ("" when another plugin reopened it).
+  bool try_reopen(const std::shared_ptr<zenoh::Session> & stranded, const std::string & why);
   // The background thread: opens the session until it is open; on zenoh-pico, then watches it.
   void keep_linked();
   std::shared_ptr<zenoh::Session> session() const;

@@ -133,6 +133,16 @@ std::shared_ptr<zenoh::Session> open_shared_session(const ZenohOptions & options
 // nothing this long: a reconnection of its own, when it works, takes about a second.
 constexpr bool kWatchesSession = true;
 constexpr auto kReopenAfter = std::chrono::seconds(5);
+// A session can also stay deaf while zenoh-pico says it is connected: seen in Lyrical's composed
+// bringup after a 2 s stop of the host (its lease ran out meanwhile). planner_server's plugin
+// logged the host gone and never saw it again, and a new liveliness subscriber on that session
+// heard nothing either, while the other plugins reached the same host. A session on which a host
+// was alive, and none has been for this long, is replaced once as a stranded one is; not again
+// until a host is seen (a host that is really gone is not chased with new sessions).
+constexpr auto kDeafAfter = std::chrono::seconds(5);
+const char * const kStranded = "was connected to nothing for 5 s and did not reconnect by itself";
+const char * const kDeaf =
+  "has been connected for 5 s with no planner host heard, after one was: it went deaf";
 
 bool connected_to_nothing(const zenoh::Session & session)
 {
@@ -303,7 +313,8 @@ bool ZenohTransport::try_open(bool quiet)
 }
 
 #if defined(ZENOHCXX_ZENOHPICO)
-bool ZenohTransport::try_reopen(const std::shared_ptr<zenoh::Session> & stranded)
+bool ZenohTransport::try_reopen(
+  const std::shared_ptr<zenoh::Session> & stranded, const std::string & why)
 {
   std::shared_ptr<zenoh::Session> session;
   bool opened_here = false;
@@ -341,9 +352,8 @@ bool ZenohTransport::try_reopen(const std::shared_ptr<zenoh::Session> & stranded
   client::log(
     logger_, opened_here ? LogLevel::Warn : LogLevel::Info,
     opened_here ?
-    "the Zenoh session (zenoh-pico, " + where_ + ") was connected to nothing for " +
-    std::to_string(kReopenAfter.count()) + " s and did not reconnect by itself; a new one is "
-    "open, watching " + hosts_key_ :
+    "the Zenoh session (zenoh-pico, " + where_ + ") " + why + "; a new one is open, watching " +
+    hosts_key_ :
     "watching " + hosts_key_ + " on the new Zenoh session another plugin of this server opened");
   return true;
 }
@@ -355,6 +365,9 @@ void ZenohTransport::keep_linked()
   std::unique_lock<std::mutex> lock(mutex_);
   // Since when the session has been connected to nothing; epoch: it is connected.
   [[maybe_unused]] Clock::time_point stranded_since{};
+  // Since when it has been connected with no host alive, after one was (epoch: not so).
+  [[maybe_unused]] Clock::time_point deaf_since{};
+  [[maybe_unused]] bool heard_a_host = false;
   while (!stop_cv_.wait_for(lock, std::chrono::seconds(1), [this]() {return stopping_;})) {
     const auto session = link_ ? link_->session : nullptr;
     lock.unlock();
@@ -364,12 +377,23 @@ void ZenohTransport::keep_linked()
       }
 #if defined(ZENOHCXX_ZENOHPICO)
     } else if (SharedSessions::instance().current(options_) != session) {
-      try_reopen(session);  // another plugin of this server reopened the session they share
+      try_reopen(session, "");  // another plugin of this server reopened the session they share
     } else if (!connected_to_nothing(*session)) {
       stranded_since = {};
+      if (watcher_->any_alive()) {
+        heard_a_host = true;
+        deaf_since = {};
+      } else if (heard_a_host && deaf_since == Clock::time_point{}) {
+        deaf_since = Clock::now();
+      } else if (
+        heard_a_host && Clock::now() - deaf_since >= kDeafAfter && try_reopen(session, kDeaf))
+      {
+        heard_a_host = false;
+        deaf_since = {};
+      }
     } else if (stranded_since == Clock::time_point{}) {
       stranded_since = Clock::now();
-    } else if (Clock::now() - stranded_since >= kReopenAfter && try_reopen(session)) {
+    } else if (Clock::now() - stranded_since >= kReopenAfter && try_reopen(session, kStranded)) {
       stranded_since = {};
 #endif
     }
