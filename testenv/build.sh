@@ -154,8 +154,9 @@ mirror_of() {  # the bare git directory of repository $1 (OWNER/NAME) under $MIR
 
 # File by file, for a mirror that lacks some large blobs (images, bags: git archive stops at
 # the first one); the files it lacks are named and left out.
-extract_tolerant() {
+extract_tolerant() {  # MIRROR VERSION DEST [PATH...]: the paths only, when named
   local mirror="$1" version="$2" dest="$3" mode type sha path missing=0
+  shift 3
   while IFS=$'\t' read -r -d '' meta path; do
     read -r mode type sha <<<"$meta"
     [ "$type" = blob ] || continue
@@ -169,7 +170,7 @@ extract_tolerant() {
       git --git-dir="$mirror" cat-file blob "$sha" >"$dest/$path"
       [ "$mode" = 100755 ] && chmod +x "$dest/$path"
     fi
-  done < <(git --git-dir="$mirror" ls-tree -r -z "$version")
+  done < <(git --git-dir="$mirror" ls-tree -r -z "$version" -- "$@")
   # The commit's time on every file, as git archive gives: laid out again (a patch added or
   # changed), only the files the patch touches are newer than what was built from them.
   find "$dest" -exec touch -h -d "@$(git --git-dir="$mirror" log -1 --format=%ct "$version")" {} +
@@ -182,14 +183,17 @@ newest_release() {  # the newest numbered tag of the mirror $1, to say what it h
 }
 
 step_sources() {
-  local name version url dest mirror patch stamp count=0 total lacking=()
+  local name version url dest mirror patch stamp path paths count=0 total lacking=()
   total="$(repos_entries "$REPOS" | wc -l)"
   while read -r name version url; do
     count=$((count + 1))
     dest="$SOURCES/$name"
     patch="$HERE/patches/$DISTRO/${name/\//+}.patch"
     stamp="$version"
-    [ -f "$patch" ] && stamp="$version $(sha256sum <"$patch" | cut -c1-16)"
+    # (an entry laid out in part: the paths PARTIAL_SOURCES keeps, none meaning all)
+    read -r -a paths <<<"${PARTIAL_SOURCES[$name]:-}"
+    [ ${#paths[@]} -eq 0 ] || stamp="$stamp (${paths[*]})"
+    [ -f "$patch" ] && stamp="$stamp $(sha256sum <"$patch" | cut -c1-16)"
     if [ "$(cat "$dest/.testenv-version" 2>/dev/null)" = "$stamp" ]; then
       continue
     fi
@@ -206,15 +210,20 @@ step_sources() {
         continue
       fi
       rm -rf "$dest" && mkdir -p "$dest"
-      if ! git --git-dir="$mirror" archive --format=tar "$version" 2>/dev/null \
+      if ! git --git-dir="$mirror" archive --format=tar "$version" -- "${paths[@]}" 2>/dev/null \
         | tar -x -C "$dest"; then
         rm -rf "$dest" && mkdir -p "$dest"
-        extract_tolerant "$mirror" "$version" "$dest"
+        extract_tolerant "$mirror" "$version" "$dest" "${paths[@]}"
       fi
     else
       rm -rf "$dest" && mkdir -p "$dest"
       git clone -q --depth 1 --branch "$version" "$url" "$dest.clone"
       rm -rf "$dest" && mv "$dest.clone" "$dest"
+      if [ ${#paths[@]} -gt 0 ]; then
+        mkdir "$dest.part"
+        for path in "${paths[@]}"; do mkdir -p "$dest.part/$(dirname "$path")" && mv "$dest/$path" "$dest.part/$path"; done
+        rm -rf "$dest" && mv "$dest.part" "$dest"
+      fi
     fi
     if [ -f "$patch" ]; then
       (cd "$dest" && git apply "$patch") || die "sources: $patch does not apply to $name $version"

@@ -38,14 +38,17 @@ BRINGUP_LYRICAL=(
 # simulator; its stock params run DWB, the native side of the comparison (named here, so not
 # ignored: BRINGUP_IGNORE leaves DWB out elsewhere).
 BRINGUP_HUMBLE=(nav2_route dwb_core dwb_critics dwb_plugins dwb_msgs costmap_queue)
+# Humble's robot for the stock launch test: Jazzy's nav2_loopback_sim (pure Python), and
+# robot_state_publisher for the TurtleBot 3's frames (nav2_bringup 1.1 has its URDF).
+BRINGUP_HUMBLE+=(nav2_loopback_sim tf_transformations robot_state_publisher)
 # What the stock stack needs from Debian: GraphicsMagick++ (map_server's image maps),
 # OpenCV and Boost.Python (cv_bridge, for waypoint_follower's photo plugin); Jazzy's also
 # GeographicLib (robot_localization, for waypoint_follower's GPS plugin) and urdfdom (urdf, for
 # robot_state_publisher); Humble's route server nanoflann; Lyrical's all three.
 APT_BRINGUP=(libgraphicsmagick++1-dev libopencv-dev libboost-dev libboost-python-dev)
 APT_BRINGUP_JAZZY=(libgeographiclib-dev liburdfdom-dev liburdfdom-headers-dev)
-APT_BRINGUP_HUMBLE=(libnanoflann-dev)
-APT_BRINGUP_LYRICAL=("${APT_BRINGUP_JAZZY[@]}" "${APT_BRINGUP_HUMBLE[@]}")
+APT_BRINGUP_HUMBLE=(libnanoflann-dev liburdfdom-dev liburdfdom-headers-dev)
+APT_BRINGUP_LYRICAL=("${APT_BRINGUP_JAZZY[@]}" libnanoflann-dev)
 
 # Debian packages: compilers, and the system libraries the ROS packages above find with CMake
 # (liblttng-ust-dev: the tracetools wheel's CMake export links it into rclcpp).
@@ -114,6 +117,11 @@ BRINGUP_IGNORE=(
   nav2_minimal_tb4_sim nav2_minimal_tb4_description
 )
 
+# Entries of DISTRO.repos of which only some paths are laid out (the .repos name: the paths,
+# space-separated): a package of another release of a repository built whole beside it (colcon
+# refuses two packages of one name).
+declare -gA PARTIAL_SOURCES=()
+
 distro_settings() {
   # Link only what is used: the wheels name Python-only libraries as dependencies of C++ ones
   # (as tests/test_nav2_launch.py does for the plugin). BehaviorTree.CPP without its Groot2
@@ -164,7 +172,10 @@ distro_settings() {
       # built here, DWB too)
       ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}" "${BRINGUP_HUMBLE[@]}")
       APT_PACKAGES+=("${APT_BRINGUP[@]}" "${APT_BRINGUP_HUMBLE[@]}")
+      PIP_PACKAGES+=("${PIP_BRINGUP[@]}")
       IGNORE_PACKAGES+=("${BRINGUP_IGNORE[@]}")
+      # Jazzy's navigation2 gives its loopback simulator only (humble.repos).
+      PARTIAL_SOURCES["ros-navigation/navigation2-loopback-sim"]="nav2_loopback_sim"
       CMAKE_ARGS+=(-DBUILD_EXAMPLES=OFF -DBUILD_UNIT_TESTS=OFF -DBUILD_TOOLS=OFF)
       # (nav2_util 1.1's lifecycle_bringup takes its arguments with Boost.Program_options)
       APT_PACKAGES+=(libboost-coroutine-dev libboost-program-options-dev)
