@@ -125,12 +125,20 @@ BRINGUP_NEEDS = {
 # The stock params' own controller, which the native side of the comparison runs: Humble's is
 # DWB, later ones' MPPI (testenv/build.sh DISTRO mppi builds it).
 STOCK_CONTROLLER = {"humble": "dwb_core"}
+# Humble's robot: its nav2_bringup carries the TurtleBot 3 URDF (nav2_minimal_tb3_sim is from
+# Jazzy on), and the loopback simulator is Jazzy's, built on Humble (testenv/build.sh).
+TB3_URDF = {"humble": ("nav2_bringup's URDF", "share/nav2_bringup/urdf/turtlebot3_waffle.urdf")}
 
 
 def _bringup_needs(distro: str) -> dict[str, str]:
     package = STOCK_CONTROLLER.get(distro, "nav2_mppi_controller")
     build = "" if distro in STOCK_CONTROLLER else f" (testenv/build.sh {distro} mppi)"
-    return {**BRINGUP_NEEDS, f"{package}{build}": f"share/{package}/package.xml"}
+    needs = {**BRINGUP_NEEDS, f"{package}{build}": f"share/{package}/package.xml"}
+    if distro in TB3_URDF:
+        del needs["nav2_minimal_tb3_sim"]
+        name, path = TB3_URDF[distro]
+        needs[name] = path
+    return needs
 
 
 @pytest.mark.timeout(1800)

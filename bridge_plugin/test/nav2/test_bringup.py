@@ -1,6 +1,10 @@
 """Nav2 as its users launch it: nav2_bringup's own loopback-simulation launch
 (tb3_loopback_simulation.launch.py: bringup_launch.py with map_server, Nav2's loopback simulator
-and robot_state_publisher) and its own nav2_params.yaml, changed only in the plugin lines:
+and robot_state_publisher) and its own nav2_params.yaml, changed only in the plugin lines.
+Humble's navigation2 (1.1) has no loopback simulator and no such launch: there
+humble_loopback_launch.py stands in for the launch, doing what Jazzy's does with nav2_bringup's
+navigation_launch.py, map_server, robot_state_publisher and Jazzy's loopback simulator (built
+on Humble by testenv/build.sh). The plugin lines changed:
 
 - FollowPath: PyController, served by the reference regulated pure pursuit;
 - GridBased: PyGlobalPlanner, served by the reference A*;
@@ -38,9 +42,10 @@ rmw_zenoh's own router.
 - Ctrl-C on the launch (SIGINT to its process group) ends every process it started.
 
 Needs, beyond what test_nav2_pyif.py needs: nav2_bringup, nav2_loopback_sim,
-robot_state_publisher, nav2_minimal_tb3_sim, rclcpp_components, `ros2 launch`, `ros2 lifecycle`
-and, for the native comparison, the stock controller's package (nav2_mppi_controller:
-`testenv/build.sh jazzy mppi`; Humble's dwb_core). Skipped, naming what is missing, otherwise.
+robot_state_publisher, nav2_minimal_tb3_sim (Humble: nav2_bringup's own TurtleBot 3 URDF),
+rclcpp_components, `ros2 launch`, `ros2 lifecycle` and, for the native comparison, the stock
+controller's package (nav2_mppi_controller: `testenv/build.sh jazzy mppi`; Humble's dwb_core).
+Skipped, naming what is missing, otherwise.
 """
 
 from __future__ import annotations
@@ -67,8 +72,11 @@ pytestmark = pytest.mark.timeout(1200)
 
 PREFIX = nav2_testing.PREFIX
 STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
-# The loopback launch: Jazzy's name, and Lyrical's (Humble has none: no nav2_loopback_sim).
+# The loopback launch: Jazzy's name, and Lyrical's. Humble's nav2_bringup has none (no
+# nav2_loopback_sim in navigation2 1.1): the stand-in beside this file runs its parts.
 LAUNCHES = ("tb3_loopback_simulation.launch.py", "tb3_loopback_simulation_launch.py")
+HUMBLE_LAUNCH = nav2_testing.HERE / "humble_loopback_launch.py"
+BRINGUP_SHARE = "share/nav2_bringup"
 # The TurtleBot 3 sandbox (nav2_bringup's default map): the robot starts where the TurtleBot 3
 # simulation spawns it, drives up around the pillars and back.
 START = (-2.0, -0.5)
@@ -205,11 +213,22 @@ def _missing(native: bool, local: bool) -> list[str]:
     absent = nav2_testing.missing()
     if shutil.which("ros2") is None:
         absent.append("the ros2 command (ros2cli)")
+    launch = _launch()
     needed = {
-        "nav2_bringup's loopback launch": f"share/nav2_bringup/launch/{_launch()}",
+        # (Humble's stand-in: nav2_bringup's navigation launch and TurtleBot 3 URDF)
+        **(
+            {
+                "nav2_bringup's launch": f"{BRINGUP_SHARE}/launch/navigation_launch.py",
+                "nav2_bringup's URDF": f"{BRINGUP_SHARE}/urdf/turtlebot3_waffle.urdf",
+            }
+            if launch == HUMBLE_LAUNCH
+            else {
+                "nav2_bringup's loopback launch": f"share/nav2_bringup/launch/{launch}",
+                "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf",
+            }
+        ),
         "nav2_loopback_sim": "lib/nav2_loopback_sim/loopback_simulator",
         "robot_state_publisher": "lib/robot_state_publisher/robot_state_publisher",
-        "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf",
         # (component_container_isolated before Lyrical, component_container --isolated on it)
         "rclcpp_components": "lib/rclcpp_components/component_container",
         "ros2lifecycle (`ros2 lifecycle`)": "share/ros2lifecycle/package.xml",
@@ -326,10 +345,12 @@ def stock_bringup(
         params.write_text(native_rpp_params(stock) if native_rpp else stock)
     assert STOCK_SERVER_WAIT in stock, f"no '{STOCK_SERVER_WAIT}' in {stock_file}"
     params.write_text(params.read_text().replace(STOCK_SERVER_WAIT, LOADED_SERVER_WAIT))
+    launch = _launch()
     procs.start(
         "launch",
         [
-            *("ros2", "launch", "nav2_bringup", _launch()),
+            *("ros2", "launch"),
+            *([str(launch)] if launch == HUMBLE_LAUNCH else ["nav2_bringup", str(launch)]),
             f"params_file:={params}",
             "use_rviz:=False",
             f"use_composition:={composed}",
@@ -400,11 +421,15 @@ def resume_after_a_failed_activation(client: Any, procs: nav2_testing.Processes)
         client.destroy_client(manage)
 
 
-def _launch() -> str:
-    """The loopback launch file of this nav2_bringup (its first name when it has none)."""
+def _launch() -> str | Path:
+    """The loopback launch file of this nav2_bringup; on Humble's Nav2 (1.1), which has none,
+    the stand-in HUMBLE_LAUNCH; else its first name (the test then skips, naming it)."""
     for name in LAUNCHES:
         if nav2_testing.find(f"share/nav2_bringup/launch/{name}") is not None:
             return name
+    controller = nav2_testing.find("share/nav2_controller/package.xml")
+    if controller is not None and nav2_testing.nav2_controller_version()[:2] == (1, 1):
+        return HUMBLE_LAUNCH
     return LAUNCHES[0]
 
 
