@@ -81,7 +81,8 @@ PluginBridge::PluginBridge(
     config_.timeouts = settings_.timeouts;
     config_.key_prefix =
       settings_.key.empty() ? client::local_host_key(config_.node, name) : settings_.key;
-    const std::string server = node->get_fully_qualified_name();
+    // (Humble's LifecycleNode has no get_fully_qualified_name; its node base interface has)
+    const std::string server = node->get_node_base_interface()->get_fully_qualified_name();
     ZenohOptions zenoh{settings_.zenoh_config, settings_.zenoh_connect, server};
     if (client::starts_local_host(settings_)) {
       local_host_ = std::make_unique<client::LocalHost>(settings_, config_.key_prefix, logger());
