@@ -76,12 +76,14 @@ def generate_launch_description() -> LaunchDescription:
         DeclareLaunchArgument("use_respawn", default_value="False"),
         DeclareLaunchArgument("use_rviz", default_value="False", description="(no RViz here)"),
     ]
-    # as bringup_launch.py gives them to its container (Jazzy's loopback launch: to map_server)
+    # as Humble's bringup_launch.py gives them to its container and map_server: the map
+    # rewritten into map_server's own section (its stock `yaml_filename: ""`), since a node's
+    # own section there outranks any later parameters for all nodes (`/**`)
     configured_params = ParameterFile(
         RewrittenYaml(
             source_file=params_file,
             root_key="",
-            param_rewrites={"use_sim_time": "True"},
+            param_rewrites={"use_sim_time": "True", "yaml_filename": map_yaml_file},
             convert_types=True,
         ),
         allow_substs=True,
@@ -115,7 +117,7 @@ def generate_launch_description() -> LaunchDescription:
                 output="screen",
                 respawn=use_respawn,
                 respawn_delay=2.0,
-                parameters=[configured_params, {"yaml_filename": map_yaml_file}],
+                parameters=[configured_params],
                 remappings=remappings,
             ),
             Node(
