@@ -604,21 +604,33 @@ def assert_returns_to_start(stack: Stack) -> None:
 # `kill -9`), and nothing else may be left: each plugin's own hosts end with their server.
 LYRICAL_HANG = 20.0
 LYRICAL_STUCK = {"component_conta", "controller_serv", "planner_server"}
+# Humble's composed container (rclcpp 16.0.8) never ends at Ctrl-C either, the unchanged stock
+# stack's and Nav2's own pure pursuit's as much as the Python-planned ones': after its servers'
+# cleanup it hangs. `ros2 launch` mostly ends it itself (SIGTERM 5 s after the SIGINT, SIGKILL
+# 10 s later), but in the stock stack's runs it sent nothing for 60 s. So on Humble, composed,
+# the same as on Lyrical: held up by the container alone, then SIGTERM and SIGKILL for it.
+HUMBLE_STUCK = {CONTAINER}
 
 
 def assert_ctrl_c_ends_everything(stack: Stack) -> None:
     launch = stack.procs.procs["launch"]
     started = set(stack.launched().values())
-    lyrical = nav2_testing.is_lyrical()
-    code, left = nav2_testing.ctrl_c(launch, wait=LYRICAL_HANG if lyrical else 60.0)
+    stuck = (
+        LYRICAL_STUCK
+        if nav2_testing.is_lyrical()
+        else HUMBLE_STUCK
+        if _launch() == HUMBLE_LAUNCH and CONTAINER in started
+        else set()
+    )
+    code, left = nav2_testing.ctrl_c(launch, wait=LYRICAL_HANG if stuck else 60.0)
     log = stack.procs.log("launch", 60)
-    if code is None and lyrical:
-        assert LYRICAL_STUCK & set(left.values()), f"Ctrl-C: still running {left}\n{log}"
-        print(f"Nav2 1.5.1's hang at Ctrl-C on simulated time: {sorted(set(left.values()))}")
+    if code is None and stuck:
+        assert stuck & set(left.values()), f"Ctrl-C: still running {left}\n{log}"
+        print(f"Nav2's hang at Ctrl-C (Lyrical, Humble composed): {sorted(set(left.values()))}")
         everything = dict(left)
         _, left = nav2_testing.ctrl_c(launch, sig=signal.SIGTERM)
         for pid, name in left.items():
-            if name in LYRICAL_STUCK:
+            if name in stuck:
                 os.kill(pid, signal.SIGKILL)
         deadline = time.monotonic() + 10.0
         while time.monotonic() < deadline and any(map(nav2_testing.running, everything)):
