@@ -16,7 +16,7 @@ import signal
 import socket
 import subprocess
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from datetime import datetime
 from pathlib import Path
 from typing import Any
@@ -282,10 +282,16 @@ def ctrl_c(
         code: int | None = launch.wait(wait)
     except subprocess.TimeoutExpired:
         return None, {p: comm(p) for p in started | {launch.pid} if running(p)}
+    return code, left_after(started, grace)
+
+
+def left_after(pids: Iterable[int], grace: float) -> dict[int, str]:
+    """What of ``pids`` still runs once they all ended or ``grace`` seconds passed: pid, name."""
+    watched = set(pids)
     deadline = time.monotonic() + grace
-    while time.monotonic() < deadline and any(running(p) for p in started):
+    while time.monotonic() < deadline and any(running(p) for p in watched):
         time.sleep(0.2)
-    return code, {p: comm(p) for p in started if running(p)}
+    return {p: comm(p) for p in watched if running(p)}
 
 
 SUCCEEDED, CANCELED, ABORTED = 4, 5, 6  # action_msgs/GoalStatus

@@ -595,10 +595,7 @@ def assert_ctrl_c_ends_everything(stack: Stack) -> None:
         for pid, name in left.items():
             if name in LYRICAL_STUCK:
                 os.kill(pid, signal.SIGKILL)
-        deadline = time.monotonic() + 10.0
-        while time.monotonic() < deadline and any(map(nav2_testing.running, everything)):
-            time.sleep(0.2)
-        left = {p: nav2_testing.comm(p) for p in everything if nav2_testing.running(p)}
+        left = nav2_testing.left_after(everything, 10.0)
         assert not left, f"still running after Ctrl-C, SIGTERM and Nav2's servers SIGKILLed: {left}"
         return
     assert code is not None, f"ros2 launch still runs 60 s after Ctrl-C: {left}\n{log}"
@@ -707,11 +704,7 @@ def test_local_hosts_in_the_container_end_with_a_lifecycle_shutdown_and_ctrl_c(
         TIMES["python_local"] = drive_the_goals(stack, "python_local")
         # controller_server's, by `ros2 lifecycle`; planner_server's, by Ctrl-C
         lifecycle_shutdown(stack, "controller_server")
-        deadline = time.monotonic() + 20.0
-        ended = hosts["controller_server"]
-        while time.monotonic() < deadline and any(nav2_testing.running(p) for p in ended):
-            time.sleep(0.2)
-        left = {p: nav2_testing.comm(p) for p in ended if nav2_testing.running(p)}
+        left = nav2_testing.left_after(hosts["controller_server"], 20.0)
         assert not left, (
             f"still running after `ros2 lifecycle set /controller_server shutdown`: {left}\n"
             + stack.procs.log("launch", 60)
