@@ -439,11 +439,12 @@ def test_takes_lyricals_motion_model_plugins() -> None:
         plugin = {"motion_model": "m", "m.plugin": f"mppi::{model}MotionModel"}
         assert settings(**plugin).motion_model == model
     assert settings(motion_model="Omni").motion_model == "Omni"
-    c = controller(motion_model="diff_drive", **{"diff_drive.plugin": "mppi::DiffDriveMotionModel"})
+    lyrical: dict[str, Any] = {"diff_drive.plugin": "mppi::DiffDriveMotionModel"}
+    c = controller(None, motion_model="diff_drive", **lyrical)
     assert c.settings.motion_model == "DiffDrive"
     assert "diff_drive.plugin" not in c.params.undeclared()  # read: no "ignored" warning
     with pytest.raises(InvalidController, match="Failed to load motion model plugin 'tank'"):
-        controller(motion_model="tank", **{"tank.plugin": "mppi::TankMotionModel"})
+        controller(None, motion_model="tank", **{"tank.plugin": "mppi::TankMotionModel"})
     with pytest.raises(InvalidController, match="Model diff_drive is not valid"):
         controller(motion_model="diff_drive")
 
