@@ -123,14 +123,18 @@ def _cpu_seconds(pids: list[int]) -> float:
 
 def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
     """Plan to ``goal`` (NavFn), then FollowPath to it, recording what was driven."""
-    from geometry_msgs.msg import Twist
+    from geometry_msgs.msg import Twist, TwistStamped
+    from sim_robot import STAMPED_CMD_VEL  # the command's type where the robot reads it
 
     planned = client.plan(*goal)
     assert planned is not None and len(planned.result.path.poses) > 1, "no plan"
     stamps: list[float] = []
     poses: list[tuple[float, float]] = []
     commands = client.create_subscription(
-        Twist, "cmd_vel", lambda _msg: stamps.append(time.monotonic()), 50
+        TwistStamped if STAMPED_CMD_VEL else Twist,
+        "cmd_vel",
+        lambda _msg: stamps.append(time.monotonic()),
+        50,
     )
     cpu = _cpu_seconds(workers)
     started = time.monotonic()
