@@ -55,6 +55,12 @@ usage_error() { log "$*"; echo "Run testenv/run-in-root.sh --help for usage." >&
 source "$HERE/rootfs.sh"
 
 # --- inside the root: the three steps ------------------------------------------------------
+use_environment() {  # SETUP: source a setup script (they read unset variables)
+  set +u
+  # shellcheck source=/dev/null
+  source "$1" >/dev/null
+  set -u
+}
 inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL SELECT FILE...
   local repo="$1" prefix="$2" backend="$3" install="$4" build="$5" trial="$6" select="$7"
   shift 7
@@ -76,9 +82,7 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL SELECT FILE...
     workspace_trial "$repo" "$prefix" "$setup" "$ws"
     return
   fi
-  set +u  # (the setup scripts read unset variables)
-  # shellcheck source=/dev/null
-  source "$setup" >/dev/null
+  use_environment "$setup"
   ln -sfn "$repo/bridge_plugin" "$ws/src/nav2_pyif_bridge"
   if [ "$build" = 1 ]; then
     log "build: nav2_pyif_bridge in $ws (log: $ws/build.log)"
@@ -88,9 +92,7 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL SELECT FILE...
       || { tail -40 "$ws/build.log"; die "colcon build failed"; }
     log "build: $((SECONDS - start)) s, $(grep -c 'warning:' "$ws/build.log" || true) compiler warnings"
   fi
-  # shellcheck source=/dev/null
-  source "$ws/install/local_setup.bash"
-  set -u
+  use_environment "$ws/install/local_setup.bash"
   # The planner host's environment: the venv, with the ROS 2 the tests run in.
   # shellcheck disable=SC2016
   printf '#!/bin/bash\nexport PATH=%q/venv/bin:"$PATH"\nexec "$@"\n' "$prefix" >"$ws/in-venv.sh"
@@ -135,10 +137,7 @@ workspace_trial() {  # REPO PREFIX SETUP WS
   local repo="$1" prefix="$2" setup="$3" ws="$4" status=0 start=$SECONDS
   log "workspace trial: tests/test_ros_workspace.py, lyrical (log: $ws/logs/workspace_trial.log)"
   cd "$repo"
-  set +u  # (the setup scripts read unset variables)
-  # shellcheck source=/dev/null
-  source "$setup" >/dev/null  # for the test process's own imports; each step sources it anew
-  set -u
+  use_environment "$setup"  # for the test process's own imports; each step sources it anew
   NAV2_PYIF_NAV2_SETUP_LYRICAL_ZENOHPICO="$setup" "$prefix/venv/bin/python" -m pytest \
     -p no:cacheprovider -q -rs -s -k lyrical tests/test_ros_workspace.py \
     >"$ws/logs/workspace_trial.log" 2>&1 || status=$?

@@ -140,9 +140,11 @@ constexpr auto kReopenAfter = std::chrono::seconds(5);
 // was alive, and none has been for this long, is replaced once as a stranded one is; not again
 // until a host is seen (a host that is really gone is not chased with new sessions).
 constexpr auto kDeafAfter = std::chrono::seconds(5);
-const char * const kStranded = "was connected to nothing for 5 s and did not reconnect by itself";
-const char * const kDeaf =
-  "has been connected for 5 s with no planner host heard, after one was: it went deaf";
+// What is wrong with a session replaced for either reason, for the log.
+const std::string kStranded = "was connected to nothing for " +
+  std::to_string(kReopenAfter.count()) + " s and did not reconnect by itself";
+const std::string kDeaf = "has been connected for " + std::to_string(kDeafAfter.count()) +
+  " s with no planner host heard, after one was: it went deaf";
 
 bool connected_to_nothing(const zenoh::Session & session)
 {

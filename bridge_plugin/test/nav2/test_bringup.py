@@ -356,13 +356,11 @@ def stock_bringup(
             f"use_composition:={composed}",
         ],
     )
-    import rclpy
     from bond.msg import Status
     from geometry_msgs.msg import PolygonStamped, PoseWithCovarianceStamped
     from rclpy.qos import QoSProfile, ReliabilityPolicy
 
-    rclpy.init()
-    client = nav2_testing.Nav2Client()
+    client = nav2_testing.ros_client(procs)
     stack = Stack(client, procs, start_host)
 
     def heard(source: str) -> None:
@@ -410,15 +408,12 @@ def resume_after_a_failed_activation(client: Any, procs: nav2_testing.Processes)
 
     if "Failed to activate" not in procs.log("launch", 100_000):
         return
-    manage = client.create_client(
+    manage = client.service_client(
         ManageLifecycleNodes, "/lifecycle_manager_navigation/manage_nodes"
     )
-    try:
-        if manage.wait_for_service(timeout_sec=10.0):
-            request = ManageLifecycleNodes.Request(command=ManageLifecycleNodes.Request.RESUME)
-            client.wait(manage.call_async(request), 30.0)
-    finally:
-        client.destroy_client(manage)
+    if manage.wait_for_service(timeout_sec=10.0):
+        request = ManageLifecycleNodes.Request(command=ManageLifecycleNodes.Request.RESUME)
+        client.wait(manage.call_async(request), 30.0)
 
 
 def _launch() -> str | Path:
@@ -632,10 +627,7 @@ def assert_ctrl_c_ends_everything(stack: Stack) -> None:
         for pid, name in left.items():
             if name in stuck:
                 os.kill(pid, signal.SIGKILL)
-        deadline = time.monotonic() + 10.0
-        while time.monotonic() < deadline and any(map(nav2_testing.running, everything)):
-            time.sleep(0.2)
-        left = {p: nav2_testing.comm(p) for p in everything if nav2_testing.running(p)}
+        left = nav2_testing.left_after(everything, 10.0)
         assert not left, f"still running after Ctrl-C, SIGTERM and Nav2's servers SIGKILLed: {left}"
         return
     assert code is not None, f"ros2 launch still runs 60 s after Ctrl-C: {left}\n{log}"
@@ -744,11 +736,7 @@ def test_local_hosts_in_the_container_end_with_a_lifecycle_shutdown_and_ctrl_c(
         TIMES["python_local"] = drive_the_goals(stack, "python_local")
         # controller_server's, by `ros2 lifecycle`; planner_server's, by Ctrl-C
         lifecycle_shutdown(stack, "controller_server")
-        deadline = time.monotonic() + 20.0
-        ended = hosts["controller_server"]
-        while time.monotonic() < deadline and any(nav2_testing.running(p) for p in ended):
-            time.sleep(0.2)
-        left = {p: nav2_testing.comm(p) for p in ended if nav2_testing.running(p)}
+        left = nav2_testing.left_after(hosts["controller_server"], 20.0)
         assert not left, (
             f"still running after `ros2 lifecycle set /controller_server shutdown`: {left}\n"
             + stack.procs.log("launch", 60)

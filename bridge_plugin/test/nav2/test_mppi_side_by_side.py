@@ -6,9 +6,10 @@ only when tests/test_nav2_launch.py is asked for it (NAV2_PYIF_MPPI_SIDE_BY_SIDE
 skips, naming it, where nav2_mppi_controller is not built (testenv/build.sh jazzy mppi).
 
 Per controller: compute per cycle (Nav2's MPPI: its own "Control loop execution time" log
-lines, whole ms; ours: the controller method alone, planners/timed_mppi.py), CPU of the
-processes doing the work per cycle (controller_server; or the planner host and its workers),
-the gaps between cmd_vel messages, FollowPath's time to the goal and the path driven.
+lines, in us with testenv's patch, else whole ms; ours: the controller method alone,
+planners/timed_mppi.py), CPU of the processes doing the work per cycle (controller_server; or
+the planner host and its workers), the gaps between cmd_vel messages, FollowPath's time to
+the goal and the path driven.
 $NAV2_PYIF_MPPI_RUNS round trips each (default 3); $NAV2_PYIF_MPPI_ROLLOUTS the rollout counts
 (default "1000 2000"); $NAV2_PYIF_MPPI_OURS the served classes (module:Class, default the
 timed Nav2MPPI; timed_mppi:TimedMPPIJax is the older JAX MPPI). Figures go to
@@ -42,9 +43,25 @@ NATIVE = "nav2_mppi_controller::MPPIController"
 # YAML holds), visualisation off: the same for both but for the plugin line.
 NAV2_BLOCK = nav2_testing.HERE.parents[2] / "planners/nav2_pyif_planners/mppi_nav2/nav2_jazzy.yaml"
 FOLLOW_PATH = re.compile(r"    FollowPath:\n(?:      .*\n)+")
-NATIVE_TIME = re.compile(r"Control loop execution time: (\d+) \[ms\]")
+STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
+# Nav2's MPPI logs whole ms; testenv's patch makes it log us (a 3 ms cycle truncated to whole
+# ms is up to a third off).
+NATIVE_TIME = re.compile(r"Control loop execution time: (\d+) \[(ms|us)\]")
 OUR_TIME = re.compile(r"compute: (\d+\.\d+) ms")
 PLANNER = ("--serve", f"{nav2_testing.PREFIX}/GridBased=nav2_pyif_planners.astar:AStar")
+
+
+def _mppi_block() -> str:
+    """Nav2's MPPI block as the distribution's nav2_bringup has it, unindented: Jazzy's as the
+    planners package ships it; Lyrical's (motion models as plugins, a trajectory validator)
+    from the environment's own nav2_bringup params, which Nav2MPPI reads too."""
+    if os.environ.get("ROS_DISTRO") != "lyrical":
+        return NAV2_BLOCK.read_text()
+    stock = nav2_testing.find(STOCK_PARAMS)
+    assert stock is not None, f"Lyrical's MPPI block is read from nav2_bringup's {STOCK_PARAMS}"
+    block = FOLLOW_PATH.search(stock.read_text())
+    assert block is not None, f"{stock} has no FollowPath block"
+    return "\n".join(line[6:] for line in block.group(0).splitlines()[1:]) + "\n"
 
 
 def _params(text: str, rollouts: int, native: bool) -> str:
@@ -65,8 +82,8 @@ def _params(text: str, rollouts: int, native: bool) -> str:
         plugin = "\n".join([*kept, *(f"      {line}" for line in settings)])
     lines = [
         line
-        for line in NAV2_BLOCK.read_text().splitlines()
-        if line.strip() and not line.startswith(("#", "plugin:"))
+        for line in _mppi_block().splitlines()
+        if line.strip() and not line.lstrip().startswith("#") and not line.startswith("plugin:")
     ]
     mppi = "\n".join(["    FollowPath:", plugin, *(f"      {line}" for line in lines)]) + "\n"
     mppi = re.sub(r"\n      batch_size: \d+\n", f"\n      batch_size: {rollouts}\n", mppi)
@@ -106,14 +123,18 @@ def _cpu_seconds(pids: list[int]) -> float:
 
 def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
     """Plan to ``goal`` (NavFn), then FollowPath to it, recording what was driven."""
-    from geometry_msgs.msg import Twist
+    from geometry_msgs.msg import Twist, TwistStamped
+    from sim_robot import STAMPED_CMD_VEL  # the command's type where the robot reads it
 
     planned = client.plan(*goal)
     assert planned is not None and len(planned.result.path.poses) > 1, "no plan"
     stamps: list[float] = []
     poses: list[tuple[float, float]] = []
     commands = client.create_subscription(
-        Twist, "cmd_vel", lambda _msg: stamps.append(time.monotonic()), 50
+        TwistStamped if STAMPED_CMD_VEL else Twist,
+        "cmd_vel",
+        lambda _msg: stamps.append(time.monotonic()),
+        50,
     )
     cpu = _cpu_seconds(workers)
     started = time.monotonic()
@@ -139,6 +160,13 @@ def _per_goal(values: list[float]) -> str:
     return " / ".join(
         f"{statistics.median(values[i :: len(GOALS)]):.2f}" for i in range(len(GOALS))
     )
+
+
+def _computes(log: str, native: bool) -> list[float]:
+    """The compute times in ms that ``log`` holds: Nav2's MPPI's or ours."""
+    if native:
+        return [float(n) / (1e3 if unit == "us" else 1.0) for n, unit in NATIVE_TIME.findall(log)]
+    return [float(ms) for ms in OUR_TIME.findall(log)]
 
 
 def _percentile(values: list[float], q: float) -> float:
@@ -171,8 +199,7 @@ def test_mppi_side_by_side(stack: dict[str, Any]) -> None:
     drives = [
         _drive(client, goal, [procs.procs[worker].pid]) for _ in range(RUNS) for goal in GOALS
     ]
-    pattern = NATIVE_TIME if stack["native"] else OUR_TIME
-    computes = [float(ms) for ms in pattern.findall(procs.log(worker, 1_000_000))]
+    computes = _computes(procs.log(worker, 1_000_000), stack["native"])
     assert computes, f"no compute times in {worker}'s log:\n{procs.log(worker, 40)}"
     cycles = sum(len(d.gaps) + 1 for d in drives)
     gaps = [g for d in drives for g in d.gaps]
