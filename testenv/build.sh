@@ -450,11 +450,16 @@ rmw_zenoh_overlay() {
   done < <(find "$SOURCES" -name package.xml -not -path '*/eclipse-zenoh/*' -print0)
   [ ${#names[@]} -gt 0 ] || die "rmw-zenoh: no interface package of $SOURCES is built in $PREFIX/ros (run the ros step)"
   log "rmw-zenoh: overlay $PREFIX/rmw-zenoh-ros: Fast CDR type support, ${#names[@]} interface packages again (${names[*]})"
+  # rosidl_core and rosidl_defaults again too (CMake only): through them the interface
+  # packages depend on the Fast CDR type support, which colcon must build first; from the
+  # underlay, the interface packages would not wait for it.
   ROS_PACKAGES=(fastcdr rosidl_buffer_backend rosidl_typesupport_fastrtps_c
-    rosidl_typesupport_fastrtps_cpp "${names[@]}" "${ROS_PACKAGES[@]}")
+    rosidl_typesupport_fastrtps_cpp rosidl_core_generators rosidl_core_runtime
+    rosidl_default_generators rosidl_default_runtime "${names[@]}" "${ROS_PACKAGES[@]}")
   # Only these sources: everything else is the underlay's.
   ROS_BASE_PATHS=("$SOURCES/eProsima/Fast-CDR" "$SOURCES/ros2/rosidl/rosidl_buffer_backend"
-    "$SOURCES/ros2/rosidl_typesupport_fastrtps" "$SOURCES/ros2/rmw_zenoh" "${dirs[@]}")
+    "$SOURCES/ros2/rosidl_typesupport_fastrtps" "$SOURCES/ros2/rosidl_core"
+    "$SOURCES/ros2/rosidl_defaults" "$SOURCES/ros2/rmw_zenoh" "${dirs[@]}")
   ROS_BUILD_BASE="$PREFIX/build/rmw-zenoh-ros" ROS_INSTALL_BASE="$PREFIX/rmw-zenoh-ros"
   ROS_OVERLAY_ON="$PREFIX/ros/local_setup.bash"
 }
