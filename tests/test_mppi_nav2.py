@@ -432,6 +432,23 @@ def test_its_own_defaults_agree_with_the_costmaps_robot(caplog: pytest.LogCaptur
     assert "Inconsistent configuration" not in caplog.text
 
 
+def test_takes_lyricals_motion_model_plugins() -> None:
+    """Lyrical's nav2_bringup names the model by a namespace with a plugin class; Jazzy's
+    names stay valid; a class Nav2 has not, or a namespace without a plugin, is refused."""
+    for model in ("DiffDrive", "Omni", "Ackermann"):
+        plugin = {"motion_model": "m", "m.plugin": f"mppi::{model}MotionModel"}
+        assert settings(**plugin).motion_model == model
+    assert settings(motion_model="Omni").motion_model == "Omni"
+    lyrical: dict[str, Any] = {"diff_drive.plugin": "mppi::DiffDriveMotionModel"}
+    c = controller(None, motion_model="diff_drive", **lyrical)
+    assert c.settings.motion_model == "DiffDrive"
+    assert "diff_drive.plugin" not in c.params.undeclared()  # read: no "ignored" warning
+    with pytest.raises(InvalidController, match="Failed to load motion model plugin 'tank'"):
+        controller(None, motion_model="tank", **{"tank.plugin": "mppi::TankMotionModel"})
+    with pytest.raises(InvalidController, match="Model diff_drive is not valid"):
+        controller(motion_model="diff_drive")
+
+
 def test_ackermann_turns_no_tighter_than_min_turning_r() -> None:
     s = settings(motion_model="Ackermann", **{"AckermannConstraints.min_turning_r": 0.4})
     limits = jnp.asarray([0.5, -0.35, 0.5, 1.9], jnp.float32)

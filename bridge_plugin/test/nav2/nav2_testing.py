@@ -455,10 +455,7 @@ def bring_up(
     start_host()
     procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py"), *robot_args])
     start_nav2(procs, params, servers)
-    import rclpy
-
-    rclpy.init()
-    client = Nav2Client()
+    client = ros_client(procs)
     try:
         yield {
             "client": client,
@@ -471,19 +468,42 @@ def bring_up(
         tear_down(client, procs)
 
 
-def tear_down(client: Any, procs: Processes, *first: str) -> None:
-    """The test's rclpy client and context, then every process it started (``first`` by
-    name, before the rest): the processes are stopped even when rclpy's own teardown raises
-    (seen on rmw_zenoh, which left a failed test's Nav2 servers running)."""
+def ros_client(procs: Processes, *first: str) -> Any:
+    """The test's rclpy client (Nav2Client) in an rclpy context of its own, for tear_down to
+    end. Its own context: on rmw_zenoh a context whose shutdown failed (its session's close
+    timed out) refuses every later init, which failed each test after it with its processes
+    left running. When rclpy cannot start, what ``procs`` started is stopped (``first`` by
+    name, first) before the error is raised."""
     import rclpy
 
+    context = rclpy.Context()
     try:
+        rclpy.init(context=context)
+        return Nav2Client(context)
+    except BaseException:
+        try:
+            context.try_shutdown()
+        finally:
+            _stop(procs, first)
+        raise
+
+
+def tear_down(client: Any, procs: Processes, *first: str) -> None:
+    """The test's rclpy client (from ros_client) and its context, then every process it
+    started (``first`` by name, before the rest): the processes are stopped even when rclpy's
+    own teardown raises (seen on rmw_zenoh, which left a failed test's Nav2 servers running)."""
+    try:
+        context = client.context
         client.destroy_node()
-        rclpy.try_shutdown()
+        context.try_shutdown()
     finally:
-        for name in first:
-            procs.kill(name, signal.SIGINT)
-        procs.stop_all()
+        _stop(procs, first)
+
+
+def _stop(procs: Processes, first: tuple[str, ...]) -> None:
+    for name in first:
+        procs.kill(name, signal.SIGINT)
+    procs.stop_all()
 
 
 def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:  # noqa: N802
@@ -507,6 +527,10 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             self.follow_client = ActionClient(self, FollowPath, "follow_path")
             self.smooth_client = ActionClient(self, SmoothPath, "smooth_path")
             self.navigate_client = ActionClient(self, NavigateToPose, "navigate_to_pose")
+            # Service clients, each made once and kept for the node's life: a client destroyed
+            # while its reply is still being delivered deadlocks rmw_zenoh's receiving thread
+            # (ros2/rmw_zenoh#993), and no later reply or action reaches this process.
+            self.kept_clients: dict[str, Any] = {}
             self.pose: tuple[float, float] | None = None
             self.speed = 0.0  # the commanded speed, as the simulated robot reports it
             self.speeds: list[tuple[float, float]] = []  # (monotonic time, speed), recorded
@@ -543,15 +567,18 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             self.spin_until(future.done, timeout)
             return future.result() if future.done() else None
 
+        def service_client(self, kind: Any, name: str) -> Any:
+            """The client of the service ``name`` (of type ``kind``), made on first use."""
+            if name not in self.kept_clients:
+                self.kept_clients[name] = self.create_client(kind, name)
+            return self.kept_clients[name]
+
         def state(self, node: str) -> str | None:
-            client = self.create_client(GetState, f"/{node}/get_state")
-            try:
-                if not client.wait_for_service(timeout_sec=2.0):
-                    return None
-                response = self.wait(client.call_async(GetState.Request()), 5.0)
-                return response.current_state.label if response else None
-            finally:
-                self.destroy_client(client)
+            client = self.service_client(GetState, f"/{node}/get_state")
+            if not client.wait_for_service(timeout_sec=2.0):
+                return None
+            response = self.wait(client.call_async(GetState.Request()), 5.0)
+            return response.current_state.label if response else None
 
         def wait_active(self, nodes: tuple[str, ...], timeout: float) -> dict[str, str | None]:
             end = time.monotonic() + timeout
@@ -566,32 +593,26 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
         def list_parameters(self, node: str, prefix: str) -> list[str]:
             from rcl_interfaces.srv import ListParameters
 
-            client = self.create_client(ListParameters, f"/{node}/list_parameters")
-            try:
-                assert client.wait_for_service(timeout_sec=5.0)
-                request = ListParameters.Request(prefixes=[prefix], depth=0)
-                response = self.wait(client.call_async(request), 10.0)
-                return list(response.result.names) if response else []
-            finally:
-                self.destroy_client(client)
+            client = self.service_client(ListParameters, f"/{node}/list_parameters")
+            assert client.wait_for_service(timeout_sec=5.0)
+            request = ListParameters.Request(prefixes=[prefix], depth=0)
+            response = self.wait(client.call_async(request), 10.0)
+            return list(response.result.names) if response else []
 
         def set_parameter(self, node: str, name: str, value: Any) -> tuple[bool, str]:
             """`ros2 param set`: (successful, reason)."""
             from rcl_interfaces.srv import SetParameters
             from rclpy.parameter import Parameter
 
-            client = self.create_client(SetParameters, f"/{node}/set_parameters")
-            try:
-                assert client.wait_for_service(timeout_sec=5.0)
-                request = SetParameters.Request(
-                    parameters=[Parameter(name, value=value).to_parameter_msg()]
-                )
-                response = self.wait(client.call_async(request), 15.0)
-                assert response is not None, f"no answer to set_parameters {name}"
-                result = response.results[0]
-                return bool(result.successful), str(result.reason)
-            finally:
-                self.destroy_client(client)
+            client = self.service_client(SetParameters, f"/{node}/set_parameters")
+            assert client.wait_for_service(timeout_sec=5.0)
+            request = SetParameters.Request(
+                parameters=[Parameter(name, value=value).to_parameter_msg()]
+            )
+            response = self.wait(client.call_async(request), 15.0)
+            assert response is not None, f"no answer to set_parameters {name}"
+            result = response.results[0]
+            return bool(result.successful), str(result.reason)
 
         def plan(
             self,

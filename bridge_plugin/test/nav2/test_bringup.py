@@ -335,13 +335,11 @@ def stock_bringup(
             f"use_composition:={composed}",
         ],
     )
-    import rclpy
     from bond.msg import Status
     from geometry_msgs.msg import PolygonStamped, PoseWithCovarianceStamped
     from rclpy.qos import QoSProfile, ReliabilityPolicy
 
-    rclpy.init()
-    client = nav2_testing.Nav2Client()
+    client = nav2_testing.ros_client(procs)
     stack = Stack(client, procs, start_host)
 
     def heard(source: str) -> None:
@@ -389,15 +387,12 @@ def resume_after_a_failed_activation(client: Any, procs: nav2_testing.Processes)
 
     if "Failed to activate" not in procs.log("launch", 100_000):
         return
-    manage = client.create_client(
+    manage = client.service_client(
         ManageLifecycleNodes, "/lifecycle_manager_navigation/manage_nodes"
     )
-    try:
-        if manage.wait_for_service(timeout_sec=10.0):
-            request = ManageLifecycleNodes.Request(command=ManageLifecycleNodes.Request.RESUME)
-            client.wait(manage.call_async(request), 30.0)
-    finally:
-        client.destroy_client(manage)
+    if manage.wait_for_service(timeout_sec=10.0):
+        request = ManageLifecycleNodes.Request(command=ManageLifecycleNodes.Request.RESUME)
+        client.wait(manage.call_async(request), 30.0)
 
 
 def _launch() -> str:

@@ -72,10 +72,7 @@ def test_the_launch_file_reaches_a_goal_and_ctrl_c_ends_everything(tmp_path: Pat
         ],
     )
     launch = procs.procs["launch"]
-    import rclpy
-
-    rclpy.init()
-    client = nav2_testing.Nav2Client()
+    client = nav2_testing.ros_client(procs)
     try:
         states = client.wait_active(nav2_testing.SERVERS, 120.0)
         assert all(s == "active" for s in states.values()), f"{states}\n{procs.log('launch')}"
@@ -116,10 +113,7 @@ def test_the_launch_file_with_its_own_params_configures_every_server(tmp_path: P
         ["ros2", "launch", "nav2_pyif_bridge", "nav2_pyif.launch.py", f"listen:={endpoint}",
          *host_argument],
     )  # fmt: skip
-    import rclpy
-
-    rclpy.init()
-    client = nav2_testing.Nav2Client()
+    client = nav2_testing.ros_client(procs)
     try:
         configured = ("inactive", "active")
         deadline = time.monotonic() + 90.0

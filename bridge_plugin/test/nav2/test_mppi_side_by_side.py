@@ -43,11 +43,25 @@ NATIVE = "nav2_mppi_controller::MPPIController"
 # YAML holds), visualisation off: the same for both but for the plugin line.
 NAV2_BLOCK = nav2_testing.HERE.parents[2] / "planners/nav2_pyif_planners/mppi_nav2/nav2_jazzy.yaml"
 FOLLOW_PATH = re.compile(r"    FollowPath:\n(?:      .*\n)+")
+STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
 # Nav2's MPPI logs whole ms; testenv's patch makes it log us (a 3 ms cycle truncated to whole
 # ms is up to a third off).
 NATIVE_TIME = re.compile(r"Control loop execution time: (\d+) \[(ms|us)\]")
 OUR_TIME = re.compile(r"compute: (\d+\.\d+) ms")
 PLANNER = ("--serve", f"{nav2_testing.PREFIX}/GridBased=nav2_pyif_planners.astar:AStar")
+
+
+def _mppi_block() -> str:
+    """Nav2's MPPI block as the distribution's nav2_bringup has it, unindented: Jazzy's as the
+    planners package ships it; Lyrical's (motion models as plugins, a trajectory validator)
+    from the environment's own nav2_bringup params, which Nav2MPPI reads too."""
+    if os.environ.get("ROS_DISTRO") != "lyrical":
+        return NAV2_BLOCK.read_text()
+    stock = nav2_testing.find(STOCK_PARAMS)
+    assert stock is not None, f"Lyrical's MPPI block is read from nav2_bringup's {STOCK_PARAMS}"
+    block = FOLLOW_PATH.search(stock.read_text())
+    assert block is not None, f"{stock} has no FollowPath block"
+    return "\n".join(line[6:] for line in block.group(0).splitlines()[1:]) + "\n"
 
 
 def _params(text: str, rollouts: int, native: bool) -> str:
@@ -68,8 +82,8 @@ def _params(text: str, rollouts: int, native: bool) -> str:
         plugin = "\n".join([*kept, *(f"      {line}" for line in settings)])
     lines = [
         line
-        for line in NAV2_BLOCK.read_text().splitlines()
-        if line.strip() and not line.startswith(("#", "plugin:"))
+        for line in _mppi_block().splitlines()
+        if line.strip() and not line.lstrip().startswith("#") and not line.startswith("plugin:")
     ]
     mppi = "\n".join(["    FollowPath:", plugin, *(f"      {line}" for line in lines)]) + "\n"
     mppi = re.sub(r"\n      batch_size: \d+\n", f"\n      batch_size: {rollouts}\n", mppi)
@@ -109,14 +123,18 @@ def _cpu_seconds(pids: list[int]) -> float:
 
 def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
     """Plan to ``goal`` (NavFn), then FollowPath to it, recording what was driven."""
-    from geometry_msgs.msg import Twist
+    from geometry_msgs.msg import Twist, TwistStamped
+    from sim_robot import STAMPED_CMD_VEL  # the command's type where the robot reads it
 
     planned = client.plan(*goal)
     assert planned is not None and len(planned.result.path.poses) > 1, "no plan"
     stamps: list[float] = []
     poses: list[tuple[float, float]] = []
     commands = client.create_subscription(
-        Twist, "cmd_vel", lambda _msg: stamps.append(time.monotonic()), 50
+        TwistStamped if STAMPED_CMD_VEL else Twist,
+        "cmd_vel",
+        lambda _msg: stamps.append(time.monotonic()),
+        50,
     )
     cpu = _cpu_seconds(workers)
     started = time.monotonic()

@@ -77,10 +77,7 @@ def test_seed_style_yaml_starts_its_own_host(tmp_path: Path) -> None:
     procs = nav2_testing.Processes(tmp_path, env)
     procs.start("sim_robot", ["python3", str(HERE / "sim_robot.py")])
     nav2_testing.start_nav2(procs, params)
-    import rclpy
-
-    rclpy.init()
-    client = nav2_testing.Nav2Client()
+    client = nav2_testing.ros_client(procs, "lifecycle_manager", *nav2_testing.SERVERS)
     try:
         states = client.wait_active(nav2_testing.SERVERS, 120.0)
         logs = "\n".join(procs.log(n) for n in (*nav2_testing.SERVERS, "lifecycle_manager"))

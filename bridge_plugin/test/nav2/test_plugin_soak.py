@@ -196,14 +196,11 @@ def answers_us(client: Any) -> None:
     nothing, so it is asked again until it answers."""
     from std_srvs.srv import Trigger
 
-    probe = client.create_client(Trigger, "/lifecycle_manager_navigation/is_active")
-    try:
-        for _ in range(24):
-            if client.wait(probe.call_async(Trigger.Request()), 5.0) is not None:
-                return
-        raise AssertionError("lifecycle_manager_navigation/is_active: no answer in 2 min")
-    finally:
-        client.destroy_client(probe)
+    probe = client.service_client(Trigger, "/lifecycle_manager_navigation/is_active")
+    for _ in range(24):
+        if client.wait(probe.call_async(Trigger.Request()), 5.0) is not None:
+            return
+    raise AssertionError("lifecycle_manager_navigation/is_active: no answer in 2 min")
 
 
 def lifecycle_cycles(nav2: dict[str, Any], label: str) -> float:
@@ -215,7 +212,7 @@ def lifecycle_cycles(nav2: dict[str, Any], label: str) -> float:
     wait_active(nav2)
     client, procs = nav2["client"], nav2["procs"]
     pid = procs.procs["controller_server"].pid
-    manage = client.create_client(
+    manage = client.service_client(
         ManageLifecycleNodes, "/lifecycle_manager_navigation/manage_nodes"
     )
     assert manage.wait_for_service(timeout_sec=10.0)

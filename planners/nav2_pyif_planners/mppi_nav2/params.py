@@ -78,6 +78,10 @@ CRITIC_PARAMS: dict[str, dict[str, Any]] = {
 }
 
 MOTION_MODELS = ("DiffDrive", "Omni", "Ackermann")
+#: Lyrical's motion models are plugins: ``motion_model`` names a namespace whose ``plugin`` is
+#: one of these classes (Nav2 1.5's nav2_bringup: ``motion_model: "diff_drive"`` and
+#: ``diff_drive.plugin: "mppi::DiffDriveMotionModel"``).
+MOTION_MODEL_PLUGINS = {f"mppi::{name}MotionModel": name for name in MOTION_MODELS}
 
 #: Nav2 keys read but not honoured: name -> (default, what this controller does instead).
 UNHONOURED: dict[str, tuple[Any, str]] = {
@@ -165,6 +169,32 @@ def nav2_jazzy_params(**overrides: Any) -> dict[str, Any]:
     return {**flatten(yaml.safe_load(NAV2_JAZZY_FILE.read_text())), **overrides}
 
 
+def _motion_model(p: Parameters) -> str:
+    """DiffDrive, Omni or Ackermann, named as Jazzy's Nav2 names it (``motion_model:
+    DiffDrive``) or as Lyrical's does (a namespace whose ``plugin`` is the model's class).
+    Raises ValueError for a model Nav2 would not load."""
+    name = p.declare(
+        "motion_model",
+        "DiffDrive",
+        "DiffDrive, Omni or Ackermann; or (Lyrical) a namespace whose plugin is "
+        "mppi::DiffDriveMotionModel, mppi::OmniMotionModel or mppi::AckermannMotionModel",
+    )
+    if name in MOTION_MODELS:
+        return name
+    plugin = p.get(f"{name}.plugin")
+    if plugin in MOTION_MODEL_PLUGINS:
+        return MOTION_MODEL_PLUGINS[plugin]
+    if plugin is None:
+        raise ValueError(
+            f"Model {name} is not valid! Valid options are DiffDrive, Omni, or Ackermann, or a "
+            f"namespace with a plugin ({name}.plugin: mppi::DiffDriveMotionModel, ...)"
+        )
+    raise ValueError(
+        f"Failed to load motion model plugin '{name}': {plugin} is not one of "
+        + ", ".join(MOTION_MODEL_PLUGINS)
+    )
+
+
 def read_settings(
     p: Parameters,
     controller_frequency: float | None,
@@ -198,7 +228,7 @@ def read_settings(
         "vx_std": p.declare("vx_std", 0.2, "[m/s] sampling sigma"),
         "vy_std": p.declare("vy_std", 0.2, "[m/s] sampling sigma"),
         "wz_std": p.declare("wz_std", 0.4, "[rad/s] sampling sigma"),
-        "motion_model": p.declare("motion_model", "DiffDrive", "DiffDrive, Omni or Ackermann"),
+        "motion_model": _motion_model(p),
         "min_turning_r": p.declare("AckermannConstraints.min_turning_r", 0.2, "[m] Ackermann"),
         "track_unknown_space": p.declare(
             "track_unknown_space",
@@ -215,11 +245,6 @@ def read_settings(
                 "Sign of the parameter %s is incorrect, consider setting it negative.", name
             )
             values[name] = -values[name]
-    if values["motion_model"] not in MOTION_MODELS:
-        raise ValueError(
-            f"Model {values['motion_model']} is not valid! Valid options are DiffDrive, Omni, "
-            "or Ackermann"
-        )
     values["shift_control_sequence"] = _shift(dt, controller_frequency, logger)
     names = p.declare(
         "critics",
