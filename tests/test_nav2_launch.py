@@ -339,9 +339,8 @@ def _launch_tests(
 
 
 def _rmw_zenoh_router(source: str, workspace: Path) -> str:
-    """Shell lines that start rmw_zenoh's router on a free port (its own default config, the
-    port replaced; the nodes' session config likewise) and export where it is; skips, saying
-    why, where the setup has no rmw_zenoh_cpp."""
+    """Shell lines that start rmw_zenoh's router on a free port and export where it is
+    (rmw_zenoh_router_lines); skips, saying why, where the setup has no rmw_zenoh_cpp."""
     found = _bash(
         f"{source}; for p in ${{AMENT_PREFIX_PATH//:/ }}; do "
         "[ -x $p/lib/rmw_zenoh_cpp/rmw_zenohd ] && echo $p && break; done; true",
@@ -352,7 +351,16 @@ def _rmw_zenoh_router(source: str, workspace: Path) -> str:
             "Nav2 launch tests on rmw_zenoh skipped: the setup script has no rmw_zenoh_cpp "
             "(lib/rmw_zenoh_cpp/rmw_zenohd)"
         )
-    prefix, port = Path(found[0]), free_port()
+    return rmw_zenoh_router_lines(Path(found[0]), workspace, free_port())
+
+
+def rmw_zenoh_router_lines(prefix: Path, workspace: Path, port: int) -> str:
+    """Shell lines that run ROS on rmw_zenoh_cpp (RMW_IMPLEMENTATION) with its router
+    rmw_zenohd of ``prefix`` on ``port`` (rmw_zenoh's own default router and session configs,
+    only the port replaced, written into ``workspace``), export the router's endpoint for the
+    plugins and the host to share (NAV2_PYIF_SHARED_ROUTER), and stop the router by its PID
+    when the shell exits. testenv/run-in-root.sh takes them too (``python -m
+    tests.test_nav2_launch --rmw-zenoh-router WORKSPACE``)."""
     lines = ["export RMW_IMPLEMENTATION=rmw_zenoh_cpp; "]
     for kind in ("ROUTER", "SESSION"):
         default = (prefix / RMW_ZENOH_CONFIGS.format(kind)).read_text()
@@ -364,6 +372,20 @@ def _rmw_zenoh_router(source: str, workspace: Path) -> str:
     return (
         "".join(lines)
         + f"{shlex.quote(str(prefix / 'lib/rmw_zenoh_cpp/rmw_zenohd'))} >{log} 2>&1 & "
-        + "trap 'kill $! 2>/dev/null' EXIT; "
-        + f"NAV2_PYIF_SHARED_ROUTER=tcp/127.0.0.1:{port} "
+        + "NAV2_PYIF_RMW_ZENOHD=$!; trap 'kill $NAV2_PYIF_RMW_ZENOHD 2>/dev/null' EXIT; "
+        + f"export NAV2_PYIF_SHARED_ROUTER=tcp/127.0.0.1:{port}; "
     )
+
+
+if __name__ == "__main__":
+    # python -m tests.test_nav2_launch --rmw-zenoh-router WORKSPACE, in a ROS environment
+    # with rmw_zenoh_cpp: print rmw_zenoh_router_lines for it (testenv/run-in-root.sh).
+    import sys
+
+    if len(sys.argv) != 3 or sys.argv[1] != "--rmw-zenoh-router":
+        sys.exit("usage: python -m tests.test_nav2_launch --rmw-zenoh-router WORKSPACE")
+    ament = [Path(p) for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    with_router = [p for p in ament if (p / "lib/rmw_zenoh_cpp/rmw_zenohd").is_file()]
+    if not with_router:
+        sys.exit("no lib/rmw_zenoh_cpp/rmw_zenohd under $AMENT_PREFIX_PATH")
+    print(rmw_zenoh_router_lines(with_router[0], Path(sys.argv[2]), free_port()))
