@@ -201,6 +201,9 @@ distro_settings() {
       # interface packages again, into an overlay; the ros step's Cyclone DDS core stays without
       # it (rosidl_core_generators would otherwise take it into every interface package).
       IGNORE_PACKAGES+=(fastcdr rosidl_typesupport_fastrtps_c rosidl_typesupport_fastrtps_cpp)
+      # rmw_zenoh too (the rmw-zenoh step names them): the mppi step, selecting one package,
+      # otherwise wants them installed in PREFIX/ros
+      IGNORE_PACKAGES+=(zenoh_cpp_vendor rmw_zenoh_cpp)
       ;;
   esac
 }
