@@ -38,6 +38,10 @@ def find(relative: str) -> Path | None:
     return None
 
 
+# nav2_bringup's own params, which users start from (under an environment's prefix)
+STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
+
+
 def is_lyrical() -> bool:
     """Lyrical's Nav2 (navigation2 1.5 on): its nav2_core has path_handler.hpp."""
     headers = ("include/nav2_core/nav2_core/path_handler.hpp", "include/nav2_core/path_handler.hpp")

@@ -71,7 +71,6 @@ from tests.docs_blocks import used_files
 pytestmark = pytest.mark.timeout(1200)
 
 PREFIX = nav2_testing.PREFIX
-STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
 # The loopback launch: Jazzy's name, and Lyrical's. Humble's nav2_bringup has none (no
 # nav2_loopback_sim in navigation2 1.1): the stand-in beside this file runs its parts.
 LAUNCHES = ("tb3_loopback_simulation.launch.py", "tb3_loopback_simulation_launch.py")
@@ -233,7 +232,7 @@ def _missing(native: bool, local: bool) -> list[str]:
         "rclcpp_components": "lib/rclcpp_components/component_container",
         "ros2lifecycle (`ros2 lifecycle`)": "share/ros2lifecycle/package.xml",
     }
-    stock = nav2_testing.find(STOCK_PARAMS)
+    stock = nav2_testing.find(nav2_testing.STOCK_PARAMS)
     if native and stock is not None:
         package = _native_package(stock.read_text())
         built_by = " (testenv/build.sh DISTRO mppi)" if package == "nav2_mppi_controller" else ""
@@ -328,7 +327,7 @@ def stock_bringup(
     missing = _missing(native=not python, local=local)
     if missing:
         pytest.skip("the stock nav2_bringup test needs: " + ", ".join(missing))
-    stock_file = nav2_testing.find(STOCK_PARAMS)
+    stock_file = nav2_testing.find(nav2_testing.STOCK_PARAMS)
     assert stock_file is not None
     stock = stock_file.read_text()
     procs = nav2_testing.processes_in_own_domain(logs)

@@ -43,7 +43,6 @@ NATIVE = "nav2_mppi_controller::MPPIController"
 # YAML holds), visualisation off: the same for both but for the plugin line.
 NAV2_BLOCK = nav2_testing.HERE.parents[2] / "planners/nav2_pyif_planners/mppi_nav2/nav2_jazzy.yaml"
 FOLLOW_PATH = re.compile(r"    FollowPath:\n(?:      .*\n)+")
-STOCK_PARAMS = "share/nav2_bringup/params/nav2_params.yaml"
 # Nav2's MPPI logs whole ms; testenv's patch makes it log us (a 3 ms cycle truncated to whole
 # ms is up to a third off).
 NATIVE_TIME = re.compile(r"Control loop execution time: (\d+) \[(ms|us)\]")
@@ -55,10 +54,10 @@ def _mppi_block() -> str:
     """Nav2's MPPI block as the distribution's nav2_bringup has it, unindented: Jazzy's as the
     planners package ships it; Lyrical's (motion models as plugins, a trajectory validator)
     from the environment's own nav2_bringup params, which Nav2MPPI reads too."""
-    if os.environ.get("ROS_DISTRO") != "lyrical":
+    if not nav2_testing.is_lyrical():
         return NAV2_BLOCK.read_text()
-    stock = nav2_testing.find(STOCK_PARAMS)
-    assert stock is not None, f"Lyrical's MPPI block is read from nav2_bringup's {STOCK_PARAMS}"
+    stock = nav2_testing.find(nav2_testing.STOCK_PARAMS)
+    assert stock is not None, f"no {nav2_testing.STOCK_PARAMS}: Lyrical's MPPI block is read there"
     block = FOLLOW_PATH.search(stock.read_text())
     assert block is not None, f"{stock} has no FollowPath block"
     return "\n".join(line[6:] for line in block.group(0).splitlines()[1:]) + "\n"
