@@ -23,7 +23,8 @@ rmw_zenoh's own router.
   recovery.
 - Nav2's own regulated pure pursuit (the algorithm the Python stacks serve), composed and
   not, drives the same goals: each Python-planned stack's time to the goals is within 10 % of
-  the native stack run the same way. The unchanged stock params (Nav2's MPPI and NavFn;
+  the native stack run the same way (each goal driven twice, its faster run counted, on both
+  sides). The unchanged stock params (Nav2's MPPI and NavFn;
   Humble's DWB) are shown beside them (all printed side by side, and recorded in
   $NAV2_PYIF_FIGURES).
 - Composed and not, the planner host SIGKILLed mid-goal and restarted 2 s later costs at most
@@ -123,6 +124,10 @@ KEPT_RATE = 0.5
 HEALTHY_WINDOW = 20.0  # [s] before the first fault: the rates of a healthy stack
 # Time to the goals, Python-planned against native, at most this far apart.
 WITHIN = 0.10
+# Each stack drives its goals this many times; each goal counts its fastest. A loaded machine
+# only ever slows a run (a late first plan, a missed control period): the fastest of two
+# says what the stack does, on both sides of the comparison alike.
+ROUND_TRIPS = 2
 # The native side of that comparison: the stock params with Nav2's own regulated pure pursuit
 # as FollowPath, the algorithm the Python stacks serve (the stock MPPI drives differently: a
 # comparison with it measures the controllers, not the bridge).
@@ -471,18 +476,24 @@ def navigate(stack: Stack, goal: tuple[float, float], fault: Any = None) -> Run:
 
 
 def drive_the_goals(stack: Stack, label: str) -> list[float]:
-    """Every goal of GOALS, each succeeding with no recovery: the seconds each took."""
-    seconds = []
-    for goal in GOALS:
-        run = navigate(stack, goal)
-        assert run.succeeded and run.recoveries == 0, (
-            f"{label} to {goal}: {run}\n" + stack.procs.log("launch", 80)
-        )
-        # simulated time: on a loaded machine the loopback simulator's clock runs slower than
-        # the wall's, by as much as the load, which differs from one launch to the next
-        seconds.append(run.sim_seconds)
+    """Every goal of GOALS, ROUND_TRIPS times over, each succeeding with no recovery: the
+    seconds each goal took, the fastest of its round trips."""
+    seconds: list[float] = []
+    for trip in range(ROUND_TRIPS):
+        for i, goal in enumerate(GOALS):
+            run = navigate(stack, goal)
+            assert run.succeeded and run.recoveries == 0, (
+                f"{label} to {goal}: {run}\n" + stack.procs.log("launch", 80)
+            )
+            # simulated time: on a loaded machine the loopback simulator's clock runs slower
+            # than the wall's, by as much as the load, which differs from one launch to the next
+            if trip == 0:
+                seconds.append(run.sim_seconds)
+            else:
+                seconds[i] = min(seconds[i], run.sim_seconds)
+            print(f"{label}, round trip {trip + 1}, goal {i}: {run.sim_seconds:.2f} s")
     record(**{f"bringup_{label}_to_goal_{i}_s": s for i, s in enumerate(seconds)})
-    print(label, "simulated seconds to each goal:", [round(s, 2) for s in seconds])
+    print(label, "simulated seconds to each goal, the fastest:", [round(s, 2) for s in seconds])
     return seconds
 
 
