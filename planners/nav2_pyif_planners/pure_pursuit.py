@@ -1,6 +1,7 @@
 """Regulated pure pursuit (Nav2's nav2_regulated_pure_pursuit_controller), in NumPy.
 
-Follows a carrot ``lookahead`` metres down the plan (lookahead scaled with speed), turning
+Follows a carrot down the plan, a lookahead scaled with speed
+(``use_velocity_scaled_lookahead_dist``, Nav2's option; else ``lookahead_dist``), turning
 with curvature 2 y / L^2 (carrot in the robot frame). The speed is regulated down on tight
 curves, near obstacles (from the costmap's inflation ramp) and when approaching the goal;
 the robot first rotates in place towards the path when it points far away from it, and to
@@ -32,6 +33,12 @@ class RegulatedPurePursuit(PathFollower):
     def configure(self) -> None:
         p = self.params
         self.desired_linear_vel = p.declare("desired_linear_vel", 0.5, "[m/s]")
+        self.lookahead_dist = p.declare("lookahead_dist", 0.6, "[m] when not velocity-scaled")
+        self.scaled_lookahead = p.declare(
+            "use_velocity_scaled_lookahead_dist",
+            True,
+            "lookahead = speed x lookahead_time (Nav2's default: false, lookahead_dist)",
+        )
         self.lookahead_time = p.declare("lookahead_time", 1.5, "[s] velocity-scaled lookahead")
         self.min_lookahead = p.declare("min_lookahead_dist", 0.3, "[m]")
         self.max_lookahead = p.declare("max_lookahead_dist", 0.9, "[m]")
@@ -44,7 +51,9 @@ class RegulatedPurePursuit(PathFollower):
         self.inflation_scaling = p.declare(
             "inflation_cost_scaling_factor", 3.0, "must match the inflation layer"
         )
-        self.inscribed_radius = p.declare("inscribed_radius", 0.15, "[m], the footprint's")
+        self.inscribed_radius = p.declare(
+            "inscribed_radius", -1.0, "[m] the footprint's; < 0: the costmap's, as Nav2's"
+        )
         self.approach_dist = p.declare("approach_velocity_scaling_dist", 0.6, "[m]")
         self.min_approach_vel = p.declare("min_approach_linear_velocity", 0.05, "[m/s]")
         self.collision_time = p.declare("max_allowed_time_to_collision", 1.0, "[s]")
@@ -60,10 +69,12 @@ class RegulatedPurePursuit(PathFollower):
         if self.turn_at_goal(cmd, x, y, yaw, path, goal_checker):
             return cmd
 
-        speed = abs(velocity.linear.x)
-        lookahead = float(
-            np.clip(speed * self.lookahead_time, self.min_lookahead, self.max_lookahead)
-        )
+        lookahead = self.lookahead_dist
+        if self.scaled_lookahead:
+            speed = abs(velocity.linear.x)
+            lookahead = float(
+                np.clip(speed * self.lookahead_time, self.min_lookahead, self.max_lookahead)
+            )
         carrot = point_at_distance(path[:, :2], self.index, lookahead)
         self.publish_debug("lookahead_point", carrot[:2])
         dx, dy = carrot[0] - x, carrot[1] - y
@@ -90,7 +101,10 @@ class RegulatedPurePursuit(PathFollower):
         cost = self.costmap.cost_at_world(x, y)
         if 0 < cost < Costmap.INSCRIBED:
             # invert the inflation ramp: cost = 252 exp(-k (d - r)) -> distance to obstacle d
-            d = self.inscribed_radius - math.log(cost / 252.0) / self.inflation_scaling
+            inscribed = self.inscribed_radius
+            if inscribed < 0.0:
+                inscribed = self.costmap.inscribed_radius
+            d = inscribed - math.log(cost / 252.0) / self.inflation_scaling
             if d < self.cost_scaling_dist:
                 v *= self.cost_scaling_gain * d / self.cost_scaling_dist
         v = max(v, min(self.min_regulated_speed, v_max))

@@ -542,7 +542,25 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             self.recoveries = 0  # NavigateToPose feedback's number_of_recoveries, last seen
             self.navigation_time = 0.0  # [s] its navigation_time, last seen
             self.messages_lost = 0  # incoming messages rclpy failed to take (spin_until)
+            self.simulator_steps = 0  # the loopback simulator's steps, recorded (count_steps)
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
+
+        def count_steps(self, base_frame: str) -> None:
+            """Count, while recording, the steps of Nav2's loopback simulator: each step it
+            moves the robot by the command times its update_duration and broadcasts odom ->
+            ``base_frame``, moving or not. A starved simulator steps less often than its
+            period, so the robot's own time (steps x update_duration) is what the robot
+            lived, whatever the machine's load did to the wall clock."""
+            from tf2_msgs.msg import TFMessage
+
+            def on_tf(msg: Any) -> None:
+                if self.recording:
+                    self.simulator_steps += sum(
+                        t.child_frame_id == base_frame for t in msg.transforms
+                    )
+
+            # deep enough that a test process behind by seconds loses no step
+            self.create_subscription(TFMessage, "/tf", on_tf, 1000)
 
         def _on_odom(self, msg: Any) -> None:
             self.pose = (msg.pose.pose.position.x, msg.pose.pose.position.y)
@@ -667,7 +685,7 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
             goal.pose.pose.orientation.w = 1.0
             self.recoveries, self.speeds, self.recording = 0, [], True
-            self.navigation_time = 0.0
+            self.navigation_time, self.simulator_steps = 0.0, 0
 
             def on_feedback(message: Any) -> None:
                 self.recoveries = int(message.feedback.number_of_recoveries)
