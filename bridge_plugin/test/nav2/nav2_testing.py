@@ -540,7 +540,6 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             self.speeds: list[tuple[float, float]] = []  # (monotonic time, speed), recorded
             self.recording = False
             self.recoveries = 0  # NavigateToPose feedback's number_of_recoveries, last seen
-            self.navigation_time = 0.0  # [s] its navigation_time, last seen
             self.messages_lost = 0  # incoming messages rclpy failed to take (spin_until)
             self.simulator_steps = 0  # the loopback simulator's steps, recorded (count_steps)
             self.create_subscription(Odometry, "odom", self._on_odom, 10)
@@ -685,13 +684,10 @@ def Nav2Client(context: Any = None, name: str = "nav2_pyif_launch_test") -> Any:
             goal.pose.pose.position.x, goal.pose.pose.position.y = x, y
             goal.pose.pose.orientation.w = 1.0
             self.recoveries, self.speeds, self.recording = 0, [], True
-            self.navigation_time, self.simulator_steps = 0.0, 0
+            self.simulator_steps = 0
 
             def on_feedback(message: Any) -> None:
                 self.recoveries = int(message.feedback.number_of_recoveries)
-                # bt_navigator's clock: simulated time where the stack runs on it
-                elapsed = message.feedback.navigation_time
-                self.navigation_time = elapsed.sec + elapsed.nanosec * 1e-9
 
             sent = self.navigate_client.send_goal_async(goal, feedback_callback=on_feedback)
             handle = self.wait(sent, 10.0)

@@ -230,7 +230,7 @@ def _missing(native: bool, local: bool) -> list[str]:
             }
             if launch == HUMBLE_LAUNCH
             else {
-                "nav2_bringup's loopback launch": f"share/nav2_bringup/launch/{launch}",
+                "nav2_bringup's loopback launch": f"{BRINGUP_SHARE}/launch/{launch}",
                 "nav2_minimal_tb3_sim": "share/nav2_minimal_tb3_sim/urdf/turtlebot3_waffle.urdf",
             }
         ),
@@ -430,7 +430,7 @@ def _launch() -> str | Path:
     """The loopback launch file of this nav2_bringup; on Humble's Nav2 (1.1), which has none,
     the stand-in HUMBLE_LAUNCH; else its first name (the test then skips, naming it)."""
     for name in LAUNCHES:
-        if nav2_testing.find(f"share/nav2_bringup/launch/{name}") is not None:
+        if nav2_testing.find(f"{BRINGUP_SHARE}/launch/{name}") is not None:
             return name
     controller = nav2_testing.find("share/nav2_controller/package.xml")
     if controller is not None and nav2_testing.nav2_controller_version()[:2] == (1, 1):

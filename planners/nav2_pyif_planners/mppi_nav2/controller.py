@@ -216,11 +216,14 @@ class Nav2MPPI(Controller):
         speed = np.array([velocity.linear.x, velocity.linear.y, velocity.angular.z])
         return self._inputs(state, speed, self.plan.xy_yaw[-1], path, count, goal_checker)
 
-    def optimise(self, inputs: np.ndarray, failures: int = 0) -> np.ndarray:
-        """Nav2's evalControl: the step, reset and retried while every rollout collides
-        (``failures``: tries already failed); the warm start kept. -> (vx, vy, wz)."""
+    def optimise(self, inputs: np.ndarray, dispatched: Outputs | None = None) -> np.ndarray:
+        """Nav2's evalControl: the step (``dispatched``: one already started on ``inputs``, a
+        fleet's), reset and retried while every rollout collides; the warm start kept.
+        -> (vx, vy, wz)."""
+        failures = 0
         while True:
-            out = self._run(inputs)
+            out = self._run(inputs) if dispatched is None else dispatched
+            dispatched = None
             reply = np.asarray(out.reply, np.float64)
             command, fail = reply[:3], reply[3] != 0.0
             if not fail:

@@ -22,17 +22,6 @@ if TYPE_CHECKING:
     from nav2_pyif_planners.mppi_nav2.optimizer import Outputs
 
 
-def finish(robot: Nav2MPPI, packed: np.ndarray, step: Outputs) -> np.ndarray:
-    """A dispatched step's command (vx, vy, wz), its warm start kept as ``optimise`` keeps it.
-    Every rollout collided: Nav2's reset and retry, for this robot alone."""
-    reply = np.asarray(step.reply, np.float64)
-    if reply[3] != 0.0:
-        robot.reset()
-        return robot.optimise(packed, failures=1)
-    robot.sequence, robot.history, robot._optimal = step.sequence, step.history, step.optimal
-    return robot.checked(reply[:3])
-
-
 def compute_batch(batch: Batch) -> list[Any]:
     """Every robot's cycle. A robot's own error (no plan, an invalid path, no valid control)
     is its item; the others are served."""
@@ -50,7 +39,7 @@ def compute_batch(batch: Batch) -> list[Any]:
             out[i] = exc
     for i, robot, packed, step in launched:
         try:
-            command = finish(robot, packed, step)
+            command = robot.optimise(packed, step)
         except Exception as exc:  # this robot's own error
             out[i] = exc
             continue
