@@ -18,6 +18,7 @@ from nav2_pyif.geometry import pose_xy_yaw
 
 from nav2_pyif_planners.mppi_nav2.costs import Grid
 from nav2_pyif_planners.mppi_nav2.fleet import compute_batch
+from nav2_pyif_planners.mppi_nav2.lanes import next_lane
 from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, noise_bank, pack, packed_step
 from nav2_pyif_planners.mppi_nav2.params import read_settings
 from nav2_pyif_planners.mppi_nav2.path import PathHandler, padded
@@ -71,7 +72,9 @@ class Nav2MPPI(Controller):
         sigma = np.array([s.vx_std, s.vy_std, s.wz_std] if s.holonomic else [s.vx_std, s.wz_std])
         shape = (max(sets, 1), len(sigma), s.batch_size, s.time_steps)
         draw = self.rng.standard_normal(shape, np.float32)
-        self.bank = noise_bank(draw * sigma[None, :, None, None].astype(np.float32))
+        if not hasattr(self, "device"):  # a robot keeps its lane across reconfigures
+            self.device = next_lane()
+        self.bank = noise_bank(draw * sigma[None, :, None, None].astype(np.float32), self.device)
         self._check_footprint()
         self._grid: Grid | None = None
         self._grid_version: int | None = None
@@ -79,7 +82,7 @@ class Nav2MPPI(Controller):
         self.reset()
         self._compile()
         self.logger.info(
-            "Nav2 MPPI in JAX on %s: %d x %d, %s, critics %s", jax.devices()[0],
+            "Nav2 MPPI in JAX on %s: %d x %d, %s, critics %s", self.device,
             s.batch_size, s.time_steps, s.motion_model,
             ", ".join(c.name for c in s.critics if c.enabled),
         )  # fmt: skip
@@ -116,12 +119,13 @@ class Nav2MPPI(Controller):
             possible = (
                 0.0 if radius < costmap.circumscribed_radius else costmap.circumscribed_cost()
             )
-        self._grid = Grid(
-            data=jnp.asarray(costmap.data),
-            meta=jnp.asarray([costmap.origin_x, costmap.origin_y, costmap.resolution], jnp.float32),
-            outline=jnp.asarray(costmap.footprint_outline(costmap.resolution), jnp.float32),
-            robot=jnp.asarray([possible, costmap.inscribed_radius, radius, scale], jnp.float32),
+        grid = Grid(
+            data=np.asarray(costmap.data),
+            meta=np.asarray([costmap.origin_x, costmap.origin_y, costmap.resolution], np.float32),
+            outline=np.asarray(costmap.footprint_outline(costmap.resolution), np.float32),
+            robot=np.asarray([possible, costmap.inscribed_radius, radius, scale], np.float32),
         )
+        self._grid = jax.device_put(grid, self.device)
         self._grid_version = costmap.version
         return self._grid
 
@@ -138,8 +142,8 @@ class Nav2MPPI(Controller):
     def reset(self) -> None:
         """Nav2's Optimizer::reset: the warm start and the smoothing's history forgotten."""
         s = self.settings
-        self.sequence = jnp.zeros((3, s.time_steps), jnp.float32)
-        self.history = jnp.zeros((4, 3), jnp.float32)
+        self.sequence = jnp.zeros((3, s.time_steps), jnp.float32, device=self.device)
+        self.history = jnp.zeros((4, 3), jnp.float32, device=self.device)
         self._optimal = self.sequence
 
     def set_plan(self, plan: Plan) -> None:

@@ -5,9 +5,10 @@ Each robot's own compiled step, dispatched as soon as its inputs are packed and 
 result is read, not one step vmapped over a robot axis: on a CPU the vmapped step cost twice
 the single one per robot (its gathers from per-robot costmaps and plans become batched
 gathers), while N dispatched steps run on XLA's threads at the single step's cost, and the
-first robots' steps run while Python packs the next robots' inputs (BENCHMARKS.md). Each
-robot keeps its own plan, warm start, smoothing history, noise pick and costmap; nothing is
-padded or stacked, and no fleet size is compiled apart."""
+first robots' steps run while Python packs the next robots' inputs (BENCHMARKS.md). The
+robots sit on JAX's devices in turn, one per CPU core (lanes.py), so their steps run side by
+side. Each robot keeps its own plan, warm start, smoothing history, noise pick and costmap;
+nothing is padded or stacked, and no fleet size is compiled apart."""
 
 from __future__ import annotations
 

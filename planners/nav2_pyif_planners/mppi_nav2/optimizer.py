@@ -130,12 +130,12 @@ def _iterate(
     return constrain_sequence(new, s, x.limits), fail
 
 
-def noise_bank(draw: np.ndarray) -> Any:
-    """The device's noise bank from ``draw`` (sets, axes, batch, T), already scaled: each
-    set time-major, as the step reads it, and laid twice along the batch, so that a set
-    rolled by any offset is one window of it."""
+def noise_bank(draw: np.ndarray, device: Any = None) -> Any:
+    """The noise bank on ``device`` (JAX's default: None) from ``draw`` (sets, axes, batch,
+    T), already scaled: each set time-major, as the step reads it, and laid twice along the
+    batch, so that a set rolled by any offset is one window of it."""
     time_major = np.ascontiguousarray(draw.transpose(0, 1, 3, 2), np.float32)
-    return jnp.asarray(np.concatenate([time_major, time_major], axis=3))
+    return jax.device_put(np.concatenate([time_major, time_major], axis=3), device)
 
 
 def _step(
