@@ -3,6 +3,7 @@ asserted: performance is judged from benchmark runs, not unit tests)."""
 
 from __future__ import annotations
 
+import json
 import os
 import re
 import subprocess
@@ -64,8 +65,21 @@ def test_mppi_profile_cycle_prints_each_part_of_the_hosts_cycle() -> None:
 def test_mppi_fleet_prints_cpu_per_robot_cycle_beside_cpp() -> None:
     result = bench("mppi-fleet", "--robots", "1", "3", "--rollouts", "200", "--seconds", "0.5")
     assert_prints(result, "CPU / robot-cycle", "vs C++", "largest fleet with no missed period")
-    rows = [line.split() for line in result.stdout.splitlines() if re.match(r"\s+[13] ", line)]
-    assert [row[0] for row in rows] == ["1", "3"]
+    rows = [line.split() for line in result.stdout.splitlines() if re.match(r"\s+auto ", line)]
+    assert [row[1] for row in rows] == ["1", "3"]
+
+
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
+def test_mppi_fleet_lanes_run_side_by_side_in_a_process_each(tmp_path: Path) -> None:
+    figures = tmp_path / "lanes.json"
+    result = bench(
+        "mppi-fleet", "--robots", "2", "--rollouts", "100", "--seconds", "0.3",
+        "--lanes", "1", "2", "--rounds", "2", "--json", str(figures),
+    )  # fmt: skip
+    assert_prints(result, "on 1 lane(s)", "on 2 lane(s)", "medians of 2 interleaved rounds")
+    rows = json.loads(figures.read_text())["rows"]
+    assert [(r["lanes"], r["robots"], r["rounds"]) for r in rows] == [(1, 2, 2), (2, 2, 2)]
+    assert all(r["cycles"] == 2 * int(0.3 / 0.05) for r in rows)  # 0.3 s at 20 Hz, twice
 
 
 def test_hop_benchmark_quick_run_prints_each_hop_tight_and_at_20_hz() -> None:

@@ -132,6 +132,19 @@ def build_parser() -> argparse.ArgumentParser:
         help="the C++ MPPI's compute per cycle to compare with [ms] (default 2.1 3.0: the "
         "low end of this machine type's C++ figures and the side-by-side harness's median)",
     )
+    mppi_fleet_parser.add_argument(
+        "--lanes",
+        type=positive_int,
+        nargs="+",
+        help="JAX CPU devices the robots are spread over, side by side, a process each "
+        "(e.g. 1 2; default: one process, one device per core as Nav2MPPI takes)",
+    )
+    mppi_fleet_parser.add_argument(
+        "--rounds",
+        type=positive_int,
+        default=3,
+        help="with --lanes: interleaved rounds of every lane count (default 3)",
+    )
     fleet = sub.add_parser("fleet", help="N robots at 20 Hz on one planner host")
     fleet.add_argument(
         "--robots",

@@ -3,12 +3,20 @@ call, paced at 20 Hz in this process (the planner's side of ``planner-host --bat
 Zenoh and the host's per-call work). Per N: the call's wall median and p99, the process's CPU
 per robot-cycle (XLA's threads included), missed periods; that CPU against a C++ MPPI's
 per-cycle figure times N; XLA's cost analysis of the batched step per robot and this
-machine's copy bandwidth, the floor memory traffic sets."""
+machine's copy bandwidth, the floor memory traffic sets.
+
+``--lanes 1 2``: the robots on that many JAX CPU devices each (Nav2MPPI's lanes.py takes one
+per core), side by side: a process per lane count (JAX fixes its device count once per
+process), the lane counts interleaved in rounds, each fleet size's figures pooled over the
+rounds."""
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
+import subprocess
+import sys
 import time
 from typing import Any
 
@@ -108,9 +116,48 @@ def _still() -> Any:
     return Twist()
 
 
+def _rows(robots: list[int], rollouts: int, seconds: float) -> list[dict[str, Any]]:
+    # bytes per robot do not change with N (each robot its own step): analysed at the first N
+    return [measure(n, rollouts, seconds, i == 0) for i, n in enumerate(robots)]
+
+
+#: a child of ``--lanes``: argv lanes, rollouts, seconds, robots...; prints its rows as JSON
+CHILD = """
+import json, sys
+import jax
+jax.config.update("jax_num_cpu_devices", int(sys.argv[1]))
+from nav2_pyif_bench.mppi_fleet import _rows
+robots = [int(n) for n in sys.argv[4:]]
+print(json.dumps(_rows(robots, int(sys.argv[2]), float(sys.argv[3]))))
+"""
+
+
+def _lanes(args: argparse.Namespace) -> list[dict[str, Any]]:
+    """Each lane count in its own process, the counts interleaved over ``args.rounds``; per lane
+    count and fleet size: the medians of the rounds' figures, missed periods summed."""
+    runs: dict[int, list[list[dict[str, Any]]]] = {lanes: [] for lanes in args.lanes}
+    for _ in range(args.rounds):
+        for lanes in args.lanes:
+            argv = [str(v) for v in (lanes, args.rollouts, args.seconds, *args.robots)]
+            out = subprocess.run(
+                [sys.executable, "-c", CHILD, *argv], capture_output=True, text=True, check=True
+            )
+            runs[lanes].append(json.loads(out.stdout.strip().splitlines()[-1]))
+    rows = []
+    for lanes, rounds in runs.items():
+        for per_size in zip(*rounds, strict=True):
+            row = dict(per_size[0], lanes=lanes, rounds=len(per_size))
+            for key in ("wall_median_ms", "wall_p99_ms", "cpu_per_robot_cycle_ms", "load"):
+                row[key] = float(np.median([r[key] for r in per_size]))
+            row["missed"] = sum(r["missed"] for r in per_size)
+            row["cycles"] = sum(r["cycles"] for r in per_size)
+            rows.append(row)
+    return rows
+
+
 def run(args: argparse.Namespace) -> dict[str, Any]:
-    # bytes per robot barely change with N (the padded call): analysed at the first N only
-    rows = [measure(n, args.rollouts, args.seconds, i == 0) for i, n in enumerate(args.robots)]
+    one_process = not getattr(args, "lanes", None)
+    rows = _rows(args.robots, args.rollouts, args.seconds) if one_process else _lanes(args)
     return {
         "rollouts": args.rollouts,
         "cpp_ms": list(args.cpp_ms),
@@ -125,23 +172,31 @@ def report(results: dict[str, Any]) -> str:
         f"Nav2MPPI batched, {results['rollouts']} x 56 per robot, 20 Hz; C++ MPPI per "
         f"robot-cycle: {' and '.join(f'{c:.2f}' for c in cpp)} ms; this machine copies "
         f"{results['bandwidth_gb_s']:.1f} GB/s",
-        f"  {'robots':>6} {'load':>5} {'call median':>12} {'p99':>9} {'missed':>9} "
+        f"  {'lanes':>5} {'robots':>6} {'load':>5} {'call median':>12} {'p99':>9} {'missed':>9} "
         f"{'CPU / robot-cycle':>18} {'vs C++':>13} {'XLA MB / robot':>15} {'floor':>9}",
     ]
-    served = 0
+    served: dict[Any, int] = {}
     mb = results["rows"][0]["bytes_per_robot_mb"]
     for r in results["rows"]:
         cpu = r["cpu_per_robot_cycle_ms"]
         ratios = " / ".join(f"{cpu / c:.2f}x" for c in cpp)
         floor = mb / 1e3 / results["bandwidth_gb_s"] * 1e3
         lines.append(
-            f"  {r['robots']:>6} {r['load']:>5.1f} {r['wall_median_ms']:>9.2f} ms "
+            f"  {r.get('lanes', 'auto'):>5} {r['robots']:>6} {r['load']:>5.1f} "
+            f"{r['wall_median_ms']:>9.2f} ms "
             f"{r['wall_p99_ms']:>6.2f} ms {r['missed']:>4}/{r['cycles']:<4} {cpu:>15.2f} ms "
             f"{ratios:>13} {mb:>15.1f} {floor:>6.2f} ms"
         )
         if r["missed"] == 0:
-            served = max(served, r["robots"])
-    lines.append(f"largest fleet with no missed period: {served} robots")
+            served[r.get("lanes", "auto")] = max(served.get(r.get("lanes", "auto"), 0), r["robots"])
+    for lanes, robots in served.items():
+        lanes_text = "" if lanes == "auto" else f" on {lanes} lane(s)"
+        lines.append(f"largest fleet with no missed period{lanes_text}: {robots} robots")
+    if results["rows"][0].get("rounds"):
+        lines.append(
+            f"each row: the medians of {results['rows'][0]['rounds']} interleaved rounds, "
+            "missed periods summed over them"
+        )
     lines.append(
         f"floor: XLA's bytes accessed per robot (analysed at {results['rows'][0]['robots']} "
         "robots) at the copy bandwidth: memory traffic alone, were it all from DRAM"
