@@ -270,3 +270,16 @@ def test_obstacles_benchmark_quick_run_prints_both_methods_per_costmap() -> None
         assert row in result.stdout
     assert result.stdout.count("obstacle_points() (edges)") == 4
     assert result.stdout.count("naive + nearest to 400 poses") == 4
+
+
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
+def test_fleet_benchmark_serves_nav2_mppi_batched_through_a_real_host() -> None:
+    result = bench(
+        *("fleet", "--planner", "mppi_nav2", "--batch", "--rollouts", "200"),
+        *("--robots", "2", "--seconds", "1"),
+    )
+    assert_prints(result, "fleet: N controllers on one host (mppi_nav2 planner)")
+    # Nav2's MPPI block, as the plugin reads it: no parameter ignored
+    assert "ignores parameter" not in result.stdout + result.stderr
+    rows = re.findall(r"^  (batched .*?) +2 +(\d+) +[\d.]+ ms", result.stdout, re.M)
+    assert rows == [("batched (5 ms window)", "40")], result.stdout

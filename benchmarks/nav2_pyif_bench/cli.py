@@ -167,12 +167,15 @@ def build_parser() -> argparse.ArgumentParser:
     )
     fleet.add_argument(
         "--planner",
-        choices=["trivial", "learned", "mppi_jax"],
+        choices=["trivial", "learned", "mppi_jax", "mppi_nav2"],
         default="trivial",
         help="the controller every robot calls (default trivial: the path alone)",
     )
     fleet.add_argument(
-        "--rollouts", type=positive_int, default=1000, help="mppi_jax's batch_size (default 1000)"
+        "--rollouts",
+        type=positive_int,
+        default=1000,
+        help="mppi_jax's and mppi_nav2's batch_size (default 1000)",
     )
     fleet.add_argument(
         "--batch", action="store_true", help="one worker for all robots, cycles batched"

@@ -19,6 +19,7 @@ PLANNERS = {
     "trivial": "nav2_pyif_bench.planners:TrivialController",
     "learned": "nav2_pyif_planners.learned.controller:LearnedController",
     "mppi_jax": "nav2_pyif_planners.mppi_jax:MPPIJax",
+    "mppi_nav2": "nav2_pyif_planners.mppi_nav2:Nav2MPPI",
 }
 
 
@@ -37,6 +38,11 @@ def fleet_planner(name: str, robots: int, rollouts: int, workdir: Path) -> Fleet
     """``name``'s set-up for ``robots`` robots (its batch shapes compiled up to that many)."""
     if name == "mppi_jax":
         return FleetPlanner(name, {"batch_size": rollouts, "fleet_size": robots})
+    if name == "mppi_nav2":  # Nav2 Jazzy's FollowPath MPPI block, as mppi-fleet runs it
+        from nav2_pyif_planners.mppi_nav2 import nav2_jazzy_params
+
+        params = {k: v for k, v in nav2_jazzy_params().items() if k != "plugin"}
+        return FleetPlanner(name, {**params, "batch_size": rollouts})
     if name == "learned":
         weights = untrained_policy(workdir / "policy.npz")
         return FleetPlanner(name, {"weights": str(weights), "fleet_size": robots}, scan=True)
