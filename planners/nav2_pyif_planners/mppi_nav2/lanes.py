@@ -3,10 +3,9 @@ kept on one of them, taken in turn as robots are configured.
 
 On a CPU, JAX's one device runs dispatched steps one after another, each split over every
 core. Splitting a 1000 x 56 step over two cores buys 15 % of its wall time for 40 % more
-CPU, and a fleet's steps wait in one queue. With a device per core, a fleet's steps run side
-by side, one per core, each on one core: per robot-cycle, less CPU and less wall time
-(BENCHMARKS.md, "A fleet: a lane per core"). A GPU backend is left as it is: its devices
-are the lanes.
+CPU, and a fleet's steps wait in one queue. With a device per core, two robots' steps run at
+once instead: per robot-cycle, less CPU and less wall time (BENCHMARKS.md, "A fleet: a lane
+per core"). A GPU backend is left as it is: its devices are the lanes.
 
 JAX fixes its CPU device count when its backend starts, so ``claim_cpu_lanes`` runs when
 this package is imported. It leaves the count alone where the user chose one
