@@ -38,6 +38,9 @@ def test_vectorised_conversions_agree_with_scalar_ones() -> None:
     cm = Costmap(rng.integers(0, 256, (25, 35), dtype=np.uint8), 0.2, origin_x=-1, origin_y=-3)
     pts = rng.uniform(-3, 8, size=(500, 2))
     cells, inside = cm.world_to_map_array(pts)
+    assert (cm.inside_world_array(pts) == inside).all()
+    edges = [[-1.0, -3.0], [-1.0 + 35 * 0.2, -3.0], [-1.0, -3.0 + 25 * 0.2], [-1.0 - 1e-12, 0.0]]
+    assert cm.inside_world_array(edges).tolist() == cm.world_to_map_array(edges)[1].tolist()
     for (x, y), cell, ok in zip(pts, cells, inside, strict=False):
         scalar = cm.world_to_map(x, y)
         assert ok == (scalar is not None)

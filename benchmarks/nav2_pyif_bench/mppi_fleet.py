@@ -178,17 +178,17 @@ def report(results: dict[str, Any]) -> str:
     served: dict[Any, int] = {}
     mb = results["rows"][0]["bytes_per_robot_mb"]
     for r in results["rows"]:
-        cpu = r["cpu_per_robot_cycle_ms"]
+        cpu, lanes = r["cpu_per_robot_cycle_ms"], r.get("lanes", "auto")
         ratios = " / ".join(f"{cpu / c:.2f}x" for c in cpp)
         floor = mb / 1e3 / results["bandwidth_gb_s"] * 1e3
         lines.append(
-            f"  {r.get('lanes', 'auto'):>5} {r['robots']:>6} {r['load']:>5.1f} "
+            f"  {lanes:>5} {r['robots']:>6} {r['load']:>5.1f} "
             f"{r['wall_median_ms']:>9.2f} ms "
             f"{r['wall_p99_ms']:>6.2f} ms {r['missed']:>4}/{r['cycles']:<4} {cpu:>15.2f} ms "
             f"{ratios:>13} {mb:>15.1f} {floor:>6.2f} ms"
         )
         if r["missed"] == 0:
-            served[r.get("lanes", "auto")] = max(served.get(r.get("lanes", "auto"), 0), r["robots"])
+            served[lanes] = max(served.get(lanes, 0), r["robots"])
     for lanes, robots in served.items():
         lanes_text = "" if lanes == "auto" else f" on {lanes} lane(s)"
         lines.append(f"largest fleet with no missed period{lanes_text}: {robots} robots")

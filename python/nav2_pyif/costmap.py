@@ -168,6 +168,15 @@ class Costmap:
         np.clip(my, 0, self.size_y - 1, out=my)
         return np.stack([mx, my], axis=-1), inside
 
+    def inside_world_array(self, xy: npt.ArrayLike) -> npt.NDArray[np.bool_]:
+        """(..., 2) world x, y [m] -> (...,) bool: the point lies in the map (world_to_map_array's
+        mask without its cells: floor(u) >= 0 is u >= 0, floor(u) < size is u < size)."""
+        pts = np.asarray(xy, dtype=np.float64)
+        u = (pts[..., 0] - self.origin_x) / self.resolution
+        v = (pts[..., 1] - self.origin_y) / self.resolution
+        inside: npt.NDArray[np.bool_] = (u >= 0.0) & (u < self.size_x)
+        return inside & (v >= 0.0) & (v < self.size_y)
+
     def _cells_and_mask(
         self, wx: npt.NDArray[np.float64], wy: npt.NDArray[np.float64]
     ) -> tuple[npt.NDArray[np.int64], npt.NDArray[np.bool_]]:

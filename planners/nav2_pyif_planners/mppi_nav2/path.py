@@ -44,10 +44,7 @@ class PathHandler:
         near = plan[start:bound]
         closest = start + int(np.argmin(np.hypot(near[:, 0] - x, near[:, 1] - y)))
         ahead = plan[closest : self.first_after(closest, self.prune_distance)]
-        # in the costmap: world_to_map_array's mask, without its cells (a quarter of the time)
-        u = (ahead[:, 0] - costmap.origin_x) / costmap.resolution
-        v = (ahead[:, 1] - costmap.origin_y) / costmap.resolution
-        inside = (u >= 0.0) & (v >= 0.0) & (u < costmap.size_x) & (v < costmap.size_y)
+        inside = costmap.inside_world_array(ahead[:, :2])
         if not inside.all():
             ahead = ahead[: int(np.argmin(inside))]  # up to the first point off the costmap
         self.start = closest
