@@ -104,6 +104,14 @@ def test_circumscribed_cost_lets_no_cell_below_it_touch_the_robot() -> None:
     assert Costmap.INSCRIBED > threshold > 0
     assert nearest_centre(threshold) > static.circumscribed_radius
     assert nearest_centre(Costmap.INSCRIBED) < static.circumscribed_radius
+    # a margin keeps every cell below it that much further out; one past the inflation's reach
+    # leaves only the free cells
+    wider = inflated.circumscribed_cost(3.0, margin=0.2)
+    assert threshold > wider > 0
+    assert nearest_centre(wider) > static.circumscribed_radius + 0.2
+    assert nearest_centre(threshold) < static.circumscribed_radius + 0.2
+    assert inflated.circumscribed_cost(3.0, margin=10.0) == 1
+    assert nearest_centre(1) > 1.0  # the inflation radius
 
 
 def test_geometry_of_poses_and_paths() -> None:

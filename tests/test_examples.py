@@ -84,7 +84,9 @@ def test_ompl_planner_plans_a_path_the_controller_drives(map_name: str, algorith
         plans=3,  # PRM*'s threads once deadlocked the binding by the third plan
     )
     assert result.failed_plans == 0
-    assert_reaches_goal(result)
+    # the planner's default clearance (0.1 m beyond the footprint) less what pure pursuit's
+    # corner cutting takes: without it OMPL's paths grazed obstacles and the robot stopped
+    assert_reaches_goal(result, min_clearance=0.08)
 
 
 @pytest.mark.timeout(300)

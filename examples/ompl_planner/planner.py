@@ -1,10 +1,14 @@
 """OMPL's RRT* or PRM* (the extra ``ompl``) as a Nav2 global planner.
 
 OMPL searches the plane (x, y) over the whole costmap. A state is valid where its cell costs
-less than ``costmap.circumscribed_cost()``: there the robot touches nothing at any heading, so
-the controller can follow the path whatever the footprint (253, Nav2's "inscribed", is safe only
-for a round robot). Nav2's cancel ends OMPL's solve through its termination condition, within a
-few hundred state checks rather than at the end of the time budget.
+less than ``costmap.circumscribed_cost(margin=clearance)``: there the robot touches nothing at
+any heading with ``clearance`` metres to spare, so the controller can follow the path whatever
+the footprint (253, Nav2's "inscribed", is safe only for a round robot). The spare matters
+because OMPL shortens its path until it grazes whatever it may not enter, and a controller
+that cuts corners (pure pursuit) then grazes obstacles; near the start and the goal, where the
+robot is or must be, the footprint alone is required. Nav2's cancel ends OMPL's solve through
+its termination condition, within a few hundred state checks rather than at the end of the time
+budget.
 
 Why the cancel is asked in the validity checker and not given to OMPL as a Python termination
 condition: PRM* evaluates its condition in a thread of its own while OMPL's Python binding holds
@@ -16,6 +20,7 @@ ends is OMPL's own, in C++.
 from __future__ import annotations
 
 import itertools
+import math
 import time
 from collections.abc import Callable
 from typing import Any
@@ -45,17 +50,26 @@ class OMPLPlanner(GlobalPlanner):
         self.algorithm = self.params.declare("algorithm", "rrtstar", "rrtstar or prmstar")
         self.max_time = self.params.declare("max_time", 0.5, "[s] OMPL's search for one plan")
         self.timeout = self.params.declare("timeout", 5.0, "[s] the search goes on for a path")
+        self.clearance = self.params.declare(
+            "clearance", 0.1, "[m] the path keeps this clear beyond the footprint"
+        )
         if self.algorithm not in ALGORITHMS:
             raise InvalidPlanner(f"algorithm: one of {sorted(ALGORITHMS)}, not {self.algorithm!r}")
         ou.setLogLevel(ou.LogLevel.LOG_WARN)  # OMPL's INFO lines would fill the host's log
 
     def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
         costmap, (sx, sy, _), (gx, gy, gyaw) = self.costmap, pose_xy_yaw(start), pose_xy_yaw(goal)
-        free = costmap.data < costmap.circumscribed_cost()  # (size_y, size_x) bool
+        touching = costmap.data >= costmap.circumscribed_cost()  # (size_y, size_x) bool
+        close = costmap.data >= costmap.circumscribed_cost(margin=self.clearance)
+        near = costmap.circumscribed_radius + self.clearance  # [m] from the start or the goal
 
         def is_free(x: float, y: float) -> bool:
             cell = costmap.world_to_map(x, y)
-            return cell is not None and bool(free[cell[1], cell[0]])
+            if cell is None or touching[cell[1], cell[0]]:
+                return False
+            if not close[cell[1], cell[0]]:
+                return True
+            return min(math.hypot(x - sx, y - sy), math.hypot(x - gx, y - gy)) < near
 
         if not is_free(sx, sy):
             raise StartOccupied(f"start ({sx:.2f}, {sy:.2f}) is too close to an obstacle")

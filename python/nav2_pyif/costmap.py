@@ -314,13 +314,18 @@ class Costmap:
         costs: ByteArray = cost.astype(np.uint8)
         return costs
 
-    def circumscribed_cost(self, cost_scaling_factor: float | None = None) -> int:
+    def circumscribed_cost(
+        self, cost_scaling_factor: float | None = None, *, margin: float = 0.0
+    ) -> int:
         """The cost at the footprint's circumscribed radius: a cell costing less cannot touch
         the robot whatever its heading, so a global planner for a non-round robot that keeps
         below it plans paths the controller can follow (Nav2's Smac planners and MPPI use this
-        threshold; 253, INSCRIBED, is only right for a round robot). ``cost_scaling_factor``
-        [1/m]: by default the inflation layer's (``self.inflation``: Nav2's, or the offline
-        runner's); raises ValueError when neither is known."""
+        threshold; 253, INSCRIBED, is only right for a round robot). ``margin`` [m]: the cost
+        that far beyond the circumscribed radius instead, for a planner whose paths should
+        keep clear of obstacles by more than the footprint (at least 1: a free cell is always
+        below it). ``cost_scaling_factor`` [1/m]: by default the inflation layer's
+        (``self.inflation``: Nav2's, or the offline runner's); raises ValueError when neither
+        is known."""
         if cost_scaling_factor is None:
             if self.inflation is None:
                 raise ValueError(
@@ -330,9 +335,9 @@ class Costmap:
                 )
             cost_scaling_factor = self.inflation.cost_scaling_factor
         cost = self.inflation_cost(
-            self.circumscribed_radius, self.inscribed_radius, cost_scaling_factor
+            self.circumscribed_radius + margin, self.inscribed_radius, cost_scaling_factor
         )
-        return int(cost)
+        return max(1, int(cost))
 
     # --- ROS ----------------------------------------------------------------------------
     def to_occupancy_grid(self) -> Any:
