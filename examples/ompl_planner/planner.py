@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 from nav2_pyif import (
+    Costmap,
     GlobalPlanner,
     GoalOccupied,
     InvalidPlanner,
@@ -59,17 +60,15 @@ class OMPLPlanner(GlobalPlanner):
 
     def create_plan(self, start: Any, goal: Any, cancel_checker: Callable[[], bool]) -> Any:
         costmap, (sx, sy, _), (gx, gy, gyaw) = self.costmap, pose_xy_yaw(start), pose_xy_yaw(goal)
-        touching = costmap.data >= costmap.circumscribed_cost()  # (size_y, size_x) bool
-        close = costmap.data >= costmap.circumscribed_cost(margin=self.clearance)
+        touching = costmap.circumscribed_cost()  # costs from here on touch the robot
+        spared = costmap.circumscribed_cost(margin=self.clearance)
         near = costmap.circumscribed_radius + self.clearance  # [m] from the start or the goal
 
         def is_free(x: float, y: float) -> bool:
             cell = costmap.world_to_map(x, y)
-            if cell is None or touching[cell[1], cell[0]]:
-                return False
-            if not close[cell[1], cell[0]]:
-                return True
-            return min(math.hypot(x - sx, y - sy), math.hypot(x - gx, y - gy)) < near
+            cost = Costmap.NO_INFORMATION if cell is None else costmap.data[cell[1], cell[0]]
+            at_an_end = min(math.hypot(x - sx, y - sy), math.hypot(x - gx, y - gy)) < near
+            return bool(cost < (touching if at_an_end else spared))
 
         if not is_free(sx, sy):
             raise StartOccupied(f"start ({sx:.2f}, {sy:.2f}) is too close to an obstacle")
