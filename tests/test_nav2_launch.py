@@ -103,6 +103,8 @@ RECORDING = "nav2_run.mcap"
 FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
 # Nav2's MPPI beside the project's (a benchmark, BENCHMARKS.md), run when asked for.
 SIDE_BY_SIDE = "test_mppi_side_by_side.py"
+# Nav2's MPPI for N robots on one machine, a stack each: the fleet benchmark's C++ side
+FLEET_NATIVE = "test_mppi_fleet_native.py"
 # The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
 # needs the gallery's extras in the project's environment.
 GALLERY = "test_gallery.py"
@@ -145,7 +147,7 @@ def _bringup_needs(distro: str) -> dict[str, str]:
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    apart = [*FULL_STACK, SIDE_BY_SIDE, GALLERY, BRINGUP, SOAK]
+    apart = [*FULL_STACK, SIDE_BY_SIDE, FLEET_NATIVE, GALLERY, BRINGUP, SOAK]
     if distro != "lyrical":
         apart += LYRICAL_ONLY  # they would skip there, and a skip fails the run
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
@@ -229,6 +231,20 @@ def test_mppi_side_by_side_with_nav2s_own(distro: str, backend: str) -> None:
         )
     selection = f"-s bridge_plugin/test/nav2/{SIDE_BY_SIDE}"
     _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
+
+
+@pytest.mark.timeout(2 * 3600)
+@pytest.mark.parametrize("backend", BACKENDS)
+@pytest.mark.parametrize("distro", DISTROS)
+def test_nav2s_own_mppi_for_a_fleet(distro: str, backend: str) -> None:
+    if os.environ.get("NAV2_PYIF_MPPI_FLEET_NATIVE") != "1":
+        pytest.skip(
+            "the native MPPI fleet benchmark (bridge_plugin/test/nav2/test_mppi_fleet_native.py,"
+            " N stacks of Nav2's nav2_mppi_controller at once, about 15 min) runs only when "
+            "NAV2_PYIF_MPPI_FLEET_NATIVE=1"
+        )
+    selection = f"-s bridge_plugin/test/nav2/{FLEET_NATIVE}"
+    _launch_tests(distro, backend, selection, timeout=2 * 3600 - 600, recovery_figures=False)
 
 
 def _launch_tests(
