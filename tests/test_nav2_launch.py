@@ -219,32 +219,34 @@ def test_plugin_soaked_in_controller_server(distro: str, backend: str) -> None:
     _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
 
 
+# The benchmarks against Nav2's own MPPI, each run only when its variable is 1: by pytest id,
+# (the variable, the launch test file, what it is)
+MPPI_BENCHMARKS = {
+    "side_by_side": (
+        "NAV2_PYIF_MPPI_SIDE_BY_SIDE",
+        SIDE_BY_SIDE,
+        "the MPPI side-by-side benchmark (Nav2's nav2_mppi_controller beside the project's JAX "
+        "MPPI, about 20 min)",
+    ),
+    "fleet_native": (
+        "NAV2_PYIF_MPPI_FLEET_NATIVE",
+        FLEET_NATIVE,
+        "the native MPPI fleet benchmark (N stacks of Nav2's nav2_mppi_controller at once, "
+        "about 15 min)",
+    ),
+}
+
+
 @pytest.mark.timeout(3 * 3600)
+@pytest.mark.parametrize("benchmark", MPPI_BENCHMARKS)
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
-def test_mppi_side_by_side_with_nav2s_own(distro: str, backend: str) -> None:
-    if os.environ.get("NAV2_PYIF_MPPI_SIDE_BY_SIDE") != "1":
-        pytest.skip(
-            "the MPPI side-by-side benchmark (bridge_plugin/test/nav2/test_mppi_side_by_side.py,"
-            " Nav2's nav2_mppi_controller beside the project's JAX MPPI, about 20 min) runs "
-            "only when NAV2_PYIF_MPPI_SIDE_BY_SIDE=1"
-        )
-    selection = f"-s bridge_plugin/test/nav2/{SIDE_BY_SIDE}"
+def test_mppi_benchmark_with_nav2s_own(distro: str, backend: str, benchmark: str) -> None:
+    variable, name, what = MPPI_BENCHMARKS[benchmark]
+    if os.environ.get(variable) != "1":
+        pytest.skip(f"{what}, bridge_plugin/test/nav2/{name}, runs only when {variable}=1")
+    selection = f"-s bridge_plugin/test/nav2/{name}"
     _launch_tests(distro, backend, selection, timeout=3 * 3600 - 600, recovery_figures=False)
-
-
-@pytest.mark.timeout(2 * 3600)
-@pytest.mark.parametrize("backend", BACKENDS)
-@pytest.mark.parametrize("distro", DISTROS)
-def test_nav2s_own_mppi_for_a_fleet(distro: str, backend: str) -> None:
-    if os.environ.get("NAV2_PYIF_MPPI_FLEET_NATIVE") != "1":
-        pytest.skip(
-            "the native MPPI fleet benchmark (bridge_plugin/test/nav2/test_mppi_fleet_native.py,"
-            " N stacks of Nav2's nav2_mppi_controller at once, about 15 min) runs only when "
-            "NAV2_PYIF_MPPI_FLEET_NATIVE=1"
-        )
-    selection = f"-s bridge_plugin/test/nav2/{FLEET_NATIVE}"
-    _launch_tests(distro, backend, selection, timeout=2 * 3600 - 600, recovery_figures=False)
 
 
 def _launch_tests(
