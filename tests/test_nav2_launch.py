@@ -104,7 +104,7 @@ FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
 # Nav2's MPPI beside the project's (a benchmark, BENCHMARKS.md), run when asked for.
 SIDE_BY_SIDE = "test_mppi_side_by_side.py"
 # Nav2's MPPI for N robots on one machine, a stack each: the fleet benchmark's C++ side
-FLEET_NATIVE = "test_mppi_fleet_native.py"
+FLEET_STACKS = "test_mppi_fleet_stacks.py"
 # The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
 # needs the gallery's extras in the project's environment.
 GALLERY = "test_gallery.py"
@@ -147,7 +147,7 @@ def _bringup_needs(distro: str) -> dict[str, str]:
 @pytest.mark.parametrize("backend", BACKENDS)
 @pytest.mark.parametrize("distro", DISTROS)
 def test_nav2_launch_tests_pass_against_a_real_nav2(distro: str, backend: str) -> None:
-    apart = [*FULL_STACK, SIDE_BY_SIDE, FLEET_NATIVE, GALLERY, BRINGUP, SOAK]
+    apart = [*FULL_STACK, SIDE_BY_SIDE, FLEET_STACKS, GALLERY, BRINGUP, SOAK]
     if distro != "lyrical":
         apart += LYRICAL_ONLY  # they would skip there, and a skip fails the run
     ignored = " ".join(f"--ignore=bridge_plugin/test/nav2/{name}" for name in apart)
@@ -228,11 +228,11 @@ MPPI_BENCHMARKS = {
         "the MPPI side-by-side benchmark (Nav2's nav2_mppi_controller beside the project's JAX "
         "MPPI, about 20 min)",
     ),
-    "fleet_native": (
-        "NAV2_PYIF_MPPI_FLEET_NATIVE",
-        FLEET_NATIVE,
-        "the native MPPI fleet benchmark (N stacks of Nav2's nav2_mppi_controller at once, "
-        "about 15 min)",
+    "fleet_stacks": (
+        "NAV2_PYIF_MPPI_FLEET_STACKS",
+        FLEET_STACKS,
+        "the MPPI fleet benchmark (N stacks with Nav2's nav2_mppi_controller, then N with the "
+        "project's batched Nav2MPPI, about 30 min)",
     ),
 }
 

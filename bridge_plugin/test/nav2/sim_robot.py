@@ -4,7 +4,8 @@ map, TF and odometry, as Nav2's servers expect them.
 - /map (nav_msgs/OccupancyGrid, transient local): 8 m x 8 m at 5 cm (--map-size: 50 m gives
   1000 x 1000 cells), centred on the origin, with a wall x = 1 m, y in [-0.6, 2.5] m between
   the start and the test's goals;
-- TF map -> odom (static, identity) and odom -> base_link (the integrated pose, 50 Hz);
+- TF map -> odom (static, identity) and odom -> base_link (the integrated pose, 50 Hz, or
+  --rate);
 - /odom (nav_msgs/Odometry) with the commanded velocity as the measured one;
 - /ground_truth (geometry_msgs/PoseStamped): the robot's true pose in the map.
 With --drift-step DY, odometry drifts as a real robot's does: every --drift-period seconds of
@@ -15,7 +16,7 @@ and Jazzy, TwistStamped from Kilted on (enable_stamped_cmd_vel); a command older
 stops the robot. With --scan, a laser on base_link publishes /scan
 (sensor_msgs/LaserScan, 20 Hz, 181 beams over the front half, 4 m) ray-cast on the wall.
 
-    python sim_robot.py [--x X --y Y --yaw YAW]
+    python sim_robot.py [--x X --y Y --yaw YAW] [--rate HZ]
 """
 
 from __future__ import annotations
@@ -94,8 +95,10 @@ class SimRobot(Node):
         drift: tuple[float, float, float] = (0, 1, 0),
         map_size_m: float = MAP_SIZE_M,
         scan: bool = False,
+        rate_hz: float = RATE_HZ,
     ) -> None:
         super().__init__("sim_robot")
+        self.rate_hz = rate_hz
         self.x, self.y, self.yaw = x, y, yaw  # the true pose, in the map
         self.drift_step, self.drift_period, self.drift_max = drift
         self.drift_y, self.driving_s = 0.0, 0.0
@@ -120,7 +123,7 @@ class SimRobot(Node):
             self.create_subscription(TwistStamped, "cmd_vel", self.on_stamped_cmd, 10)
         else:
             self.create_subscription(Twist, "cmd_vel", self.on_cmd, 10)
-        self.create_timer(1.0 / RATE_HZ, self.step)
+        self.create_timer(1.0 / rate_hz, self.step)
         if scan:
             self.scan_pub = self.create_publisher(LaserScan, "scan", 10)
             self.create_timer(1.0 / 20.0, self.publish_scan)
@@ -148,7 +151,7 @@ class SimRobot(Node):
         now = self.get_clock().now()
         if (now - self.cmd_time).nanoseconds > 500_000_000:
             self.cmd = Twist()
-        dt = 1.0 / RATE_HZ
+        dt = 1.0 / self.rate_hz
         v, w = self.cmd.linear.x, self.cmd.angular.z
         self.x += v * math.cos(self.yaw) * dt
         self.y += v * math.sin(self.yaw) * dt
@@ -186,10 +189,13 @@ def main() -> None:
     parser.add_argument("--drift-max", type=float, default=0.4, help="[m] in all")
     parser.add_argument("--map-size", type=float, default=MAP_SIZE_M, help="[m] square")
     parser.add_argument("--scan", action="store_true", help="publish /scan (LaserScan)")
+    parser.add_argument(
+        "--rate", type=float, default=RATE_HZ, help="[Hz] of the pose, TF and odometry"
+    )
     args = parser.parse_args()
     rclpy.init()
     drift = (args.drift_step, args.drift_period, args.drift_max)
-    node = SimRobot(args.x, args.y, args.yaw, drift, args.map_size, args.scan)
+    node = SimRobot(args.x, args.y, args.yaw, drift, args.map_size, args.scan, args.rate)
     signal.signal(signal.SIGTERM, lambda *_: rclpy.try_shutdown())
     try:
         rclpy.spin(node)
