@@ -70,10 +70,11 @@ FAILURE_TOLERANCE = "failure_tolerance: 0.3"
 BATCH_TIME = re.compile(r"batch compute: (\d+\.\d+) ms, (\d+) robots")
 FIRST_SERVERS = ("controller_server", "planner_server")  # the first robot's: it plans
 SERVERS = ("controller_server",)
-# ROS traffic over UDP on loopback only, not Fast DDS's shared memory: with shared memory, after
-# a few dozen stacks had come and gone, a new stack's lifecycle manager never found its
-# controller_server ("Waiting for service controller_server/get_state", 150 s and on). Set
-# here, before this process's rclpy contexts start, and inherited by every process it starts.
+# ROS traffic over UDP on loopback only. On Fast DDS's default transports (shared memory too),
+# after about a dozen stacks had come and gone, a new stack's lifecycle manager never found its
+# controller_server ("Waiting for service controller_server/get_state", 150 s and on); over UDP
+# alone every stack of four runs came up. Set here, before this process's rclpy contexts
+# start, and inherited by every process it starts.
 os.environ["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
 pytestmark = pytest.mark.timeout(300 + 60 * len(SIDES) * (sum(ROBOTS) + 2 * len(ROBOTS)))
 
@@ -81,7 +82,6 @@ pytestmark = pytest.mark.timeout(300 + 60 * len(SIDES) * (sum(ROBOTS) + 2 * len(
 @dataclass
 class Robot:
     procs: nav2_testing.Processes
-    servers: tuple[str, ...]
     client: Any = None
 
 
@@ -142,7 +142,7 @@ def _fleet(logs: Path, count: int, native: bool) -> Iterator[Fleet]:
             own.mkdir()
             _, params, procs = nav2_testing.prepare(own, endpoint, domain)
             servers = FIRST_SERVERS if i == 0 else SERVERS
-            robot = Robot(procs, servers)
+            robot = Robot(procs)
             fleet.robots.append(robot)
             params.write_text(_robot_params(params.read_text(), i, count, native))
             simulated = [str(nav2_testing.HERE / "sim_robot.py"), "--rate", SIM_RATE_HZ]
