@@ -79,8 +79,8 @@ ATTEMPTS = 3
 # ROS traffic over UDP on loopback only. On Fast DDS's default transports (shared memory too),
 # after about a dozen stacks had come and gone, a new stack's lifecycle manager never found its
 # controller_server ("Waiting for service controller_server/get_state", 150 s and on); over UDP
-# alone every stack of four runs came up. Set here, before this process's rclpy contexts
-# start, and inherited by every process it starts.
+# that happened once in about 250 stacks (ATTEMPTS below). Set here, before this process's
+# rclpy contexts start, and inherited by every process it starts.
 os.environ["FASTDDS_BUILTIN_TRANSPORTS"] = "UDPv4"
 pytestmark = pytest.mark.timeout(300 + 60 * len(SIDES) * (sum(ROBOTS) + 2 * len(ROBOTS)))
 
