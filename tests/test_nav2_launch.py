@@ -103,7 +103,8 @@ RECORDING = "nav2_run.mcap"
 FULL_STACK = ["test_full_stack.py", "test_full_stack_native.py"]
 # Nav2's MPPI beside the project's (a benchmark, BENCHMARKS.md), run when asked for.
 SIDE_BY_SIDE = "test_mppi_side_by_side.py"
-# Nav2's MPPI for N robots on one machine, a stack each: the fleet benchmark's C++ side
+# N robots on one machine, a stack each, with Nav2's MPPI and then with the project's
+# batched one: the fleet benchmark
 FLEET_STACKS = "test_mppi_fleet_stacks.py"
 # The examples/ gallery in Nav2 (OMPL's planner, the DWA controller): a case of its own, which
 # needs the gallery's extras in the project's environment.
@@ -232,7 +233,7 @@ MPPI_BENCHMARKS = {
         "NAV2_PYIF_MPPI_FLEET_STACKS",
         FLEET_STACKS,
         "the MPPI fleet benchmark (N stacks with Nav2's nav2_mppi_controller, then N with the "
-        "project's batched Nav2MPPI, about 30 min)",
+        "project's batched Nav2MPPI, about 5 min for 1, 5 and 10 robots, 10 min with 20)",
     ),
 }
 

@@ -21,9 +21,9 @@ is asked for it (NAV2_PYIF_MPPI_FLEET_STACKS=1), and skips, naming it, where
 nav2_mppi_controller is not built (testenv/build.sh jazzy mppi). $NAV2_PYIF_MPPI_FLEET_ROBOTS:
 the robot counts (default "1 5 10"); $NAV2_PYIF_MPPI_FLEET_SIDES: which sides (default
 "native ours"); $NAV2_PYIF_MPPI_FLEET_HOST_ARGS: more arguments for our planner host (e.g.
-"--isolation none"); $NAV2_PYIF_MPPI_ROLLOUTS: the batch size (its first count, default 1000). The
-same MPPI block as test_mppi_side_by_side.py. Figures go to $NAV2_PYIF_FIGURES (JSON),
-printed by tests/test_nav2_launch.py.
+"--isolation none"); $NAV2_PYIF_MPPI_ROLLOUTS: the batch size (its first count, default
+1000). The same MPPI block as test_mppi_side_by_side.py. Figures go to $NAV2_PYIF_FIGURES
+(JSON), printed by tests/test_nav2_launch.py.
 """
 
 from __future__ import annotations
@@ -120,21 +120,30 @@ def _robot_params(text: str, i: int, count: int, native: bool) -> str:
     return text
 
 
-def _start_robot(logs: Path, i: int, domain: int, endpoint: str, count: int, native: bool) -> Robot:
-    """Robot ``i``'s stack in ROS domain ``domain``, and the rclpy client there."""
+def _start_robot(
+    fleet: Fleet, logs: Path, i: int, domain: int, endpoint: str, count: int, native: bool
+) -> Robot:
+    """Robot ``i``'s stack in ROS domain ``domain``, and
+    the rclpy client there; in ``fleet`` from its first process on, so that every process it
+    started is stopped even when a later step fails."""
     import rclpy
 
     logs.mkdir()
     _, params, procs = nav2_testing.prepare(logs, endpoint, domain)
     params.write_text(_robot_params(params.read_text(), i, count, native))
+    robot = Robot(procs)
+    fleet.robots.append(robot)
     simulated = [str(nav2_testing.HERE / "sim_robot.py"), "--rate", SIM_RATE_HZ]
     procs.start("sim_robot", ["python3", *simulated])
-    nav2_testing.start_nav2(procs, params, FIRST_SERVERS if i == 0 else SERVERS)
-    robot = Robot(procs)
+    nav2_testing.start_nav2(procs, params, _servers(i))
     context = rclpy.Context()
     rclpy.init(context=context, domain_id=domain)
     robot.client = nav2_testing.Nav2Client(context, f"nav2_pyif_fleet_{i}")
     return robot
+
+
+def _servers(i: int) -> tuple[str, ...]:
+    return FIRST_SERVERS if i == 0 else SERVERS
 
 
 @contextmanager
@@ -163,12 +172,9 @@ def _fleet(logs: Path, count: int, native: bool) -> Iterator[Fleet]:
         domains = iter(random.sample(range(100, 200), 100))
         for i in range(count):
             for attempt in range(ATTEMPTS):
-                robot = _start_robot(
-                    logs / f"robot{i}_{attempt}", i, next(domains), endpoint, count, native
-                )
-                fleet.robots.append(robot)
-                servers = FIRST_SERVERS if i == 0 else SERVERS
-                states = robot.client.wait_active(servers, 90.0)
+                own = logs / f"robot{i}_{attempt}"
+                robot = _start_robot(fleet, own, i, next(domains), endpoint, count, native)
+                states = robot.client.wait_active(_servers(i), 90.0)
                 if all(s == "active" for s in states.values()):
                     break
                 failed = f"robot {i}: {states}\n{robot.procs.log('controller_server')}"
