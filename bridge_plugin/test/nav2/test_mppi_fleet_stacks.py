@@ -13,17 +13,19 @@ MPPI's compute (Nav2's: its "Control loop execution time" lines, one per cycle w
 patch; ours: the batched call, timed_mppi.py, per robot), the control periods missed
 (controller_server's "Control loop missed its desired rate", one per period it overran, the
 same on both sides; for ours also each cycle the batched host refused as overloaded), the
-robots that reached the goal, and the simulators' share of the cores (they run on the same
-ones). controller_server's failure_tolerance is nav2_bringup's 0.3 s on both sides.
+robots that reached the goal, the simulators' share of the cores (they run on the same
+ones), and each controller_server's and the host's share of a core idle, every stack up before
+the goals. controller_server's failure_tolerance is nav2_bringup's 0.3 s on both sides.
 
 A benchmark, not a test of the project's behaviour: it runs only when tests/test_nav2_launch.py
 is asked for it (NAV2_PYIF_MPPI_FLEET_STACKS=1), and skips, naming it, where
 nav2_mppi_controller is not built (testenv/build.sh jazzy mppi). $NAV2_PYIF_MPPI_FLEET_ROBOTS:
 the robot counts (default "1 5 10"); $NAV2_PYIF_MPPI_FLEET_SIDES: which sides (default
-"native ours"); $NAV2_PYIF_MPPI_FLEET_HOST_ARGS: more arguments for our planner host (e.g.
-"--isolation none"); $NAV2_PYIF_MPPI_ROLLOUTS: the batch size (its first count, default
-1000). The same MPPI block as test_mppi_side_by_side.py. Figures go to $NAV2_PYIF_FIGURES
-(JSON), printed by tests/test_nav2_launch.py.
+"native ours"; ``dispatch`` is ours serving a carrot follower instead of the MPPI, the cost of
+serving a cycle out of process on its own); $NAV2_PYIF_MPPI_FLEET_HOST_ARGS: more arguments
+for our planner host (e.g. "--isolation none"); $NAV2_PYIF_MPPI_ROLLOUTS: the batch size (its
+first count, default 1000). The same MPPI block as test_mppi_side_by_side.py. Figures go to
+$NAV2_PYIF_FIGURES (JSON), printed by tests/test_nav2_launch.py.
 """
 
 from __future__ import annotations
@@ -56,11 +58,16 @@ SIDES = os.environ.get("NAV2_PYIF_MPPI_FLEET_SIDES", "native ours").split()
 ROLLOUTS = int(os.environ.get("NAV2_PYIF_MPPI_ROLLOUTS", "1000").split()[0])
 HOST_ARGS = os.environ.get("NAV2_PYIF_MPPI_FLEET_HOST_ARGS", "").split()  # e.g. --isolation none
 OURS = "timed_mppi:TimedNav2MPPI"  # Nav2MPPI, its batched calls timed (planners/)
+# ``dispatch``: ours, serving a carrot follower instead (a few NumPy operations a robot): what
+# serving a cycle out of process costs before any MPPI work, the floor under ours
+DISPATCH = "timed_mppi:TimedCarrot"
+SERVED = {"ours": OURS, "dispatch": DISPATCH}
 GOAL = (2.0, 0.5)  # around the simulated robot's wall, the side-by-side's first goal
 WINDOW_MS = "12.5"  # the longest a cycle waits for the others: a quarter of the 50 ms period
 # The simulators' pose, TF and odometry at the control rate, not their default 50 Hz: at 50 Hz
 # each took 8-9 % of a core here, 20 of them most of the two cores both sides run on.
 SIM_RATE_HZ = "20"
+IDLE_S = 5.0  # how long the stacks' idle CPU is measured, before the goals
 EXECUTION = "Control loop execution time"
 MISSED = "Control loop missed its desired rate"
 # ours: a cycle the batched host did not compute (it waited a period for its batch, or the robot
@@ -147,20 +154,22 @@ def _servers(i: int) -> tuple[str, ...]:
 
 
 @contextmanager
-def _fleet(logs: Path, count: int, native: bool) -> Iterator[Fleet]:
+def _fleet(logs: Path, count: int, side: str) -> Iterator[Fleet]:
     """``count`` stacks, brought up one after the other (each active before the next starts),
     each in a ROS domain of its own with an rclpy client there; for ours, first the planner
     host all the plugins dial. A stack not up in 90 s is stopped and started again in another
     domain, up to ATTEMPTS times. Every process stopped afterwards."""
     fleet = Fleet()
     endpoint = f"tcp/127.0.0.1:{nav2_testing.free_port()}"
+    native = side == "native"
     try:
         if not native:
             (logs / "host").mkdir()
             fleet.host = nav2_testing.Processes(
                 logs / "host", dict(os.environ, PYTHONUNBUFFERED="1")
             )
-            serve = [a for i in range(count) for a in ("--serve", f"{_key(i)}={OURS}")]
+            served = SERVED[side]
+            serve = [a for i in range(count) for a in ("--serve", f"{_key(i)}={served}")]
             fleet.host.start(
                 "planner_host",
                 [
@@ -244,7 +253,7 @@ def test_mppi_for_a_fleet(count: int, side: str, tmp_path_factory: pytest.TempPa
         pytest.skip("the Nav2 launch test needs: " + ", ".join(absent))
     native = side == "native"
     logs = tmp_path_factory.mktemp(f"mppi_fleet_{side}_{count}")
-    with _fleet(logs, count, native) as fleet:
+    with _fleet(logs, count, side) as fleet:
         robots = fleet.robots
         for robot in robots:
             served = NATIVE if native else "nav2_pyif_bridge::PyController"
@@ -254,6 +263,10 @@ def test_mppi_for_a_fleet(count: int, side: str, tmp_path_factory: pytest.TempPa
         host = [] if fleet.host is None else [fleet.host.procs["planner_host"].pid]
         before = [_log(robot.procs, "controller_server") for robot in robots]
         host_before = "" if fleet.host is None else _log(fleet.host, "planner_host")
+        idle_servers, idle_host = _cpu_seconds(servers), _cpu_seconds(host)
+        time.sleep(IDLE_S)  # every stack up, no goal yet: what the processes cost doing nothing
+        idle_servers = (_cpu_seconds(servers) - idle_servers) / (IDLE_S * count)
+        idle_host = (_cpu_seconds(host) - idle_host) / IDLE_S
         cpu, host_cpu, sim_cpu = _cpu_seconds(servers), _cpu_seconds(host), _cpu_seconds(sims)
         seconds, reached = _drive_all(robots)
         cpu = _cpu_seconds(servers) - cpu
@@ -290,10 +303,12 @@ def test_mppi_for_a_fleet(count: int, side: str, tmp_path_factory: pytest.TempPa
         f"{name}_call_p99_ms": _percentile(calls, 0.99),
         f"{name}_sim_cpu_share": sim_cpu / (seconds * (os.cpu_count() or 1)),
         f"{name}_seconds": seconds,
+        f"{name}_idle_controller_server_cpu_share": idle_servers,
         f"{name}_stacks_restarted": fleet.restarted,
     }
     if not native:
         figures[f"{name}_host_cpu_per_robot_cycle_ms"] = 1e3 * host_cpu / cycles
+        figures[f"{name}_idle_host_cpu_share"] = idle_host
         figures[f"{name}_robots_per_call"] = cycles / len(calls)
     record(**figures)
     print(name, figures)
