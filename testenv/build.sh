@@ -368,9 +368,11 @@ step_zenoh_pico() {
   mkdir -p "$PREFIX/build"
   # Replies as large as a 1000 x 1000 costmap or a 10 000-pose plan must cross whole
   # (bridge_plugin/test/nav2/test_large_messages.py): pico's default FRAG_MAX_SIZE is 4 KiB.
+  # A plan crosses in one batch, not in 2 KiB fragments (distros.sh).
   cmake_project zenoh-pico "$SOURCES/eclipse-zenoh/zenoh-pico" "$PREFIX/build/zenoh-pico" \
     "$PREFIX/zenoh-pico" -DBUILD_SHARED_LIBS=ON -DBUILD_EXAMPLES=OFF -DBUILD_TESTING=OFF \
-    -DBUILD_TOOLS=OFF -DFRAG_MAX_SIZE="$PICO_FRAG_MAX_SIZE"
+    -DBUILD_TOOLS=OFF -DFRAG_MAX_SIZE="$PICO_FRAG_MAX_SIZE" \
+    -DBATCH_UNICAST_SIZE="$PICO_BATCH_UNICAST_SIZE"
   zenoh_cpp_into zenoh-pico "$PREFIX/zenoh-pico"
 }
 

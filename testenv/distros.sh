@@ -135,6 +135,9 @@ distro_settings() {
   )
   # zenoh-pico's largest reassembled message (its default is 4 KiB).
   PICO_FRAG_MAX_SIZE=16777216
+  # zenoh-pico's batch (its default 2 KiB cuts a 1000-pose plan into 28 fragments; a batch
+  # of 64 KiB, zenoh's own default, saved 0.13-0.25 ms a set_plan: BENCHMARKS.md).
+  PICO_BATCH_UNICAST_SIZE=65535
   APT_PACKAGES=("${APT_COMMON[@]}")
   PIP_PACKAGES=("${PIP_COMMON[@]}")
   ROS_PACKAGES=("${NAV2_PACKAGES[@]}")

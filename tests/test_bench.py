@@ -143,6 +143,8 @@ def test_cpp_cycle_benchmark_builds_and_prints_its_table() -> None:
         "nav2_pyif cycle, --isolation none",
         "of which C++ client",
         "rclpy node via rclcpp client",
+        "1000-pose plan, C++ client",
+        "nav2_pyif set_plan",
         "at a real control rate (20 Hz",
         "worker cycle / bare get, median",
         "worker cycle at 20 Hz, p99 / median",

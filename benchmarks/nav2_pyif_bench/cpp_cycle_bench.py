@@ -11,7 +11,8 @@ The binary runs in the ROS environment of --setup (default $NAV2_PYIF_NAV2_SETUP
 run in this Python's. Each nav2_pyif cycle is split into the C++ client's own work (the call
 minus its Zenoh get: costmap check, encode, decode, command check), the get, and within that
 the host's compute_ns (decoded request to reply body: session look-up, rclpy messages, the
-planner, the checks; decode, encode and the Zenoh side are outside it).
+planner, the checks; decode, encode and the Zenoh side are outside it). A 1000-pose set_plan,
+protocol's plan row, is timed the same way: the plan path as the plugin sends it.
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ from nav2_pyif_bench.protocol_bench import (
     peer_commands,
     progress,
 )
-from nav2_pyif_bench.stats import Summary, header_row
+from nav2_pyif_bench.stats import Summary, header_row, verdict
 
 ROOT = Path(__file__).resolve().parents[2]
 DEFAULT_BINARY = ROOT / "build" / "cpp_bench" / "nav2_pyif_cycle_bench"
@@ -122,7 +123,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         raise RuntimeError(f"{binary.name} failed (exit {result.returncode}); see above")
     output = json.loads(result.stdout)
     rows: dict[str, list[int]] = output["rows"]
-    for name in ("pyif", "pyif_inproc"):  # the client's own work: the call minus its get
+    for name in ("pyif", "pyif_plan", "pyif_inproc"):  # the client's own work: call minus get
         pairs = zip(rows[name], rows[f"{name}.query"], strict=True)
         rows[f"{name}.client"] = [total - query for total, query in pairs]
     return {
@@ -152,9 +153,20 @@ def report(results: dict[str, Any]) -> str:
             c[f"{name}.handler"].row("    of which planner call (compute_ns)"),
         ]
     lines.append(c["rclcpp"].row("rclpy node via rclcpp client (workaround)"))
+    plan = c["pyif_plan"]
+    lines += [
+        "1000-pose plan, C++ client (ControllerSession::set_plan, worker process)",
+        plan.row("nav2_pyif set_plan"),
+        c["pyif_plan.client"].row("  of which C++ client (encode..decode)"),
+        c["pyif_plan.query"].row("  of which Zenoh get -> host -> reply"),
+        c["pyif_plan.handler"].row("    of which host handler (decode..planner)"),
+        f"  over the cycle: {plan.median_us - c['pyif'].median_us:+.1f} µs median; "
+        f"target <= 1 ms: {verdict(plan.median_us, '<=', 1000, 1)}",
+    ]
     paced = [
         ("bare", "bare Zenoh get"),
         ("pyif", "nav2_pyif cycle, worker process"),
+        ("pyif_plan", "nav2_pyif 1000-pose set_plan, worker process"),
         ("pyif_inproc", "nav2_pyif cycle, --isolation none"),
         ("rclcpp", "rclpy node via rclcpp client"),
     ]

@@ -5,6 +5,7 @@
 //   bare         the plugin's Zenoh get -> bench's bare_zenoh.py replying an empty payload
 //   host_floor   an activate of an unknown session -> the host's cheapest reply
 //   pyif         ControllerSession::compute_velocity_commands -> planner-host (worker process)
+//   pyif_plan    ControllerSession::set_plan of a 1000-pose plan -> the same host
 //   pyif_inproc  the same -> planner-host --isolation none
 //   rclcpp       nav_msgs/Odometry -> rclpy_node.py -> geometry_msgs/TwistStamped
 // With --paced-calls N, each row but host_floor is then measured again at a real control rate
@@ -213,6 +214,7 @@ int run(const Options & o)
     host = start_cycle(o.host, o.key);
     rows.push_back({"host_floor", [&] {return host->unknown_session();}});
     rows.push_back({"pyif", [&] {return host->cycle();}});
+    rows.push_back({"pyif_plan", [&] {return host->plan();}});
   }
   if (!o.inproc.empty()) {
     inproc = start_cycle(o.inproc, o.inproc_key);

@@ -18,7 +18,8 @@ namespace
 
 constexpr std::uint32_t kGridSize = 10;
 constexpr double kResolution = 0.05;
-constexpr std::size_t kPlanPoses = 20;
+constexpr std::size_t kPlanPoses = 20;  // the plan set at start
+constexpr std::size_t kLongPlanPoses = 1000;  // the plan row's, as protocol_bench's
 // As protocol_bench's TIMEOUTS: generous, so a loaded machine shows slow calls, not failures.
 constexpr client::Duration kCallTimeout = 2s;
 
@@ -33,11 +34,11 @@ client::SessionConfig session_config(const std::string & key)
   return config;
 }
 
-protocol::Path straight_plan()
+protocol::Path straight_plan(std::size_t poses)
 {
   protocol::Path path;
   path.frame_id = "odom";
-  for (std::size_t i = 0; i < kPlanPoses; ++i) {
+  for (std::size_t i = 0; i < poses; ++i) {
     path.poses.insert(path.poses.end(), {0.05 * static_cast<double>(i), 0, 0, 0, 0, 0, 1});
   }
   return path;
@@ -82,6 +83,7 @@ PyifCycle::PyifCycle(const std::string & endpoint, const std::string & key, clie
   session_(session_config(key), timed_, costmap_, logger)
 {
   pose_.frame_id = "odom";
+  long_plan_ = straight_plan(kLongPlanPoses);
   protocol::Request unknown;
   unknown.sid = client::new_session_id();  // a valid sid no host has seen
   unknown.seq = 1;
@@ -96,7 +98,7 @@ void PyifCycle::start(client::Duration wait_for_host)
   }
   session_.configure();
   session_.activate();
-  session_.set_plan(straight_plan());
+  session_.set_plan(straight_plan(kPlanPoses));
 }
 
 Sample PyifCycle::cycle()
@@ -110,6 +112,20 @@ Sample PyifCycle::cycle()
   // Decoded again outside the timed call, only to read what the host reported.
   sample.handler_ns = protocol::decode_reply(
     timed_.last_reply(), protocol::Op::ComputeVelocityCommands).compute_ns;
+  return sample;
+}
+
+Sample PyifCycle::plan()
+{
+  Sample sample;
+  const auto start = BenchClock::now();
+  if (auto error = session_.set_plan(long_plan_)) {
+    throw std::runtime_error("set_plan failed: " + std::string(error->what()));
+  }
+  sample.total_ns = elapsed_ns(start);
+  sample.query_ns = timed_.last_query_ns();
+  sample.handler_ns =
+    protocol::decode_reply(timed_.last_reply(), protocol::Op::SetPlan).compute_ns;
   return sample;
 }
 

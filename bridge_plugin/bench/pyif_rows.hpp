@@ -73,6 +73,9 @@ public:
   void start(client::Duration wait_for_host);
   // One compute_velocity_commands (PoseStamped + Twist in, TwistStamped out).
   Sample cycle();
+  // One set_plan of a 1000-pose plan (protocol's plan row): the plan path as Nav2 sends it,
+  // every pose and the goal encoded, sent and decoded into the planner's NumPy array.
+  Sample plan();
   // The host's cheapest reply: an activate of a session it does not know (SessionUnknown),
   // the host's fixed cost per query without planner or message work.
   Sample unknown_session();
@@ -85,6 +88,7 @@ private:
   FixedCostmap costmap_;
   client::ControllerSession session_;
   protocol::PoseStamped pose_;
+  protocol::Path long_plan_;
   protocol::Bytes unknown_request_;
 };
 
