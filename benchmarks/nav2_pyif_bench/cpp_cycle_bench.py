@@ -142,31 +142,33 @@ def report(results: dict[str, Any]) -> str:
         c["bare"].row("bare Zenoh get -> empty reply"),
         c["host_floor"].row("host's cheapest reply (SessionUnknown)"),
     ]
+
+    def split(name: str, label: str, handler: str) -> list[str]:
+        """A call's row, then its C++ client work, its get, and the host's part of that."""
+        return [
+            c[name].row(label),
+            c[f"{name}.client"].row("  of which C++ client (encode..decode)"),
+            c[f"{name}.query"].row("  of which Zenoh get -> host -> reply"),
+            c[f"{name}.handler"].row(f"    of which {handler}"),
+        ]
+
     for name, label in (
         ("pyif", "nav2_pyif cycle, worker process (default)"),
         ("pyif_inproc", "nav2_pyif cycle, --isolation none"),
     ):
-        lines += [
-            c[name].row(label),
-            c[f"{name}.client"].row("  of which C++ client (encode..decode)"),
-            c[f"{name}.query"].row("  of which Zenoh get -> host -> reply"),
-            c[f"{name}.handler"].row("    of which planner call (compute_ns)"),
-        ]
+        lines += split(name, label, "planner call (compute_ns)")
     lines.append(c["rclcpp"].row("rclpy node via rclcpp client (workaround)"))
     plan = c["pyif_plan"]
+    lines.append("1000-pose plan, C++ client (ControllerSession::set_plan, worker process)")
+    lines += split("pyif_plan", "nav2_pyif set_plan", "host handler (compute_ns)")
     lines += [
-        "1000-pose plan, C++ client (ControllerSession::set_plan, worker process)",
-        plan.row("nav2_pyif set_plan"),
-        c["pyif_plan.client"].row("  of which C++ client (encode..decode)"),
-        c["pyif_plan.query"].row("  of which Zenoh get -> host -> reply"),
-        c["pyif_plan.handler"].row("    of which host handler (decode..planner)"),
         f"  over the cycle: {plan.median_us - c['pyif'].median_us:+.1f} µs median; "
         f"target <= 1 ms: {verdict(plan.median_us, '<=', 1000, 1)}",
     ]
     paced = [
         ("bare", "bare Zenoh get"),
         ("pyif", "nav2_pyif cycle, worker process"),
-        ("pyif_plan", "nav2_pyif 1000-pose set_plan, worker process"),
+        ("pyif_plan", "nav2_pyif set_plan, 1000 poses, worker"),
         ("pyif_inproc", "nav2_pyif cycle, --isolation none"),
         ("rclcpp", "rclpy node via rclcpp client"),
     ]

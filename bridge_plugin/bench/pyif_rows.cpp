@@ -101,32 +101,35 @@ void PyifCycle::start(client::Duration wait_for_host)
   session_.set_plan(straight_plan(kPlanPoses));
 }
 
-Sample PyifCycle::cycle()
+template<class Call>
+Sample PyifCycle::timed(protocol::Op op, Call && call)
 {
-  static const std::array<double, 6> velocity{};
   Sample sample;
   const auto start = BenchClock::now();
-  session_.compute_velocity_commands(pose_, velocity, std::nullopt);
+  call();
   sample.total_ns = elapsed_ns(start);
   sample.query_ns = timed_.last_query_ns();
   // Decoded again outside the timed call, only to read what the host reported.
-  sample.handler_ns = protocol::decode_reply(
-    timed_.last_reply(), protocol::Op::ComputeVelocityCommands).compute_ns;
+  sample.handler_ns = protocol::decode_reply(timed_.last_reply(), op).compute_ns;
   return sample;
+}
+
+Sample PyifCycle::cycle()
+{
+  static const std::array<double, 6> velocity{};
+  return timed(
+    protocol::Op::ComputeVelocityCommands,
+    [this] {session_.compute_velocity_commands(pose_, velocity, std::nullopt);});
 }
 
 Sample PyifCycle::plan()
 {
-  Sample sample;
-  const auto start = BenchClock::now();
-  if (auto error = session_.set_plan(long_plan_)) {
-    throw std::runtime_error("set_plan failed: " + std::string(error->what()));
-  }
-  sample.total_ns = elapsed_ns(start);
-  sample.query_ns = timed_.last_query_ns();
-  sample.handler_ns =
-    protocol::decode_reply(timed_.last_reply(), protocol::Op::SetPlan).compute_ns;
-  return sample;
+  return timed(
+    protocol::Op::SetPlan, [this] {
+      if (auto error = session_.set_plan(long_plan_)) {
+        throw std::runtime_error("set_plan failed: " + std::string(error->what()));
+      }
+    });
 }
 
 Sample PyifCycle::unknown_session()

@@ -82,6 +82,10 @@ public:
   void stop();
 
 private:
+  // `call` timed whole, its Zenoh get, and the host's compute_ns from the reply to `op`.
+  template<class Call>
+  Sample timed(protocol::Op op, Call && call);
+
   client::KeySpace keys_;
   nav2_pyif_bridge::ZenohTransport zenoh_;
   TimedTransport timed_;
