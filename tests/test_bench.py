@@ -36,8 +36,9 @@ def assert_prints(result: subprocess.CompletedProcess[str], *lines: str) -> None
 
 
 def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
+    result = bench("protocol", "--quick")
     assert_prints(
-        bench("protocol", "--quick"),
+        result,
         "bare Zenoh get -> empty reply",
         "nav2_pyif cycle, worker process (default)",
         "nav2_pyif cycle, --isolation none",
@@ -48,6 +49,34 @@ def test_protocol_benchmark_quick_run_prints_its_tables() -> None:
         "400 x 400 costmap",
         "calls/s",
     )
+    # --quick: one round of 20 plans, its first (cold, after rclpy's row) shown apart; then
+    # 20 calls of each paced row, with the tight loop's median beside it
+    counts = {
+        match["label"]: int(match["n"])
+        for match in re.finditer(
+            r"^ {2,}(?P<label>\S.*?)\s{2,}[\d.]+\s+[\d.]+\s+(?P<n>\d+)( +[\d.]+)?$",
+            result.stdout,
+            re.MULTILINE,
+        )
+    }
+    expected = {
+        "nav2_pyif set_plan": 20,
+        "first of each round (after rclpy's row)": 1,
+        "the rest of each round": 19,
+        "rclpy node, nav_msgs/Path topic": 20,
+        "nav2_pyif cycle, worker process": 20,  # the paced rows
+        "nav2_pyif set_plan, 1000 poses": 20,
+    }
+    assert {k: counts.get(k) for k in expected} == expected
+    assert "the same calls at 20 Hz" in result.stdout
+    assert "set_plan at 20 Hz: target <= 1 ms:" in result.stdout
+
+
+def test_first_of_each_round_takes_every_rounds_first_call() -> None:
+    from nav2_pyif_bench.protocol_bench import first_of_each_round
+
+    assert first_of_each_round([9, 1, 2, 8, 3, 4], per_round=3) == ([9, 8], [1, 2, 3, 4])
+    assert first_of_each_round([7, 6], per_round=1) == ([7, 6], [])
 
 
 @pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")

@@ -39,7 +39,7 @@ from nav2_pyif.common.zenoh_config import connect_to
 from nav2_pyif.server.frames import FramedPipe
 
 from nav2_pyif_bench.processes import free_port, peer_processes
-from nav2_pyif_bench.protocol_bench import add_rounds_and_rate, interleaved, progress
+from nav2_pyif_bench.protocol_bench import add_rounds_and_rate, interleaved, paced, progress
 from nav2_pyif_bench.stats import Summary, header_row
 
 REQUEST = b"r" * 300
@@ -134,20 +134,6 @@ def _answered(session: zenoh.Session, key: str, wait: float = 30.0) -> Callable[
             if time.monotonic() > end:
                 raise
             time.sleep(0.2)
-
-
-def paced(rows: dict[str, Callable[[], int]], calls: int, rate: float) -> dict[str, list[int]]:
-    """Each row once per period, the rows' calls evenly spread over it."""
-    period = 1.0 / rate
-    slot = period / len(rows)
-    samples: dict[str, list[int]] = {name: [] for name in rows}
-    progress(f"at {rate:g} Hz: {calls} calls per row")
-    start = time.monotonic() + period
-    for i in range(calls):
-        for k, (name, row) in enumerate(rows.items()):
-            time.sleep(max(0.0, start + i * period + k * slot - time.monotonic()))
-            samples[name].append(row())
-    return samples
 
 
 def run(args: argparse.Namespace) -> dict[str, Any]:
