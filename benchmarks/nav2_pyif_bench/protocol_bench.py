@@ -91,7 +91,8 @@ def interleaved(
 
 def paced(rows: dict[str, Callable[[], int]], calls: int, rate: float) -> dict[str, list[int]]:
     """Each row once per period, the rows' calls evenly spread over it: calls as Nav2 makes
-    them, each after an idle gap, so each pays the wake-ups a tight loop never does."""
+    them, each after an idle gap, so each pays what the gap costs (caches gone cold, threads
+    to wake) and a tight loop never does."""
     period = 1.0 / rate
     slot = period / len(rows)
     samples: dict[str, list[int]] = {name: [] for name in rows}
@@ -387,7 +388,7 @@ def report(results: dict[str, Any]) -> str:
 def paced_lines(
     paced_rows: dict[str, Any], bare: Summary, cycle: Summary, plan: Summary
 ) -> list[str]:
-    """The paced rows beside the tight loop's: what each call costs once its cores slept."""
+    """The paced rows beside the tight loop's: what each call costs after an idle gap."""
     rate = paced_rows["rate_hz"]
     rows = {k: Summary(**v) for k, v in paced_rows.items() if k != "rate_hz"}
     labels = {
@@ -406,8 +407,8 @@ def paced_lines(
     lines += [
         f"  set_plan at {rate:g} Hz: target <= 1 ms: "
         f"{verdict(rows['plan'].median_us, '<=', 1000, 1)}; over the paced cycle "
-        f"{rows['plan'].median_us - rows['cycle'].median_us:+.1f} µs median; the paced bare "
-        f"get's wake-ups {rows['bare'].median_us - bare.median_us:+.1f} µs over the tight one",
+        f"{rows['plan'].median_us - rows['cycle'].median_us:+.1f} µs median; the gap costs the "
+        f"bare get {rows['bare'].median_us - bare.median_us:+.1f} µs over the tight one",
         "",
     ]
     return lines

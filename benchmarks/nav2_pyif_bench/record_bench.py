@@ -29,7 +29,7 @@ from typing import Any
 
 from geometry_msgs.msg import Twist
 from nav2_pyif.client import ControllerClient, Timeouts
-from nav2_pyif.common.host_process import PlannerHostProcess
+from nav2_pyif.common.host_process import PlannerHostProcess, wait_alive
 from nav2_pyif.common.option_types import non_negative_float, positive_int
 from nav2_pyif.plan import Plan
 
@@ -74,7 +74,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
         ):
             session = open_session([off.endpoint, on.endpoint, live.endpoint])
             try:
-                samples = _measure(session, calls, args.rate)
+                samples = _measure(session, [off, on, live], calls, args.rate)
             finally:
                 session.close()
             on.stop()  # the recording's index is written as the host ends
@@ -115,10 +115,13 @@ def _live_recorder(host: PlannerHostProcess, key: str, path: Path) -> Iterator[A
         recorder.wait()
 
 
-def _measure(session: Any, calls: int, rate: float) -> dict[str, list[int]]:
+def _measure(
+    session: Any, hosts: list[PlannerHostProcess], calls: int, rate: float
+) -> dict[str, list[int]]:
     clients = [ControllerClient(session, key, costmap(100), timeouts=TIMEOUTS) for key in KEYS]
-    for client in clients:
-        assert client.wait_for_host(30), f"no planner host on {client.keys.prefix}"
+    for client, host in zip(clients, hosts, strict=True):
+        # a host not found in time is reported with its exit code or its own log
+        wait_alive(host, client.wait_for_host, timeout=30)
         client.configure()
         client.activate()
         client.set_plan(Plan([[0.0, 0.0], [50.0, 0.0]], "odom"))
