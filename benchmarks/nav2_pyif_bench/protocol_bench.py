@@ -269,7 +269,7 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
                 args.rate,
             )
             results["paced"] = {k: asdict(Summary.of_ns(v)) for k, v in at_rate.items()}
-            results["paced"]["rate_hz"] = args.rate
+            results["rate"] = args.rate
 
             costmap_400 = costmap(400, version=100)
             versions = iter(range(101, 10**9))
@@ -366,7 +366,8 @@ def report(results: dict[str, Any]) -> str:
         "",
     ]
     if "paced" in results:
-        lines += paced_lines(results["paced"], c["bare"], c["pyif"], p["pyif"])
+        paced_rows = {k: summary(v) for k, v in results["paced"].items()}
+        lines += paced_lines(paced_rows, results["rate"], c["bare"], c["pyif"], p["pyif"])
     m = results["costmap_400"]
     lines += [
         "400 x 400 costmap with a control cycle",
@@ -386,11 +387,9 @@ def report(results: dict[str, Any]) -> str:
 
 
 def paced_lines(
-    paced_rows: dict[str, Any], bare: Summary, cycle: Summary, plan: Summary
+    rows: dict[str, Summary], rate: float, bare: Summary, cycle: Summary, plan: Summary
 ) -> list[str]:
     """The paced rows beside the tight loop's: what each call costs after an idle gap."""
-    rate = paced_rows["rate_hz"]
-    rows = {k: Summary(**v) for k, v in paced_rows.items() if k != "rate_hz"}
     labels = {
         "bare": ("bare Zenoh get -> empty reply", bare),
         "cycle": ("nav2_pyif cycle, worker process", cycle),
@@ -399,7 +398,7 @@ def paced_lines(
     lines = [
         f"the same calls at {rate:g} Hz (each row once a period, spread over it: as Nav2 paces "
         "them)",
-        f"  {'':<40} {'median µs':>10} {'p99 µs':>10} {'n':>7} {'tight µs':>10}",
+        f"{header_row()} {'tight µs':>10}",
     ]
     lines += [
         f"{rows[k].row(label)} {tight.median_us:>10.1f}" for k, (label, tight) in labels.items()
