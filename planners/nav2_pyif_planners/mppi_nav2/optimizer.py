@@ -175,7 +175,12 @@ def _step(
     return Outputs(sequence, history, reply, optimal)
 
 
-step = jax.jit(_step, static_argnames=("s",))
+#: XLA's CPU options for the step: no YNNPACK fusions. YNNPACK takes each critic's masked
+#: sum as a kernel of its own, fed by zero arrays (T, batch) XLA must first fill; without it
+#: the sums fuse with what they read (measured: the cycle 0.1 ms faster warm, 0.35 ms cold)
+CPU_OPTIONS = {"xla_cpu_experimental_ynn_fusion_type": ""}
+
+step = jax.jit(_step, static_argnames=("s",), compiler_options=CPU_OPTIONS)
 
 #: rows of a packed cycle array before the plan's: pose, speed, goal, limits (vx_max, vx_min,
 #: vy_max), (wz_max, goal_tolerance, count), (noise set, roll, unused)
@@ -211,4 +216,4 @@ def _packed_step(
 
 
 #: the step on a packed cycle array (``pack``): what the controller runs each cycle
-packed_step = jax.jit(_packed_step, static_argnames=("s",))
+packed_step = jax.jit(_packed_step, static_argnames=("s",), compiler_options=CPU_OPTIONS)
