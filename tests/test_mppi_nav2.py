@@ -487,3 +487,21 @@ def test_counting_finds_what_searchsorted_finds() -> None:
     queries[0, :41] = along[:41]  # exact hits: "right" counts them
     counted = np.asarray(critics._count_at_most(jnp.asarray(along), jnp.asarray(queries)))
     assert counted.tolist() == np.searchsorted(along, queries, side="right").tolist()
+
+
+def test_the_step_compiles_with_xlas_defaults_where_its_cpu_options_are_unknown(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    from nav2_pyif_planners.mppi_nav2 import optimizer
+
+    assert dict(optimizer.compiler_options("cpu")) == optimizer.CPU_OPTIONS
+    assert optimizer.compiler_options("gpu") == ()
+    # an XLA that does not know the option (an older JAX): the step is compiled without it
+    monkeypatch.setattr(optimizer, "CPU_OPTIONS", {"xla_cpu_no_such_option": ""})
+    optimizer.compiler_options.cache_clear()
+    try:
+        assert optimizer.compiler_options("cpu") == ()
+        double = optimizer.jit_on("cpu", lambda v: v * 2)
+        assert float(double(np.float32(2.5))) == 5.0
+    finally:
+        optimizer.compiler_options.cache_clear()

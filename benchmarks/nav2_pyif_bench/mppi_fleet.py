@@ -98,11 +98,11 @@ def measure(n: int, rollouts: int, seconds: float, cost: bool) -> dict[str, Any]
 
 def _bytes_per_robot(robots: list[Any]) -> float:
     """XLA's 'bytes accessed' of one robot's step (each robot of a fleet runs its own)."""
-    from nav2_pyif_planners.mppi_nav2.optimizer import packed_step
+    from nav2_pyif_planners.mppi_nav2.optimizer import packed_step_on
 
     r = robots[0]
     packed = r.cycle_inputs(np.array([10.0, 0.1, 0.0]), _still(), None)
-    lowered = packed_step.lower(
+    lowered = packed_step_on(r.device.platform).lower(
         r.sequence, r.history, r.bank, packed, r._upload_costmap(), s=r.settings
     )
     cost = lowered.compile().cost_analysis()

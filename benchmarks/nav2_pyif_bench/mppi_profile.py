@@ -19,8 +19,10 @@ import numpy as np
 
 def _timed(fn: Callable[..., Any], *args: Any, repeat: int) -> dict[str, float]:
     import jax
+    from nav2_pyif_planners.mppi_nav2.optimizer import jit_on
 
-    compiled = jax.jit(fn)
+    # the parts compiled as the step is: with its compiler options
+    compiled = jit_on(jax.devices()[0].platform, fn)
     for _ in range(3):
         jax.block_until_ready(compiled(*args))
     times = []
@@ -43,9 +45,10 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
         Inputs,
         _iterate,
         furthest_reached,
+        jit_on,
         noise_bank,
         path_valid,
-        step,
+        step_on,
     )
     from nav2_pyif_planners.mppi_nav2.params import CRITIC_PARAMS, Critic, read_settings
 
@@ -81,6 +84,8 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
     history = jnp.zeros((4, 3), jnp.float32)
     pick = np.array([1, 17], np.int32)
     parts: dict[str, Any] = {}
+    platform = jax.devices()[0].platform
+    step = step_on(platform)
     parts["whole step"] = _timed(
         lambda *a: step(*a, grid, s), sequence, history, bank, pick, x, repeat=repeat
     )
@@ -126,7 +131,7 @@ def profile(rollouts: int, repeat: int) -> dict[str, Any]:
     parts["one iteration (all but smoothing)"] = _timed(
         lambda u, n: _iterate(u, n, on_device, grid, valid, s)[0], u, noise, repeat=repeat
     )
-    lowered = jax.jit(lambda *a: step(*a, grid, s)).lower(sequence, history, bank, pick, x)
+    lowered = jit_on(platform, lambda *a: step(*a, grid, s)).lower(sequence, history, bank, pick, x)
     cost = lowered.compile().cost_analysis()
     cost = (cost[0] if isinstance(cost, list) else cost) or {}
     return {

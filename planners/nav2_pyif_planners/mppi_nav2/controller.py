@@ -19,7 +19,7 @@ from nav2_pyif.geometry import pose_xy_yaw
 from nav2_pyif_planners.mppi_nav2.costs import Grid
 from nav2_pyif_planners.mppi_nav2.fleet import compute_batch
 from nav2_pyif_planners.mppi_nav2.lanes import next_lane
-from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, noise_bank, pack, packed_step
+from nav2_pyif_planners.mppi_nav2.optimizer import Outputs, noise_bank, pack, packed_step_on
 from nav2_pyif_planners.mppi_nav2.params import read_settings
 from nav2_pyif_planners.mppi_nav2.path import PathHandler, padded
 
@@ -183,7 +183,7 @@ class Nav2MPPI(Controller):
     def _run(self, inputs: np.ndarray) -> Outputs:
         """The compiled step on packed inputs (optimizer.pack), this cycle's noise picked."""
         self.pick_noise(inputs)
-        out: Outputs = packed_step(
+        out: Outputs = packed_step_on(self.device.platform)(
             self.sequence, self.history, self.bank, inputs, self._upload_costmap(), self.settings
         )
         return out

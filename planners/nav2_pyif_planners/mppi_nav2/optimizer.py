@@ -18,6 +18,7 @@ first set unrolled, as Nav2 does."""
 
 from __future__ import annotations
 
+import functools
 from functools import partial
 from typing import Any, NamedTuple
 
@@ -176,11 +177,38 @@ def _step(
 
 
 #: XLA's CPU options for the step: no YNNPACK fusions. YNNPACK takes each critic's masked
-#: sum as a kernel of its own, fed by zero arrays (T, batch) XLA must first fill; without it
-#: the sums fuse with what they read (measured: the cycle 0.1 ms faster warm, 0.35 ms cold)
+#: sum as a kernel of its own, fed by (T, batch) arrays of zeros that XLA must first fill;
+#: without it the sums fuse with what they read. Measured (BENCHMARKS.md): the whole cycle
+#: 0.1 ms faster called back to back, 0.35 ms at 20 Hz, where each call starts cold.
 CPU_OPTIONS = {"xla_cpu_experimental_ynn_fusion_type": ""}
 
-step = jax.jit(_step, static_argnames=("s",), compiler_options=CPU_OPTIONS)
+
+@functools.cache
+def compiler_options(platform: str) -> tuple[tuple[str, str], ...]:
+    """CPU_OPTIONS on a CPU whose XLA takes them; none elsewhere (XLA's defaults)."""
+    if platform != "cpu":
+        return ()
+    try:
+        probe = jax.device_put(np.float32(0), jax.devices("cpu")[0])
+        jax.jit(lambda v: v + 1, compiler_options=CPU_OPTIONS).lower(probe).compile()
+    except Exception:  # an older JAX or XLA: no such option, or no compiler_options
+        return ()
+    return tuple(CPU_OPTIONS.items())
+
+
+def jit_on(platform: str, fn: Any, **kwargs: Any) -> Any:
+    """``jax.jit(fn)`` with this platform's compiler_options."""
+    options = compiler_options(platform)
+    if options:
+        kwargs["compiler_options"] = dict(options)
+    return jax.jit(fn, **kwargs)
+
+
+@functools.cache
+def step_on(platform: str) -> Any:
+    """The step (``_step``) compiled for a platform ("cpu", "gpu", ...)."""
+    return jit_on(platform, _step, static_argnames=("s",))
+
 
 #: rows of a packed cycle array before the plan's: pose, speed, goal, limits (vx_max, vx_min,
 #: vy_max), (wz_max, goal_tolerance, count), (noise set, roll, unused)
@@ -215,5 +243,8 @@ def _packed_step(
     return _step(sequence, history, bank, pick, x, grid, s)
 
 
-#: the step on a packed cycle array (``pack``): what the controller runs each cycle
-packed_step = jax.jit(_packed_step, static_argnames=("s",), compiler_options=CPU_OPTIONS)
+@functools.cache
+def packed_step_on(platform: str) -> Any:
+    """The step on a packed cycle array (``pack``), compiled for a platform: what the
+    controller runs each cycle."""
+    return jit_on(platform, _packed_step, static_argnames=("s",))
