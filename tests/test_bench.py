@@ -80,13 +80,15 @@ def test_first_of_each_round_takes_every_rounds_first_call() -> None:
 
 
 @pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
-def test_mppi_profile_cycle_prints_each_part_of_the_hosts_cycle() -> None:
+def test_mppi_profile_cycle_prints_each_part_of_the_hosts_cycle_warm_and_cold() -> None:
     assert_prints(
-        bench("mppi-profile", "--cycle-only", "--rollouts", "200", "--repeat", "5"),
+        bench("mppi-profile", "--cycle-only", "--rollouts", "200", "--repeat", "5", "--cold"),
         "whole cycle as the host runs it, 200 rollouts",
         "of which plan pruning",
         "step dispatch",
         "TwistStamped",
+        "whole cycle, last cache flushed first",
+        "whole cycle, one every 50 ms (20 Hz)",
     )
 
 

@@ -3,7 +3,7 @@
 nav2-pyif-bench protocol [--quick]             control cycle, plans, costmaps, throughput
 nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ plugin's client
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers through a host, both maps
-nav2-pyif-bench mppi-profile [--cycle-only]     where Nav2MPPI's cycle and compiled step spend time
+nav2-pyif-bench mppi-profile [--cold]         where Nav2MPPI's cycle and compiled step spend time
 nav2-pyif-bench mppi-fleet [--robots 1 5 10]   Nav2MPPI batched: CPU per robot-cycle at 20 Hz
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
@@ -107,6 +107,12 @@ def build_parser() -> argparse.ArgumentParser:
     )
     profile.add_argument(
         "--repeat", type=positive_int, default=200, help="timed runs per part (default 200)"
+    )
+    profile.add_argument(
+        "--cold",
+        action="store_true",
+        help="also the whole cycle after a read larger than the CPU's last cache, and one "
+        "every 50 ms (20 Hz, as Nav2 calls it): what each call pays when it starts cold",
     )
     mppi_fleet_parser = sub.add_parser(
         "mppi-fleet", help="Nav2MPPI batched: N robots in one call at 20 Hz, CPU per robot"

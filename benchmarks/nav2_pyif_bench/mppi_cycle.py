@@ -10,6 +10,7 @@ from __future__ import annotations
 import logging
 import time
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,9 @@ PARTS = (
     "step wait + reply",
     "TwistStamped",
 )
+
+#: the whole cycle started cold (``--cold``)
+COLD_ROWS = ("whole cycle, last cache flushed first", "whole cycle, one every 50 ms (20 Hz)")
 
 
 def configured_robot(rollouts: int) -> tuple[Any, Any]:
@@ -45,7 +49,21 @@ def configured_robot(rollouts: int) -> tuple[Any, Any]:
     return robot, plan
 
 
-def cycle(rollouts: int, repeat: int) -> dict[str, Any]:
+def last_cache_bytes() -> int:
+    """The largest CPU cache this machine reports (sysfs), 64 MiB where it reports none."""
+    units = {"K": 1 << 10, "M": 1 << 20, "G": 1 << 30}
+    sizes = [
+        int(text[:-1]) * units[text[-1]] if text[-1] in units else int(text)
+        for text in (
+            f.read_text().strip()
+            for f in Path("/sys/devices/system/cpu/cpu0/cache").glob("index*/size")
+        )
+        if text
+    ]
+    return max(sizes, default=64 << 20)
+
+
+def cycle(rollouts: int, repeat: int, cold: bool = False) -> dict[str, Any]:
     from geometry_msgs.msg import Twist
     from nav2_pyif.runner.run import pose_msg
 
@@ -54,7 +72,8 @@ def cycle(rollouts: int, repeat: int) -> dict[str, Any]:
     state = np.array([10.0, 0.2 * np.sin(2.5), 0.0])
     velocity = Twist()
     velocity.linear.x = 0.3
-    wall: dict[str, list[float]] = {name: [] for name in (*PARTS, "whole cycle")}
+    rows = (*PARTS, "whole cycle", *(COLD_ROWS if cold else ()))
+    wall: dict[str, list[float]] = {name: [] for name in rows}
     cpu: dict[str, list[float]] = {name: [] for name in wall}
 
     def timed(name: str, fn: Callable[..., Any], *args: Any) -> Any:
@@ -77,6 +96,21 @@ def cycle(rollouts: int, repeat: int) -> dict[str, Any]:
         timed(PARTS[1], robot.path.transform, *state[:2], robot.costmap)
         robot.set_plan(plan)
         timed("whole cycle", robot.compute_velocity_commands, pose, velocity, None)
+    if cold:
+        from nav2_pyif_bench.protocol_bench import paced
+
+        def cold_call(name: str, first: Callable[[], Any]) -> int:
+            robot.set_plan(plan)
+            first()
+            timed(name, robot.compute_velocity_commands, pose, velocity, None)
+            return 0
+
+        # a read past the last cache evicts the cycle's code and data, as other work does
+        # between two of Nav2's calls; then the calls as Nav2 makes them, 50 ms apart
+        flushing = np.ones(int(1.1 * last_cache_bytes()) // 8)
+        for _ in range(repeat):
+            cold_call(COLD_ROWS[0], flushing.sum)
+        paced({COLD_ROWS[1]: lambda: cold_call(COLD_ROWS[1], lambda: None)}, repeat, 20.0)
     return {
         name: {
             "wall_median_ms": float(np.median(wall[name]) * 1e3),

@@ -151,7 +151,8 @@ def run(args: argparse.Namespace) -> dict[str, Any]:
     results: dict[str, Any] = {}
     for n in args.rollouts:
         results[str(n)] = {} if args.cycle_only else profile(n, args.repeat)
-        results[str(n)].update(rollouts=n, cycle=cycle(n, args.repeat), load=os.getloadavg()[0])
+        timed = cycle(n, args.repeat, args.cold)
+        results[str(n)].update(rollouts=n, cycle=timed, load=os.getloadavg()[0])
     return results
 
 
