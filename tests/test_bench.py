@@ -93,6 +93,17 @@ def test_mppi_profile_cycle_prints_each_part_of_the_hosts_cycle_warm_and_cold() 
 
 
 @pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
+def test_mppi_profile_times_the_whole_step_and_each_part_compiled_apart() -> None:
+    assert_prints(
+        bench("mppi-profile", "--rollouts", "200", "--repeat", "3"),
+        "whole step",
+        "roll-out loops (limits, poses)",
+        "CostCritic (consider_footprint)",
+        "XLA cost analysis",
+    )
+
+
+@pytest.mark.skipif(find_spec("jax") is None, reason="JAX not installed (nav2-pyif-planners[jax])")
 def test_mppi_fleet_prints_cpu_per_robot_cycle_beside_cpp() -> None:
     result = bench("mppi-fleet", "--robots", "1", "3", "--rollouts", "200", "--seconds", "0.5")
     assert_prints(result, "CPU / robot-cycle", "vs C++", "largest fleet with no missed period")
