@@ -18,8 +18,7 @@ first set unrolled, as Nav2 does."""
 
 from __future__ import annotations
 
-import functools
-from functools import partial
+from functools import cache, partial
 from typing import Any, NamedTuple
 
 import jax
@@ -178,12 +177,12 @@ def _step(
 
 #: XLA's CPU options for the step: no YNNPACK fusions. YNNPACK takes each critic's masked
 #: sum as a kernel of its own, fed by (T, batch) arrays of zeros that XLA must first fill;
-#: without it the sums fuse with what they read. Measured (BENCHMARKS.md): the whole cycle
-#: 0.1 ms faster called back to back, 0.35 ms at 20 Hz, where each call starts cold.
+#: without it the sums fuse with what they read. The step alone (a one-off probe, BENCHMARKS.md
+#: "Cold calls"): 0.1 ms faster back to back, 0.35 ms faster with the caches flushed first.
 CPU_OPTIONS = {"xla_cpu_experimental_ynn_fusion_type": ""}
 
 
-@functools.cache
+@cache
 def compiler_options(platform: str) -> tuple[tuple[str, str], ...]:
     """CPU_OPTIONS on a CPU whose XLA takes them; none elsewhere (XLA's defaults)."""
     if platform != "cpu":
@@ -204,7 +203,7 @@ def jit_on(platform: str, fn: Any, **kwargs: Any) -> Any:
     return jax.jit(fn, **kwargs)
 
 
-@functools.cache
+@cache
 def step_on(platform: str) -> Any:
     """The step (``_step``) compiled for a platform ("cpu", "gpu", ...)."""
     return jit_on(platform, _step, static_argnames=("s",))
@@ -243,7 +242,7 @@ def _packed_step(
     return _step(sequence, history, bank, pick, x, grid, s)
 
 
-@functools.cache
+@cache
 def packed_step_on(platform: str) -> Any:
     """The step on a packed cycle array (``pack``), compiled for a platform: what the
     controller runs each cycle."""
