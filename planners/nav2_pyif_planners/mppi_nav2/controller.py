@@ -75,6 +75,8 @@ class Nav2MPPI(Controller):
         if not hasattr(self, "device"):  # a robot keeps its lane across reconfigures
             self.device = next_lane()
         self.bank = noise_bank(draw * sigma[None, :, None, None].astype(np.float32), self.device)
+        # the lane's platform is fixed: its compiled step is looked up once, not every cycle
+        self._step = packed_step_on(self.device.platform)
         self._check_footprint()
         self._grid: Grid | None = None
         self._grid_version: int | None = None
@@ -183,7 +185,7 @@ class Nav2MPPI(Controller):
     def _run(self, inputs: np.ndarray) -> Outputs:
         """The compiled step on packed inputs (optimizer.pack), this cycle's noise picked."""
         self.pick_noise(inputs)
-        out: Outputs = packed_step_on(self.device.platform)(
+        out: Outputs = self._step(
             self.sequence, self.history, self.bank, inputs, self._upload_costmap(), self.settings
         )
         return out
