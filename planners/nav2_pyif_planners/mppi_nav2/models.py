@@ -118,8 +118,8 @@ def roll_out(controls: Controls, speed: Any, pose: Any, s: Settings) -> Rollouts
     steps = controls.vx.shape[0]
     limited, _ = jax.lax.fori_loop(0, steps - 1, limit, (sampled, start))
     moved = [jnp.concatenate([v[None], c[:-1]]) for v, c in zip(start, limited, strict=True)]
-    zeros = jnp.zeros_like(controls.vx)
     if not s.holonomic:
+        zeros = jnp.zeros_like(controls.vx)
         limited, moved = (limited[0], zeros, limited[1]), [moved[0], zeros, moved[1]]
     clamped, velocities = Controls(*limited), Controls(*moved)
 
