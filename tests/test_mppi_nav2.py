@@ -338,6 +338,25 @@ def test_commands_accelerate_within_ax_max_and_reach_vx_max() -> None:
     assert abs(run[-1][1] - 2.0) < 0.1
 
 
+def test_each_reset_takes_new_noise_as_nav2_draws_it_and_the_bank_comes_round() -> None:
+    """Nav2 draws new noise on every reset (a goal ended, a fallback); regenerate_noises off,
+    the cycle's noise stays the same between resets."""
+    c = controller(noise_sets=3)
+    c.set_plan(line(0.5, 5.5))
+
+    def first_cycle() -> tuple[float, float]:
+        c.reset()
+        cmd = c.compute_velocity_commands(pose_msg(0.5, 2.0, 0.0), Twist(), None)
+        return cmd.twist.linear.x, cmd.twist.angular.z
+
+    firsts = [first_cycle() for _ in range(4)]
+    assert len(set(firsts[:3])) == 3  # three sets, three different first commands
+    assert firsts[3] == firsts[0]  # the fourth reset is the first set again
+    inputs = c.cycle_inputs(np.array([0.5, 2.0, 0.0]), Twist(), None)
+    c.pick_noise(inputs)
+    assert tuple(inputs[5, :2]) == (1.0, 0.0)  # between resets: the same set, unrolled
+
+
 def test_speed_limits_scale_the_commands() -> None:
     c = controller()
     c.set_plan(line(0.5, 5.5))

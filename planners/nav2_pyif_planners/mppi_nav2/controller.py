@@ -66,7 +66,7 @@ class Nav2MPPI(Controller):
         self.regenerate_noises = p.declare("regenerate_noises", False, "new noise every cycle")
         self.retry_attempt_limit = p.declare("retry_attempt_limit", 1, "resets before failing")
         self.fleet_size = p.declare("fleet_size", 1, "robots a batched host serves at most")
-        sets = p.declare("noise_sets", 8, "noise sets drawn at configure (regenerate_noises)")
+        sets = p.declare("noise_sets", 8, "noise sets drawn at configure: a reset takes the next")
         self.rng = np.random.default_rng(p.declare("seed", 0, "noise seed"))
         # vx, (vy: only for Omni, the others have no lateral noise,) wz
         sigma = np.array([s.vx_std, s.vy_std, s.wz_std] if s.holonomic else [s.vx_std, s.wz_std])
@@ -78,6 +78,7 @@ class Nav2MPPI(Controller):
         # the lane's platform is fixed: its compiled step is looked up once, not every cycle
         self._step = packed_step_on(self.device.platform)
         self._check_footprint()
+        self._noise_set = -1  # reset moves it to the bank's first set
         self._grid: Grid | None = None
         self._grid_version: int | None = None
         self.last_compute_s = 0.0
@@ -138,12 +139,14 @@ class Nav2MPPI(Controller):
         path, count = padded(straight, s.path_points)
         inputs = self._inputs(np.zeros(3), np.zeros(3), straight[-1], path, count, None)
         for _ in range(2):  # the second run: XLA's first-execution set-up, off the first cycle
-            jax.block_until_ready(self._run(inputs))
-        self.reset()
+            jax.block_until_ready(self._run(inputs))  # the warm start and history untouched
 
     def reset(self) -> None:
-        """Nav2's Optimizer::reset: the warm start and the smoothing's history forgotten."""
+        """Nav2's Optimizer::reset: the warm start and the smoothing's history forgotten, and
+        new noise (Nav2 draws a set on every reset: each goal, each fallback): the bank's next
+        set."""
         s = self.settings
+        self._noise_set = (self._noise_set + 1) % self.bank.shape[0]
         self.sequence = jnp.zeros((3, s.time_steps), jnp.float32, device=self.device)
         self.history = jnp.zeros((4, 3), jnp.float32, device=self.device)
         self._optimal = self.sequence
@@ -174,13 +177,15 @@ class Nav2MPPI(Controller):
         return pack(pose, speed, goal, self._limits(), tolerance, path, count)
 
     def pick_noise(self, inputs: np.ndarray) -> None:
-        """This cycle's noise set and roll into packed inputs: always the first set unrolled
-        unless regenerate_noises (optimizer.py)."""
+        """This cycle's noise set and roll into packed inputs: the set of the last reset,
+        unrolled, unless regenerate_noises (a random set and roll each cycle; optimizer.py)."""
         if self.regenerate_noises:
             inputs[5, :2] = (
                 self.rng.integers(self.bank.shape[0]),
                 self.rng.integers(self.settings.batch_size),
             )
+        else:
+            inputs[5, :2] = (self._noise_set, 0)
 
     def _run(self, inputs: np.ndarray) -> Outputs:
         """The compiled step on packed inputs (optimizer.pack), this cycle's noise picked."""

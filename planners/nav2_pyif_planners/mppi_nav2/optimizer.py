@@ -13,8 +13,9 @@ Noise: Nav2 draws it with xtensor's generator, once per reset (regenerate_noises
 on a thread each cycle (true). Drawing 2 x batch x steps normals with JAX's counter-based
 PRNG costs more on a CPU than the rest of the cycle (measured: 6 ms for 2000 x 56 x 3 on this
 2-core VM), so the controller draws a bank of noise sets at configure and each cycle uses
-one set, rolled along the batch by a random offset: with regenerate_noises false, always the
-first set unrolled, as Nav2 does."""
+one set, rolled along the batch by a random offset (regenerate_noises: true). With
+regenerate_noises false, the set stays the same, unrolled, until a reset takes the bank's
+next one, as Nav2 draws new noise on each reset (a goal ended, a fallback)."""
 
 from __future__ import annotations
 
