@@ -9,7 +9,7 @@ Per controller: compute per cycle (Nav2's MPPI: its own "Control loop execution 
 lines, in us with testenv's patch, else whole ms; ours: the controller method alone,
 planners/timed_mppi.py), CPU of the processes doing the work per cycle (controller_server; or
 the planner host and its workers), the gaps between cmd_vel messages, FollowPath's time to
-the goal and the path driven.
+the goal (each goal's median, and every drive's) and the path driven.
 $NAV2_PYIF_MPPI_RUNS round trips each (default 3); $NAV2_PYIF_MPPI_ROLLOUTS the rollout counts
 (default "1000 2000"); $NAV2_PYIF_MPPI_OURS the served classes (module:Class, default the
 timed Nav2MPPI; timed_mppi:TimedMPPIJax is the older JAX MPPI). Figures go to
@@ -212,6 +212,7 @@ def test_mppi_side_by_side(stack: dict[str, Any]) -> None:
         f"{name}_gap_p99_ms": 1e3 * _percentile(gaps, 0.99),
         f"{name}_gap_max_ms": 1e3 * max(gaps),
         f"{name}_time_to_goal_s": _per_goal([d.seconds for d in drives]),
+        f"{name}_each_drive_s": " ".join(f"{d.seconds:.2f}" for d in drives),
         f"{name}_path_m": _per_goal([d.metres for d in drives]),
         f"{name}_drives": len(drives),
     }
