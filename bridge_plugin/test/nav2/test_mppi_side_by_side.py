@@ -9,16 +9,18 @@ Per controller: compute per cycle (Nav2's MPPI: its own "Control loop execution 
 lines, in us with testenv's patch, else whole ms; ours: the controller method alone,
 planners/timed_mppi.py), CPU of the processes doing the work per cycle (controller_server; or
 the planner host and its workers), the gaps between cmd_vel messages, FollowPath's time to
-the goal (each goal's median, and every drive's) and the path driven.
+the goal (each goal's median, every drive's and their sum) and the path driven.
 $NAV2_PYIF_MPPI_RUNS round trips each (default 3); $NAV2_PYIF_MPPI_ROLLOUTS the rollout counts
 (default "1000 2000"); $NAV2_PYIF_MPPI_OURS the served classes (module:Class, default the
 timed Nav2MPPI; timed_mppi:TimedMPPIJax is the older JAX MPPI). Figures go to
-$NAV2_PYIF_FIGURES (JSON), printed by tests/test_nav2_launch.py.
+$NAV2_PYIF_FIGURES (JSON), printed by tests/test_nav2_launch.py; with $NAV2_PYIF_MPPI_TRACES
+(a directory), every drive's cmd_vel and poses over time too, a JSON file per stack.
 """
 
 from __future__ import annotations
 
 import itertools
+import json
 import math
 import os
 import re
@@ -26,6 +28,7 @@ import statistics
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import nav2_testing
@@ -35,6 +38,7 @@ from test_host_recovery import record
 RUNS = int(os.environ.get("NAV2_PYIF_MPPI_RUNS", "3"))
 ROLLOUTS = [int(n) for n in os.environ.get("NAV2_PYIF_MPPI_ROLLOUTS", "1000 2000").split()]
 OURS = os.environ.get("NAV2_PYIF_MPPI_OURS", "timed_mppi:TimedNav2MPPI").split()
+TRACES = os.environ.get("NAV2_PYIF_MPPI_TRACES", "")
 GOALS = ((2.0, 0.5), (0.0, 0.0))
 pytestmark = pytest.mark.timeout(300 + 120 * RUNS)
 NATIVE = "nav2_mppi_controller::MPPIController"
@@ -102,6 +106,9 @@ class Drive:
     metres: float
     gaps: list[float] = field(default_factory=list)  # [s] between cmd_vel messages
     cpu_s: float = 0.0  # of the processes doing the controller's work
+    # (s since the goal was sent, vx, wz) of each cmd_vel; (s, x, y) of each pose seen
+    commands: list[tuple[float, float, float]] = field(default_factory=list)
+    poses: list[tuple[float, float, float]] = field(default_factory=list)
 
 
 def _cpu_seconds(pids: list[int]) -> float:
@@ -128,12 +135,16 @@ def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
     planned = client.plan(*goal)
     assert planned is not None and len(planned.result.path.poses) > 1, "no plan"
     stamps: list[float] = []
-    poses: list[tuple[float, float]] = []
+    sent: list[tuple[float, float]] = []
+    poses: list[tuple[float, float, float]] = []
+
+    def heard(msg: Any) -> None:
+        stamps.append(time.monotonic())
+        twist = msg.twist if STAMPED_CMD_VEL else msg
+        sent.append((twist.linear.x, twist.angular.z))
+
     commands = client.create_subscription(
-        TwistStamped if STAMPED_CMD_VEL else Twist,
-        "cmd_vel",
-        lambda _msg: stamps.append(time.monotonic()),
-        50,
+        TwistStamped if STAMPED_CMD_VEL else Twist, "cmd_vel", heard, 50
     )
     cpu = _cpu_seconds(workers)
     started = time.monotonic()
@@ -142,16 +153,17 @@ def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
     while not result_future.done() and time.monotonic() - started < 120.0:
         client.spin_until(result_future.done, 0.05)
         if client.pose is not None:
-            poses.append(client.pose)
+            poses.append((time.monotonic() - started, *client.pose[:2]))
     seconds = time.monotonic() - started
     client.destroy_subscription(commands)
     result = result_future.result() if result_future.done() else None
     assert result is not None and result.status == nav2_testing.SUCCEEDED, (
         f"FollowPath to {goal} ended {None if result is None else result.status}"
     )
-    metres = sum(math.dist(a, b) for a, b in itertools.pairwise(poses))
+    metres = sum(math.dist(a[1:], b[1:]) for a, b in itertools.pairwise(poses))
     gaps = [b - a for a, b in itertools.pairwise(stamps)]
-    return Drive(seconds, metres, gaps, _cpu_seconds(workers) - cpu)
+    timeline = [(s - started, vx, wz) for s, (vx, wz) in zip(stamps, sent, strict=True)]
+    return Drive(seconds, metres, gaps, _cpu_seconds(workers) - cpu, timeline, poses)
 
 
 def _per_goal(values: list[float]) -> str:
@@ -213,8 +225,14 @@ def test_mppi_side_by_side(stack: dict[str, Any]) -> None:
         f"{name}_gap_max_ms": 1e3 * max(gaps),
         f"{name}_time_to_goal_s": _per_goal([d.seconds for d in drives]),
         f"{name}_each_drive_s": " ".join(f"{d.seconds:.2f}" for d in drives),
+        # the sum: each goal's drives start from where the last one stopped, which varies
+        f"{name}_all_drives_s": round(sum(d.seconds for d in drives), 2),
         f"{name}_path_m": _per_goal([d.metres for d in drives]),
         f"{name}_drives": len(drives),
     }
     record(**figures)
     print(name, figures)
+    if TRACES:  # every drive's commands and poses over time, for a look at where time goes
+        Path(TRACES).mkdir(parents=True, exist_ok=True)
+        traces = [{"commands": d.commands, "poses": d.poses} for d in drives]
+        (Path(TRACES) / f"{name}.json").write_text(json.dumps(traces))
