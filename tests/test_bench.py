@@ -327,3 +327,31 @@ def test_fleet_benchmark_serves_nav2_mppi_batched_through_a_real_host() -> None:
     assert "ignores parameter" not in result.stdout + result.stderr
     rows = re.findall(r"^  (batched .*?) +2 +(\d+) +[\d.]+ ms", result.stdout, re.M)
     assert rows == [("batched (5 ms window)", "40")], result.stdout
+
+
+def test_mppi_traces_tells_each_drive_and_draws_one(tmp_path: Path) -> None:
+    """Two stacks' drives as the side-by-side writes them: one drives 1 m at 0.5 m/s, the
+    other at 0.25 m/s; the table tells them apart, --png draws them."""
+
+    def drive(speed: float) -> dict[str, list[list[float]]]:
+        times = [0.1 * i for i in range(int(1.0 / speed / 0.1) + 1)]
+        return {
+            "commands": [[t, speed, 0.1] for t in times],
+            "poses": [[t, speed * t, 0.0] for t in times],
+        }
+
+    traces = tmp_path / "traces"
+    traces.mkdir()
+    (traces / "fast.json").write_text(json.dumps([drive(0.5)]))
+    (traces / "slow.json").write_text(json.dumps([drive(0.25)]))
+    png = tmp_path / "drive.png"
+    result = bench("mppi-traces", str(traces), "--drive", "0", "--png", str(png))
+    assert_prints(result, f"wrote {png} (drive 0)")
+    rows = {line.split()[0]: line.split() for line in result.stdout.splitlines()[3:5]}
+    assert rows["fast"][1:5] == ["0", "2.00s", "1.80s", "0.500m/s"]
+    assert rows["slow"][1:5] == ["0", "4.00s", "3.60s", "0.250m/s"]
+    assert png.read_bytes().startswith(b"\x89PNG")
+    missing = bench("mppi-traces", str(tmp_path / "none"))
+    assert missing.returncode == 2 and "NAV2_PYIF_MPPI_TRACES" in missing.stderr
+    no_such_drive = bench("mppi-traces", str(traces), "--drive", "3", "--png", str(png))
+    assert no_such_drive.returncode == 2 and "--drive 3" in no_such_drive.stderr

@@ -5,6 +5,7 @@ nav2-pyif-bench cpp-cycle [--quick]            the control cycle with the C++ pl
 nav2-pyif-bench mppi [--batch-sizes 1000 2000]  the MPPI controllers through a host, both maps
 nav2-pyif-bench mppi-profile [--cold]         where Nav2MPPI's cycle and compiled step spend time
 nav2-pyif-bench mppi-fleet [--robots 1 5 10]   Nav2MPPI batched: CPU per robot-cycle at 20 Hz
+nav2-pyif-bench mppi-traces DIR [--png P]      where the MPPI side-by-side's drives spend time
 nav2-pyif-bench fleet [--robots 1 10 50]        N robots at 20 Hz on one host (--batch, --compare)
 nav2-pyif-bench reliability [--calls 200000]    hot swap gaps, RSS over a long run
 nav2-pyif-bench tls [--quick]                   the control cycle over TCP, mTLS, mTLS + ACL
@@ -42,6 +43,7 @@ from nav2_pyif_bench import (
     mppi_bench,
     mppi_fleet,
     mppi_profile,
+    mppi_traces,
     obstacles_bench,
     path_handler_bench,
     protocol_bench,
@@ -113,6 +115,15 @@ def build_parser() -> argparse.ArgumentParser:
         action="store_true",
         help="also the whole cycle after a read larger than the CPU's last cache, and one "
         "every 50 ms (20 Hz, as Nav2 calls it): what each call pays when it starts cold",
+    )
+    traces = sub.add_parser(
+        "mppi-traces",
+        help="the MPPI side-by-side's drives (NAV2_PYIF_MPPI_TRACES): per drive and drawn",
+    )
+    traces.add_argument("directory", help="the traces directory the side-by-side wrote")
+    traces.add_argument("--png", metavar="PATH", help="draw one drive's commands over time")
+    traces.add_argument(
+        "--drive", type=int, default=2, help="the drive drawn (default 2: the first goal again)"
     )
     mppi_fleet_parser = sub.add_parser(
         "mppi-fleet", help="Nav2MPPI batched: N robots in one call at 20 Hz, CPU per robot"
@@ -360,6 +371,13 @@ def run(args: argparse.Namespace) -> int:
     elif args.bench == "mppi-profile":
         results = mppi_profile.run(args)
         text = mppi_profile.report(results)
+    elif args.bench == "mppi-traces":
+        try:
+            results = mppi_traces.run(args)
+        except (FileNotFoundError, ValueError) as exc:
+            print(f"nav2-pyif-bench mppi-traces: {exc}", file=sys.stderr)
+            return 2
+        text = mppi_traces.report(results)
     elif args.bench == "mppi-fleet":
         results = mppi_fleet.run(args)
         text = mppi_fleet.report(results)
