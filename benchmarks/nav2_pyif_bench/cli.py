@@ -28,7 +28,7 @@ import json
 import sys
 from pathlib import Path
 
-from nav2_pyif.common.option_types import positive_float, positive_int
+from nav2_pyif.common.option_types import non_negative_int, positive_float, positive_int
 from nav2_pyif.common.signals import Interrupted, raise_on_signals
 
 from nav2_pyif_bench import (
@@ -123,7 +123,10 @@ def build_parser() -> argparse.ArgumentParser:
     traces.add_argument("directory", help="the traces directory the side-by-side wrote")
     traces.add_argument("--png", metavar="PATH", help="draw one drive's commands over time")
     traces.add_argument(
-        "--drive", type=int, default=2, help="the drive drawn (default 2: the first goal again)"
+        "--drive",
+        type=non_negative_int,
+        default=2,
+        help="the drive drawn (default 2: the first goal again)",
     )
     mppi_fleet_parser = sub.add_parser(
         "mppi-fleet", help="Nav2MPPI batched: N robots in one call at 20 Hz, CPU per robot"
