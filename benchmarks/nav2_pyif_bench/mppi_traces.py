@@ -70,11 +70,13 @@ def plot(stacks: dict[str, list[dict[str, Any]]], drive: int, path: Path) -> Non
     matplotlib.use("Agg")  # files only, no display needed
     import matplotlib.pyplot as plt
 
-    fig, (vx, wz) = plt.subplots(2, 1, figsize=(9, 5.5), sharex=True, constrained_layout=True)
     for name, drives in stacks.items():
         if drive >= len(drives):
             raise ValueError(f"{name} has {len(drives)} drives; --drive {drive} is not one")
-        t, forward, turn = zip(*drives[drive]["commands"], strict=True) or ((), (), ())
+    fig, (vx, wz) = plt.subplots(2, 1, figsize=(9, 5.5), sharex=True, constrained_layout=True)
+    for name, drives in stacks.items():
+        commands = drives[drive]["commands"]  # (s, vx, wz) rows; none if no cmd_vel was heard
+        t, forward, turn = zip(*commands, strict=True) if commands else ((), (), ())
         vx.plot(t, forward, lw=1, label=name)
         wz.plot(t, turn, lw=1, label=name)
     vx.set(ylabel="cmd_vel vx [m/s]", title=f"drive {drive}: the commands over time")

@@ -134,17 +134,15 @@ def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
 
     planned = client.plan(*goal)
     assert planned is not None and len(planned.result.path.poses) > 1, "no plan"
-    stamps: list[float] = []
-    sent: list[tuple[float, float]] = []
+    heard: list[tuple[float, float, float]] = []  # (monotonic s, vx, wz) of each cmd_vel
     poses: list[tuple[float, float, float]] = []
 
-    def heard(msg: Any) -> None:
-        stamps.append(time.monotonic())
+    def hear(msg: Any) -> None:
         twist = msg.twist if STAMPED_CMD_VEL else msg
-        sent.append((twist.linear.x, twist.angular.z))
+        heard.append((time.monotonic(), twist.linear.x, twist.angular.z))
 
     commands = client.create_subscription(
-        TwistStamped if STAMPED_CMD_VEL else Twist, "cmd_vel", heard, 50
+        TwistStamped if STAMPED_CMD_VEL else Twist, "cmd_vel", hear, 50
     )
     cpu = _cpu_seconds(workers)
     started = time.monotonic()
@@ -161,8 +159,8 @@ def _drive(client: Any, goal: tuple[float, float], workers: list[int]) -> Drive:
         f"FollowPath to {goal} ended {None if result is None else result.status}"
     )
     metres = sum(math.dist(a[1:], b[1:]) for a, b in itertools.pairwise(poses))
-    gaps = [b - a for a, b in itertools.pairwise(stamps)]
-    timeline = [(s - started, vx, wz) for s, (vx, wz) in zip(stamps, sent, strict=True)]
+    gaps = [b[0] - a[0] for a, b in itertools.pairwise(heard)]
+    timeline = [(s - started, vx, wz) for s, vx, wz in heard]
     return Drive(seconds, metres, gaps, _cpu_seconds(workers) - cpu, timeline, poses)
 
 
