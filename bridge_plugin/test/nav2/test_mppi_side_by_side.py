@@ -14,7 +14,8 @@ $NAV2_PYIF_MPPI_RUNS round trips each (default 3); $NAV2_PYIF_MPPI_ROLLOUTS the 
 (default "1000 2000"); $NAV2_PYIF_MPPI_OURS the served classes (module:Class, default the
 timed Nav2MPPI; timed_mppi:TimedMPPIJax is the older JAX MPPI). Figures go to
 $NAV2_PYIF_FIGURES (JSON), printed by tests/test_nav2_launch.py; with $NAV2_PYIF_MPPI_TRACES
-(a directory), every drive's cmd_vel and poses over time too, a JSON file per stack.
+(a directory), every drive's cmd_vel and poses over time too, a JSON file per stack;
+$NAV2_PYIF_MPPI_HOST_ARGS our host's options (default "--xla-threads 1"; "" for XLA's pool).
 """
 
 from __future__ import annotations
@@ -39,6 +40,9 @@ RUNS = int(os.environ.get("NAV2_PYIF_MPPI_RUNS", "3"))
 ROLLOUTS = [int(n) for n in os.environ.get("NAV2_PYIF_MPPI_ROLLOUTS", "1000 2000").split()]
 OURS = os.environ.get("NAV2_PYIF_MPPI_OURS", "timed_mppi:TimedNav2MPPI").split()
 TRACES = os.environ.get("NAV2_PYIF_MPPI_TRACES", "")
+# our host as the MPPI guide serves a lone robot on a small computer: one XLA thread, its step
+# on one core as Nav2's MPPI runs (python/doc/howto/mppi.md)
+HOST_ARGS = os.environ.get("NAV2_PYIF_MPPI_HOST_ARGS", "--xla-threads 1").split()
 GOALS = ((2.0, 0.5), (0.0, 0.0))
 pytestmark = pytest.mark.timeout(300 + 120 * RUNS)
 NATIVE = "nav2_mppi_controller::MPPIController"
@@ -191,7 +195,9 @@ def stack(
     native = controller == "native"
     if native and nav2_testing.find("share/nav2_mppi_controller/package.xml") is None:
         pytest.skip("the side-by-side needs nav2_mppi_controller: testenv/build.sh jazzy mppi")
-    serve = () if native else ("--serve", f"{nav2_testing.PREFIX}/FollowPath={controller}")
+    serve = (
+        () if native else ("--serve", f"{nav2_testing.PREFIX}/FollowPath={controller}", *HOST_ARGS)
+    )
     for up in nav2_testing.bring_up(
         tmp_path_factory.mktemp(f"mppi_{controller.replace(':', '_')}_{rollouts}"),
         planners=(*("--path", str(nav2_testing.HERE / "planners")), *serve, *PLANNER),

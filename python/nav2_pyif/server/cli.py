@@ -53,6 +53,7 @@ from nav2_pyif.server.service import InProcessPlanner, PlannerService
 from nav2_pyif.server.spec import PlannerSpec
 from nav2_pyif.server.supervisor import Deadlines, SupervisedPlanner
 from nav2_pyif.server.watch import SourceWatcher, source_roots, watchfiles_missing
+from nav2_pyif.server.xla_threads import add_xla_threads_argument, apply_xla_threads
 
 EPILOG = """\
 examples:
@@ -196,6 +197,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="address-space limit of each worker process, >= 0; a planner exceeding it gets "
         "MemoryError (default 0: none; GPU frameworks reserve large address spaces)",
     )
+    add_xla_threads_argument(safety)
     add_batch_arguments(parser)
     add_record_arguments(parser)
     swap = parser.add_argument_group("hot swap from the network (nav2-pyif reload)")
@@ -364,6 +366,7 @@ def main(argv: list[str] | None = None) -> int:
     for name, value in sorted(from_environment.items()):
         log.info("from the environment: %s=%s", name, value)
     check_serialization_rmw()  # before any worker starts: they inherit the environment
+    apply_xla_threads(args.xla_threads, log)  # the same, and before any planner starts JAX
     for directory in [os.getcwd(), *args.path][::-1]:
         if directory not in sys.path:
             sys.path.insert(0, directory)
